@@ -1,0 +1,67 @@
+"""The ``console-tui`` command line."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+
+from . import __version__
+from .model.store import DEFAULT_MAX_MESSAGES
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="console-tui",
+        description=(
+            "A terminal log console for ROS: every node's log messages in one fast table, "
+            "with filters, highlights and logger levels."
+        ),
+        epilog="Subcommands: 'console-tui loggers --help' lists and sets logger levels without the TUI.",
+    )
+    parser.add_argument("--version", action="version", version=f"console-tui {__version__}")
+    parser.add_argument(
+        "--demo",
+        action="store_true",
+        help="start demo ROS 2 nodes in child processes and show their messages",
+    )
+    parser.add_argument(
+        "--topic",
+        metavar="NAME",
+        help="log topic to read (default: /rosout_agg when something publishes it, else /rosout)",
+    )
+    parser.add_argument(
+        "--max-messages",
+        metavar="N",
+        type=_positive_int,
+        default=DEFAULT_MAX_MESSAGES,
+        help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
+    )
+    parser.add_argument("--utc", action="store_true", help="show times in UTC instead of local time")
+    return parser
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError("must be at least 1")
+    return value
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args_list = list(sys.argv[1:] if argv is None else argv)
+    if args_list[:1] == ["loggers"]:
+        from .commands.loggers import main as loggers_main
+
+        return loggers_main(args_list[1:])
+    args = build_parser().parse_args(args_list)
+    from .launch import run_app
+
+    return run_app(args)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,1 @@
+"""The model: records, the store, levels, rules and formats. No ROS and no Textual here."""

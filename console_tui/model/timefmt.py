@@ -1,0 +1,44 @@
+"""Formatting and parsing of ROS time stamps (nanoseconds since the Unix epoch)."""
+
+from __future__ import annotations
+
+import time
+from datetime import datetime, timezone
+
+NS_PER_S = 1_000_000_000
+
+
+def split_stamp(stamp_ns: int) -> tuple[int, int]:
+    """``(sec, nanosec)`` of a stamp, nanosec always in 0..999,999,999."""
+    return divmod(stamp_ns, NS_PER_S)
+
+
+def stamp_text(stamp_ns: int) -> str:
+    """``sec.nanosec`` with nanosec padded to 9 digits, as rqt_console writes stamps."""
+    sec, nsec = split_stamp(stamp_ns)
+    return f"{sec}.{nsec:09d}"
+
+
+def clock_text(stamp_ns: int, *, utc: bool = False, digits: int = 3) -> str:
+    """``HH:MM:SS.mmm`` in local time (or UTC), for the table's time column."""
+    sec, nsec = split_stamp(stamp_ns)
+    try:
+        parts = time.gmtime(sec) if utc else time.localtime(sec)
+    except (OverflowError, OSError, ValueError):
+        return stamp_text(stamp_ns)
+    fraction = f"{nsec:09d}"[:digits]
+    return f"{parts.tm_hour:02d}:{parts.tm_min:02d}:{parts.tm_sec:02d}" + (
+        f".{fraction}" if digits else ""
+    )
+
+
+def full_text(stamp_ns: int, *, utc: bool = False) -> str:
+    """Date, time to the nanosecond and zone: ``2026-11-22 10:08:41.123456789 +0000``."""
+    sec, nsec = split_stamp(stamp_ns)
+    try:
+        moment = datetime.fromtimestamp(sec, tz=timezone.utc)
+        if not utc:
+            moment = moment.astimezone()
+    except (OverflowError, OSError, ValueError):
+        return stamp_text(stamp_ns)
+    return f"{moment:%Y-%m-%d %H:%M:%S}.{nsec:09d} {moment:%z}"

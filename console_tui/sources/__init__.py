@@ -1,0 +1,1 @@
+"""Sources turn ROS messages and files into ``LogRecord`` batches for the model."""

@@ -1,0 +1,137 @@
+"""A real rclpy node for tests, driven by JSON commands on stdin, reporting on stdout.
+
+    talker.py --name NAME [--namespace NS] [--volatile] [--no-logger-service] [--debug]
+
+Prints ``{"event": "ready", "logger": ..., "pid": ...}`` once up. Commands (one JSON object a
+line): ``{"cmd": "log_all", "tag": T}`` logs one message at each severity, from a function
+of its own each, and prints ``{"event": "logged", "messages": [...]}`` with every field;
+``{"cmd": "log", "level": "info", "msg": M}`` logs one; ``{"cmd": "periodic",
+"period": S}`` logs DEBUG and INFO ``tick N`` every S seconds. EOF on stdin ends it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import inspect
+import json
+import os
+import sys
+import threading
+
+import rclpy
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.logging import LoggingSeverity
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+FILE = os.path.abspath(__file__)
+_print_lock = threading.Lock()
+
+
+def say(**fields) -> None:
+    with _print_lock:
+        print(json.dumps(fields), flush=True)
+
+
+def _record(level: int, msg: str, back: int = 1) -> dict:
+    frame = inspect.currentframe().f_back
+    return {"level": level, "msg": msg, "file": FILE, "function": frame.f_code.co_name, "line": frame.f_lineno + back}
+
+
+def log_debug(logger, msg: str) -> dict:
+    record = _record(10, msg)
+    logger.debug(msg)
+    return record
+
+
+def log_info(logger, msg: str) -> dict:
+    record = _record(20, msg)
+    logger.info(msg)
+    return record
+
+
+def log_warning(logger, msg: str) -> dict:
+    record = _record(30, msg)
+    logger.warning(msg)
+    return record
+
+
+def log_error(logger, msg: str) -> dict:
+    record = _record(40, msg)
+    logger.error(msg)
+    return record
+
+
+def log_fatal(logger, msg: str) -> dict:
+    record = _record(50, msg)
+    logger.fatal(msg)
+    return record
+
+
+BY_LEVEL = {"debug": log_debug, "info": log_info, "warn": log_warning, "error": log_error, "fatal": log_fatal}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--name", required=True)
+    parser.add_argument("--namespace", default="")
+    parser.add_argument("--volatile", action="store_true", help="rosout QoS VOLATILE")
+    parser.add_argument("--no-logger-service", action="store_true")
+    parser.add_argument("--debug", action="store_true", help="start with the logger at DEBUG")
+    args = parser.parse_args()
+
+    rclpy.init()
+    options = {"enable_logger_service": not args.no_logger_service}
+    if args.volatile:
+        options["rosout_qos_profile"] = QoSProfile(
+            depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE
+        )
+    node = Node(args.name, namespace=args.namespace, **options)
+    logger = node.get_logger()
+    if args.debug:
+        logger.set_level(LoggingSeverity.DEBUG)
+    executor = SingleThreadedExecutor()
+    executor.add_node(node)
+    state = {"tick": 0, "timer": None}
+
+    def tick() -> None:
+        state["tick"] += 1
+        log_debug(logger, f"tick {state['tick']} debug")
+        log_info(logger, f"tick {state['tick']} info")
+
+    def read_commands() -> None:
+        for raw in sys.stdin:
+            try:
+                command = json.loads(raw)
+            except json.JSONDecodeError:
+                continue
+            kind = command.get("cmd")
+            if kind == "log_all":
+                tag = command.get("tag", "")
+                messages = [function(logger, f"{tag} {name} message") for name, function in BY_LEVEL.items()]
+                say(event="logged", messages=messages)
+            elif kind == "log":
+                message = BY_LEVEL[command.get("level", "info")](logger, command.get("msg", ""))
+                say(event="logged", messages=[message])
+            elif kind == "periodic":
+                state["timer"] = node.create_timer(float(command.get("period", 0.1)), tick)
+                say(event="periodic")
+        executor.shutdown(timeout_sec=0)
+        rclpy.try_shutdown()
+
+    threading.Thread(target=read_commands, daemon=True).start()
+    say(event="ready", logger=logger.name, pid=os.getpid(), node=node.get_fully_qualified_name())
+    try:
+        executor.spin()
+    except Exception:
+        pass
+    finally:
+        try:
+            node.destroy_node()
+        except Exception:
+            pass
+        rclpy.try_shutdown()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,123 @@
+"""Starting real node processes for tests, and stopping every one of them."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import os
+import selectors
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+NODES = Path(__file__).parent / "nodes"
+
+
+def ros_available() -> bool:
+    return importlib.util.find_spec("rclpy") is not None
+
+
+class NodeProcess:
+    """A node script from ``tests/nodes`` in a child process.
+
+    The script prints one JSON object per line on stdout; ``READY`` objects and others
+    are read with ``expect``. Closing its stdin (``stop``) ends it; ``kill`` does not wait.
+    """
+
+    def __init__(self, script: str, *args: str, env: dict[str, str]) -> None:
+        self.process = subprocess.Popen(
+            [sys.executable, "-u", str(NODES / script), *args],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            env=env,
+            text=True,
+        )
+        self.lines: list[dict[str, Any]] = []
+        self._selector = selectors.DefaultSelector()
+        assert self.process.stdout is not None
+        self._selector.register(self.process.stdout, selectors.EVENT_READ)
+
+    def expect(self, key: str, timeout: float = 20.0) -> dict[str, Any]:
+        """Read stdout until an object with ``"event": key`` arrives; return it."""
+        for line in self.lines:
+            if line.get("event") == key:
+                return line
+        deadline = time.monotonic() + timeout
+        stdout = self.process.stdout
+        assert stdout is not None
+        while time.monotonic() < deadline:
+            if not self._selector.select(timeout=max(0.0, deadline - time.monotonic())):
+                continue
+            raw = stdout.readline()
+            if not raw:
+                break
+            try:
+                item = json.loads(raw)
+            except json.JSONDecodeError:
+                continue
+            self.lines.append(item)
+            if item.get("event") == key:
+                return item
+        stderr = self.process.stderr.read() if self.process.poll() is not None and self.process.stderr else ""
+        raise TimeoutError(f"{self.process.args[2]} never said {key!r}; stderr: {stderr[-2000:]}")
+
+    def send(self, command: dict[str, Any]) -> None:
+        assert self.process.stdin is not None
+        self.process.stdin.write(json.dumps(command) + "\n")
+        self.process.stdin.flush()
+
+    def stop(self, timeout: float = 5.0) -> None:
+        if self.process.poll() is None:
+            try:
+                assert self.process.stdin is not None
+                self.process.stdin.close()
+            except (BrokenPipeError, OSError):
+                pass
+            try:
+                self.process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait(timeout)
+        self._selector.close()
+
+    def kill(self) -> None:
+        self.process.kill()
+        self.process.wait(5)
+
+
+class NodeProcesses:
+    """Every node process a test started, stopped at the end whatever happens."""
+
+    def __init__(self, env: dict[str, str]) -> None:
+        self.env = env
+        self.started: list[NodeProcess] = []
+
+    def start(self, script: str, *args: str) -> NodeProcess:
+        process = NodeProcess(script, *args, env=self.env)
+        self.started.append(process)
+        return process
+
+    def stop_all(self) -> None:
+        for process in self.started:
+            process.stop()
+        self.started.clear()
+
+
+def wait_until(condition, timeout: float = 15.0, interval: float = 0.05) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(interval)
+    return bool(condition())
+
+
+def pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except OSError:
+        return False
+    return True
