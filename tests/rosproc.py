@@ -64,6 +64,11 @@ class NodeProcess:
         stderr = self.process.stderr.read() if self.process.poll() is not None and self.process.stderr else ""
         raise TimeoutError(f"{self.process.args[2]} never said {key!r}; stderr: {stderr[-2000:]}")
 
+    def expect_next(self, key: str, timeout: float = 20.0) -> dict[str, Any]:
+        """Like ``expect``, but only an object that was not read before."""
+        self.lines = [line for line in self.lines if line.get("event") != key]
+        return self.expect(key, timeout)
+
     def send(self, command: dict[str, Any]) -> None:
         assert self.process.stdin is not None
         self.process.stdin.write(json.dumps(command) + "\n")

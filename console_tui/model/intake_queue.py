@@ -28,6 +28,7 @@ class IntakeQueue:
         self.received = 0
 
     def put(self, batch: list[LogRecord]) -> None:
+        """Queue a batch; the caller hands it over and must not use it again."""
         if not batch:
             return
         with self._lock:
@@ -38,18 +39,22 @@ class IntakeQueue:
             self._batches.append(batch)
             self._waiting += len(batch)
 
-    def drain(self) -> list[LogRecord]:
-        """Everything waiting, oldest first (an empty list when nothing is)."""
-        with self._lock:
-            if not self._batches:
-                return []
-            batches, self._batches = self._batches, deque()
-            self._waiting = 0
-        if len(batches) == 1:
-            return batches[0]
+    def drain(self, limit: int | None = None) -> list[LogRecord]:
+        """What is waiting, oldest first, at most ``limit`` records (an empty list if none)."""
         out: list[LogRecord] = []
-        for batch in batches:
-            out.extend(batch)
+        with self._lock:
+            batches = self._batches
+            while batches and (limit is None or len(out) < limit):
+                batch = batches.popleft()
+                room = len(batch) if limit is None else limit - len(out)
+                if len(batch) > room:
+                    batches.appendleft(batch[room:])
+                    batch = batch[:room]
+                if out:
+                    out.extend(batch)
+                else:
+                    out = batch  # handed over by the producer: ours to extend
+                self._waiting -= len(batch)
         return out
 
     def __len__(self) -> int:

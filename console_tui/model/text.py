@@ -18,8 +18,8 @@ _OTHERS = {code: f"<U+{code:04X}>" for code in _INVISIBLE}
 
 #: Table for one-line display (a table cell): newlines and tabs are shown too.
 ONE_LINE = str.maketrans({**_C0, **_OTHERS, 0x0A: "\u21b5", 0x09: "\u2192"})
-#: Table for multi-line display (the detail view): newlines kept, tabs become spaces.
-MULTI_LINE = str.maketrans({**_C0, **_OTHERS, 0x0A: "\n", 0x09: "    "})
+#: Table for multi-line display (the detail view): newlines and tabs kept.
+MULTI_LINE = str.maketrans({**_C0, **_OTHERS, 0x0A: "\n", 0x09: "\t"})
 
 _NEEDS_WORK = re.compile(r"[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
 _SURROGATE = re.compile(r"[\ud800-\udfff]")

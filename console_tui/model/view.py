@@ -40,6 +40,10 @@ class LogView:
         self._indexed_to = self.store.first_seq
         self.update()
 
+    def rebuild(self) -> None:
+        """Re-index from scratch (after the store was cleared)."""
+        self.set_filter(self._filter)
+
     def update(self) -> None:
         """Take in records appended (and forget those evicted) since the last call."""
         store = self.store

@@ -1,0 +1,1 @@
+"""The built-in demo: real rclpy nodes in child processes, logging like a small robot."""

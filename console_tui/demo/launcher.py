@@ -1,0 +1,48 @@
+"""Starting and stopping the demo node processes."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from .nodes import DEMO_NODES
+
+#: The demo stays on this machine: discovery only over loopback.
+DEMO_ENVIRONMENT = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+
+
+class DemoNodes:
+    """The demo nodes, each in a child process that ends when we close its stdin."""
+
+    def __init__(self, names: list[str] | None = None) -> None:
+        self.names = names or list(DEMO_NODES)
+        self.processes: list[subprocess.Popen] = []
+
+    def start(self) -> None:
+        env = {**os.environ, **DEMO_ENVIRONMENT, "RCUTILS_LOGGING_USE_STDOUT": "0"}
+        for name in self.names:
+            self.processes.append(
+                subprocess.Popen(
+                    [sys.executable, "-m", "console_tui.demo.nodes", name],
+                    stdin=subprocess.PIPE,
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                    env=env,
+                )
+            )
+
+    def stop(self, timeout: float = 3.0) -> None:
+        processes, self.processes = self.processes, []
+        for process in processes:
+            if process.stdin is not None:
+                try:
+                    process.stdin.close()
+                except OSError:
+                    pass
+        for process in processes:
+            try:
+                process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait(timeout)

@@ -1,0 +1,60 @@
+"""Putting the pieces together for a run: store, sources, demo nodes, the app."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from .model.intake_queue import IntakeQueue
+from .model.store import LogStore
+from .sources.ros2.rclpy_loader import RosUnavailable
+
+
+def run_app(args: argparse.Namespace) -> int:
+    """Run the TUI as the arguments say; returns the process exit code."""
+    store = LogStore(max_messages=args.max_messages)
+    queue = IntakeQueue()
+    sources: list = []
+    cleanups: list = []
+    try:
+        if args.demo:
+            from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
+
+            os.environ.update(DEMO_ENVIRONMENT)
+        runtime = _start_ros()
+        cleanups.append(runtime.shutdown)
+        if args.demo:
+            demo = DemoNodes()
+            demo.start()
+            cleanups.append(demo.stop)
+        from .sources.ros2.log_source import LiveLogSource
+
+        sources.append(LiveLogSource(runtime, queue, topic=args.topic))
+    except RosUnavailable as error:
+        print(f"console-tui: {error}", file=sys.stderr)
+        return 2
+    from .ui.app import ConsoleApp
+
+    app = ConsoleApp(store=store, queue=queue, sources=sources, utc=args.utc)
+    try:
+        app.run()
+    finally:
+        app.stop_sources()
+        for cleanup in reversed(cleanups):
+            try:
+                cleanup()
+            except Exception:
+                pass
+    return app.return_code or 0
+
+
+def _start_ros():
+    from .sources.ros2.runtime import RosRuntime
+
+    try:
+        return RosRuntime()
+    except RosUnavailable:
+        raise
+    except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
+        raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None

@@ -1,0 +1,1 @@
+"""The Textual UI: reads the model, controls the sources."""

@@ -1,0 +1,59 @@
+"""The help screen: what the tool shows and every key, read from the live bindings."""
+
+from __future__ import annotations
+
+from rich.table import Table
+from rich.text import Text
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import VerticalScroll
+from textual.screen import ModalScreen
+from textual.widgets import Static
+
+INTRO = (
+    "console-tui shows every node's log messages in one table. It follows the newest "
+    "message until you move up or pause; End follows again. Ctrl+P searches every action."
+)
+
+
+def _key_label(key: str) -> str:
+    return ", ".join(part.strip() for part in key.split(","))
+
+
+def bindings_table(groups: list[tuple[str, list[Binding]]]) -> Table:
+    table = Table.grid(padding=(0, 2))
+    table.add_column(style="bold cyan", no_wrap=True)
+    table.add_column()
+    for title, bindings in groups:
+        table.add_row(Text(title, style="bold underline"), "")
+        seen: set[str] = set()
+        for binding in bindings:
+            if binding.description in seen or not binding.description:
+                continue
+            seen.add(binding.description)
+            table.add_row(_key_label(binding.key), binding.description)
+        table.add_row("", "")
+    return table
+
+
+class HelpScreen(ModalScreen[None]):
+    DEFAULT_CSS = """
+    HelpScreen { align: center middle; }
+    HelpScreen > VerticalScroll {
+        width: 80; max-width: 95%; height: 85%; border: thick $primary; background: $surface; padding: 1 2;
+    }
+    """
+    BINDINGS = [Binding("escape,q,question_mark,f1", "dismiss_screen", "Close")]
+
+    def __init__(self, groups: list[tuple[str, list[Binding]]]) -> None:
+        super().__init__()
+        self.groups = groups
+
+    def compose(self) -> ComposeResult:
+        with VerticalScroll():
+            yield Static(Text(INTRO), classes="intro")
+            yield Static("")
+            yield Static(bindings_table(self.groups))
+
+    def action_dismiss_screen(self) -> None:
+        self.dismiss(None)

@@ -1,0 +1,398 @@
+"""The log table: a line-API view over the store that renders only the visible rows.
+
+Rows are addressed by store seq, which never changes, so rendered rows are cached by seq
+and the position survives records arriving and old ones being evicted. Line 0 is a fixed
+header; line ``y`` shows row ``scroll_y + y - 1``.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+
+from rich.cells import cell_len, set_cell_size
+from rich.segment import Segment
+from rich.style import Style
+from textual import events
+from textual.binding import Binding
+from textual.cache import LRUCache
+from textual.geometry import Size
+from textual.message import Message
+from textual.scroll_view import ScrollView
+from textual.strip import Strip
+
+from ...model.levels import severity_bucket, severity_name
+from ...model.record import LogRecord
+from ...model.store import LogStore
+from ...model.text import one_line
+from ...model.timefmt import clock_text
+from ...model.view import LogView
+from .columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
+
+#: How a row is marked by the rules: None (plain), "highlight" or "dim".
+Decoration = str | None
+
+_SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
+_MESSAGE_LIMIT = 2000
+
+
+class LogTable(ScrollView, can_focus=True):
+    """Rows of a ``LogView``; follows the tail until the user moves away or pauses."""
+
+    DEFAULT_CSS = """
+    LogTable {
+        background: $surface;
+        color: $foreground;
+        scrollbar-gutter: stable;
+    }
+    LogTable > .log-table--header { text-style: bold; background: $panel; color: $foreground; }
+    LogTable > .log-table--cursor { background: $block-cursor-blurred-background; }
+    LogTable:focus > .log-table--cursor { background: $block-cursor-background; color: $block-cursor-foreground; }
+    LogTable > .log-table--dim-column { color: $foreground-muted; }
+    LogTable > .log-table--row-debug { color: $foreground-muted; }
+    LogTable > .log-table--row-info { }
+    LogTable > .log-table--row-warn { color: $text-warning; }
+    LogTable > .log-table--row-error { color: $text-error; }
+    LogTable > .log-table--row-fatal { color: $text-error; text-style: bold; }
+    LogTable > .log-table--severity-debug { color: $foreground-muted; }
+    LogTable > .log-table--severity-info { color: $text-success; }
+    LogTable > .log-table--severity-warn { color: $warning; text-style: bold; }
+    LogTable > .log-table--severity-error { color: $error; text-style: bold; }
+    LogTable > .log-table--severity-fatal { background: $error; color: $text; text-style: bold reverse; }
+    LogTable > .log-table--highlight { background: $accent 30%; }
+    LogTable > .log-table--dimmed { text-style: dim; }
+    """
+
+    COMPONENT_CLASSES = {
+        "log-table--header",
+        "log-table--cursor",
+        "log-table--dim-column",
+        *(f"log-table--row-{name}" for name in _SEVERITY_CLASS.values()),
+        *(f"log-table--severity-{name}" for name in _SEVERITY_CLASS.values()),
+        "log-table--highlight",
+        "log-table--dimmed",
+    }
+
+    BINDINGS = [
+        Binding("up,k", "cursor_up", "Up", show=False),
+        Binding("down,j", "cursor_down", "Down", show=False),
+        Binding("pageup", "page_up", "Page up", show=False),
+        Binding("pagedown", "page_down", "Page down", show=False),
+        Binding("home,g", "first_row", "First", show=False),
+        Binding("end,G", "follow", "Follow tail"),
+        Binding("enter", "activate", "Details"),
+    ]
+
+    class RowActivated(Message):
+        """Enter or a double click on a row."""
+
+        def __init__(self, seq: int) -> None:
+            super().__init__()
+            self.seq = seq
+
+    class StateChanged(Message):
+        """Following, pause or cursor changed (for the status bar)."""
+
+    def __init__(self, store: LogStore, view: LogView, *, utc: bool = False, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self.store = store
+        self.view = view
+        self.utc = utc
+        self.following = True
+        #: While paused, rows for seqs at or past this are not shown.
+        self.paused_end: int | None = None
+        self.cursor_row = 0
+        self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
+        #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
+        self.decoration_of: Callable[[int], Decoration] | None = None
+        self.style_generation = 0
+        self._cache: LRUCache[tuple, Strip] = LRUCache(2048)
+        self._layout_key: tuple = ()
+        self._placed: tuple[PlacedColumn, ...] = ()
+        self._styles: dict[str, Style] = {}
+
+    # -- rows --------------------------------------------------------------------------------
+
+    @property
+    def row_count(self) -> int:
+        if self.paused_end is None:
+            return len(self.view)
+        return self.view.count_before(self.paused_end)
+
+    @property
+    def cursor_seq(self) -> int | None:
+        if 0 <= self.cursor_row < self.row_count:
+            return self.view.seq_at(self.cursor_row)
+        return None
+
+    @property
+    def new_while_paused(self) -> int:
+        """Rows that arrived since the pause (shown on resume)."""
+        if self.paused_end is None:
+            return 0
+        return len(self.view) - self.row_count
+
+    @property
+    def _body_height(self) -> int:
+        return max(self.scrollable_content_region.height - 1, 1)
+
+    @contextmanager
+    def keeping_position(self) -> Iterator[None]:
+        """Wrap a store/view update: the rows under the cursor and at the top stay put."""
+        rows = self.row_count
+        top_seq = self.view.seq_at(int(self.scroll_y)) if 0 <= self.scroll_y < rows else None
+        cursor_seq = self.cursor_seq
+        yield
+        self._after_update(top_seq, cursor_seq)
+
+    def _after_update(self, top_seq: int | None, cursor_seq: int | None) -> None:
+        rows = self.row_count
+        self._update_virtual_size()
+        if self.following and self.paused_end is None:
+            self.cursor_row = max(rows - 1, 0)
+            self._scroll_to_row_end()
+        else:
+            if cursor_seq is not None:
+                self.cursor_row = min(self.view.row_of(cursor_seq), max(rows - 1, 0))
+            else:
+                self.cursor_row = min(self.cursor_row, max(rows - 1, 0))
+            if top_seq is not None:
+                self.set_scroll(None, self.view.row_of(top_seq))
+        self.refresh()
+        self.post_message(self.StateChanged())
+
+    def reset(self) -> None:
+        """After a clear or a new filter: back to the tail."""
+        self._cache.clear()
+        self.cursor_row = 0
+        self.following = True
+        self._after_update(None, None)
+
+    def restyle(self) -> None:
+        """Decorations changed (rules): drop cached rows and redraw."""
+        self.style_generation += 1
+        self._cache.clear()
+        self.refresh()
+
+    def _update_virtual_size(self) -> None:
+        width = self.scrollable_content_region.width
+        self.virtual_size = Size(width, self.row_count + 1)
+
+    # -- following and pause -------------------------------------------------------------------
+
+    def follow(self) -> None:
+        self.following = True
+        if self.paused_end is not None:
+            self.paused_end = None
+        self._after_update(None, None)
+
+    def set_paused(self, paused: bool) -> None:
+        if paused and self.paused_end is None:
+            self.paused_end = self.store.end_seq
+        elif not paused and self.paused_end is not None:
+            with self.keeping_position():
+                self.paused_end = None
+        self.post_message(self.StateChanged())
+
+    def _stop_following(self) -> None:
+        if self.following:
+            self.following = False
+            self.post_message(self.StateChanged())
+
+    # -- cursor and scrolling ----------------------------------------------------------------
+
+    def move_cursor(self, row: int) -> None:
+        rows = self.row_count
+        if rows == 0:
+            return
+        row = min(max(row, 0), rows - 1)
+        self.cursor_row = row
+        top = int(self.scroll_y)
+        height = self._body_height
+        if row < top:
+            self.set_scroll(None, row)
+        elif row >= top + height:
+            self.set_scroll(None, row - height + 1)
+        if row < rows - 1:
+            self._stop_following()
+        elif self.paused_end is None:
+            self.following = True
+        self.refresh()
+        self.post_message(self.StateChanged())
+
+    def _scroll_to_row_end(self) -> None:
+        self.set_scroll(None, max(self.row_count + 1 - self.scrollable_content_region.height, 0))
+
+    def watch_scroll_y(self, old: float, new: float) -> None:
+        super().watch_scroll_y(old, new)
+        if new < old and new < self.max_scroll_y:
+            self._stop_following()
+
+    def action_cursor_up(self) -> None:
+        self.move_cursor(self.cursor_row - 1)
+
+    def action_cursor_down(self) -> None:
+        self.move_cursor(self.cursor_row + 1)
+
+    def action_page_up(self) -> None:
+        self.move_cursor(self.cursor_row - self._body_height)
+
+    def action_page_down(self) -> None:
+        self.move_cursor(self.cursor_row + self._body_height)
+
+    def action_first_row(self) -> None:
+        self.move_cursor(0)
+
+    def action_follow(self) -> None:
+        self.follow()
+
+    def action_activate(self) -> None:
+        seq = self.cursor_seq
+        if seq is not None:
+            self.post_message(self.RowActivated(seq))
+
+    def _row_at(self, y: int) -> int | None:
+        if y < 1:
+            return None
+        row = int(self.scroll_y) + y - 1
+        return row if row < self.row_count else None
+
+    async def _on_click(self, event: events.Click) -> None:
+        row = self._row_at(event.y)
+        if row is None:
+            return
+        self.move_cursor(row)
+        if event.chain >= 2:
+            self.action_activate()
+
+    def on_mount(self) -> None:
+        self._after_update(None, None)
+
+    def on_resize(self, event: events.Resize) -> None:
+        self._update_virtual_size()
+        if self.following and self.paused_end is None:
+            self._scroll_to_row_end()
+
+    # -- columns --------------------------------------------------------------------------------
+
+    def set_column_shown(self, key: str, shown: bool) -> None:
+        columns = set(self.shown_columns)
+        (columns.add if shown else columns.discard)(key)
+        if "message" not in columns:
+            columns.add("message")
+        self.shown_columns = frozenset(columns)
+        self._cache.clear()
+        self.refresh()
+
+    def _layout(self, width: int) -> tuple[PlacedColumn, ...]:
+        widest = max((cell_len(name) for name in self.store.nodes), default=8)
+        node_width = max(min(widest, 28, max(width // 5, 12)), 6)
+        key = (width, self.shown_columns, node_width)
+        if key != self._layout_key:
+            self._layout_key = key
+            self._placed = layout_columns(width, self.shown_columns, node_width)
+            self._cache.clear()
+        return self._placed
+
+    @property
+    def placed_columns(self) -> tuple[PlacedColumn, ...]:
+        return self._placed
+
+    # -- rendering --------------------------------------------------------------------------------
+
+    def render_lines(self, crop):  # type: ignore[override]
+        self._styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
+        return super().render_lines(crop)
+
+    def render_line(self, y: int) -> Strip:
+        width = self.scrollable_content_region.width
+        base = self.rich_style
+        placed = self._layout(width)
+        if y == 0:
+            return self._header(placed, width, base)
+        row = int(self.scroll_y) + y - 1
+        if row >= self.row_count:
+            return Strip.blank(width, base)
+        seq = self.view.seq_at(row)
+        is_cursor = row == self.cursor_row
+        decoration = self.decoration_of(seq) if self.decoration_of is not None else None
+        key = (seq, is_cursor, decoration, self.style_generation)
+        strip = self._cache.get(key)
+        if strip is None:
+            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, decoration)
+            self._cache[key] = strip
+        return strip
+
+    def _header(self, placed: tuple[PlacedColumn, ...], width: int, base: Style) -> Strip:
+        style = base + self._styles.get("log-table--header", Style())
+        segments: list[Segment] = []
+        for place in placed:
+            segments.append(Segment(_fit(place.column.title, place.width, place.column.align) + " ", style))
+        return Strip(segments).adjust_cell_length(width, style)
+
+    def _render_row(
+        self,
+        record: LogRecord,
+        placed: tuple[PlacedColumn, ...],
+        width: int,
+        base: Style,
+        is_cursor: bool,
+        decoration: Decoration,
+    ) -> Strip:
+        styles = self._styles
+        name = _SEVERITY_CLASS.get(int(severity_bucket(record.level)), "info")
+        row_style = base + styles.get(f"log-table--row-{name}", Style())
+        if decoration == "highlight":
+            row_style += styles.get("log-table--highlight", Style())
+        elif decoration == "dim":
+            row_style += styles.get("log-table--dimmed", Style())
+        if is_cursor:
+            row_style += styles.get("log-table--cursor", Style())
+        muted = styles.get("log-table--dim-column", Style())
+        segments: list[Segment] = []
+        for place in placed:
+            key = place.column.key
+            text = self._cell_text(record, key, place.width)
+            style = row_style
+            if key == "severity" and not is_cursor:
+                style = row_style + styles.get(f"log-table--severity-{name}", Style())
+            elif key in ("seq", "time", "file", "function", "line", "source") and name != "debug" and not is_cursor:
+                style = row_style + muted
+            segments.append(Segment(_fit(text, place.width, place.column.align), style))
+            segments.append(Segment(" ", row_style))
+        return Strip(segments).adjust_cell_length(width, row_style)
+
+    def _cell_text(self, record: LogRecord, key: str, width: int) -> str:
+        if key == "message":
+            return one_line(record.msg, max(width * 2, 64) if width < _MESSAGE_LIMIT else _MESSAGE_LIMIT)
+        if key == "seq":
+            return str(record.seq + 1)
+        if key == "time":
+            return clock_text(record.stamp_ns, utc=self.utc)
+        if key == "severity":
+            return severity_name(record.level)
+        if key == "node":
+            return one_line(record.node, 200)
+        if key == "file":
+            return one_line(os.path.basename(record.file), 200)
+        if key == "function":
+            return one_line(record.function, 200)
+        if key == "line":
+            return str(record.line) if record.line else ""
+        if key == "source":
+            return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
+        raise KeyError(key)
+
+
+def _fit(text: str, width: int, align: str = "left") -> str:
+    """Exactly ``width`` cells: padded, or cut with an ellipsis."""
+    length = cell_len(text)
+    if length > width:
+        return set_cell_size(text, max(width - 1, 0)) + ("…" if width else "")
+    if align == "right":
+        return " " * (width - length) + text
+    return text + " " * (width - length)
+
+
+__all__ = ["LogTable", "BY_KEY"]

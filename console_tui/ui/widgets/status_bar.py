@@ -1,0 +1,68 @@
+"""The status line: rows shown of total, counts per severity, rate, state, source."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from rich.text import Text
+from textual.widgets import Static
+
+from ...model.levels import MESSAGE_SEVERITIES
+from ...sources.status import SourceStatus
+
+_SEVERITY_LETTER = {10: ("D", "dim"), 20: ("I", "green"), 30: ("W", "yellow"), 40: ("E", "red"), 50: ("F", "bold white on red")}
+
+
+@dataclass
+class StatusFacts:
+    """Everything the status line shows; the app fills it each tick."""
+
+    shown: int = 0
+    total: int = 0
+    counts: dict[int, int] = field(default_factory=dict)
+    rate: float = 0.0
+    following: bool = True
+    paused: bool = False
+    new_while_paused: int = 0
+    sources: list[SourceStatus] = field(default_factory=list)
+    lost: int = 0
+    note: str = ""
+
+
+class StatusBar(Static):
+    DEFAULT_CSS = """
+    StatusBar { height: 1; background: $panel; color: $foreground; padding: 0 1; }
+    """
+
+    def show_facts(self, facts: StatusFacts) -> None:
+        self.update(render_status(facts))
+
+
+def render_status(facts: StatusFacts) -> Text:
+    text = Text(no_wrap=True, overflow="ellipsis")
+    if facts.paused:
+        text.append(" PAUSED ", style="bold black on yellow")
+        text.append(f" +{facts.new_while_paused:,} new", style="yellow")
+    elif facts.following:
+        text.append(" FOLLOW ", style="bold black on green")
+    else:
+        text.append(" SCROLL ", style="bold black on cyan")
+    text.append(f"  {facts.shown:,}/{facts.total:,} shown  ")
+    for severity in MESSAGE_SEVERITIES:
+        letter, style = _SEVERITY_LETTER[int(severity)]
+        text.append(letter, style=style)
+        text.append(f"{facts.counts.get(int(severity), 0):,} ")
+    text.append(f" {facts.rate:,.0f}/s")
+    for status in facts.sources:
+        if status.topic:
+            text.append(f"  {status.topic}", style="bold")
+            text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
+            if status.path:
+                text.append(f" {status.path}", style="dim")
+        if status.problem:
+            text.append(f"  {status.problem}", style="bold red")
+    if facts.lost:
+        text.append(f"  lost {facts.lost:,}", style="bold red")
+    if facts.note:
+        text.append(f"  {facts.note}", style="italic")
+    return text

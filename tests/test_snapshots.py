@@ -1,0 +1,39 @@
+"""Snapshot tests of the real app on a deterministic feed (fixed stamps, shown in UTC)."""
+
+from __future__ import annotations
+
+import pytest
+from feed import records
+
+from console_tui.model.store import LogStore
+from console_tui.ui.app import ConsoleApp
+
+
+def feed_app(count: int = 200) -> ConsoleApp:
+    store = LogStore()
+    store.extend(records(count))
+    return ConsoleApp(store=store, utc=True)
+
+
+@pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])
+def test_table(snap_compare, size):
+    assert snap_compare(feed_app(), terminal_size=size)
+
+
+@pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])
+def test_scrolled_and_paused(snap_compare, size):
+    async def scroll_pause_and_receive(pilot):
+        await pilot.press("up", "up", "up", "space")
+        pilot.app.add_records(records(25, start=200))
+        pilot.app.update_status()
+        await pilot.pause()
+
+    assert snap_compare(feed_app(), terminal_size=size, run_before=scroll_pause_and_receive)
+
+
+def test_detail(snap_compare):
+    assert snap_compare(feed_app(), terminal_size=(160, 48), press=["up", "up", "enter"])
+
+
+def test_help(snap_compare):
+    assert snap_compare(feed_app(), terminal_size=(80, 24), press=["question_mark"])
