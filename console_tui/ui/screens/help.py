@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from rich.table import Table
 from rich.text import Text
 from textual.app import ComposeResult
@@ -16,11 +18,13 @@ INTRO = (
 )
 
 
-def _key_label(key: str) -> str:
-    return ", ".join(part.strip() for part in key.split(","))
+def key_label(binding: Binding, display: Callable[[Binding], str]) -> str:
+    """Every key of a binding as the footer shows keys: ``?, f1``."""
+    keys = [part.strip() for part in binding.key.split(",") if part.strip()]
+    return ", ".join(display(Binding(key, binding.action)) for key in keys)
 
 
-def bindings_table(groups: list[tuple[str, list[Binding]]]) -> Table:
+def bindings_table(groups: list[tuple[str, list[Binding]]], display: Callable[[Binding], str]) -> Table:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="bold cyan", no_wrap=True)
     table.add_column()
@@ -31,7 +35,7 @@ def bindings_table(groups: list[tuple[str, list[Binding]]]) -> Table:
             if binding.description in seen or not binding.description:
                 continue
             seen.add(binding.description)
-            table.add_row(_key_label(binding.key), binding.description)
+            table.add_row(key_label(binding, display), binding.description)
         table.add_row("", "")
     return table
 
@@ -53,7 +57,7 @@ class HelpScreen(ModalScreen[None]):
         with VerticalScroll():
             yield Static(Text(INTRO), classes="intro")
             yield Static("")
-            yield Static(bindings_table(self.groups))
+            yield Static(bindings_table(self.groups, self.app.get_key_display))
 
     def action_dismiss_screen(self) -> None:
         self.dismiss(None)

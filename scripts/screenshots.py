@@ -1,0 +1,74 @@
+"""Make the README's screenshots from the real app, headless, on the real demo nodes.
+
+    .venv/bin/python scripts/screenshots.py [--out screenshots] [--seconds 8]
+
+Starts the demo nodes (real rclpy processes, loopback only, a domain of their own), runs
+console-tui headless against them, and saves SVG screenshots of its screens.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+
+async def capture(out: Path, seconds: float) -> list[Path]:
+    from console_tui.demo.launcher import DemoNodes
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.ros2.log_source import LiveLogSource
+    from console_tui.sources.ros2.runtime import RosRuntime
+    from console_tui.ui.app import ConsoleApp
+
+    demo = DemoNodes()
+    demo.start()
+    runtime = RosRuntime()
+    queue = IntakeQueue()
+    app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)])
+    saved: list[Path] = []
+
+    async def shot(pilot, name: str) -> None:
+        await pilot.pause(0.3)
+        path = out / f"{name}.svg"
+        pilot.app.save_screenshot(filename=path.name, path=str(path.parent))
+        saved.append(path)
+
+    try:
+        async with app.run_test(size=(160, 42)) as pilot:
+            await pilot.pause(seconds)
+            await shot(pilot, "live-table")
+            await pilot.press("up", "up", "up", "up", "enter")
+            await shot(pilot, "detail")
+            await pilot.press("escape", "question_mark")
+            await shot(pilot, "help")
+            await pilot.press("escape")
+        narrow = ConsoleApp(store=app.store)
+        async with narrow.run_test(size=(80, 24)) as pilot:
+            await pilot.pause(1.0)
+            await shot(pilot, "live-table-80x24")
+    finally:
+        runtime.shutdown()
+        demo.stop()
+    return saved
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path, default=ROOT / "screenshots")
+    parser.add_argument("--seconds", type=float, default=8.0, help="how long the demo runs before the first shot")
+    args = parser.parse_args()
+    os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+    os.environ.setdefault("ROS_DOMAIN_ID", "87")
+    args.out.mkdir(parents=True, exist_ok=True)
+    for path in asyncio.run(capture(args.out, args.seconds)):
+        print(path.relative_to(ROOT) if path.is_relative_to(ROOT) else path)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
