@@ -13,7 +13,7 @@ still kept and ``end_seq`` the number the next record will get.
 from __future__ import annotations
 
 from array import array
-from collections import deque
+from collections import Counter, deque
 from collections.abc import Iterable, Iterator
 from typing import NamedTuple
 
@@ -39,6 +39,14 @@ class StringTable:
             found = self._ids[text] = len(self._strings)
             self._strings.append(text)
         return found
+
+    def ids_of(self, texts: list[str]) -> list[int]:
+        """Ids for many strings at once (fast when all are known already)."""
+        get = self._ids.get
+        ids = [get(text) for text in texts]
+        if None in ids:
+            ids = [self.id_of(text) for text in texts]
+        return ids
 
     def __getitem__(self, ident: int) -> str:
         return self._strings[ident]
@@ -82,6 +90,10 @@ _BUCKET = {level: int(severity_bucket(level)) for level in range(256)}
 _INT64_MAX = (1 << 63) - 1
 
 
+def _clamp(value: int, low: int, high: int) -> int:
+    return low if value < low else high if value > high else value
+
+
 class LogStore:
     """Holds up to ``max_messages`` records, dropping the oldest beyond that."""
 
@@ -109,39 +121,48 @@ class LogStore:
         return self.first_seq <= seq < self.end_seq
 
     def extend(self, records: Iterable[LogRecord]) -> range:
-        """Append records (assigning their ``seq``); returns the range of new seqs."""
+        """Append records; returns the range of seqs they got (those still kept)."""
+        batch = records if isinstance(records, list) else list(records)
         start = self.end_seq
-        seq = start
-        chunks = self._chunks
-        counts = self.counts
-        node_id, file_id = self.nodes.id_of, self.files.id_of
-        function_id, source_id = self.functions.id_of, self.sources.id_of
-        chunk = chunks[-1] if chunks and len(chunks[-1]) < CHUNK_SIZE else None
-        for record in records:
-            if chunk is None or len(chunk.msgs) >= CHUNK_SIZE:
-                chunk = Chunk()
-                chunks.append(chunk)
-            level = min(max(int(record.level), 0), 255)
-            chunk.stamps.append(min(max(int(record.stamp_ns), -_INT64_MAX), _INT64_MAX))
-            chunk.levels.append(level)
-            chunk.lines.append(min(max(int(record.line), 0), 0xFFFFFFFF))
-            chunk.nodes.append(node_id(record.node))
-            chunk.files.append(file_id(record.file))
-            chunk.functions.append(function_id(record.function))
-            chunk.sources.append(source_id(record.source))
-            chunk.msgs.append(record.msg)
-            counts[_BUCKET[level]] += 1
-            record.seq = seq
-            seq += 1
-        self.end_seq = seq
+        done = 0
+        while done < len(batch):
+            chunks = self._chunks
+            if not chunks or len(chunks[-1]) >= CHUNK_SIZE:
+                chunks.append(Chunk())
+            chunk = chunks[-1]
+            piece = batch[done : done + CHUNK_SIZE - len(chunk)]
+            self._append_piece(chunk, piece)
+            done += len(piece)
+        self.end_seq = start + len(batch)
         if len(self) > self.max_messages:
             self._evict_to(self.end_seq - self.max_messages)
         return range(max(start, self.first_seq), self.end_seq)
 
+    def _append_piece(self, chunk: Chunk, piece: list[LogRecord]) -> None:
+        """Column by column: one C-level ``extend`` per field instead of one append per value."""
+        try:
+            stamps = array("q", [r.stamp_ns for r in piece])
+            levels = array("B", [r.level for r in piece])
+            lines = array("L", [r.line for r in piece])
+        except (OverflowError, TypeError, ValueError):
+            stamps = array("q", [_clamp(int(r.stamp_ns), -_INT64_MAX, _INT64_MAX) for r in piece])
+            levels = array("B", [_clamp(int(r.level), 0, 255) for r in piece])
+            lines = array("L", [_clamp(int(r.line), 0, 0xFFFFFFFF) for r in piece])
+        chunk.stamps.extend(stamps)
+        chunk.levels.extend(levels)
+        chunk.lines.extend(lines)
+        chunk.nodes.extend(self.nodes.ids_of([r.node for r in piece]))
+        chunk.files.extend(self.files.ids_of([r.file for r in piece]))
+        chunk.functions.extend(self.functions.ids_of([r.function for r in piece]))
+        chunk.sources.extend(self.sources.ids_of([r.source for r in piece]))
+        chunk.msgs.extend([r.msg for r in piece])
+        counts = self.counts
+        for level, number in Counter(levels).items():
+            counts[_BUCKET[level]] += number
+
     def append(self, record: LogRecord) -> int:
         """Append one record; returns its seq."""
-        self.extend((record,))
-        return record.seq
+        return self.extend([record]).start
 
     def get(self, seq: int) -> LogRecord:
         """The record with this seq; ``KeyError`` if it was evicted or never stored."""

@@ -17,6 +17,7 @@ from ..model.record import LogRecord
 from ..model.store import LogStore
 from ..model.view import LogView
 from ..sources.status import SourceStatus
+from .gc_policy import CollectionPolicy
 from .screens.columns import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
@@ -72,6 +73,7 @@ class ConsoleApp(App[None]):
         self.utc = utc
         self.drain_interval = drain_interval
         self._arrivals: deque[tuple[float, int]] = deque()
+        self.collection_policy = CollectionPolicy()
         self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
 
@@ -83,6 +85,7 @@ class ConsoleApp(App[None]):
         yield Footer()
 
     def on_mount(self) -> None:
+        self.collection_policy.start()
         self.table.focus()
         for source in self.sources:
             try:
@@ -111,6 +114,7 @@ class ConsoleApp(App[None]):
         if records:
             self.add_records(records)
         self.update_status()
+        self.collection_policy.tick(len(records))
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
         table = self.table

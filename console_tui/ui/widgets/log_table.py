@@ -107,10 +107,14 @@ class LogTable(ScrollView, can_focus=True):
         #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
         self.decoration_of: Callable[[int], Decoration] | None = None
         self.style_generation = 0
-        self._cache: LRUCache[tuple, Strip] = LRUCache(2048)
+        self._cache: LRUCache[tuple, Strip] = LRUCache(512)
         self._layout_key: tuple = ()
+        self._nodes_measured = 0
+        self._widest_node = 8
         self._placed: tuple[PlacedColumn, ...] = ()
         self._styles: dict[str, Style] = {}
+        self._base = Style()
+        self._width = 0
 
     # -- rows --------------------------------------------------------------------------------
 
@@ -176,8 +180,12 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
 
     def _update_virtual_size(self) -> None:
-        width = self.scrollable_content_region.width
-        self.virtual_size = Size(width, self.row_count + 1)
+        size = Size(self.scrollable_content_region.width, self.row_count + 1)
+        if size != self.virtual_size:
+            # Not ``self.virtual_size = size``: that reactive asks for a layout of the whole
+            # screen, many times a second while messages arrive. Only the scrollbars change.
+            self.set_reactive(ScrollView.virtual_size, size)
+            self._scroll_update(size)
 
     # -- following and pause -------------------------------------------------------------------
 
@@ -286,8 +294,11 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
 
     def _layout(self, width: int) -> tuple[PlacedColumn, ...]:
-        widest = max((cell_len(name) for name in self.store.nodes), default=8)
-        node_width = max(min(widest, 28, max(width // 5, 12)), 6)
+        nodes = self.store.nodes
+        if len(nodes) != self._nodes_measured:
+            self._nodes_measured = len(nodes)
+            self._widest_node = max((cell_len(name) for name in nodes), default=8)
+        node_width = max(min(self._widest_node, 28, max(width // 5, 12)), 6)
         key = (width, self.shown_columns, node_width)
         if key != self._layout_key:
             self._layout_key = key
@@ -302,13 +313,15 @@ class LogTable(ScrollView, can_focus=True):
     # -- rendering --------------------------------------------------------------------------------
 
     def render_lines(self, crop):  # type: ignore[override]
+        # Everything a row needs that is the same for every row: looked up once a frame.
         self._styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
+        self._base = self.rich_style
+        self._width = self.scrollable_content_region.width
+        self._layout(self._width)
         return super().render_lines(crop)
 
     def render_line(self, y: int) -> Strip:
-        width = self.scrollable_content_region.width
-        base = self.rich_style
-        placed = self._layout(width)
+        width, base, placed = self._width, self._base, self._placed
         if y == 0:
             return self._header(placed, width, base)
         row = int(self.scroll_y) + y - 1
@@ -361,7 +374,7 @@ class LogTable(ScrollView, can_focus=True):
                 style = row_style + muted
             segments.append(Segment(_fit(text, place.width, place.column.align), style))
             segments.append(Segment(" ", row_style))
-        return Strip(segments).adjust_cell_length(width, row_style)
+        return Strip(segments).adjust_cell_length(width, row_style).simplify()
 
     def _cell_text(self, record: LogRecord, key: str, width: int) -> str:
         if key == "message":

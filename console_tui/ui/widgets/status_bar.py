@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from rich.text import Text
-from textual.widgets import Static
+from textual.widget import Widget
 
 from ...model.levels import MESSAGE_SEVERITIES
 from ...sources.status import SourceStatus
@@ -29,13 +29,25 @@ class StatusFacts:
     note: str = ""
 
 
-class StatusBar(Static):
+class StatusBar(Widget):
+    """One line; updating it repaints just this line (no layout, unlike ``Static``)."""
+
     DEFAULT_CSS = """
     StatusBar { height: 1; background: $panel; color: $foreground; padding: 0 1; }
     """
 
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self.content = Text()
+
     def show_facts(self, facts: StatusFacts) -> None:
-        self.update(render_status(facts))
+        content = render_status(facts)
+        if content.plain != self.content.plain or content.spans != self.content.spans:
+            self.content = content
+            self.refresh()
+
+    def render(self) -> Text:
+        return self.content
 
 
 def render_status(facts: StatusFacts) -> Text:

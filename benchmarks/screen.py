@@ -1,0 +1,155 @@
+"""Screen benchmark: event-loop stalls and key-to-effect while messages pour in.
+
+    .venv/bin/python benchmarks/screen.py [--rate 10000] [--seconds 10] [--presses 40]
+
+Runs the real app headless (Textual's test driver, real compositor and rendering) with a
+feeder thread putting ``--rate`` records a second into its intake queue, in batches of
+1/50 s, as the ROS intake thread does. Measures:
+- event-loop stall: a probe task sleeps 1 ms at a time; the worst lateness is the longest
+  the loop was busy (a draw, a drain of the queue, a key);
+- key to effect: the time from posting a key (Up, alternating with Down) to the first
+  frame drawn with the cursor moved.
+Prints a table with the targets beside the figures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import platform
+import statistics
+import sys
+import threading
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+
+from feed import record  # noqa: E402
+from textual import events  # noqa: E402
+
+from console_tui.model.intake_queue import IntakeQueue  # noqa: E402
+from console_tui.ui.app import ConsoleApp  # noqa: E402
+
+STALL_TARGET_MS = 33
+KEY_TARGET_MS = 100
+
+
+def machine() -> str:
+    model = "unknown CPU"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}"
+
+
+def feeder(queue: IntakeQueue, rate: int, stop: threading.Event, sent: list[int]) -> None:
+    period = 0.02
+    per_batch = max(1, int(rate * period))
+    i = 0
+    next_time = time.perf_counter()
+    while not stop.is_set():
+        queue.put([record(i + k) for k in range(per_batch)])
+        i += per_batch
+        next_time += period
+        delay = next_time - time.perf_counter()
+        if delay > 0:
+            time.sleep(delay)
+    sent.append(i)
+
+
+async def run(rate: int, seconds: float, presses: int) -> dict[str, float]:
+    queue = IntakeQueue()
+    app = ConsoleApp(queue=queue)
+    stop = threading.Event()
+    sent: list[int] = []
+    stalls: list[float] = []
+    key_latencies: list[float] = []
+    async with app.run_test(size=(160, 48)) as pilot:
+        table = app.table
+        frames: list[float] = []
+        original = table.render_lines
+
+        def counting_render_lines(crop):
+            frames.append(time.perf_counter())
+            return original(crop)
+
+        table.render_lines = counting_render_lines  # type: ignore[method-assign]
+        thread = threading.Thread(target=feeder, args=(queue, rate, stop, sent), daemon=True)
+        thread.start()
+        running = True
+
+        async def probe() -> None:
+            while running:
+                before = time.perf_counter()
+                await asyncio.sleep(0.001)
+                stalls.append(time.perf_counter() - before - 0.001)
+
+        probe_task = asyncio.create_task(probe())
+        await asyncio.sleep(1.0)  # warm up: the store fills, the tail is followed
+        stalls.clear()
+        started = time.perf_counter()
+        interval = max((seconds - 1.0) / max(presses, 1), 0.05)
+        for n in range(presses):
+            key = "up" if n % 2 == 0 else "down"
+            cursor_before = table.cursor_row if key == "up" else None
+            pressed = time.perf_counter()
+            app.post_message(events.Key(key, None))
+            while True:
+                await asyncio.sleep(0.001)
+                moved = table.cursor_row != cursor_before if cursor_before is not None else not table.following
+                drawn = [f for f in frames if f > pressed]
+                if moved and drawn:
+                    key_latencies.append(drawn[0] - pressed)
+                    break
+                if time.perf_counter() - pressed > 2.0:
+                    key_latencies.append(2.0)
+                    break
+            await pilot.press("end") if key == "down" else None
+            await asyncio.sleep(interval)
+        elapsed = time.perf_counter() - started
+        running = False
+        stop.set()
+        await probe_task
+        thread.join()
+        shown = len(app.store)
+    return {
+        "rate": sent[0] / (elapsed + 1.0) if sent else 0.0,
+        "stored": shown,
+        "stall_max": max(stalls) * 1000,
+        "stall_p99": statistics.quantiles(stalls, n=100)[98] * 1000,
+        "key_median": statistics.median(key_latencies) * 1000,
+        "key_max": max(key_latencies) * 1000,
+    }
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rate", type=int, default=10_000)
+    parser.add_argument("--seconds", type=float, default=10.0)
+    parser.add_argument("--presses", type=int, default=40)
+    args = parser.parse_args()
+    result = asyncio.run(run(args.rate, args.seconds, args.presses))
+
+    def verdict(value: float, target: float) -> str:
+        return "met" if value <= target else f"MISSED by {value - target:.1f} ms"
+
+    print(f"machine: {machine()}")
+    print(f"feed: {result['rate']:,.0f} records/s offered, {result['stored']:,} stored, 160x48 headless\n")
+    print(f"| figure | value | target | |")
+    print(f"| --- | --- | --- | --- |")
+    print(f"| longest event-loop stall | {result['stall_max']:.1f} ms | {STALL_TARGET_MS} ms | {verdict(result['stall_max'], STALL_TARGET_MS)} |")
+    print(f"| event-loop stall, 99th percentile | {result['stall_p99']:.1f} ms | | |")
+    print(f"| key to effect, median | {result['key_median']:.1f} ms | {KEY_TARGET_MS} ms | {verdict(result['key_median'], KEY_TARGET_MS)} |")
+    print(f"| key to effect, worst | {result['key_max']:.1f} ms | {KEY_TARGET_MS} ms | {verdict(result['key_max'], KEY_TARGET_MS)} |")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
