@@ -24,13 +24,11 @@ def run_app(args: argparse.Namespace) -> int:
             os.environ.update(DEMO_ENVIRONMENT)
         runtime = _start_ros()
         cleanups.append(runtime.shutdown)
-        if args.demo:
-            demo = DemoNodes()
-            demo.start()
-            cleanups.append(demo.stop)
         from .sources.ros2.log_source import LiveLogSource
 
         sources.append(LiveLogSource(runtime, queue, topic=args.topic))
+        if args.demo:
+            sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
     except RosUnavailable as error:
         print(f"console-tui: {error}", file=sys.stderr)
         return 2

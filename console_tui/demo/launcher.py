@@ -6,6 +6,7 @@ import os
 import subprocess
 import sys
 
+from ..sources.status import SourceStatus
 from .nodes import DEMO_NODES
 
 #: The demo stays on this machine: discovery only over loopback.
@@ -18,6 +19,8 @@ class DemoNodes:
     def __init__(self, names: list[str] | None = None) -> None:
         self.names = names or list(DEMO_NODES)
         self.processes: list[subprocess.Popen] = []
+        #: Shown in the status line while the app runs the demo.
+        self.status = SourceStatus(path=f"demo: {len(self.names)} nodes")
 
     def start(self) -> None:
         env = {**os.environ, **DEMO_ENVIRONMENT, "RCUTILS_LOGGING_USE_STDOUT": "0"}

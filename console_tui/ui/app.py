@@ -87,13 +87,18 @@ class ConsoleApp(App[None]):
     def on_mount(self) -> None:
         self.collection_policy.start()
         self.table.focus()
+        self.set_interval(self.drain_interval, self.drain_intake)
+        self.update_status()
+        # After the first frame: starting sources (threads, child processes) costs CPU
+        # the first frame should not wait for.
+        self.call_after_refresh(self.start_sources)
+
+    def start_sources(self) -> None:
         for source in self.sources:
             try:
                 source.start()
             except Exception as error:
                 self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
-        self.set_interval(self.drain_interval, self.drain_intake)
-        self.update_status()
 
     def on_unmount(self) -> None:
         self.stop_sources()

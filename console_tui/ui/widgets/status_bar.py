@@ -69,8 +69,8 @@ def render_status(facts: StatusFacts) -> Text:
         if status.topic:
             text.append(f"  {status.topic}", style="bold")
             text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
-            if status.path:
-                text.append(f" {status.path}", style="dim")
+        if status.path:
+            text.append(f" {status.path}" if status.topic else f"  {status.path}", style="dim")
         if status.problem:
             text.append(f"  {status.problem}", style="bold red")
     if facts.lost:
