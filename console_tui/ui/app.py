@@ -73,6 +73,8 @@ class ConsoleApp(App[None]):
         self.utc = utc
         self.drain_interval = drain_interval
         self._arrivals: deque[tuple[float, int]] = deque()
+        self._rate = 0.0
+        self._rate_at = 0.0
         self.collection_policy = CollectionPolicy()
         self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
@@ -129,11 +131,17 @@ class ConsoleApp(App[None]):
         self._arrivals.append((time.monotonic(), len(added)))
 
     def receive_rate(self) -> float:
+        """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
+        (so the status line is not redrawn every tick for a changing digit)."""
         now = time.monotonic()
+        if now - self._rate_at < 1.0:
+            return self._rate
         arrivals = self._arrivals
         while arrivals and arrivals[0][0] < now - RATE_WINDOW_S:
             arrivals.popleft()
-        return sum(count for _, count in arrivals) / RATE_WINDOW_S
+        self._rate = sum(count for _, count in arrivals) / RATE_WINDOW_S
+        self._rate_at = now
+        return self._rate
 
     def update_status(self) -> None:
         table = self.table
