@@ -33,8 +33,8 @@ EXIT_CODES = f"""exit status:
   {EXIT_FAILED}    the call failed: no answer in time, node gone, level refused by the node
   {EXIT_INTERRUPTED}  interrupted (a temporary level is put back first)"""
 
-DEFAULT_WAIT_S = 3.0
-DEFAULT_LIST_WAIT_S = 1.5
+DEFAULT_WAIT_S = 5.0
+DEFAULT_LIST_WAIT_S = 2.0
 DEFAULT_TIMEOUT_S = 2.0
 
 #: How the default logger ``""`` is printed, and also accepted.
@@ -62,9 +62,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="{list,get,set}")
 
-    def add(name: str, help_text: str, wait: float) -> argparse.ArgumentParser:
+    def add(name: str, help_text: str, wait: float, usage: str | None = None) -> argparse.ArgumentParser:
         sub = commands.add_parser(
-            name, help=help_text, description=help_text, epilog=EXIT_CODES, formatter_class=argparse.RawDescriptionHelpFormatter
+            name, help=help_text, description=help_text, epilog=EXIT_CODES, usage=usage,
+            formatter_class=argparse.RawDescriptionHelpFormatter,
         )
         sub.add_argument(
             "--wait", type=_seconds, default=wait, metavar="SECONDS",
@@ -85,7 +86,10 @@ def build_parser() -> argparse.ArgumentParser:
     getting.add_argument("--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)")
     getting.add_argument("--json", action="store_true", help="print JSON")
 
-    setting = add("set", "set a logger's level (LOGGER defaults to the node's own logger)", DEFAULT_WAIT_S)
+    setting = add(
+        "set", "set a logger's level (LOGGER defaults to the node's own logger)", DEFAULT_WAIT_S,
+        usage="%(prog)s [-h] [--wait SECONDS] [--timeout SECONDS] [--for SECONDS] NODE [LOGGER] LEVEL",
+    )
     setting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
     setting.add_argument(
         "rest", nargs="+", metavar="[LOGGER] LEVEL",
@@ -124,12 +128,17 @@ def shown_logger(name: str) -> str:
     return DEFAULT_LOGGER_SHOWN if name == DEFAULT_LOGGER else name
 
 
-def main(argv: Sequence[str]) -> int:
+def main(argv: Sequence[str], runtime: Any = None) -> int:
+    """Run ``console-tui loggers ARGV``; returns the exit status.
+
+    ``runtime`` (a ``RosRuntime``) is one to reuse, already discovering the graph; by
+    default one is made and shut down again.
+    """
     args = build_parser().parse_args(list(argv))
     try:
         if args.command == "set":
             level_request = _level_request(args.rest)
-        with _interruptible(), _ros_control(args) as control:
+        with _interruptible(), _ros_control(args, runtime) as control:
             if args.command == "list":
                 return _list(control, args)
             node = _find_node(control, args.node, args.wait)
@@ -158,23 +167,25 @@ def _level_request(rest: list[str]) -> tuple[str | None, int]:
 
 
 @contextmanager
-def _ros_control(args: argparse.Namespace):
+def _ros_control(args: argparse.Namespace, runtime: Any):
+    from ..sources.ros2.loggers import LoggerControl
     from ..sources.ros2.rclpy_loader import RosUnavailable
+    from ..sources.ros2.runtime import RosRuntime
 
-    try:
-        from ..sources.ros2.loggers import LoggerControl
-        from ..sources.ros2.runtime import RosRuntime
-
-        runtime = RosRuntime()
-    except RosUnavailable as error:
-        raise CommandError(str(error), EXIT_ERROR) from None
+    own_runtime = runtime is None
+    if own_runtime:
+        try:
+            runtime = RosRuntime()
+        except RosUnavailable as error:
+            raise CommandError(str(error), EXIT_ERROR) from None
     control = LoggerControl(runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False))
     control.start()
     try:
         yield control
     finally:
         control.close()
-        runtime.shutdown()
+        if own_runtime:
+            runtime.shutdown()
 
 
 @contextmanager

@@ -20,7 +20,6 @@ import json
 import os
 import sys
 import threading
-import time
 
 import rclpy
 from rclpy.executors import SingleThreadedExecutor
@@ -97,6 +96,7 @@ def main() -> None:
     executor = SingleThreadedExecutor()
     executor.add_node(node)
     state = {"tick": 0, "timer": None, "block": None}
+    stopping = threading.Event()
 
     def tick() -> None:
         state["tick"] += 1
@@ -127,9 +127,10 @@ def main() -> None:
                 def block() -> None:
                     state["block"].cancel()
                     say(event="blocking")
-                    time.sleep(seconds)
+                    stopping.wait(seconds)
 
                 state["block"] = node.create_timer(0.0, block)
+        stopping.set()
         executor.shutdown(timeout_sec=0)
         rclpy.try_shutdown()
 

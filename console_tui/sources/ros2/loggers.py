@@ -35,10 +35,13 @@ from .runtime import RosRuntime
 
 CALL_TIMEOUT_S = 2.0
 GRAPH_PERIOD_S = 0.5
+#: Discovery is busiest just after start: look at the graph more often then.
+STARTUP_GRAPH_PERIOD_S = 0.1
+STARTUP_S = 3.0
 #: Services are discovered a little after their node: a node is taken to have no logger
 #: services once it has been seen this long and shows other services (parameters), or
 #: three times as long when it shows none at all.
-NO_SERVICES_GRACE_S = 1.0
+NO_SERVICES_GRACE_S = 1.5
 RESTORE_ATTEMPTS = 3
 RESTORE_RETRY_S = 1.0
 MAX_IDLE_S = 0.1
@@ -346,7 +349,7 @@ class LoggerControl:
         executor: Any = None
         calls: list[_Call] = []
         clients: dict[tuple[str, str], Any] = {}
-        next_graph = 0.0
+        next_graph = started = self.clock()
         try:
             node = self.runtime.create_node("loggers")
             self._wake = node.create_guard_condition(lambda: None)
@@ -355,7 +358,7 @@ class LoggerControl:
             while True:
                 now = self.clock()
                 if now >= next_graph:
-                    next_graph = now + GRAPH_PERIOD_S
+                    next_graph = now + (STARTUP_GRAPH_PERIOD_S if now - started < STARTUP_S else GRAPH_PERIOD_S)
                     self._refresh_graph(node, clients, now)
                 with self._lock:
                     new, self._submitted = self._submitted, []
@@ -370,7 +373,7 @@ class LoggerControl:
                         break
                 else:
                     self._restore_due()
-                executor.spin_once(timeout_sec=self._idle_time(calls))
+                executor.spin_once(timeout_sec=self._idle_time(calls, next_graph))
         except Exception as error:  # the context went down under us, or a bug: say so, never hang
             if not self._stop.is_set():
                 self.problem = f"logger levels stopped: {type(error).__name__}: {error}"
@@ -387,14 +390,11 @@ class LoggerControl:
                 except Exception:
                     pass
 
-    def _idle_time(self, calls: list[_Call]) -> float:
-        soonest = min((call.deadline for call in calls), default=None)
+    def _idle_time(self, calls: list[_Call], next_graph: float) -> float:
         with self._lock:
             due = self._temporaries.next_deadline()
-        candidates = [t for t in (soonest, due) if t is not None]
-        if not candidates:
-            return MAX_IDLE_S
-        return max(0.0, min(MAX_IDLE_S, min(candidates) - self.clock()))
+        wake = min([next_graph, *(call.deadline for call in calls), *([due] if due is not None else [])])
+        return max(0.0, min(MAX_IDLE_S, wake - self.clock()))
 
     def _refresh_graph(self, node: Any, clients: dict[tuple[str, str], Any], now: float) -> None:
         services = node.get_service_names_and_types()
