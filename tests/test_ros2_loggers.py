@@ -81,6 +81,7 @@ def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
     ready(control)
     beta = control.find_node("/beta", wait=15)
     assert [(n.fqn, n.has_logger_services) for n in beta] == [("/beta", False)]
+    assert control.is_settled("/beta") and control.is_settled(ALPHA) and not control.is_settled("/nobody")
     listed = {n.fqn: n for n in control.nodes}
     assert set(listed) == {ALPHA, "/beta"}, "console-tui's own nodes are never listed"
     assert listed[ALPHA].logger_name == "ns.alpha"
@@ -104,6 +105,8 @@ def test_get_and_set_round_trip_and_a_refused_level(nodes, control):
     assert list(refused.value.refused) == ["ns.alpha"]
     with pytest.raises(LevelRefused, match="cannot be unset"):
         control.set_level(ALPHA, "", 0).result(timeout=10)
+    with pytest.raises(LevelRefused, match="not a level"):
+        control.set_level(ALPHA, "ns.alpha", -1).result(timeout=10)
     with pytest.raises(NodeNotFound):
         control.get_levels("/nobody", ["x"]).result(timeout=10)
 

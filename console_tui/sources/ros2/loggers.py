@@ -217,6 +217,16 @@ class LoggerControl:
     def node(self, fqn: str) -> GraphNode | None:
         return self._graph.by_fqn.get(fqn)
 
+    def is_settled(self, fqn: str) -> bool:
+        """Whether ``has_logger_services`` of that node can be believed yet.
+
+        Services are discovered a little after their node: show an unsettled node without
+        them as "checking", not as "no logger services".
+        """
+        graph = self._graph
+        node = graph.by_fqn.get(fqn)
+        return node is not None and graph.settled(node, self.clock())
+
     def find_node(self, query: str, wait: float) -> list[GraphNode]:
         """Blocking: the nodes ``query`` names (see ``match_nodes``), waiting up to ``wait`` s.
 
@@ -305,9 +315,12 @@ class LoggerControl:
         from rcl_interfaces.srv import SetLoggerLevels
 
         levels = dict(levels)
+        bad = {name: f"not a level: {level!r}" for name, level in levels.items() if not _is_level_number(level)}
         if levels.get(DEFAULT_LOGGER, None) == Severity.UNSET:
             # rcutils takes it, and the whole process then logs everything: never send it.
-            return _failed(LevelRefused(node, {DEFAULT_LOGGER: "the default logger cannot be unset"}))
+            bad[DEFAULT_LOGGER] = "the default logger cannot be unset"
+        if bad:
+            return _failed(LevelRefused(node, bad))
         request = SetLoggerLevels.Request(levels=[LoggerLevel(name=name, level=level) for name, level in levels.items()])
 
         def check(response: Any) -> dict[str, int]:
@@ -500,6 +513,10 @@ class LoggerControl:
                 listener(event)
             except Exception:
                 pass
+
+
+def _is_level_number(level: Any) -> bool:
+    return isinstance(level, int) and 0 <= level < 2**32
 
 
 def _logger_service(name: str, types: list[str]) -> bool:
