@@ -57,3 +57,19 @@ def nodes(ros_env):
     processes = NodeProcesses(ros_env)
     yield processes
     processes.stop_all()
+
+
+@pytest.fixture
+def ros_runtime(ros_env):
+    """A ``RosRuntime`` in the test's ROS environment, shut down at the end.
+
+    It keeps one node of its own for the whole test: rmw starts discovery over when a
+    context's last node is destroyed, and parts that come and go (a logger control, a
+    command run in-process) would otherwise each wait for discovery again.
+    """
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    runtime.create_node("test_keeper")
+    yield runtime
+    runtime.shutdown()

@@ -5,8 +5,11 @@
 Prints ``{"event": "ready", "logger": ..., "pid": ...}`` once up. Commands (one JSON object a
 line): ``{"cmd": "log_all", "tag": T}`` logs one message at each severity, from a function
 of its own each, and prints ``{"event": "logged", "messages": [...]}`` with every field;
-``{"cmd": "log", "level": "info", "msg": M}`` logs one; ``{"cmd": "periodic",
-"period": S}`` logs DEBUG and INFO ``tick N`` every S seconds. EOF on stdin ends it.
+``{"cmd": "log", "level": "info", "msg": M}`` logs one; both take ``"child": NAME`` to log
+through the child logger ``<node logger>.NAME``; ``{"cmd": "periodic", "period": S}`` logs
+DEBUG and INFO ``tick N`` every S seconds; ``{"cmd": "block", "seconds": S}`` keeps the
+node's executor busy for S seconds (services go unanswered), printing ``{"event":
+"blocking"}`` as it starts. EOF on stdin ends it.
 """
 
 from __future__ import annotations
@@ -92,7 +95,8 @@ def main() -> None:
         logger.set_level(LoggingSeverity.DEBUG)
     executor = SingleThreadedExecutor()
     executor.add_node(node)
-    state = {"tick": 0, "timer": None}
+    state = {"tick": 0, "timer": None, "block": None}
+    stopping = threading.Event()
 
     def tick() -> None:
         state["tick"] += 1
@@ -106,16 +110,27 @@ def main() -> None:
             except json.JSONDecodeError:
                 continue
             kind = command.get("cmd")
+            target = logger.get_child(command["child"]) if command.get("child") else logger
             if kind == "log_all":
                 tag = command.get("tag", "")
-                messages = [function(logger, f"{tag} {name} message") for name, function in BY_LEVEL.items()]
+                messages = [function(target, f"{tag} {name} message") for name, function in BY_LEVEL.items()]
                 say(event="logged", messages=messages)
             elif kind == "log":
-                message = BY_LEVEL[command.get("level", "info")](logger, command.get("msg", ""))
+                message = BY_LEVEL[command.get("level", "info")](target, command.get("msg", ""))
                 say(event="logged", messages=[message])
             elif kind == "periodic":
                 state["timer"] = node.create_timer(float(command.get("period", 0.1)), tick)
                 say(event="periodic")
+            elif kind == "block":
+                seconds = float(command.get("seconds", 5))
+
+                def block() -> None:
+                    state["block"].cancel()
+                    say(event="blocking")
+                    stopping.wait(seconds)
+
+                state["block"] = node.create_timer(0.0, block)
+        stopping.set()
         executor.shutdown(timeout_sec=0)
         rclpy.try_shutdown()
 

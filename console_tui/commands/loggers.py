@@ -1,0 +1,308 @@
+"""``console-tui loggers``: list nodes, get and set logger levels, without the terminal UI.
+
+Results go to stdout, one tab-separated line each (or JSON with ``--json``); messages go to
+stderr. The exit status says what happened (see ``EXIT_CODES``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import signal
+import sys
+import threading
+from collections.abc import Sequence
+from contextlib import contextmanager
+from typing import Any
+
+from ..model.levels import Severity, parse_severity, severity_name
+from ..model.loggers import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
+
+EXIT_OK = 0
+EXIT_ERROR = 1
+EXIT_USAGE = 2
+EXIT_NOT_FOUND = 3
+EXIT_FAILED = 4
+EXIT_INTERRUPTED = 130
+
+EXIT_CODES = f"""exit status:
+  {EXIT_OK}    done
+  {EXIT_ERROR}    ROS 2 (rclpy) is not available, or an unexpected error
+  {EXIT_USAGE}    bad command line: unknown level name, a node name that matches several nodes
+  {EXIT_NOT_FOUND}    the node is not in the ROS graph, or it has no logger services
+  {EXIT_FAILED}    the call failed: no answer in time, node gone, level refused by the node
+  {EXIT_INTERRUPTED}  interrupted (a temporary level is put back first)"""
+
+DEFAULT_WAIT_S = 5.0
+DEFAULT_LIST_WAIT_S = 2.0
+DEFAULT_TIMEOUT_S = 2.0
+
+#: How the default logger ``""`` is printed, and also accepted.
+DEFAULT_LOGGER_SHOWN = '""'
+_UNSET_WORDS = ("inherited", "inherit")
+
+
+class CommandError(Exception):
+    """A failure to report on stderr with an exit status."""
+
+    def __init__(self, message: str, status: int) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="console-tui loggers",
+        description=(
+            "List ROS 2 nodes and get or set their logger levels through the nodes' "
+            "get_logger_levels and set_logger_levels services (ROS 2 Iron or later, enabled in the node)."
+        ),
+        epilog=EXIT_CODES,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    commands = parser.add_subparsers(dest="command", required=True, metavar="{list,get,set}")
+
+    def add(name: str, help_text: str, wait: float, usage: str | None = None) -> argparse.ArgumentParser:
+        sub = commands.add_parser(
+            name, help=help_text, description=help_text, epilog=EXIT_CODES, usage=usage,
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+        )
+        sub.add_argument(
+            "--wait", type=_seconds, default=wait, metavar="SECONDS",
+            help=f"how long to wait for nodes to be discovered (default {wait:g})",
+        )
+        return sub
+
+    listing = add("list", "list the nodes of the ROS graph and whether they offer logger services", DEFAULT_LIST_WAIT_S)
+    listing.add_argument("--all", action="store_true", help="include hidden nodes (names starting with _)")
+    listing.add_argument("--json", action="store_true", help="print JSON")
+
+    getting = add("get", "print loggers' levels: 'inherited' when a logger has none of its own", DEFAULT_WAIT_S)
+    getting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
+    getting.add_argument(
+        "loggers", nargs="*", metavar="LOGGER",
+        help=f"logger names (default: the node's own logger and the process default {DEFAULT_LOGGER_SHOWN})",
+    )
+    getting.add_argument("--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)")
+    getting.add_argument("--json", action="store_true", help="print JSON")
+
+    setting = add(
+        "set", "set a logger's level (LOGGER defaults to the node's own logger)", DEFAULT_WAIT_S,
+        usage="%(prog)s [-h] [--wait SECONDS] [--timeout SECONDS] [--for SECONDS] NODE [LOGGER] LEVEL",
+    )
+    setting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
+    setting.add_argument(
+        "rest", nargs="+", metavar="[LOGGER] LEVEL",
+        help="debug, info, warn, error, fatal (any case), or unset to inherit again",
+    )
+    setting.add_argument("--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)")
+    setting.add_argument(
+        "--for", dest="duration", type=_seconds, metavar="SECONDS",
+        help="put the previous level back after SECONDS (the command waits until then; Ctrl+C ends it early)",
+    )
+    return parser
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
+    if not value >= 0:
+        raise argparse.ArgumentTypeError(f"must be 0 or more: {text!r}")
+    return value
+
+
+def parse_level(text: str) -> int:
+    """A level name (any case) or ``unset``/``inherited``, as the ROS 2 number; ValueError if unknown."""
+    if text.strip().lower() in _UNSET_WORDS:
+        return int(Severity.UNSET)
+    return int(parse_severity(text, allow_unset=True))
+
+
+def logger_argument(text: str) -> str:
+    return DEFAULT_LOGGER if text == DEFAULT_LOGGER_SHOWN else text
+
+
+def shown_logger(name: str) -> str:
+    return DEFAULT_LOGGER_SHOWN if name == DEFAULT_LOGGER else name
+
+
+def main(argv: Sequence[str], runtime: Any = None) -> int:
+    """Run ``console-tui loggers ARGV``; returns the exit status.
+
+    ``runtime`` (a ``RosRuntime``) is one to reuse, already discovering the graph; by
+    default one is made and shut down again.
+    """
+    args = build_parser().parse_args(list(argv))
+    try:
+        if args.command == "set":
+            level_request = _level_request(args.rest)
+        with _interruptible(), _ros_control(args, runtime) as control:
+            if args.command == "list":
+                return _list(control, args)
+            node = _find_node(control, args.node, args.wait)
+            if args.command == "get":
+                return _get(control, node, args)
+            return _set(control, node, *level_request, args.duration)
+    except CommandError as error:
+        _say(str(error))
+        return error.status
+    except KeyboardInterrupt:
+        _say("interrupted")
+        return EXIT_INTERRUPTED
+
+
+def _level_request(rest: list[str]) -> tuple[str | None, int]:
+    if len(rest) > 2:
+        raise CommandError(f"too many arguments: {' '.join(rest)}; use: set NODE [LOGGER] LEVEL", EXIT_USAGE)
+    logger = logger_argument(rest[0]) if len(rest) == 2 else None
+    try:
+        level = parse_level(rest[-1])
+    except ValueError as error:
+        raise CommandError(str(error), EXIT_USAGE) from None
+    if logger == DEFAULT_LOGGER and level == Severity.UNSET:
+        raise CommandError("the process default logger cannot be unset: give it a level", EXIT_USAGE)
+    return logger, level
+
+
+@contextmanager
+def _ros_control(args: argparse.Namespace, runtime: Any):
+    from ..sources.ros2.loggers import LoggerControl
+    from ..sources.ros2.rclpy_loader import RosUnavailable
+    from ..sources.ros2.runtime import RosRuntime
+
+    own_runtime = runtime is None
+    if own_runtime:
+        try:
+            runtime = RosRuntime()
+        except RosUnavailable as error:
+            raise CommandError(str(error), EXIT_ERROR) from None
+    control = LoggerControl(runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False))
+    control.start()
+    try:
+        yield control
+    finally:
+        control.close()
+        if own_runtime:
+            runtime.shutdown()
+
+
+@contextmanager
+def _interruptible():
+    """SIGTERM ends the command like Ctrl+C does, so that temporary levels are put back."""
+
+    def on_term(_signum: int, _frame: Any) -> None:
+        raise KeyboardInterrupt
+
+    try:
+        previous = signal.signal(signal.SIGTERM, on_term)
+    except ValueError:  # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _find_node(control: Any, query: str, wait: float) -> GraphNode:
+    matches = control.find_node(query, wait)
+    if not matches:
+        raise CommandError(
+            f"no node {query!r} in the ROS graph (waited {wait:g} s); 'console-tui loggers list' shows the nodes",
+            EXIT_NOT_FOUND,
+        )
+    if len(matches) > 1:
+        names = ", ".join(node.fqn for node in matches)
+        raise CommandError(f"{query!r} names several nodes: {names}; give the full name", EXIT_USAGE)
+    node = matches[0]
+    if not node.has_logger_services:
+        from ..sources.ros2.loggers import NoLoggerServices
+
+        raise CommandError(str(NoLoggerServices(node.fqn)), EXIT_NOT_FOUND)
+    return node
+
+
+def _list(control: Any, args: argparse.Namespace) -> int:
+    nodes = control.wait_for_graph(args.wait)
+    if args.json:
+        items = [
+            {"node": n.fqn, "namespace": n.namespace, "name": n.name, "logger": n.logger_name, "logger_services": n.has_logger_services}
+            for n in nodes
+        ]
+        print(json.dumps(items, indent=2))
+    else:
+        for n in nodes:
+            services = "logger-services" if n.has_logger_services else "no-logger-services"
+            print(f"{n.fqn}\t{n.logger_name}\t{services}")
+    if not nodes:
+        _say(f"no nodes found (waited {args.wait:g} s; same ROS_DOMAIN_ID and discovery settings as the nodes?)")
+    return EXIT_OK
+
+
+def _get(control: Any, node: GraphNode, args: argparse.Namespace) -> int:
+    loggers = NodeLoggers(node)
+    wanted = [logger_argument(name) for name in args.loggers] or [node.logger_name, DEFAULT_LOGGER]
+    for name in wanted:
+        loggers.add_typed(name)
+    loggers.update_levels(_result(control.get_levels(node.fqn, loggers.names_to_read())))
+    rows = {row.name: row for row in loggers.rows()}
+    chosen = [rows[name.strip()] for name in dict.fromkeys(wanted)]
+    if args.json:
+        items = [{"name": r.name, "level": r.level, "level_name": level_text(r.level), "effective": r.effective} for r in chosen]
+        print(json.dumps({"node": node.fqn, "loggers": items}, indent=2))
+    else:
+        for row in chosen:
+            effective = severity_name(row.effective) if row.effective else "?"
+            print(f"{shown_logger(row.name)}\t{level_text(row.level)}\t{effective}")
+    return EXIT_OK
+
+
+def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration: float | None) -> int:
+    logger = node.logger_name if logger is None else logger
+    if duration is None:
+        _result(control.set_level(node.fqn, logger, level))
+        print(f"{shown_logger(logger)}\t{level_text(level)}", flush=True)
+        return EXIT_OK
+    ended = threading.Event()
+    outcome: dict[str, Any] = {}
+
+    def on_event(event: Any) -> None:
+        entry = getattr(event, "entry", None)
+        if entry is not None and (entry.node, entry.logger) == (node.fqn, logger):
+            outcome["error"] = event.error
+            ended.set()
+
+    control.subscribe(on_event)
+    entry: TemporaryLevel = _result(control.set_temporary(node.fqn, logger, level, duration))
+    print(f"{shown_logger(logger)}\t{level_text(level)}", flush=True)
+    _say(f"{shown_logger(logger)} on {node.fqn} at {level_text(level)} for {duration:g} s, then back to {level_text(entry.previous)}")
+    try:
+        while not ended.wait(0.2):
+            pass
+    except KeyboardInterrupt:
+        _result(control.end_temporary(node.fqn, logger))
+        print(f"{shown_logger(logger)}\t{level_text(entry.previous)}", flush=True)
+        _say("interrupted: previous level put back")
+        return EXIT_INTERRUPTED
+    if outcome.get("error") is not None:
+        raise CommandError(f"could not put the previous level back: {outcome['error']}", EXIT_FAILED)
+    print(f"{shown_logger(logger)}\t{level_text(entry.previous)}", flush=True)
+    return EXIT_OK
+
+
+def _result(future: Any) -> Any:
+    """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
+    from ..sources.ros2.loggers import LoggerCallError, NodeNotFound, NoLoggerServices
+
+    try:
+        return future.result()
+    except (NodeNotFound, NoLoggerServices) as error:
+        raise CommandError(str(error), EXIT_NOT_FOUND) from None
+    except LoggerCallError as error:
+        raise CommandError(str(error), EXIT_FAILED) from None
+
+
+def _say(message: str) -> None:
+    print(f"console-tui loggers: {message}", file=sys.stderr, flush=True)
