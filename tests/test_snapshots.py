@@ -12,7 +12,7 @@ from console_tui.ui.app import ConsoleApp
 def feed_app(count: int = 200) -> ConsoleApp:
     store = LogStore()
     store.extend(records(count))
-    return ConsoleApp(store=store, utc=True)
+    return ConsoleApp(store=store, utc=True, clock=lambda: 0.0)  # a still clock: the rate reads 0/s
 
 
 @pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])

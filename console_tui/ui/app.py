@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from collections import deque
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Protocol
 
 from textual.app import App, ComposeResult, SystemCommand
@@ -64,6 +64,7 @@ class ConsoleApp(App[None]):
         sources: Sequence[Source] = (),
         utc: bool = False,
         drain_interval: float = DRAIN_INTERVAL,
+        clock: Callable[[], float] = time.monotonic,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -72,6 +73,7 @@ class ConsoleApp(App[None]):
         self.sources = list(sources)
         self.utc = utc
         self.drain_interval = drain_interval
+        self.clock = clock
         self._arrivals: deque[tuple[float, int]] = deque()
         self._rate = 0.0
         self._rate_at = 0.0
@@ -128,12 +130,12 @@ class ConsoleApp(App[None]):
         with table.keeping_position():
             added = self.store.extend(records)
             self.view.update()
-        self._arrivals.append((time.monotonic(), len(added)))
+        self._arrivals.append((self.clock(), len(added)))
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
         (so the status line is not redrawn every tick for a changing digit)."""
-        now = time.monotonic()
+        now = self.clock()
         if now - self._rate_at < 1.0:
             return self._rate
         arrivals = self._arrivals
