@@ -1,0 +1,76 @@
+"""Recordings for tests and benchmarks, written with rosbags (the library rosbag2 users
+script with): /rosout among other topics, in MCAP or sqlite3."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+
+from console_tui.model.record import LogRecord
+
+
+def ros2_log_message(typestore, record: LogRecord):
+    Log = typestore.types["rcl_interfaces/msg/Log"]
+    Time = typestore.types["builtin_interfaces/msg/Time"]
+    sec, nanosec = divmod(record.stamp_ns, 1_000_000_000)
+    return Log(
+        stamp=Time(sec=sec, nanosec=nanosec),
+        level=record.level,
+        name=record.node,
+        msg=record.msg,
+        file=record.file,
+        function=record.function,
+        line=record.line,
+    )
+
+
+def write_rosbag2(
+    path: Path,
+    records: Iterable[LogRecord],
+    *,
+    storage: str = "mcap",
+    chatter_every: int = 1,
+    image_bytes: int = 0,
+    images_per_log: int = 0,
+    compress: bool = False,
+) -> Path:
+    """A rosbag2 directory with ``/rosout`` (the records), ``/chatter`` (a String after
+    every ``chatter_every`` records) and, when ``image_bytes``, ``images_per_log``
+    ``/camera/image`` Images of that size after each record. Returns the directory."""
+    import numpy as np
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.rosbag2.writer import CompressionFormat, CompressionMode
+    from rosbags.typesys import Stores, get_typestore
+
+    typestore = get_typestore(Stores.LATEST)
+    String = typestore.types["std_msgs/msg/String"]
+    plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
+    writer = Writer(path, version=9, storage_plugin=plugin)
+    if compress:
+        writer.set_compression(CompressionMode.MESSAGE, CompressionFormat.ZSTD)
+    image = None
+    with writer:
+        rosout = writer.add_connection("/rosout", "rcl_interfaces/msg/Log", typestore=typestore)
+        chatter = writer.add_connection("/chatter", "std_msgs/msg/String", typestore=typestore)
+        if image_bytes:
+            Image = typestore.types["sensor_msgs/msg/Image"]
+            Header = typestore.types["std_msgs/msg/Header"]
+            Time = typestore.types["builtin_interfaces/msg/Time"]
+            camera = writer.add_connection("/camera/image", "sensor_msgs/msg/Image", typestore=typestore)
+            width = 1024
+            height = max(1, image_bytes // (width * 3))
+            pixels = np.random.default_rng(1).integers(0, 255, width * height * 3, dtype=np.uint8)
+            image = Image(
+                header=Header(stamp=Time(sec=0, nanosec=0), frame_id="camera"),
+                height=height, width=width, encoding="rgb8", is_bigendian=0, step=width * 3, data=pixels,
+            )
+            image_data = typestore.serialize_cdr(image, "sensor_msgs/msg/Image")
+        for index, record in enumerate(records):
+            data = typestore.serialize_cdr(ros2_log_message(typestore, record), "rcl_interfaces/msg/Log")
+            writer.write(rosout, record.stamp_ns, data)
+            if chatter_every and index % chatter_every == 0:
+                text = typestore.serialize_cdr(String(data=f"chatter {index}"), "std_msgs/msg/String")
+                writer.write(chatter, record.stamp_ns + 1, text)
+            for k in range(images_per_log if image is not None else 0):
+                writer.write(camera, record.stamp_ns + 2 + k, image_data)
+    return path
