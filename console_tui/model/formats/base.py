@@ -65,4 +65,7 @@ def read_batches(
     if batch:
         yield batch
     if not lines.ended_with_newline:
-        problems.add("the file ends in the middle of a line: truncated?", offset=lines.offset)
+        problems.add(
+            "the file ends in the middle of a line: its last record may be cut off (truncated file?)",
+            line=lines.lines_read,
+        )

@@ -12,9 +12,11 @@ on its ROS 2 branches and on melodic-devel):
 - stamp as ``sec.nsec`` with nsec zero-padded to 9 digits;
 - topics (ROS 1) joined by ``,``; location as ``file:function:line``.
 
-Reading: a row starts at a line that begins with ``"``. A continuation line of a
-message never does, since every ``"`` in a message is escaped; the fields are split at
-``";"``, which an escaped message cannot contain. (rqt_console's own loader drops the
+Reading: a row starts at a line that begins with ``"`` but not with ``";"``. A
+continuation line of a message begins with ``"`` only where the message ends with a
+newline, and then with ``";"`` (the end of the message field); every other ``"`` in a
+message is escaped. The fields are split at ``";"``, which an escaped message cannot
+contain. (rqt_console's own loader drops the
 newlines of multi-line messages; this reader keeps them.)
 """
 
@@ -144,7 +146,7 @@ class RqtCsvFormat(TextFormat):
 
 
 def _classify(line: str) -> LineKind:
-    return LineKind.START if line.startswith('"') else LineKind.MORE
+    return LineKind.START if line.startswith('"') and not line.startswith('";"') else LineKind.MORE
 
 
 def _parse_row(text: str, columns: tuple[str, ...], ros1: bool, source: str) -> LogRecord:

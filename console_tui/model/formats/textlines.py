@@ -35,6 +35,8 @@ class TextLines:
         self.problems = problems
         self.block_size = block_size
         self.offset = 0
+        #: Lines produced so far (the last line's number).
+        self.lines_read = 0
         #: False when the stream's last line had no ``\n`` (often: a truncated file).
         self.ended_with_newline = True
         self._reported_decode = False
@@ -69,6 +71,8 @@ class TextLines:
             self.ended_with_newline = False
             yield line_number, self._decode(pending, line_number)
             self.offset += len(pending)
+            line_number += 1
+        self.lines_read = line_number - 1
 
     def _decode(self, data: bytes, first_line: int) -> str:
         if not self._reported_nul:

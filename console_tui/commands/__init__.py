@@ -1,0 +1,1 @@
+"""Subcommands of ``console-tui`` that run without the terminal UI."""
