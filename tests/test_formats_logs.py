@@ -158,7 +158,7 @@ def test_text_damage_is_located():
     by_kind = {p.what.split(" (")[0].split(":")[0]: p for p in problems}
     assert by_kind["bytes that are not UTF-8"].line == 2
     assert "byte 59" in by_kind["bytes that are not UTF-8"].what
-    assert by_kind["binary data"].line == 3 and by_kind["binary data"].offset == 94
+    assert by_kind["binary data"].line == 3 and by_kind["binary data"].offset == 96
     assert any(p.line == 4 and "ends in the middle of a line" in p.what for p in problems)
 
 
