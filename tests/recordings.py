@@ -32,9 +32,10 @@ def write_rosbag2(
     chatter_every: int = 1,
     image_bytes: int = 0,
     images_per_log: int = 0,
-    compress: bool = False,
+    compress: str = "",
+    log_topics: tuple[str, ...] = ("/rosout",),
 ) -> Path:
-    """A rosbag2 directory with ``/rosout`` (the records), ``/chatter`` (a String after
+    """A rosbag2 directory with ``log_topics`` (the records), ``/chatter`` (a String after
     every ``chatter_every`` records) and, when ``image_bytes``, ``images_per_log``
     ``/camera/image`` Images of that size after each record. Returns the directory."""
     import numpy as np
@@ -46,11 +47,13 @@ def write_rosbag2(
     String = typestore.types["std_msgs/msg/String"]
     plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
     writer = Writer(path, version=9, storage_plugin=plugin)
-    if compress:
-        writer.set_compression(CompressionMode.MESSAGE, CompressionFormat.ZSTD)
+    if compress:  # "message" (each message zstd) or "storage" (zstd MCAP chunks)
+        writer.set_compression(CompressionMode[compress.upper()], CompressionFormat.ZSTD)
     image = None
     with writer:
-        rosout = writer.add_connection("/rosout", "rcl_interfaces/msg/Log", typestore=typestore)
+        log_connections = [
+            writer.add_connection(topic, "rcl_interfaces/msg/Log", typestore=typestore) for topic in log_topics
+        ]
         chatter = writer.add_connection("/chatter", "std_msgs/msg/String", typestore=typestore)
         if image_bytes:
             Image = typestore.types["sensor_msgs/msg/Image"]
@@ -67,10 +70,43 @@ def write_rosbag2(
             image_data = typestore.serialize_cdr(image, "sensor_msgs/msg/Image")
         for index, record in enumerate(records):
             data = typestore.serialize_cdr(ros2_log_message(typestore, record), "rcl_interfaces/msg/Log")
-            writer.write(rosout, record.stamp_ns, data)
+            for connection in log_connections:
+                writer.write(connection, record.stamp_ns, data)
             if chatter_every and index % chatter_every == 0:
                 text = typestore.serialize_cdr(String(data=f"chatter {index}"), "std_msgs/msg/String")
                 writer.write(chatter, record.stamp_ns + 1, text)
             for k in range(images_per_log if image is not None else 0):
                 writer.write(camera, record.stamp_ns + 2 + k, image_data)
+    return path
+
+
+def write_ros1_bag(path: Path, records: Iterable[LogRecord], *, compression: str = "") -> Path:
+    """A ROS 1 bag with /rosout (``rosgraph_msgs/Log``) and /chatter, written by rosbags;
+    ``compression`` ``bz2`` or ``lz4`` compresses its chunks."""
+    from rosbags.rosbag1 import Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    from console_tui.model.levels import to_ros1
+
+    typestore = get_typestore(Stores.ROS1_NOETIC)
+    Log = typestore.types["rosgraph_msgs/msg/Log"]
+    Header = typestore.types["std_msgs/msg/Header"]
+    Time = typestore.types["builtin_interfaces/msg/Time"]
+    String = typestore.types["std_msgs/msg/String"]
+    writer = Writer(path)
+    if compression:
+        writer.set_compression(Writer.CompressionFormat[compression.upper()])
+    with writer:
+        rosout = writer.add_connection("/rosout", "rosgraph_msgs/msg/Log", typestore=typestore)
+        chatter = writer.add_connection("/chatter", "std_msgs/msg/String", typestore=typestore)
+        for index, record in enumerate(records):
+            sec, nanosec = divmod(record.stamp_ns, 1_000_000_000)
+            message = Log(
+                header=Header(seq=index, stamp=Time(sec=sec, nanosec=nanosec), frame_id=""),
+                level=to_ros1(record.level), name=record.node, msg=record.msg, file=record.file,
+                function=record.function, line=record.line, topics=["/chatter"],
+            )
+            writer.write(rosout, record.stamp_ns, typestore.serialize_ros1(message, "rosgraph_msgs/msg/Log"))
+            text = typestore.serialize_ros1(String(data=f"chatter {index}"), "std_msgs/msg/String")
+            writer.write(chatter, record.stamp_ns + 1, text)
     return path
