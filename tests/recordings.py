@@ -32,12 +32,13 @@ def write_rosbag2(
     chatter_every: int = 1,
     image_bytes: int = 0,
     images_per_log: int = 0,
+    image_every: int = 1,
     compress: str = "",
     log_topics: tuple[str, ...] = ("/rosout",),
 ) -> Path:
     """A rosbag2 directory with ``log_topics`` (the records), ``/chatter`` (a String after
     every ``chatter_every`` records) and, when ``image_bytes``, ``images_per_log``
-    ``/camera/image`` Images of that size after each record. Returns the directory."""
+    ``/camera/image`` Images of that size after every ``image_every``-th record. Returns the directory."""
     import numpy as np
     from rosbags.rosbag2 import StoragePlugin, Writer
     from rosbags.rosbag2.writer import CompressionFormat, CompressionMode
@@ -75,7 +76,8 @@ def write_rosbag2(
             if chatter_every and index % chatter_every == 0:
                 text = typestore.serialize_cdr(String(data=f"chatter {index}"), "std_msgs/msg/String")
                 writer.write(chatter, record.stamp_ns + 1, text)
-            for k in range(images_per_log if image is not None else 0):
+            images = images_per_log if image is not None and index % image_every == 0 else 0
+            for k in range(images):
                 writer.write(camera, record.stamp_ns + 2 + k, image_data)
     return path
 
