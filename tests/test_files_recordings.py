@@ -3,10 +3,8 @@ background loading, and damaged recordings."""
 
 from __future__ import annotations
 
-import os
-import shutil
+import random
 import threading
-from pathlib import Path
 
 import pytest
 
@@ -123,10 +121,11 @@ def test_damaged_log_message_in_an_indexed_mcap_is_reported_and_skipped(tmp_path
     [
         ("empty.bag", b"", "the file is empty"),
         ("notes.bag", b"hello\n", "does not start like one"),
-        ("garbage.mcap", os.urandom(5000), "does not start like one"),
-        ("half.bag", b"#ROSBAG V2.0\n" + os.urandom(100), "cannot read this ROS 1 bag"),
+        ("garbage.mcap", random.Random(7).randbytes(5000), "does not start like one"),
+        ("half.bag", b"#ROSBAG V2.0\n" + random.Random(8).randbytes(100), "cannot read this ROS 1 bag"),
         ("half.db3", b"SQLite format 3\x00" + bytes(200), "cannot read this rosbag2 recording"),
     ],
+    ids=["empty", "text", "garbage", "half-bag", "half-db3"],
 )
 def test_broken_recordings_say_what_is_wrong(tmp_path, name, content, message):
     path = tmp_path / name

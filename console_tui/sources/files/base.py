@@ -23,7 +23,7 @@ class LogFile(ABC):
     ``done``/``total`` measure progress in ``unit`` (bytes for text files, messages or
     chunks for recordings); they may be read from any thread while ``batches`` runs.
     Problems found while reading (bad lines, truncation) go to ``problems``; reading
-    goes on past them.
+    goes on past them. Recordings also list the log ``topics`` they read.
     """
 
     kind: str = ""
@@ -67,19 +67,14 @@ class TextLogFile(LogFile):
         self.kind = text_format.name
         self.title = text_format.title
         self.total = max(1, os.path.getsize(path))
-        self._stream: BinaryIO | None = None
 
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         with open(self.path, "rb") as stream:
-            self._stream = stream
             lines = _ProgressLines(stream, self)
-            try:
-                for batch in read_batches(stream, self.format, self.source, self.problems, lines=lines):
-                    yield batch
-                    if cancel is not None and cancel.is_set():
-                        return
-            finally:
-                self._stream = None
+            for batch in read_batches(stream, self.format, self.source, self.problems, lines=lines):
+                yield batch
+                if cancel is not None and cancel.is_set():
+                    return
         self.done = self.total
 
 

@@ -22,6 +22,7 @@ from typing import Any
 from ...model.formats import FormatError
 from ...model.levels import from_ros1
 from ...model.record import LogRecord
+from ..ros2.log_source import log_to_record
 from .base import Cancel, LogFile
 
 ROS2_LOG = "rcl_interfaces/msg/Log"
@@ -80,18 +81,7 @@ def decoder(msgtype: str, encoding: str, source: str) -> Callable[[bytes], LogRe
     deserialize = _typestore(False).deserialize_cdr
 
     def decode_cdr(data: bytes) -> LogRecord:
-        message = deserialize(data, ROS2_LOG)
-        stamp = message.stamp
-        return LogRecord(
-            stamp_ns=stamp.sec * 1_000_000_000 + stamp.nanosec,
-            level=message.level,
-            node=message.name,
-            msg=message.msg,
-            file=message.file,
-            function=message.function,
-            line=message.line,
-            source=source,
-        )
+        return log_to_record(deserialize(data, ROS2_LOG), source)
 
     return decode_cdr
 
@@ -100,6 +90,13 @@ class _RecordingFile(LogFile):
     """What the recording readers share: decoding with problems noted, batching."""
 
     unit = "messages"
+
+    def _select_log_connections(self, connections: list[Any]) -> None:
+        """Keep the log connections of a rosbags reader; progress counts their messages."""
+        topics = choose_log_topics((c.topic, c.msgtype) for c in connections)
+        self.connections = [c for c in connections if c.topic in topics]
+        self.topics = sorted(topics)
+        self.total = max(1, sum(c.msgcount for c in self.connections))
 
     def _decode_all(
         self,
@@ -147,10 +144,7 @@ class Ros1BagFile(_RecordingFile):
             if "not indexed" in text:
                 text = "the bag has no index (was its recording interrupted?): run 'rosbag reindex' on it"
             raise FormatError(f"{path.name}: cannot read this ROS 1 bag: {text}") from None
-        topics = choose_log_topics((c.topic, c.msgtype) for c in self._reader.connections)
-        self.connections = [c for c in self._reader.connections if c.topic in topics]
-        self.topics = sorted(topics)
-        self.total = max(1, sum(c.msgcount for c in self.connections))
+        self._select_log_connections(self._reader.connections)
 
     def close(self) -> None:
         reader, self._reader = getattr(self, "_reader", None), None
@@ -366,17 +360,14 @@ class Rosbag2File(_RecordingFile):
         super().__init__(path, source)
         from rosbags.rosbag2 import Reader
 
-        if path.suffix == ".db3":
+        if path.suffix == ".db3" or path.is_dir() and any(path.glob("*.db3")):
             self.kind, self.title = "sqlite3", "rosbag2 sqlite3"
         try:
             self._reader = Reader(path)
             self._reader.open()
         except Exception as error:
             raise FormatError(f"{path.name}: cannot read this rosbag2 recording: {error}") from None
-        topics = choose_log_topics((c.topic, c.msgtype) for c in self._reader.connections)
-        self.connections = [c for c in self._reader.connections if c.topic in topics]
-        self.topics = sorted(topics)
-        self.total = max(1, sum(c.msgcount for c in self.connections))
+        self._select_log_connections(self._reader.connections)
 
     def close(self) -> None:
         reader, self._reader = getattr(self, "_reader", None), None
