@@ -17,9 +17,27 @@ def build_parser() -> argparse.ArgumentParser:
             "A terminal log console for ROS: every node's log messages in one fast table, "
             "with filters, highlights and logger levels."
         ),
-        epilog="Subcommands: 'console-tui loggers --help' lists and sets logger levels without the TUI.",
+        epilog=(
+            "Subcommands: 'console-tui loggers --help' lists and sets logger levels without the TUI; "
+            "'console-tui convert --help' converts log files and recordings."
+        ),
     )
     parser.add_argument("--version", action="version", version=f"console-tui {__version__}")
+    parser.add_argument(
+        "files",
+        nargs="*",
+        metavar="FILE",
+        help=(
+            "log files or recordings to open, merged by time: rqt_console .csv, .jsonl, ROS 2 log files "
+            "(~/.ros/log), ROS 1 rosout.log, .bag, .mcap, .db3 or a rosbag2 directory"
+        ),
+    )
+    add_log_format_argument(parser)
+    parser.add_argument(
+        "--live",
+        action="store_true",
+        help="with FILEs: show the live log stream too, in the same view (without FILEs it is the default)",
+    )
     parser.add_argument(
         "--demo",
         action="store_true",
@@ -41,6 +59,18 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--log-format",
+        metavar="FMT",
+        help=(
+            "the RCUTILS_CONSOLE_OUTPUT_FORMAT that ROS 2 log files were written with, for example "
+            "'[{severity}] [{time}] [{name}]: {message}' (the default, always recognised; "
+            "$RCUTILS_CONSOLE_OUTPUT_FORMAT is tried too)"
+        ),
+    )
+
+
 def _positive_int(text: str) -> int:
     try:
         value = int(text)
@@ -57,6 +87,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         from .commands.loggers import main as loggers_main
 
         return loggers_main(args_list[1:])
+    if args_list[:1] == ["convert"]:
+        from .commands.convert import main as convert_main
+
+        return convert_main(args_list[1:])
     args = build_parser().parse_args(args_list)
     from .launch import run_app
 

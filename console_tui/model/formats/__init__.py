@@ -1,0 +1,60 @@
+"""Log files: reading and writing every text format console-tui knows (no ROS here).
+
+- ``rqt_csv``: rqt_console's message files (ROS 2 and ROS 1 variants), read and written;
+- ``jsonl``: JSON Lines, lossless, read and written;
+- ``rcutils_log``: ROS 2 node log files (any ``RCUTILS_CONSOLE_OUTPUT_FORMAT``), read;
+- ``rosout_log``: ROS 1 ``rosout.log``, read.
+
+Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS libraries.
+"""
+
+from __future__ import annotations
+
+from .base import TextFormat, read_batches
+from .detect import detect_text_format, recording_kind
+from .jsonl import JsonLinesFormat
+from .problems import FormatError, Problem, Problems, RecordError
+from .rcutils_log import DEFAULT_TEMPLATE, RcutilsLogFormat
+from .rosout_log import RosoutLogFormat
+from .rqt_csv import RqtCsvFormat
+from .save import SAVE_FORMATS, SaveCancelled, save_format_for, save_records
+from .textlines import TextLines
+
+
+def text_formats(log_format: str | None = None, extra_templates: tuple[str, ...] = ()) -> list[TextFormat]:
+    """The text formats to try on a file, in order.
+
+    ``log_format`` (an ``RCUTILS_CONSOLE_OUTPUT_FORMAT`` template) is tried first when
+    given; ``extra_templates`` (for example the environment's) after the default one.
+    """
+    formats: list[TextFormat] = []
+    if log_format:
+        formats.append(RcutilsLogFormat(log_format))
+    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat()]
+    if not log_format:
+        formats.append(RcutilsLogFormat())
+        formats += [RcutilsLogFormat(t) for t in extra_templates if t and t != DEFAULT_TEMPLATE]
+    return formats
+
+
+__all__ = [
+    "DEFAULT_TEMPLATE",
+    "FormatError",
+    "JsonLinesFormat",
+    "Problem",
+    "Problems",
+    "RcutilsLogFormat",
+    "RecordError",
+    "RosoutLogFormat",
+    "RqtCsvFormat",
+    "SAVE_FORMATS",
+    "SaveCancelled",
+    "TextFormat",
+    "TextLines",
+    "detect_text_format",
+    "read_batches",
+    "recording_kind",
+    "save_format_for",
+    "save_records",
+    "text_formats",
+]

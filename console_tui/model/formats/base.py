@@ -1,0 +1,71 @@
+"""What every text log format provides, and the loop that reads one into record batches."""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from collections.abc import Iterable, Iterator
+from typing import BinaryIO
+
+from ..record import LogRecord
+from .problems import Problems
+from .textlines import TextLines
+
+DEFAULT_BATCH = 5_000
+
+
+class TextFormat(ABC):
+    """A text log format: how to recognise its first line and how to read its records."""
+
+    #: Short name, as the command line and messages use it.
+    name: str = ""
+    #: What a user would call it.
+    title: str = ""
+
+    @abstractmethod
+    def looks_like(self, first_line: str) -> bool:
+        """Whether a file whose first non-blank line is this is in this format."""
+
+    @abstractmethod
+    def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        """The records of a file, each with ``source``; bad parts go to ``problems``."""
+
+
+class TextFormatWriter(ABC):
+    """A format records can be saved in."""
+
+    name: str = ""
+
+    @abstractmethod
+    def write(self, records: Iterable[LogRecord], stream: BinaryIO) -> Iterator[int]:
+        """Write every record; yields the running count now and then (for progress and
+        cancelling between yields)."""
+
+
+def read_batches(
+    stream: BinaryIO,
+    text_format: TextFormat,
+    source: str,
+    problems: Problems,
+    *,
+    batch_size: int = DEFAULT_BATCH,
+    lines: TextLines | None = None,
+) -> Iterator[list[LogRecord]]:
+    """Read a text log stream into batches of records (each at most ``batch_size``).
+
+    Pass your own ``lines`` to watch ``lines.offset`` (bytes read) while this runs.
+    A file that ends in the middle of a line is reported as probably truncated.
+    """
+    lines = lines if lines is not None else TextLines(stream, problems)
+    batch: list[LogRecord] = []
+    for record in text_format.records(lines, source, problems):
+        batch.append(record)
+        if len(batch) >= batch_size:
+            yield batch
+            batch = []
+    if batch:
+        yield batch
+    if not lines.ended_with_newline:
+        problems.add(
+            "the file ends in the middle of a line: its last record may be cut off (truncated file?)",
+            line=lines.lines_read,
+        )

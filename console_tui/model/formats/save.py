@@ -1,0 +1,66 @@
+"""Saving records to a file: rqt_console's format or JSON Lines, always atomically."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable
+from pathlib import Path
+from typing import Protocol
+
+from ..record import LogRecord
+from .atomic import atomic_output
+from .base import TextFormatWriter
+from .jsonl import JsonLinesWriter
+from .rqt_csv import RqtCsvWriter
+
+#: Save formats by name: rqt_console ROS 2 (``rqt``), its ROS 1 variant, JSON Lines.
+SAVE_FORMATS: dict[str, Callable[[], TextFormatWriter]] = {
+    "rqt": RqtCsvWriter,
+    "rqt1": lambda: RqtCsvWriter(ros1=True),
+    "jsonl": JsonLinesWriter,
+}
+_JSONL_SUFFIXES = (".jsonl", ".ndjson", ".json")
+
+
+class Cancellable(Protocol):
+    def is_set(self) -> bool: ...
+
+
+class SaveCancelled(Exception):
+    """The save was cancelled; the target file was left as it was."""
+
+
+def save_format_for(path: str | os.PathLike[str]) -> str:
+    """The save format a file name asks for: JSON Lines for ``.jsonl``/``.ndjson``/``.json``,
+    rqt_console's format for anything else."""
+    return "jsonl" if Path(path).suffix.lower() in _JSONL_SUFFIXES else "rqt"
+
+
+def save_records(
+    records: Iterable[LogRecord],
+    path: str | os.PathLike[str],
+    save_format: str | None = None,
+    *,
+    cancel: Cancellable | None = None,
+    progress: Callable[[int], None] | None = None,
+) -> int:
+    """Write ``records`` to ``path`` in ``save_format`` (default: from the name); returns
+    how many were written.
+
+    The file is replaced atomically: if this raises (``OSError``, or ``SaveCancelled``
+    when ``cancel`` is set), a file already at ``path`` is untouched. ``progress`` is
+    called with the running count every few thousand records. Iterate over a snapshot
+    (or from the thread that owns the store), not over a store another thread changes.
+    """
+    name = save_format or save_format_for(path)
+    if name not in SAVE_FORMATS:
+        raise ValueError(f"unknown save format {name!r}: use one of {', '.join(SAVE_FORMATS)}")
+    writer = SAVE_FORMATS[name]()
+    count = 0
+    with atomic_output(path) as stream:
+        for count in writer.write(records, stream):
+            if cancel is not None and cancel.is_set():
+                raise SaveCancelled(f"save to {os.fspath(path)} cancelled")
+            if progress is not None:
+                progress(count)
+    return count

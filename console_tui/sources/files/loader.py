@@ -1,0 +1,187 @@
+"""Loading files in the background: merged batches into the UI's queue, with progress."""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
+
+from ...model.formats import FormatError, Problem
+from ...model.intake_queue import IntakeQueue
+from ...model.record import LogRecord
+from .base import LogFile
+from .merge import merge_by_time
+from .opener import open_log_file, source_names
+
+#: The loader waits while this many records wait in the queue (the UI is behind).
+QUEUE_HIGH_WATER = 200_000
+
+
+@dataclass(frozen=True)
+class FileProgress:
+    """One file of a load: its name, what it is, and how far reading it has got."""
+
+    source: str
+    title: str
+    fraction: float
+    problems: int
+    failed: bool = False
+
+
+@dataclass(frozen=True)
+class LoadProgress:
+    """A snapshot of a load, for a progress bar and a status line."""
+
+    files: tuple[FileProgress, ...]
+    records: int
+    finished: bool
+    cancelled: bool
+
+    @property
+    def fraction(self) -> float:
+        """0..1 over all files (each file counts the same)."""
+        if self.finished:
+            return 1.0
+        if not self.files:
+            return 0.0
+        return sum(1.0 if f.failed else f.fraction for f in self.files) / len(self.files)
+
+
+def open_files(
+    paths: Sequence[str | os.PathLike[str]], *, log_format: str | None = None
+) -> tuple[list[LogFile], list[Problem]]:
+    """Open every path; the ones that cannot be read become problems, not exceptions."""
+    opened: list[LogFile] = []
+    failures: list[Problem] = []
+    for path, name in zip(paths, source_names(paths)):
+        try:
+            opened.append(open_log_file(path, log_format=log_format, source=name))
+        except FormatError as error:
+            failures.append(Problem(name, str(error).removeprefix(f"{name}: ")))
+    return opened, failures
+
+
+def load_records(
+    files: Sequence[LogFile], cancel: threading.Event | None = None, *, batch_size: int = 5_000
+) -> Iterator[list[LogRecord]]:
+    """Every record of ``files`` merged by stamp, in batches (in the calling thread)."""
+    if not files:
+        return iter(())
+    return merge_by_time([f.batches(cancel) for f in files], batch_size=batch_size)
+
+
+class FileLoad:
+    """Reads files in a background thread into ``sink`` (an ``IntakeQueue`` or a callable
+    taking each batch), merged by stamp, each record's ``source`` naming its file.
+
+    From the UI thread: ``start()``, ``cancel()``, and read ``progress`` and
+    ``problems()`` at any time. ``on_change`` (optional) is called from the loading
+    thread after each batch and at the end, for example to post a Textual message.
+    Files that cannot be opened are reported in ``problems()`` and the rest still load.
+    """
+
+    def __init__(
+        self,
+        paths: Sequence[str | os.PathLike[str]],
+        sink: IntakeQueue | Callable[[list[LogRecord]], None],
+        *,
+        log_format: str | None = None,
+        on_change: Callable[[], None] | None = None,
+    ) -> None:
+        self.paths = list(paths)
+        self.sink = sink
+        self.log_format = log_format
+        self.on_change = on_change
+        self.cancel_event = threading.Event()
+        self.files: list[LogFile] = []
+        self.failures: list[Problem] = []
+        self.error = ""
+        self._names = source_names(self.paths)
+        self._records = 0
+        self._finished = False
+        self._thread: threading.Thread | None = None
+
+    def start(self) -> None:
+        self._thread = threading.Thread(target=self._run, name="console-tui-file-load", daemon=True)
+        self._thread.start()
+
+    def cancel(self) -> None:
+        """Stop reading soon; what was read stays. Safe from any thread."""
+        self.cancel_event.set()
+
+    def join(self, timeout: float | None = None) -> bool:
+        """Wait for the thread; True once it has ended."""
+        if self._thread is not None:
+            self._thread.join(timeout)
+            return not self._thread.is_alive()
+        return True
+
+    @property
+    def finished(self) -> bool:
+        return self._finished
+
+    @property
+    def progress(self) -> LoadProgress:
+        opened = {f.source: f for f in self.files}
+        failed = {p.source for p in self.failures}
+        files = tuple(
+            FileProgress(name, opened[name].title, opened[name].fraction, len(opened[name].problems))
+            if name in opened
+            else FileProgress(name, "", 0.0, 1 if name in failed else 0, failed=name in failed)
+            for name in self._names
+        )
+        return LoadProgress(files, self._records, self._finished, self.cancel_event.is_set())
+
+    def problems(self) -> list[Problem]:
+        """Everything that went wrong so far: files that could not be opened, then each
+        file's problems (bad lines, truncation), in file order."""
+        found = list(self.failures)
+        for file in list(self.files):
+            found.extend(file.problems)
+            if file.problems.omitted:
+                found.append(Problem(file.source, f"{file.problems.omitted} more problems not listed"))
+        if self.error:
+            found.append(Problem("", self.error))
+        return found
+
+    def _run(self) -> None:
+        try:
+            for path, name in zip(self.paths, self._names):
+                if self.cancel_event.is_set():
+                    break
+                try:
+                    self.files.append(open_log_file(path, log_format=self.log_format, source=name))
+                except FormatError as error:
+                    self.failures.append(Problem(name, str(error).removeprefix(f"{name}: ")))
+                self._changed()
+            for batch in load_records(self.files, self.cancel_event):
+                self._deliver(batch)
+                if self.cancel_event.is_set():
+                    break
+        except Exception as error:  # the app must learn of it, never die of it
+            self.error = f"loading stopped: {type(error).__name__}: {error}"
+        finally:
+            for file in self.files:
+                file.close()
+            self._finished = True
+            self._changed()
+
+    def _deliver(self, batch: list[LogRecord]) -> None:
+        sink = self.sink
+        if isinstance(sink, IntakeQueue):
+            while len(sink) > QUEUE_HIGH_WATER and not self.cancel_event.is_set():
+                time.sleep(0.02)
+            sink.put(batch)
+        else:
+            sink(batch)
+        self._records += len(batch)
+        self._changed()
+
+    def _changed(self) -> None:
+        if self.on_change is not None:
+            try:
+                self.on_change()
+            except Exception:
+                pass

@@ -1,0 +1,67 @@
+"""Opening any log file or recording by path: what it is, and a reader for it."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from pathlib import Path
+
+from ...model.formats import FormatError, detect_text_format, recording_kind, text_formats
+from ...model.formats.detect import HEAD_SIZE
+from .base import LogFile, TextLogFile
+
+#: The environment variable rcutils reads its output format from.
+FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
+
+
+def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None, source: str | None = None) -> LogFile:
+    """Open a log file or recording for reading, detecting its format from its content.
+
+    Text files: rqt_console CSV, JSON Lines, ROS 1 rosout.log, ROS 2 log files (the
+    default rcutils format, ``log_format`` when given, else also the template in
+    ``$RCUTILS_CONSOLE_OUTPUT_FORMAT``). Recordings: ROS 1 ``.bag``, rosbag2 ``.mcap``,
+    ``.db3`` or a rosbag2 directory (or its ``metadata.yaml``).
+
+    ``source`` (default: the file's name) is what every record will carry. Raises
+    ``FormatError`` with a message for the user when the file cannot be read at all.
+    """
+    file_path = Path(path)
+    if file_path.name == "metadata.yaml" and file_path.is_file():
+        file_path = file_path.parent
+    name = source or file_path.name or str(file_path)
+    if not file_path.exists():
+        raise FormatError(f"{name}: no such file or directory")
+    if file_path.is_dir():
+        from .recordings import open_recording
+
+        return open_recording(file_path, name, "rosbag2")
+    try:
+        with open(file_path, "rb") as stream:
+            head = stream.read(HEAD_SIZE)
+    except OSError as error:
+        raise FormatError(f"{name}: cannot read: {error.strerror or error}") from None
+    kind = recording_kind(head)
+    if kind is not None:
+        from .recordings import open_recording
+
+        return open_recording(file_path, name, kind)
+    if file_path.suffix in (".bag", ".mcap", ".db3") and head:
+        raise FormatError(f"{file_path.name}: named like a recording, but it does not start like one (damaged?)")
+    env_template = os.environ.get(FORMAT_VARIABLE, "")
+    candidates = text_formats(log_format, (env_template,) if env_template else ())
+    return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name))
+
+
+def source_names(paths: Sequence[str | os.PathLike[str]]) -> list[str]:
+    """Short names that tell the files apart: the file name, with as many parent
+    directories as it takes when names repeat (``run1/rosout.log``, ``run2/rosout.log``)."""
+    resolved = [Path(p).resolve() for p in paths]
+    names = [p.name for p in resolved]
+    depth = 1
+    while len(set(names)) < len(names) and depth < 32:
+        depth += 1
+        counts = {n: names.count(n) for n in names}
+        names = [
+            "/".join(p.parts[-depth:]) if counts[name] > 1 else name for p, name in zip(resolved, names)
+        ]
+    return names
