@@ -17,24 +17,34 @@ def run_app(args: argparse.Namespace) -> int:
     queue = IntakeQueue()
     sources: list = []
     cleanups: list = []
-    try:
-        if args.demo:
-            from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
+    files = list(getattr(args, "files", None) or [])
+    live = args.demo or getattr(args, "live", False) or not files
+    if live:
+        try:
+            if args.demo:
+                from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
 
-            os.environ.update(DEMO_ENVIRONMENT)
-        runtime = _start_ros()
-        cleanups.append(runtime.shutdown)
-        from .sources.ros2.log_source import LiveLogSource
+                os.environ.update(DEMO_ENVIRONMENT)
+            runtime = _start_ros()
+            cleanups.append(runtime.shutdown)
+            from .sources.ros2.log_source import LiveLogSource
 
-        sources.append(LiveLogSource(runtime, queue, topic=args.topic))
-        if args.demo:
-            sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
-    except RosUnavailable as error:
-        print(f"console-tui: {error}", file=sys.stderr)
-        return 2
+            sources.append(LiveLogSource(runtime, queue, topic=args.topic))
+            if args.demo:
+                sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+        except RosUnavailable as error:
+            print(f"console-tui: {error}", file=sys.stderr)
+            return 2
     from .ui.app import ConsoleApp
 
-    app = ConsoleApp(store=store, queue=queue, sources=sources, utc=args.utc)
+    app = ConsoleApp(
+        store=store,
+        queue=queue,
+        sources=sources,
+        utc=args.utc,
+        files=files,
+        log_format=getattr(args, "log_format", None),
+    )
     try:
         app.run()
     finally:

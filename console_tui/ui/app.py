@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import asyncio
+import os
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import Protocol
 
+from textual import work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.screen import Screen
@@ -14,18 +17,26 @@ from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
+from ..model.formats.save import save_records
 from ..model.store import LogStore
+from ..model.text import one_line
 from ..model.view import LogView
+from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
 from .gc_policy import CollectionPolicy
 from .screens.columns import ColumnsScreen
 from .screens.detail import DetailScreen
+from .screens.files import OpenScreen, SaveRequest, SaveScreen
 from .screens.help import HelpScreen
+from .screens.problems import ProblemsScreen
 from .widgets.columns import COLUMNS
+from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 from .widgets.status_bar import StatusBar, StatusFacts
 
 DRAIN_INTERVAL = 1 / 15
+#: Records gathered per event-loop turn when saving.
+SAVE_SLICE = 20_000
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
@@ -50,6 +61,10 @@ class ConsoleApp(App[None]):
     BINDINGS = [
         Binding("space", "toggle_pause", "Pause"),
         Binding("c", "clear", "Clear"),
+        Binding("o", "open", "Open"),
+        Binding("s", "save", "Save"),
+        Binding("x", "cancel_load", "Cancel load"),
+        Binding("exclamation_mark", "problems", "Problems", show=False),
         Binding("C", "columns", "Columns"),
         Binding("question_mark,f1", "help", "Help"),
         Binding("q", "quit", "Quit"),
@@ -65,6 +80,8 @@ class ConsoleApp(App[None]):
         utc: bool = False,
         drain_interval: float = DRAIN_INTERVAL,
         clock: Callable[[], float] = time.monotonic,
+        files: Sequence[str] = (),
+        log_format: str | None = None,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -80,11 +97,19 @@ class ConsoleApp(App[None]):
         self.collection_policy = CollectionPolicy()
         self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
+        self.load_bar = LoadBar(id="load-bar")
+        #: File loads: their records come through a queue of their own, ahead of live ones.
+        self.file_queue = IntakeQueue()
+        self.loads: list[FileLoad] = []
+        self.problems: list[str] = []
+        self._initial_files = list(files)
+        self.log_format = log_format
 
     # -- layout -------------------------------------------------------------------------------
 
     def compose(self) -> ComposeResult:
         yield self.table
+        yield self.load_bar
         yield self.status_bar
         yield Footer()
 
@@ -96,6 +121,8 @@ class ConsoleApp(App[None]):
         # After the first frame: starting sources (threads, child processes) costs CPU
         # the first frame should not wait for.
         self.call_after_refresh(self.start_sources)
+        if self._initial_files:
+            self.open_files(self._initial_files, log_format=self.log_format)
 
     def start_sources(self) -> None:
         for source in self.sources:
@@ -106,6 +133,8 @@ class ConsoleApp(App[None]):
 
     def on_unmount(self) -> None:
         self.stop_sources()
+        for load in self.loads:
+            load.cancel()
 
     def stop_sources(self) -> None:
         sources, self.sources = self.sources, []
@@ -118,12 +147,105 @@ class ConsoleApp(App[None]):
     # -- records ----------------------------------------------------------------------------------
 
     def drain_intake(self) -> None:
-        """Move what the sources queued into the store, in one batch per tick."""
-        records = self.queue.drain(MAX_RECORDS_PER_TICK)
+        """Move what the sources queued into the store, in one batch per tick.
+
+        Records from files come first; live records wait while files load, so that a
+        view of files plus the live stream stays in time order."""
+        records = self.file_queue.drain(MAX_RECORDS_PER_TICK)
+        if not self.loading:
+            records += self.queue.drain(MAX_RECORDS_PER_TICK - len(records))
         if records:
             self.add_records(records)
+        if self.loads:
+            self._check_loads()
         self.update_status()
         self.collection_policy.tick(len(records))
+
+    # -- files --------------------------------------------------------------------------------------
+
+    @property
+    def loading(self) -> bool:
+        return any(not load.finished for load in self.loads) or len(self.file_queue) > 0
+
+    def open_files(self, paths: Sequence[str], *, log_format: str | None = None) -> FileLoad:
+        """Read files in the background into the table, merged by time."""
+        load = FileLoad(paths, self.file_queue, log_format=log_format)
+        self.loads.append(load)
+        load.start()
+        self.table.set_column_shown("source", True)
+        self.load_bar.show_progress([load.progress])
+        return load
+
+    def _check_loads(self) -> None:
+        self.load_bar.show_progress([load.progress for load in self.loads])
+        for load in [load for load in self.loads if load.finished]:
+            if len(self.file_queue):
+                return  # its last records are still on their way into the table
+            self.loads.remove(load)
+            progress = load.progress
+            problems = [str(problem) for problem in load.problems()]
+            self.problems.extend(problems)
+            files = len(progress.files)
+            verb = "Cancelled after" if progress.cancelled else "Loaded"
+            text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
+            if problems:
+                listed = "\n".join(one_line(problem, 300) for problem in problems[:3])
+                more = f"\n... {len(problems) - 3} more" if len(problems) > 3 else ""
+                self.notify(f"{text}, with problems (! lists them):\n{listed}{more}", severity="warning", timeout=15)
+            else:
+                self.notify(text, timeout=5)
+
+    def action_open(self) -> None:
+        def opened(paths: list[str] | None) -> None:
+            if paths:
+                self.open_files(paths, log_format=self.log_format)
+
+        self.push_screen(OpenScreen(), opened)
+
+    def action_cancel_load(self) -> None:
+        for load in self.loads:
+            load.cancel()
+
+    def action_problems(self) -> None:
+        self.push_screen(ProblemsScreen(self.problems))
+
+    def action_save(self) -> None:
+        default = os.path.join(os.getcwd(), time.strftime("console-tui-%Y%m%d-%H%M%S.csv"))
+
+        def chosen(request: SaveRequest | None) -> None:
+            if request is not None:
+                self.save(request)
+
+        self.push_screen(SaveScreen(default, filtered=self.view.filtered), chosen)
+
+    @work(exclusive=True, group="save")
+    async def save(self, request: SaveRequest) -> int:
+        """Collect the rows on the UI thread a slice at a time (the store changes only
+        here), then write them in a thread. Returns how many were written."""
+        if request.shown_only:
+            seqs = [self.view.seq_at(row) for row in range(len(self.view))]
+        else:
+            seqs = range(self.store.first_seq, self.store.end_seq)
+        records = []
+        for start in range(0, len(seqs), SAVE_SLICE):
+            for seq in seqs[start : start + SAVE_SLICE]:
+                if seq in self.store:
+                    records.append(self.store.get(seq))
+            await asyncio.sleep(0)
+        lost = len(seqs) - len(records)
+        try:
+            written = await asyncio.to_thread(save_records, records, request.path, request.save_format)
+        except (OSError, ValueError) as error:
+            self.notify(f"Not saved: {error}", severity="error", timeout=15)
+            return 0
+        note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
+        self.notify(f"Saved {written:,} messages to {request.path}{note}", timeout=8)
+        return written
+
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action == "cancel_load":
+            return self.loading
+        return True
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
         table = self.table
@@ -222,6 +344,9 @@ class ConsoleApp(App[None]):
         yield SystemCommand("Clear", "Drop every message", self.action_clear)
         yield SystemCommand("Details", "Every field of the selected message", self.table.action_activate)
         yield SystemCommand("Columns", "Choose the table's columns", self.action_columns)
+        yield SystemCommand("Open files", "Log files and recordings, merged by time", self.action_open)
+        yield SystemCommand("Save", "Save the rows shown, or everything (rqt_console CSV or JSON Lines)", self.action_save)
+        yield SystemCommand("Load problems", "What went wrong while loading files, and where", self.action_problems)
         for column in COLUMNS:
             if column.key == "message":
                 continue

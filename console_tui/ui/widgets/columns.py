@@ -19,15 +19,15 @@ class Column:
 
 
 COLUMNS: tuple[Column, ...] = (
-    Column("seq", "#", 7, align="right", drop_order=4),
-    Column("time", "Time", 12, drop_order=5),
+    Column("seq", "#", 7, align="right", drop_order=5),
+    Column("time", "Time", 12, drop_order=6),
     Column("severity", "Sev", 5),
     Column("node", "Node", 16),
     Column("message", "Message", 24, flex=True),
     Column("file", "File", 16, drop_order=2),
     Column("function", "Function", 14, drop_order=1),
     Column("line", "Line", 5, align="right", drop_order=3),
-    Column("source", "Source", 14, drop_order=0, shown_by_default=False),
+    Column("source", "Source", 14, drop_order=4, shown_by_default=False),
 )
 COLUMN_KEYS = tuple(column.key for column in COLUMNS)
 BY_KEY = {column.key: column for column in COLUMNS}
@@ -36,7 +36,7 @@ MESSAGE_MIN = 24
 
 def message_min(width: int) -> int:
     """The narrowest the message column may get before optional columns give way."""
-    return max(MESSAGE_MIN, width // 3)
+    return max(MESSAGE_MIN, width // 4)
 SEPARATOR = 1
 
 

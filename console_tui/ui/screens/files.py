@@ -1,0 +1,156 @@
+"""Dialogs for files: open (paths, with completion), save (where, which format, what)."""
+
+from __future__ import annotations
+
+import os
+import shlex
+from dataclasses import dataclass
+from pathlib import Path
+
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Vertical
+from textual.screen import ModalScreen
+from textual.suggester import Suggester
+from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
+
+from ...model.formats.save import save_format_for
+
+SAVE_FORMAT_TITLES = {
+    "rqt": "rqt_console (ROS 2) .csv",
+    "rqt1": "rqt_console (ROS 1) .csv",
+    "jsonl": "JSON Lines, every field .jsonl",
+}
+SUFFIXES = {"rqt": ".csv", "rqt1": ".csv", "jsonl": ".jsonl"}
+
+
+class PathSuggester(Suggester):
+    """Completes the last path of the input from the file system (Tab or → accepts)."""
+
+    def __init__(self) -> None:
+        super().__init__(use_cache=False, case_sensitive=True)
+
+    async def get_suggestion(self, value: str) -> str | None:
+        head, _, last = value.rpartition(" ")
+        if not last:
+            return None
+        expanded = os.path.expanduser(last)
+        folder, prefix = os.path.split(expanded)
+        try:
+            names = sorted(n for n in os.listdir(folder or ".") if n.startswith(prefix) and not n.startswith("."))
+        except OSError:
+            return None
+        if not names:
+            return None
+        completion = names[0][len(prefix) :]
+        if os.path.isdir(os.path.join(folder or ".", names[0])):
+            completion += "/"
+        return value + completion if completion else None
+
+
+class _Dialog(ModalScreen):
+    DEFAULT_CSS = """
+    _Dialog { align: center middle; }
+    _Dialog > Vertical { width: 80; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 1 2; }
+    _Dialog Input { margin: 1 0; }
+    _Dialog .error { color: $error; }
+    """
+    BINDINGS = [Binding("escape", "cancel", "Cancel")]
+
+    def action_cancel(self) -> None:
+        self.dismiss(None)
+
+
+class OpenScreen(_Dialog):
+    """Asks for files to open; returns their paths or None."""
+
+    def compose(self) -> ComposeResult:
+        with Vertical():
+            yield Label("Open log files or recordings (several: separate with spaces; Tab completes)")
+            yield Input(placeholder="~/.ros/log/...  run.bag  saved.csv", suggester=PathSuggester(), id="paths")
+            yield Label("", classes="error", id="error")
+
+    @on(Input.Submitted)
+    def submitted(self, event: Input.Submitted) -> None:
+        try:
+            paths = [os.path.expanduser(p) for p in shlex.split(event.value)]
+        except ValueError as error:
+            self.query_one("#error", Label).update(f"Can't read that: {error}")
+            return
+        missing = [p for p in paths if not os.path.exists(p)]
+        if not paths or missing:
+            self.query_one("#error", Label).update(f"No such file: {missing[0]}" if missing else "Type a path")
+            return
+        self.dismiss(paths)
+
+
+@dataclass(frozen=True)
+class SaveRequest:
+    path: str
+    save_format: str
+    shown_only: bool
+
+
+class SaveScreen(_Dialog):
+    """Asks where and how to save; returns a ``SaveRequest`` or None."""
+
+    def __init__(self, default_path: str, filtered: bool) -> None:
+        super().__init__()
+        self.default_path = default_path
+        self.filtered = filtered
+
+    def compose(self) -> ComposeResult:
+        with Vertical():
+            yield Label("Save messages to (the extension picks the format; Tab completes)")
+            yield Input(self.default_path, suggester=PathSuggester(), id="path")
+            with RadioSet(id="format"):
+                for key, title in SAVE_FORMAT_TITLES.items():
+                    yield RadioButton(title, value=key == save_format_for(self.default_path), name=key)
+            yield Checkbox("Only the rows shown (after rules)", value=True, id="shown-only", disabled=not self.filtered)
+            yield Label("Enter saves, Escape cancels", classes="hint")
+            yield Label("", classes="error", id="error")
+
+    @on(Input.Changed, "#path")
+    def path_changed(self, event: Input.Changed) -> None:
+        wanted = save_format_for(event.value)
+        current = self._format()
+        if wanted == "jsonl" or current == "jsonl":
+            for button in self.query(RadioButton):
+                if button.name == wanted and not button.value:
+                    button.value = True
+
+    @on(RadioSet.Changed)
+    def format_changed(self, event: RadioSet.Changed) -> None:
+        name = event.pressed.name or "rqt"
+        path_input = self.query_one("#path", Input)
+        path = Path(path_input.value)
+        if path.suffix and path.suffix != SUFFIXES[name]:
+            path_input.value = str(path.with_suffix(SUFFIXES[name]))
+
+    def _format(self) -> str:
+        pressed = self.query_one(RadioSet).pressed_button
+        return (pressed.name if pressed is not None else None) or "rqt"
+
+    @on(Input.Submitted)
+    def submitted(self, event: Input.Submitted) -> None:
+        self.action_save()
+
+    def key_enter(self) -> None:
+        self.action_save()
+
+    def action_save(self) -> None:
+        path = os.path.expanduser(self.query_one("#path", Input).value.strip())
+        error = self.query_one("#error", Label)
+        if not path:
+            error.update("Type a file name")
+            return
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            error.update(f"No such folder: {folder}")
+            return
+        if os.path.isdir(path):
+            error.update(f"{path} is a folder")
+            return
+        shown_only = self.query_one("#shown-only", Checkbox).value and self.filtered
+        self.dismiss(SaveRequest(path, self._format(), shown_only))

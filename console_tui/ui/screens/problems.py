@@ -1,0 +1,37 @@
+"""Every problem met while loading files: what, and where."""
+
+from __future__ import annotations
+
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Vertical
+from textual.screen import ModalScreen
+from textual.widgets import Label, Log
+
+from ...model.text import one_line
+
+
+class ProblemsScreen(ModalScreen[None]):
+    DEFAULT_CSS = """
+    ProblemsScreen { align: center middle; }
+    ProblemsScreen > Vertical { width: 90%; height: 70%; border: thick $error; background: $surface; padding: 0 1; }
+    ProblemsScreen Log { height: 1fr; }
+    """
+    BINDINGS = [Binding("escape,q", "close", "Close")]
+
+    def __init__(self, problems: list[str]) -> None:
+        super().__init__()
+        self.problems = problems
+
+    def compose(self) -> ComposeResult:
+        with Vertical():
+            yield Label(f"{len(self.problems)} problem{'s' if len(self.problems) != 1 else ''} while loading (Escape closes)")
+            log = Log(highlight=False)
+            yield log
+
+    def on_mount(self) -> None:
+        log = self.query_one(Log)
+        log.write_lines([one_line(problem, 2000) for problem in self.problems] or ["No problems."])
+
+    def action_close(self) -> None:
+        self.dismiss(None)
