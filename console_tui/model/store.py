@@ -2,8 +2,9 @@
 
 Records are kept column by column in fixed-size chunks: numbers in ``array``s, the
 repeated strings (node, file, function, source) as ids into string tables, messages as
-``str``. A million records cost about a third of what a million record objects would,
-and dropping the oldest chunk when the bound is passed costs O(1).
+``str``. A million realistic records cost about 190 MB, 60% of what a million record
+objects would (benchmarks/store.py), and dropping the oldest chunk when the bound is
+passed costs O(1). ``extend`` works column by column, about 1 us a record.
 
 Every record gets a sequence number (``seq``) in arrival order; a seq never changes and
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record
@@ -13,7 +14,7 @@ still kept and ``end_seq`` the number the next record will get.
 from __future__ import annotations
 
 from array import array
-from collections import deque
+from collections import Counter, deque
 from collections.abc import Iterable, Iterator
 from typing import NamedTuple
 
@@ -40,6 +41,14 @@ class StringTable:
             self._strings.append(text)
         return found
 
+    def ids_of(self, texts: list[str]) -> list[int]:
+        """``id_of`` for many strings at once (the common case, all known, at C speed)."""
+        ids = list(map(self._ids.get, texts))
+        if None in ids:
+            id_of = self.id_of
+            ids = [ident if ident is not None else id_of(text) for ident, text in zip(ids, texts)]
+        return ids
+
     def __getitem__(self, ident: int) -> str:
         return self._strings[ident]
 
@@ -58,11 +67,11 @@ class Chunk:
     def __init__(self) -> None:
         self.stamps = array("q")
         self.levels = array("B")
-        self.lines = array("L")
-        self.nodes = array("L")
-        self.files = array("L")
-        self.functions = array("L")
-        self.sources = array("L")
+        self.lines = array("I")
+        self.nodes = array("I")
+        self.files = array("I")
+        self.functions = array("I")
+        self.sources = array("I")
         self.msgs: list[str] = []
 
     def __len__(self) -> int:
@@ -80,6 +89,11 @@ class ChunkSpan(NamedTuple):
 
 _BUCKET = {level: int(severity_bucket(level)) for level in range(256)}
 _INT64_MAX = (1 << 63) - 1
+_UINT32_MAX = 0xFFFFFFFF
+
+
+def _clamp(value: object, low: int, high: int) -> int:
+    return min(max(int(value), low), high)
 
 
 class LogStore:
@@ -110,33 +124,50 @@ class LogStore:
 
     def extend(self, records: Iterable[LogRecord]) -> range:
         """Append records (assigning their ``seq``); returns the range of new seqs."""
+        records = records if isinstance(records, list) else list(records)
         start = self.end_seq
-        seq = start
         chunks = self._chunks
-        counts = self.counts
-        node_id, file_id = self.nodes.id_of, self.files.id_of
-        function_id, source_id = self.functions.id_of, self.sources.id_of
-        chunk = chunks[-1] if chunks and len(chunks[-1]) < CHUNK_SIZE else None
-        for record in records:
-            if chunk is None or len(chunk.msgs) >= CHUNK_SIZE:
-                chunk = Chunk()
-                chunks.append(chunk)
-            level = min(max(int(record.level), 0), 255)
-            chunk.stamps.append(min(max(int(record.stamp_ns), -_INT64_MAX), _INT64_MAX))
-            chunk.levels.append(level)
-            chunk.lines.append(min(max(int(record.line), 0), 0xFFFFFFFF))
-            chunk.nodes.append(node_id(record.node))
-            chunk.files.append(file_id(record.file))
-            chunk.functions.append(function_id(record.function))
-            chunk.sources.append(source_id(record.source))
-            chunk.msgs.append(record.msg)
-            counts[_BUCKET[level]] += 1
+        done = 0
+        while done < len(records):
+            if not chunks or len(chunks[-1]) >= CHUNK_SIZE:
+                chunks.append(Chunk())
+            chunk = chunks[-1]
+            piece = records[done : done + CHUNK_SIZE - len(chunk)]
+            self._append_columns(chunk, piece)
+            done += len(piece)
+        for seq, record in enumerate(records, start):
             record.seq = seq
-            seq += 1
-        self.end_seq = seq
+        self.end_seq = start + len(records)
         if len(self) > self.max_messages:
             self._evict_to(self.end_seq - self.max_messages)
         return range(max(start, self.first_seq), self.end_seq)
+
+    def _append_columns(self, chunk: Chunk, piece: list[LogRecord]) -> None:
+        """Add ``piece`` (which fits in ``chunk``) column by column."""
+        stamps = [r.stamp_ns for r in piece]
+        levels = [r.level for r in piece]
+        lines = [r.line for r in piece]
+        try:  # fromlist adds all or nothing: out-of-range values leave the arrays as they were
+            chunk.stamps.fromlist(stamps)
+        except (OverflowError, TypeError):
+            chunk.stamps.fromlist([_clamp(v, -_INT64_MAX, _INT64_MAX) for v in stamps])
+        try:
+            chunk.levels.fromlist(levels)
+        except (OverflowError, TypeError):
+            levels = [_clamp(v, 0, 255) for v in levels]
+            chunk.levels.fromlist(levels)
+        try:
+            chunk.lines.fromlist(lines)
+        except (OverflowError, TypeError):
+            chunk.lines.fromlist([_clamp(v, 0, _UINT32_MAX) for v in lines])
+        chunk.nodes.fromlist(self.nodes.ids_of([r.node for r in piece]))
+        chunk.files.fromlist(self.files.ids_of([r.file for r in piece]))
+        chunk.functions.fromlist(self.functions.ids_of([r.function for r in piece]))
+        chunk.sources.fromlist(self.sources.ids_of([r.source for r in piece]))
+        chunk.msgs.extend([r.msg for r in piece])
+        counts = self.counts
+        for level, number in Counter(levels).items():
+            counts[_BUCKET[level]] += number
 
     def append(self, record: LogRecord) -> int:
         """Append one record; returns its seq."""
@@ -197,8 +228,8 @@ class LogStore:
     def _evict_to(self, new_first: int) -> None:
         counts = self.counts
         for span in self.spans(self.first_seq, new_first):
-            for level in span.chunk.levels[span.lo : span.hi]:
-                counts[_BUCKET[level]] -= 1
+            for level, number in Counter(span.chunk.levels[span.lo : span.hi]).items():
+                counts[_BUCKET[level]] -= number
         self.evicted += new_first - self.first_seq
         self.first_seq = new_first
         while self._chunks and self._base_seq + CHUNK_SIZE <= new_first:

@@ -28,8 +28,9 @@ from ...model.record import LogRecord
 #: Encapsulation ids this decoder reads: CDR (XCDR1) and PLAIN_CDR2, big and little endian.
 _LITTLE_ENDIAN = {b"\x00\x01", b"\x00\x07"}
 _BIG_ENDIAN = {b"\x00\x00", b"\x00\x06"}
-_HEAD_LE = struct.Struct("<iIB").unpack_from
-_HEAD_BE = struct.Struct(">iIB").unpack_from
+#: stamp.sec, stamp.nanosec, level, 3 bytes of padding, the length of ``name``.
+_HEAD_LE = struct.Struct("<iIBxxxI").unpack_from
+_HEAD_BE = struct.Struct(">iIBxxxI").unpack_from
 _U32_LE = struct.Struct("<I").unpack_from
 _U32_BE = struct.Struct(">I").unpack_from
 
@@ -73,9 +74,8 @@ class LogDecoder:
             raise CdrError(f"not a CDR Log message: encapsulation {encapsulation.hex() or 'missing'}")
         cache = self._cache
         try:
-            sec, nanosec, level = head(data, 4)
+            sec, nanosec, level, length = head(data, 4)
             # Names are cached by their raw bytes, terminator included.
-            (length,) = u32(data, 16)
             end = 20 + length
             if end > size:
                 raise CdrError(_past_end("name", length, size - 20))

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable
 from typing import Any
 
 from ...model.intake_queue import IntakeQueue
@@ -38,11 +37,13 @@ ROSOUT_AGG = "/rosout_agg"
 QUEUE_DEPTH = 10_000
 WAIT_TIMEOUT_NS = 100_000_000
 GRAPH_PERIOD_S = 1.0
+UNKNOWN_PUBLISHER_REFRESH_S = 0.2
 AUTO_TOPIC_WAIT_S = 0.5
 MAX_BATCH = 20_000
+COALESCE_BELOW = 64
+COALESCE_S = 0.002
 PATH_RAW = "raw+cdr"
 PATH_TYPED = "typed"
-_UNREADABLE = ("unreadable", {})
 
 
 def log_to_record(message: Any, source: str) -> LogRecord:
@@ -183,6 +184,10 @@ class LiveLogSource:
             batch = reader.take_all(MAX_BATCH)
             if batch:
                 self.queue.put(batch)
+            if len(batch) < COALESCE_BELOW:
+                # A trickle: let a few milliseconds of messages gather, so that each turn
+                # of this loop (a wait set rebuilt and waited on) pays for more of them.
+                self._stop.wait(COALESCE_S)
             loss = (self.queue.dropped, reader.path, self.counts.lost_qos, self.counts.lost_undecodable,
                     self.counts.decoded_by_rclpy, self.counts.incompatible)
             if loss != shown:
@@ -255,6 +260,7 @@ class _TopicReader:
         #: GIDs of the publishers only the extra (VOLATILE) subscription matches.
         self._uncovered: set[bytes] = set()
         self._covered: set[bytes] = set()
+        self._unknown_refreshed_at = 0.0
 
     @property
     def path(self) -> str:
@@ -337,16 +343,9 @@ class _TopicReader:
         if uncovered and self.extra is None:
             self.extra = self._subscribe(self._volatile_qos, main=False)
 
-    def _convert(self, message: Any) -> LogRecord | None:
-        """A taken message (serialized or typed) as a record; ``None`` if unreadable."""
-        decoder = self.decoder
-        if decoder is None:
-            return log_to_record(message, self.topic)
+    def _read_refused(self, message: bytes) -> LogRecord | None:
+        """A message the direct decoder refused, read by rclpy; ``None`` if it cannot either."""
         try:
-            return decoder.decode(message, self.topic)
-        except CdrError:
-            pass
-        try:  # the direct decoder refused it: rclpy may still read it
             from rclpy.serialization import deserialize_message
 
             record = log_to_record(deserialize_message(message, self.msg_type), self.topic)
@@ -356,60 +355,62 @@ class _TopicReader:
         self.counts.decoded_by_rclpy += 1
         return record
 
-    def _take_from(self, subscription: Any) -> Callable[[], Any]:
-        """A function taking one message (``None`` when none is left), serialized if possible."""
-        take, msg_type = subscription.handle.take_message, self.msg_type
-
-        def take_one() -> Any:
-            if self.decoder is not None:
-                try:
-                    return take(msg_type, True)
-                except TypeError:  # an rclpy that cannot take serialized messages
-                    self.decoder = None
-            try:
-                return take(msg_type, False)
-            except Exception:  # rclpy could not deserialize it; the message is gone
-                self.counts.lost_undecodable += 1
-                return _UNREADABLE
-
-        return take_one
+    def _keep_from_extra(self, info: dict) -> bool:
+        """Whether a message the extra subscription took is one only it receives."""
+        gid = _gid_bytes(info.get("publisher_gid") or b"")
+        if gid not in self._uncovered and gid not in self._covered:
+            now = time.monotonic()
+            if now - self._unknown_refreshed_at >= UNKNOWN_PUBLISHER_REFRESH_S:
+                self._unknown_refreshed_at = now
+                self.refresh_graph()  # a publisher newer than our last look
+        return gid not in self._covered
 
     def take_all(self, limit: int) -> list[LogRecord]:
         """Every message waiting (up to ``limit``), as records, oldest first per subscription."""
         batch: list[LogRecord] = []
-        append, convert = batch.append, self._convert
-        take = self._take_from(self.main)
+        taken = self._take_into(batch, self.main, limit, None)
+        if self.extra is not None and taken < limit:
+            self._take_into(batch, self.extra, limit - taken, self._keep_from_extra)
+        return batch
+
+    def _take_into(self, batch: list[LogRecord], subscription: Any, limit: int, keep: Any) -> int:
+        """Take up to ``limit`` messages into ``batch`` (those ``keep(info)`` accepts); how many taken.
+
+        The hot loop of the app: everything it calls is bound to a local first.
+        """
+        take, msg_type, topic = subscription.handle.take_message, self.msg_type, self.topic
+        raw = self.decoder is not None
+        decode = self.decoder.decode if raw else None
+        append = batch.append
         count = 0
         while count < limit:
-            taken = take()
+            try:
+                taken = take(msg_type, raw)
+            except TypeError:
+                if not raw:
+                    raise
+                self.decoder = None  # an rclpy that cannot take serialized messages
+                return count + self._take_into(batch, subscription, limit - count, keep)
+            except Exception:  # a message rclpy took but could not deserialize: it is gone
+                self.counts.lost_undecodable += 1
+                count += 1
+                continue
             if taken is None:
                 break
             count += 1
-            if taken is _UNREADABLE:
+            if keep is not None and not keep(taken[1]):
                 continue
-            record = convert(taken[0])
+            if raw:
+                try:
+                    append(decode(taken[0], topic))
+                    continue
+                except CdrError:
+                    record = self._read_refused(taken[0])
+            else:
+                record = log_to_record(taken[0], topic)
             if record is not None:
                 append(record)
-        if self.extra is not None:
-            take = self._take_from(self.extra)
-            refreshed = False
-            while count < limit:
-                taken = take()
-                if taken is None:
-                    break
-                count += 1
-                if taken is _UNREADABLE:
-                    continue
-                gid = _gid_bytes(taken[1].get("publisher_gid") or b"")
-                if gid not in self._uncovered and gid not in self._covered and not refreshed:
-                    self.refresh_graph()  # a publisher newer than our last look
-                    refreshed = True
-                if gid in self._covered:
-                    continue  # the main subscription has this one already
-                record = convert(taken[0])
-                if record is not None:
-                    append(record)
-        return batch
+        return count
 
     def close(self) -> None:
         for sub in (self.main, self.extra):
