@@ -222,10 +222,18 @@ def test_repeated_names_are_shared_between_records():
     assert (first.msg, second.msg) == ("one", "two")
 
 
-def test_the_string_cache_stays_bounded():
+def test_the_string_caches_stay_bounded():
     decoder = LogDecoder(intern_limit=50, intern_max_bytes=32)
     for number in range(500):
-        record = decoder.decode(encode_log(strings=(f"node{number}".encode(), b"m", b"x" * 40, b"fn")))
-        assert record.node == f"node{number}" and record.file == "x" * 40
-        assert len(decoder._cache) <= 50
-    assert b"x" * 40 + b"\x00" not in decoder._cache
+        strings = (f"node{number}".encode(), b"m", b"x" * 40, f"fn{number}".encode())
+        record = decoder.decode(encode_log(strings=strings, line=number))
+        assert (record.node, record.file, record.function, record.line) == (f"node{number}", "x" * 40, f"fn{number}", number)
+        assert len(decoder._names) <= 50 and len(decoder._tails_le) <= 50
+    assert b"x" * 40 + b"\x00" not in decoder._names
+
+
+def test_a_cached_tail_is_read_per_byte_order():
+    decoder = LogDecoder()
+    little = decoder.decode(encode_log(strings=(b"n", b"m", b"f", b"g"), line=1))
+    big = decoder.decode(encode_log(strings=(b"n", b"m", b"f", b"g"), line=1, big=True))
+    assert (little.file, little.function, little.line) == (big.file, big.function, big.line) == ("f", "g", 1)

@@ -22,6 +22,7 @@ Malformed input (short buffers, lengths past the end, unknown encapsulations) ra
 from __future__ import annotations
 
 import struct
+from typing import Any
 
 from ...model.record import LogRecord
 
@@ -50,10 +51,14 @@ class LogDecoder:
     it starts over, so hostile input cannot grow it.
     """
 
-    __slots__ = ("_cache", "intern_limit", "intern_max_bytes")
+    __slots__ = ("_names", "_tails_le", "_tails_be", "intern_limit", "intern_max_bytes")
 
     def __init__(self, intern_limit: int = INTERN_LIMIT, intern_max_bytes: int = INTERN_MAX_BYTES) -> None:
-        self._cache: dict[bytes, str] = {}
+        #: Names, files and functions by their raw bytes (terminator included).
+        self._names: dict[bytes, str] = {}
+        #: (file, function, line) by a message's last bytes, one cache per byte order.
+        self._tails_le: dict[bytes, tuple[str, str, int]] = {}
+        self._tails_be: dict[bytes, tuple[str, str, int]] = {}
         self.intern_limit = intern_limit
         self.intern_max_bytes = intern_max_bytes
 
@@ -67,25 +72,22 @@ class LogDecoder:
         size = len(data)
         encapsulation = data[:2]
         if encapsulation in _LITTLE_ENDIAN:
-            head, u32 = _HEAD_LE, _U32_LE
+            head, u32, tails = _HEAD_LE, _U32_LE, self._tails_le
         elif encapsulation in _BIG_ENDIAN:
-            head, u32 = _HEAD_BE, _U32_BE
+            head, u32, tails = _HEAD_BE, _U32_BE, self._tails_be
         else:
             raise CdrError(f"not a CDR Log message: encapsulation {encapsulation.hex() or 'missing'}")
-        cache = self._cache
         try:
             sec, nanosec, level, length = head(data, 4)
-            # Names are cached by their raw bytes, terminator included.
             end = 20 + length
             if end > size:
                 raise CdrError(_past_end("name", length, size - 20))
-            raw = data[20:end]
-            name = cache.get(raw)
+            raw = data[20:end]  # names are cached by their raw bytes, terminator included
+            name = self._names.get(raw)
             if name is None:
                 name = self._intern(raw)
-            pos = (end + 3) & ~3
-            (length,) = u32(data, pos)
-            pos += 4
+            pos = ((end + 3) & ~3) + 4
+            (length,) = u32(data, pos - 4)
             end = pos + length
             if end > size:
                 raise CdrError(_past_end("msg", length, size - pos))
@@ -93,40 +95,48 @@ class LogDecoder:
             if b"\0" in raw:
                 raw = raw[: raw.index(b"\0")]
             msg = raw.decode("utf-8", "replace")
-            pos = (end + 3) & ~3
-            (length,) = u32(data, pos)
-            pos += 4
-            end = pos + length
-            if end > size:
-                raise CdrError(_past_end("file", length, size - pos))
-            raw = data[pos:end]
-            file = cache.get(raw)
-            if file is None:
-                file = self._intern(raw)
-            pos = (end + 3) & ~3
-            (length,) = u32(data, pos)
-            pos += 4
-            end = pos + length
-            if end > size:
-                raise CdrError(_past_end("function", length, size - pos))
-            raw = data[pos:end]
-            function = cache.get(raw)
-            if function is None:
-                function = self._intern(raw)
-            (line,) = u32(data, (end + 3) & ~3)
+            # file, function and line: the same bytes for every message of one log statement.
+            raw = data[(end + 3) & ~3 :]
+            tail = tails.get(raw)
+            if tail is None:
+                tail = self._read_tail(raw, u32, tails)
         except struct.error:
             raise CdrError(f"Log message truncated: {size} bytes") from None
-        return LogRecord(sec * 1_000_000_000 + nanosec, level, name, msg, file, function, line, source)
+        return LogRecord(sec * 1_000_000_000 + nanosec, level, name, msg, tail[0], tail[1], tail[2], source)
+
+    def _read_tail(self, raw: bytes, u32: Any, tails: dict[bytes, tuple[str, str, int]]) -> tuple[str, str, int]:
+        """``file``, ``function`` and ``line`` from the end of a message, cached when short."""
+        size = len(raw)
+        (length,) = u32(raw, 0)
+        end = 4 + length
+        if end > size:
+            raise CdrError(_past_end("file", length, size - 4))
+        file = self._intern(raw[4:end])
+        pos = ((end + 3) & ~3) + 4
+        (length,) = u32(raw, pos - 4)
+        end = pos + length
+        if end > size:
+            raise CdrError(_past_end("function", length, size - pos))
+        function = self._intern(raw[pos:end])
+        (line,) = u32(raw, (end + 3) & ~3)
+        tail = (file, function, line)
+        if size <= 2 * self.intern_max_bytes:
+            if len(tails) >= self.intern_limit:
+                tails.clear()
+            tails[raw] = tail
+        return tail
 
     def _intern(self, raw: bytes) -> str:
-        """The text of a string's raw bytes (up to the first NUL), cached when short."""
-        cut = raw.find(0)
-        text = (raw if cut < 0 else raw[:cut]).decode("utf-8", "replace")
-        if len(raw) <= self.intern_max_bytes:
-            cache = self._cache
-            if len(cache) >= self.intern_limit:
-                cache.clear()
-            cache[raw] = text
+        """The text of a string's raw bytes (up to the first NUL), shared while cached."""
+        names = self._names
+        text = names.get(raw)
+        if text is None:
+            cut = raw.find(0)
+            text = (raw if cut < 0 else raw[:cut]).decode("utf-8", "replace")
+            if len(raw) <= self.intern_max_bytes:
+                if len(names) >= self.intern_limit:
+                    names.clear()
+                names[raw] = text
         return text
 
 
