@@ -343,7 +343,7 @@ class _TopicReader:
         if uncovered and self.extra is None:
             self.extra = self._subscribe(self._volatile_qos, main=False)
 
-    def _read_refused(self, message: bytes) -> LogRecord | None:
+    def _read_refused(self, message: bytes, _error: CdrError) -> LogRecord | None:
         """A message the direct decoder refused, read by rclpy; ``None`` if it cannot either."""
         try:
             from rclpy.serialization import deserialize_message
@@ -376,12 +376,12 @@ class _TopicReader:
     def _take_into(self, batch: list[LogRecord], subscription: Any, limit: int, keep: Any) -> int:
         """Take up to ``limit`` messages into ``batch`` (those ``keep(info)`` accepts); how many taken.
 
-        The hot loop of the app: everything it calls is bound to a local first.
+        The hot loop of the app: messages are taken first, then decoded all in one call.
         """
-        take, msg_type, topic = subscription.handle.take_message, self.msg_type, self.topic
-        raw = self.decoder is not None
-        decode = self.decoder.decode if raw else None
-        append = batch.append
+        take, msg_type, decoder = subscription.handle.take_message, self.msg_type, self.decoder
+        raw = decoder is not None
+        messages: list[Any] = []
+        append = messages.append
         count = 0
         while count < limit:
             try:
@@ -389,6 +389,7 @@ class _TopicReader:
             except TypeError:
                 if not raw:
                     raise
+                batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
                 self.decoder = None  # an rclpy that cannot take serialized messages
                 return count + self._take_into(batch, subscription, limit - count, keep)
             except Exception:  # a message rclpy took but could not deserialize: it is gone
@@ -398,18 +399,13 @@ class _TopicReader:
             if taken is None:
                 break
             count += 1
-            if keep is not None and not keep(taken[1]):
-                continue
-            if raw:
-                try:
-                    append(decode(taken[0], topic))
-                    continue
-                except CdrError:
-                    record = self._read_refused(taken[0])
-            else:
-                record = log_to_record(taken[0], topic)
-            if record is not None:
-                append(record)
+            if keep is None or keep(taken[1]):
+                append(taken[0])
+        if raw:
+            batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
+        else:
+            topic = self.topic
+            batch.extend([log_to_record(message, topic) for message in messages])
         return count
 
     def close(self) -> None:
