@@ -49,6 +49,8 @@ DEFAULT_RATES = ("max", "1000", "5000", "20000", "50000")
 TARGET_VS_RAW_EE = 0.9
 TARGET_VS_TYPED = 5.0
 LOSSLESS_RATE = 20_000
+#: Subscribers that say how long stopping took (the intake's ``stop()``).
+STOP_REPORTING_KINDS = {"intake", "intake-typed", "intake-ee"}
 
 
 def say(**fields: Any) -> None:
@@ -372,6 +374,7 @@ class Row:
     cpu: float
     lost_reported: int | None = None
     path: str = ""
+    stop_ms: float | None = None
 
     @property
     def received_per_s(self) -> float:
@@ -396,60 +399,65 @@ def settle(subscriber: Child, quiet: float = 0.6, limit: float = 20.0) -> dict[s
 
 
 def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
+    """For each publisher count and rate, each subscriber in turn (``--repeat`` rounds, medians)."""
     rows: list[Row] = []
     for count in args.publishers:
         publishers = [Child(["--role", "publisher", "--index", str(i)], env) for i in range(count)]
         try:
             for child in publishers:
                 child.expect("ready")
-            for kind in args.kinds:
-                rows += measure_kind(args, env, publishers, kind)
+            for rate in args.rates:
+                runs: dict[str, list[Row]] = {kind: [] for kind in args.kinds}
+                for round_number in range(args.repeat):
+                    shift = round_number % len(args.kinds)  # vary the order, so drifting load hits all alike
+                    for kind in args.kinds[shift:] + args.kinds[:shift]:
+                        runs[kind].append(measure_once(args, env, publishers, kind, rate))
+                for kind in args.kinds:
+                    ordered = sorted(runs[kind], key=lambda row: row.received_per_s)
+                    rows.append(ordered[len(ordered) // 2])
         finally:
             for child in publishers:
                 child.close()
     return rows
 
 
-def measure_kind(args: argparse.Namespace, env: dict[str, str], publishers: list[Child], kind: str) -> list[Row]:
-    rows = []
+def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list[Child], kind: str, rate: str) -> Row:
+    """One subscriber process, started fresh, measured at one rate."""
     subscriber = Child(["--role", "subscriber", "--kind", kind], env)
     try:
         subscriber.expect("ready")
         subscriber.ask("publishers", cmd="publishers", count=len(publishers))
         for child in publishers:
             child.ask("matched", cmd="matched", count=1)
-        for rate in args.rates:
-            before = settle(subscriber)
-            per_publisher = 0.0 if rate == "max" else float(rate) / len(publishers)
-            for child in publishers:
-                child.send(cmd="go", rate=per_publisher, duration=args.duration)
-            done = [child.expect("done", args.duration + 120) for child in publishers]
-            window = subscriber.ask("count", cmd="count")
-            after = settle(subscriber)
-            row = Row(
-                publishers=len(publishers),
-                rate=rate,
-                kind=kind,
-                sent=sum(d["sent"] for d in done),
-                seconds=max(d["elapsed"] for d in done),
-                in_window=window["count"] - before["count"],
-                received=after["count"] - before["count"],
-                cpu=after["cpu"] - before["cpu"],
-                lost_reported=after["lost_reported"] - before["lost_reported"] if "lost_reported" in after else None,
-                path=after.get("path", ""),
-            )
-            rows.append(row)
-            print(f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received "
-                  f"{row.received:>8,} ({row.received_per_s:,.0f}/s), lost {row.lost:,}", file=sys.stderr, flush=True)
+        before = settle(subscriber)  # publishers' TRANSIENT_LOCAL history, delivered on matching
+        per_publisher = 0.0 if rate == "max" else float(rate) / len(publishers)
+        for child in publishers:
+            child.send(cmd="go", rate=per_publisher, duration=args.duration)
+        done = [child.expect("done", args.duration + 120) for child in publishers]
+        window = subscriber.ask("count", cmd="count")
+        after = settle(subscriber)
         subscriber.send(cmd="quit")
-        stopped = subscriber.expect("stopped", 30) if kind.startswith("intake") else None
-        if stopped:
-            print(f"  intake stop() took {stopped['seconds'] * 1000:.0f} ms", file=sys.stderr, flush=True)
+        stopped = subscriber.expect("stopped", 30) if kind in STOP_REPORTING_KINDS else None
     finally:
         subscriber.close()
         for child in publishers:  # the next subscriber starts once this one is gone
             child.ask("matched", cmd="matched", count=0)
-    return rows
+    row = Row(
+        publishers=len(publishers),
+        rate=rate,
+        kind=kind,
+        sent=sum(d["sent"] for d in done),
+        seconds=max(d["elapsed"] for d in done),
+        in_window=window["count"] - before["count"],
+        received=after["count"] - before["count"],
+        cpu=after["cpu"] - before["cpu"],
+        lost_reported=after["lost_reported"] - before["lost_reported"] if "lost_reported" in after else None,
+        path=after.get("path", ""),
+        stop_ms=stopped["seconds"] * 1000 if stopped else None,
+    )
+    print(f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received {row.received:>8,} "
+          f"({row.received_per_s:,.0f}/s), lost {row.lost:,}", file=sys.stderr, flush=True)
+    return row
 
 
 def report(rows: list[Row], args: argparse.Namespace) -> str:
@@ -493,6 +501,9 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
         if row.rate != "max" and float(row.rate) == LOSSLESS_RATE:
             lines.append(f"- {where} for {row.seconds:.0f} s: 0 lost: {row.lost:,} lost, "
                          + verdict(row.lost == 0, f"{row.lost:,} lost, {100 * row.lost / row.sent:.2f}%"))
+    stops = [row.stop_ms for row in rows if row.stop_ms is not None]
+    if stops:
+        lines.append(f"- intake stop() (thread joined): at most {max(stops):.0f} ms over {len(stops)} runs")
     return "\n".join(lines)
 
 
@@ -502,6 +513,7 @@ def main() -> None:
     parser.add_argument("--rates", nargs="+", help="total offered rates per second, or max (default max 1000 5000 20000 50000)")
     parser.add_argument("--kinds", nargs="+", choices=ALL_KINDS, help=f"subscribers (default {' '.join(DEFAULT_KINDS)})")
     parser.add_argument("--duration", type=float, help="seconds of sending per measurement (default 5)")
+    parser.add_argument("--repeat", type=int, default=1, help="rounds per measurement; the table shows medians")
     parser.add_argument("--sustained", type=float, metavar="S",
                         help="only the intake at 20k/s from 1 publisher for S seconds (flags above override)")
     parser.add_argument("--udp", action="store_true", help="Fast DDS over UDP only (default: its defaults, shared memory)")
@@ -537,7 +549,7 @@ def main() -> None:
         machine_line(),
         f"rclpy {version('rclpy')}, RMW {env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp (default)')}, "
         f"transport {'UDPv4' if args.udp else 'Fast DDS defaults (shared memory)'}; "
-        f"{args.duration:g} s per measurement; messages {len(message_pool(0)[0])}-ish bytes serialized.",
+        f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized.",
     ]
     print("\n".join(header), file=sys.stderr, flush=True)
     started = time.monotonic()

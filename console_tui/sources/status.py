@@ -29,3 +29,15 @@ class SourceStatus:
     #: A one-line problem the user should see, or "".
     problem: str = ""
     running: bool = False
+
+    def loss_text(self) -> str:
+        """The loss for a status bar: "" when nothing was lost, else the total and its causes."""
+        if not self.lost:
+            return ""
+        causes = [
+            (self.lost_qos, "in the middleware"),
+            (self.lost_queue, "UI behind"),
+            (self.lost_undecodable, "unreadable"),
+        ]
+        detail = ", ".join(f"{count:,} {cause}" for count, cause in causes if count)
+        return f"{self.lost:,} lost ({detail})"
