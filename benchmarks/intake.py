@@ -211,10 +211,32 @@ def run_intake_subscriber(raw: bool) -> None:
     say(event="stopped", seconds=time.monotonic() - began)
 
 
+class EventsExecutorThread:
+    """rclpy's EventsExecutor spinning ``node`` in a thread, by ``spin_once`` in a loop
+    (its ``spin()`` cannot be stopped from another thread)."""
+
+    def __init__(self, node: Any) -> None:
+        from rclpy.experimental import EventsExecutor
+
+        self.executor = EventsExecutor()
+        self.executor.add_node(node)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        while not self._stop.is_set():
+            self.executor.spin_once(timeout_sec=0.1)
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._thread.join(5)
+        self.executor.shutdown()
+
+
 def run_intake_events_executor() -> None:
     """The intake's decoder, queue and store, fed by an EventsExecutor callback: the alternative design."""
     import rclpy
-    from rclpy.experimental import EventsExecutor
     from rclpy.node import Node
     from rclpy.signals import SignalHandlerOptions
     from rcl_interfaces.msg import Log
@@ -232,13 +254,7 @@ def run_intake_events_executor() -> None:
         pending.append(decode(data, TOPIC))
 
     subscription = node.create_subscription(Log, TOPIC, on_message, subscriber_qos(), raw=True)
-    executor = EventsExecutor()
-    executor.add_node(node)
     stop = threading.Event()
-
-    def spin() -> None:
-        while not stop.is_set():
-            executor.spin_once(timeout_sec=0.1)
 
     def app_drain() -> None:
         nonlocal pending
@@ -247,16 +263,15 @@ def run_intake_events_executor() -> None:
             queue.put(batch)
             store.extend(queue.drain())
 
-    threads = [threading.Thread(target=spin, daemon=True), threading.Thread(target=app_drain, daemon=True)]
-    for thread in threads:
-        thread.start()
+    spinner = EventsExecutorThread(node)
+    drain = threading.Thread(target=app_drain, daemon=True)
+    drain.start()
     say(event="ready")
     serve_commands(lambda: queue.received + len(pending), subscription.get_publisher_count)
     began = time.monotonic()
     stop.set()
-    for thread in threads:
-        thread.join(5)
-    executor.shutdown()
+    drain.join(5)
+    spinner.stop()
     rclpy.try_shutdown()
     say(event="stopped", seconds=time.monotonic() - began)
 
@@ -278,23 +293,10 @@ def run_reference_subscriber(kind: str) -> None:
         serve_commands(lambda: counter.count, subscription.get_publisher_count)
         rclpy.try_shutdown()
         spinner.join(5)
-    else:  # EventsExecutor: spin_once in a loop, as spin() cannot be stopped from another thread
-        from rclpy.experimental import EventsExecutor
-
-        executor = EventsExecutor()
-        executor.add_node(node)
-        stop = threading.Event()
-
-        def spin() -> None:
-            while not stop.is_set():
-                executor.spin_once(timeout_sec=0.1)
-
-        spinner = threading.Thread(target=spin, daemon=True)
-        spinner.start()
+    else:
+        spinner = EventsExecutorThread(node)
         serve_commands(lambda: counter.count, subscription.get_publisher_count)
-        stop.set()
-        spinner.join(5)
-        executor.shutdown()
+        spinner.stop()
         rclpy.try_shutdown()
 
 
