@@ -131,3 +131,35 @@ def test_volatile_publishers_are_read_through_the_second_subscription(nodes):
     arrived = [r.msg for r in records if r.msg in sent]
     assert arrived and len(arrived) == len(set(arrived)), "nothing arrived, or something arrived twice"
     assert (status.lost, status.incompatible, status.path) == (0, 0, "raw+cdr")
+
+
+class _OldRclpyHandle:
+    """A subscription handle from an rclpy that cannot take serialized messages."""
+
+    def __init__(self, messages):
+        self.messages = list(messages)
+
+    def take_message(self, msg_type, raw):
+        if raw:
+            raise TypeError("take_message() takes 2 positional arguments but 3 were given")
+        return (self.messages.pop(0), {}) if self.messages else None
+
+
+def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
+    from types import SimpleNamespace
+
+    from rcl_interfaces.msg import Log
+
+    from console_tui.sources.ros2.log_source import LossCounts, _TopicReader
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    try:
+        reader = _TopicReader(runtime.create_node("fallback"), Log, "/fallback_log", LossCounts())
+        assert reader.path == "raw+cdr"
+        reader.close()
+        reader.main = SimpleNamespace(handle=_OldRclpyHandle([Log(name="n", msg="one"), Log(name="n", msg="two")]))
+        assert [r.msg for r in reader.take_all(10)] == ["one", "two"]
+        assert reader.path == "typed"
+    finally:
+        runtime.shutdown()

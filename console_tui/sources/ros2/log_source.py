@@ -232,9 +232,9 @@ def _subscription_event_callbacks() -> Any:
 
 
 def _policy_name(info: Any) -> str:
+    """The QoS policy an incompatible-QoS event names last, for example ``durability``."""
     kind = getattr(info, "last_policy_kind", None)
-    name = getattr(kind, "name", "")
-    return name.removeprefix("RMW_QOS_POLICY_").removesuffix("_QOS_POLICY").lower() if name else str(kind or "")
+    return str(getattr(kind, "name", kind or "")).lower()
 
 
 class _TopicReader:
@@ -393,16 +393,16 @@ class _TopicReader:
         while count < limit:
             try:
                 taken = take(msg_type, raw)
-            except TypeError:
-                if not raw:
+            except Exception as error:
+                if not raw:  # a message rclpy took but could not deserialize: it is gone
+                    self.counts.lost_undecodable += 1
+                    count += 1
+                    continue
+                if not isinstance(error, TypeError):
                     raise
                 batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
                 self.decoder = None  # an rclpy that cannot take serialized messages
                 return count + self._take_into(batch, subscription, limit - count, keep)
-            except Exception:  # a message rclpy took but could not deserialize: it is gone
-                self.counts.lost_undecodable += 1
-                count += 1
-                continue
             if taken is None:
                 break
             count += 1
