@@ -78,6 +78,24 @@ def test_out_of_range_values_are_clamped_not_fatal():
     assert record.level == 255 and record.line == 0 and record.stamp_ns == (1 << 63) - 1
 
 
+def test_bad_values_in_a_batch_are_clamped_and_the_rest_kept_exactly():
+    store = LogStore()
+    good = [make(i, level=30) for i in range(CHUNK_SIZE - 2)]
+    bad = [
+        LogRecord(stamp_ns=-(1 << 70), level=-3, node="new node", msg="low", line=1 << 40),
+        LogRecord(stamp_ns=5.0, level=20.0, node="node1", msg="floats", line=7.9),  # type: ignore[arg-type]
+    ]
+    added = store.extend([*good[:10], *bad, *good[10:], make(99_999, level=40)])  # the last one starts a chunk
+    assert len(added) == CHUNK_SIZE + 1
+    assert [store.get(seq).msg for seq in (9, 10, 11, 12)] == ["message 9", "low", "floats", "message 10"]
+    low, floats = store.get(10), store.get(11)
+    assert (low.stamp_ns, low.level, low.line, low.node) == (-(1 << 63) + 1, 0, 0xFFFFFFFF, "new node")
+    assert (floats.stamp_ns, floats.level, floats.line) == (5, 20, 7)
+    assert store.get(CHUNK_SIZE).msg == "message 99999" and store.get(CHUNK_SIZE).seq == CHUNK_SIZE
+    assert sum(store.counts.values()) == len(store)
+    assert store.counts[30] == CHUNK_SIZE - 2 and store.counts[40] == 1
+
+
 def test_max_messages_must_be_positive():
     with pytest.raises(ValueError):
         LogStore(max_messages=0)

@@ -12,8 +12,7 @@ class LogRecord:
     ``stamp_ns`` is nanoseconds since the Unix epoch; ``level`` is on the ROS 2 scale
     (DEBUG 10 .. FATAL 50); ``node`` is the logger name (usually the node's).
     ``source`` names the stream or file the record was read from. ``seq`` is assigned by
-    the store and numbers records in arrival order: records the store hands out carry it;
-    records given to the store are not changed (their ``seq`` stays -1).
+    the store when the record is added, numbering records in arrival order; -1 before.
     """
 
     stamp_ns: int

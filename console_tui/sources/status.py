@@ -13,8 +13,31 @@ class SourceStatus:
     publishers: int = 0
     #: How messages are taken and decoded, for example ``raw+cdr`` or ``typed``.
     path: str = ""
-    #: Messages known lost: QoS events, and incompatible publishers not recovered.
+    #: Messages known lost, all causes: the sum of the ``lost_*`` counts below.
     lost: int = 0
+    #: Lost in the middleware, as its message-lost events report (for example a
+    #: publisher's history overwritten before the console read it).
+    lost_qos: int = 0
+    #: Dropped because the UI fell behind and the intake queue was full.
+    lost_queue: int = 0
+    #: Messages that neither the direct decoder nor rclpy could read.
+    lost_undecodable: int = 0
+    #: Messages the direct decoder refused and rclpy's deserializer read instead.
+    decoded_by_rclpy: int = 0
+    #: Publishers on the topic whose QoS no subscription of the console can match.
+    incompatible: int = 0
     #: A one-line problem the user should see, or "".
     problem: str = ""
     running: bool = False
+
+    def loss_text(self) -> str:
+        """The loss for a status bar: "" when nothing was lost, else the total and its causes."""
+        if not self.lost:
+            return ""
+        causes = [
+            (self.lost_qos, "in the middleware"),
+            (self.lost_queue, "UI behind"),
+            (self.lost_undecodable, "unreadable"),
+        ]
+        detail = ", ".join(f"{count:,} {cause}" for count, cause in causes if count)
+        return f"{self.lost:,} lost ({detail})"

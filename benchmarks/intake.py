@@ -1,0 +1,566 @@
+#!/usr/bin/env python3
+"""Intake benchmark: how many Log messages a subscriber keeps up with, and how many it loses.
+
+Real rclpy publisher processes (1 and 4) send pre-serialized ``rcl_interfaces/msg/Log``
+messages with ``/rosout``'s QoS on a test topic, as fast as they can ("max") and at fixed
+total rates. In the same run, one after another against the same publishers, these
+subscribers (each a process of its own, all with the same QoS: RELIABLE, TRANSIENT_LOCAL,
+KEEP_LAST 10000) count what they receive:
+
+- ``intake``: console-tui's ``LiveLogSource`` into an ``IntakeQueue``, drained every 50 ms
+  into a ``LogStore`` as the app does;
+- ``raw-ee``: a raw (serialized) subscription on rclpy's EventsExecutor, counting only;
+- ``typed-spin``: a typed subscription spun by ``rclpy.spin`` (rqt_console's pattern).
+
+``intake-typed`` (the intake's typed fallback path), ``intake-ee`` (the intake's decoder
+and queue fed by an EventsExecutor callback instead of its wait-set loop) and ``typed-ee``
+can be added with ``--kinds``. Received/s counts what arrived while the publishers sent; lost is what was
+sent and never arrived once everything settled. Every process uses
+ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST and a ROS_DOMAIN_ID of its own.
+
+    python benchmarks/intake.py                      # the table (about 5 minutes)
+    python benchmarks/intake.py --sustained 60       # 0 lost at 20k/s for 60 s?
+    python benchmarks/intake.py --publishers 1 --rates max --duration 3
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import random
+import selectors
+import subprocess
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).parent))
+from _report import machine_line, table, verdict  # noqa: E402
+
+TOPIC = "/console_tui_bench_log"
+QUEUE_DEPTH = 10_000
+DEFAULT_KINDS = ("intake", "raw-ee", "typed-spin")
+ALL_KINDS = (*DEFAULT_KINDS, "intake-typed", "intake-ee", "typed-ee")
+DEFAULT_RATES = ("max", "1000", "5000", "20000", "50000")
+TARGET_VS_RAW_EE = 0.9
+TARGET_VS_TYPED = 5.0
+LOSSLESS_RATE = 20_000
+#: Subscribers that say how long stopping took (the intake's ``stop()``).
+STOP_REPORTING_KINDS = {"intake", "intake-typed", "intake-ee"}
+
+
+def say(**fields: Any) -> None:
+    print(json.dumps(fields), flush=True)
+
+
+# -- the publisher process ---------------------------------------------------------------------
+
+
+def message_pool(index: int, size: int = 512) -> list[bytes]:
+    """Realistic serialized Log messages: a few nodes, files and functions, 60-120 char texts."""
+    from rclpy.serialization import serialize_message
+    from rcl_interfaces.msg import Log
+
+    rng = random.Random(index)
+    words = "goal plan costmap laser scan tf frame odom map timeout received sending ok failed retry".split()
+    pool = []
+    for number in range(size):
+        message = Log()
+        now = time.time_ns()
+        message.stamp.sec, message.stamp.nanosec = divmod(now, 1_000_000_000)
+        message.level = rng.choice([10, 20, 20, 20, 30, 40, 50])
+        message.name = f"bench.publisher{index}.{rng.choice(['planner', 'controller', 'driver', 'camera'])}"
+        text = f"[{number}] " + " ".join(rng.choice(words) for _ in range(30))
+        message.msg = text[: rng.randint(60, 120)]
+        message.file = f"/opt/robot/src/{rng.choice(['nav', 'perception', 'hw'])}/src/module_{rng.randint(0, 5)}.cpp"
+        message.function = rng.choice(["on_timer", "update", "publish_state", "handle_goal", "spin_some"])
+        message.line = rng.randint(1, 2000)
+        pool.append(bytes(serialize_message(message)))
+    return pool
+
+
+def rosout_qos():
+    from rclpy.duration import Duration
+    from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+    return QoSProfile(
+        history=HistoryPolicy.KEEP_LAST,
+        depth=1000,
+        reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL,
+        lifespan=Duration(seconds=10),
+    )
+
+
+def subscriber_qos():
+    from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+    return QoSProfile(
+        history=HistoryPolicy.KEEP_LAST,
+        depth=QUEUE_DEPTH,
+        reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL,
+    )
+
+
+def run_publisher(index: int) -> None:
+    import rclpy
+    from rclpy.node import Node
+    from rclpy.signals import SignalHandlerOptions
+    from rcl_interfaces.msg import Log
+
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    node = Node(f"bench_publisher_{index}")
+    publisher = node.create_publisher(Log, TOPIC, rosout_qos())
+    pool = message_pool(index)
+    mask = len(pool) - 1
+    publish = publisher.publish
+    say(event="ready")
+    for raw in sys.stdin:
+        command = json.loads(raw)
+        if command["cmd"] == "matched":
+            deadline = time.monotonic() + 30
+            while publisher.get_subscription_count() != command["count"] and time.monotonic() < deadline:
+                time.sleep(0.02)
+            say(event="matched", count=publisher.get_subscription_count())
+        elif command["cmd"] == "go":
+            rate, duration = float(command["rate"]), float(command["duration"])
+            sent = failed = 0
+            start = time.perf_counter()
+            end = start + duration
+            now = start
+            while now < end:
+                due = sent + failed + 100 if rate <= 0 else int((now - start) * rate)
+                while sent + failed < due:
+                    try:
+                        publish(pool[(sent + failed) & mask])
+                        sent += 1
+                    except Exception:  # Fast DDS refuses when its history is full of unacknowledged messages
+                        failed += 1
+                if rate > 0:
+                    time.sleep(0.0005)
+                now = time.perf_counter()
+            say(event="done", sent=sent, failed=failed, elapsed=time.perf_counter() - start)
+    node.destroy_node()
+    rclpy.try_shutdown()
+
+
+# -- the subscriber processes ------------------------------------------------------------------
+
+
+class Counter:
+    """What a reference subscriber's callback counts."""
+
+    def __init__(self) -> None:
+        self.count = 0
+
+    def __call__(self, _message: Any) -> None:
+        self.count += 1
+
+
+def serve_commands(count, publishers, extra=lambda: {}) -> None:
+    """Answer the orchestrator on stdin until it says quit (or closes stdin)."""
+    for raw in sys.stdin:
+        command = json.loads(raw)
+        if command["cmd"] == "publishers":
+            deadline = time.monotonic() + 30
+            while publishers() < command["count"] and time.monotonic() < deadline:
+                time.sleep(0.02)
+            say(event="publishers", count=publishers())
+        elif command["cmd"] == "count":
+            say(event="count", count=count(), cpu=time.process_time(), **extra())
+        elif command["cmd"] == "quit":
+            return
+
+
+def run_intake_subscriber(raw: bool) -> None:
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store import LogStore
+    from console_tui.sources.ros2.log_source import LiveLogSource
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    queue = IntakeQueue()
+    store = LogStore()
+    source = LiveLogSource(runtime, queue, TOPIC, raw=raw)
+    stop = threading.Event()
+
+    def app_drain() -> None:  # what the app's timer does
+        while not stop.wait(0.05):
+            store.extend(queue.drain())
+
+    drain = threading.Thread(target=app_drain, daemon=True)
+    source.start()
+    drain.start()
+    say(event="ready")
+
+    def loss() -> dict[str, Any]:
+        status = source.status
+        return {"lost_reported": status.lost, "path": status.path, "stored": len(store)}
+
+    serve_commands(lambda: queue.received, lambda: source.status.publishers, loss)
+    stop.set()
+    drain.join()
+    began = time.monotonic()
+    source.stop()
+    runtime.shutdown()
+    say(event="stopped", seconds=time.monotonic() - began)
+
+
+class EventsExecutorThread:
+    """rclpy's EventsExecutor spinning ``node`` in a thread, by ``spin_once`` in a loop
+    (its ``spin()`` cannot be stopped from another thread)."""
+
+    def __init__(self, node: Any) -> None:
+        from rclpy.experimental import EventsExecutor
+
+        self.executor = EventsExecutor()
+        self.executor.add_node(node)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._spin, daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        while not self._stop.is_set():
+            self.executor.spin_once(timeout_sec=0.1)
+
+    def stop(self) -> None:
+        self._stop.set()
+        self._thread.join(5)
+        self.executor.shutdown()
+
+
+def run_intake_events_executor() -> None:
+    """The intake's decoder, queue and store, fed by an EventsExecutor callback: the alternative design."""
+    import rclpy
+    from rclpy.node import Node
+    from rclpy.signals import SignalHandlerOptions
+    from rcl_interfaces.msg import Log
+
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store import LogStore
+    from console_tui.sources.ros2.cdr import LogDecoder
+
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    node = Node("bench_intake_ee")
+    queue, store, decode = IntakeQueue(), LogStore(), LogDecoder().decode
+    pending: list = []
+
+    def on_message(data: bytes) -> None:
+        pending.append(decode(data, TOPIC))
+
+    subscription = node.create_subscription(Log, TOPIC, on_message, subscriber_qos(), raw=True)
+    stop = threading.Event()
+
+    def app_drain() -> None:
+        nonlocal pending
+        while not stop.wait(0.05):
+            batch, pending = pending, []
+            queue.put(batch)
+            store.extend(queue.drain())
+
+    spinner = EventsExecutorThread(node)
+    drain = threading.Thread(target=app_drain, daemon=True)
+    drain.start()
+    say(event="ready")
+    serve_commands(lambda: queue.received + len(pending), subscription.get_publisher_count)
+    began = time.monotonic()
+    stop.set()
+    drain.join(5)
+    spinner.stop()
+    rclpy.try_shutdown()
+    say(event="stopped", seconds=time.monotonic() - began)
+
+
+def run_reference_subscriber(kind: str) -> None:
+    import rclpy
+    from rclpy.node import Node
+    from rclpy.signals import SignalHandlerOptions
+    from rcl_interfaces.msg import Log
+
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
+    node = Node(f"bench_{kind.replace('-', '_')}")
+    counter = Counter()
+    subscription = node.create_subscription(Log, TOPIC, counter, subscriber_qos(), raw=kind == "raw-ee")
+    say(event="ready")
+    if kind == "typed-spin":
+        spinner = threading.Thread(target=_spin_until_shutdown, args=(node,), daemon=True)
+        spinner.start()
+        serve_commands(lambda: counter.count, subscription.get_publisher_count)
+        rclpy.try_shutdown()
+        spinner.join(5)
+    else:
+        spinner = EventsExecutorThread(node)
+        serve_commands(lambda: counter.count, subscription.get_publisher_count)
+        spinner.stop()
+        rclpy.try_shutdown()
+
+
+def _spin_until_shutdown(node: Any) -> None:
+    import rclpy
+
+    try:
+        rclpy.spin(node)
+    except Exception:
+        pass  # the context was shut down
+
+
+# -- the orchestrator -----------------------------------------------------------------------------
+
+
+class Child:
+    """One benchmark process, talking JSON lines."""
+
+    def __init__(self, role_args: list[str], env: dict[str, str]) -> None:
+        self.process = subprocess.Popen(
+            [sys.executable, __file__, *role_args],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=None if os.environ.get("BENCH_DEBUG") else subprocess.DEVNULL,
+            env=env,
+            text=True,
+        )
+        self._selector = selectors.DefaultSelector()
+        self._selector.register(self.process.stdout, selectors.EVENT_READ)
+
+    def send(self, **command: Any) -> None:
+        self.process.stdin.write(json.dumps(command) + "\n")
+        self.process.stdin.flush()
+
+    def expect(self, event: str, timeout: float = 60.0) -> dict[str, Any]:
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if not self._selector.select(max(0.0, deadline - time.monotonic())):
+                continue
+            line = self.process.stdout.readline()
+            if not line:
+                raise RuntimeError(f"{self.process.args[2:]} ended before saying {event!r}")
+            try:
+                item = json.loads(line)
+            except json.JSONDecodeError:
+                continue
+            if item.get("event") == event:
+                return item
+        raise TimeoutError(f"{self.process.args[2:]} never said {event!r}")
+
+    def ask(self, event: str, timeout: float = 60.0, **command: Any) -> dict[str, Any]:
+        self.send(**command)
+        return self.expect(event, timeout)
+
+    def close(self, timeout: float = 10.0) -> None:
+        try:
+            self.process.stdin.close()
+        except OSError:
+            pass
+        try:
+            self.process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        self._selector.close()
+
+
+@dataclass
+class Row:
+    publishers: int
+    rate: str
+    kind: str
+    sent: int
+    seconds: float
+    in_window: int
+    received: int
+    cpu: float
+    lost_reported: int | None = None
+    path: str = ""
+    stop_ms: float | None = None
+
+    @property
+    def received_per_s(self) -> float:
+        return self.in_window / self.seconds
+
+    @property
+    def lost(self) -> int:
+        return max(self.sent - self.received, 0)
+
+
+def settle(subscriber: Child, quiet: float = 0.6, limit: float = 20.0) -> dict[str, Any]:
+    """The subscriber's count once it stops growing."""
+    last = subscriber.ask("count", cmd="count")
+    deadline = time.monotonic() + limit
+    while time.monotonic() < deadline:
+        time.sleep(quiet)
+        now = subscriber.ask("count", cmd="count")
+        if now["count"] == last["count"]:
+            return now
+        last = now
+    return last
+
+
+def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
+    """For each publisher count and rate, each subscriber in turn (``--repeat`` rounds, medians)."""
+    rows: list[Row] = []
+    for count in args.publishers:
+        publishers = [Child(["--role", "publisher", "--index", str(i)], env) for i in range(count)]
+        try:
+            for child in publishers:
+                child.expect("ready")
+            for rate in args.rates:
+                runs: dict[str, list[Row]] = {kind: [] for kind in args.kinds}
+                for round_number in range(args.repeat):
+                    shift = round_number % len(args.kinds)  # vary the order, so drifting load hits all alike
+                    for kind in args.kinds[shift:] + args.kinds[:shift]:
+                        runs[kind].append(measure_once(args, env, publishers, kind, rate))
+                for kind in args.kinds:
+                    ordered = sorted(runs[kind], key=lambda row: row.received_per_s)
+                    rows.append(ordered[len(ordered) // 2])
+        finally:
+            for child in publishers:
+                child.close()
+    return rows
+
+
+def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list[Child], kind: str, rate: str) -> Row:
+    """One subscriber process, started fresh, measured at one rate."""
+    subscriber = Child(["--role", "subscriber", "--kind", kind], env)
+    try:
+        subscriber.expect("ready")
+        subscriber.ask("publishers", cmd="publishers", count=len(publishers))
+        for child in publishers:
+            child.ask("matched", cmd="matched", count=1)
+        before = settle(subscriber)  # publishers' TRANSIENT_LOCAL history, delivered on matching
+        per_publisher = 0.0 if rate == "max" else float(rate) / len(publishers)
+        for child in publishers:
+            child.send(cmd="go", rate=per_publisher, duration=args.duration)
+        done = [child.expect("done", args.duration + 120) for child in publishers]
+        window = subscriber.ask("count", cmd="count")
+        after = settle(subscriber)
+        subscriber.send(cmd="quit")
+        stopped = subscriber.expect("stopped", 30) if kind in STOP_REPORTING_KINDS else None
+    finally:
+        subscriber.close()
+        for child in publishers:  # the next subscriber starts once this one is gone
+            child.ask("matched", cmd="matched", count=0)
+    row = Row(
+        publishers=len(publishers),
+        rate=rate,
+        kind=kind,
+        sent=sum(d["sent"] for d in done),
+        seconds=max(d["elapsed"] for d in done),
+        in_window=window["count"] - before["count"],
+        received=after["count"] - before["count"],
+        cpu=after["cpu"] - before["cpu"],
+        lost_reported=after["lost_reported"] - before["lost_reported"] if "lost_reported" in after else None,
+        path=after.get("path", ""),
+        stop_ms=stopped["seconds"] * 1000 if stopped else None,
+    )
+    print(f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received {row.received:>8,} "
+          f"({row.received_per_s:,.0f}/s), lost {row.lost:,}", file=sys.stderr, flush=True)
+    return row
+
+
+def report(rows: list[Row], args: argparse.Namespace) -> str:
+    by_key = {(r.publishers, r.rate, r.kind): r for r in rows}
+    lines = []
+    body = []
+    for row in rows:
+        raw_ee = by_key.get((row.publishers, row.rate, "raw-ee"))
+        typed = by_key.get((row.publishers, row.rate, "typed-spin"))
+        is_intake = row.kind == "intake"
+        vs_raw = f"{row.received_per_s / raw_ee.received_per_s:.2f}" if is_intake and raw_ee else ""
+        vs_typed = f"{row.received_per_s / typed.received_per_s:.1f}x" if is_intake and typed else ""
+        cpu_per_message = f"{row.cpu / row.received * 1e6:.0f}" if row.received else "-"
+        reported = "" if row.lost_reported is None else f"{row.lost_reported:,}"
+        body.append([
+            row.publishers, row.rate, row.kind + (f" ({row.path})" if row.path else ""),
+            f"{row.sent / row.seconds:,.0f}", f"{row.received_per_s:,.0f}", f"{row.lost:,}",
+            f"{100 * row.lost / row.sent:.1f}%" if row.sent else "-", reported, cpu_per_message, vs_raw, vs_typed,
+        ])
+    lines.append(table(
+        ["pubs", "offered/s", "subscriber", "sent/s", "received/s", "lost", "lost %", "lost (status bar)",
+         "CPU us/msg", "intake ÷ raw-ee", "intake ÷ typed-spin"],
+        body,
+    ))
+    lines.append("")
+    lines.append("Targets:")
+    for row in rows:
+        if row.kind != "intake":
+            continue
+        where = f"{row.publishers} pub, {row.rate}/s"
+        raw_ee = by_key.get((row.publishers, row.rate, "raw-ee"))
+        if raw_ee:
+            ratio = row.received_per_s / raw_ee.received_per_s
+            lines.append(f"- {where}: intake >= 90% of raw-ee: {ratio:.0%}, "
+                         + verdict(ratio >= TARGET_VS_RAW_EE, f"short by {TARGET_VS_RAW_EE - ratio:.0%} points"))
+        typed = by_key.get((row.publishers, row.rate, "typed-spin"))
+        if typed and row.rate == "max":
+            ratio = row.received_per_s / typed.received_per_s
+            lines.append(f"- {where}: intake >= 5x typed-spin: {ratio:.1f}x, "
+                         + verdict(ratio >= TARGET_VS_TYPED, f"short by {TARGET_VS_TYPED - ratio:.1f}x"))
+        if row.rate != "max" and float(row.rate) == LOSSLESS_RATE:
+            lines.append(f"- {where} for {row.seconds:.0f} s: 0 lost: {row.lost:,} lost, "
+                         + verdict(row.lost == 0, f"{row.lost:,} lost, {100 * row.lost / row.sent:.2f}%"))
+    stops = [row.stop_ms for row in rows if row.stop_ms is not None]
+    if stops:
+        lines.append(f"- intake stop() (thread joined): at most {max(stops):.0f} ms over {len(stops)} runs")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--publishers", type=int, nargs="+", help="publisher process counts (default 1 4)")
+    parser.add_argument("--rates", nargs="+", help="total offered rates per second, or max (default max 1000 5000 20000 50000)")
+    parser.add_argument("--kinds", nargs="+", choices=ALL_KINDS, help=f"subscribers (default {' '.join(DEFAULT_KINDS)})")
+    parser.add_argument("--duration", type=float, help="seconds of sending per measurement (default 5)")
+    parser.add_argument("--repeat", type=int, default=1, help="rounds per measurement; the table shows medians")
+    parser.add_argument("--sustained", type=float, metavar="S",
+                        help="only the intake at 20k/s from 1 publisher for S seconds (flags above override)")
+    parser.add_argument("--udp", action="store_true", help="Fast DDS over UDP only (default: its defaults, shared memory)")
+    parser.add_argument("--domain", type=int, default=150 + os.getpid() % 80, help="ROS_DOMAIN_ID (default: from the pid)")
+    parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
+    parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
+    parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
+    args = parser.parse_args()
+
+    if args.role == "publisher":
+        return run_publisher(args.index)
+    if args.role == "subscriber":
+        if args.kind in ("intake", "intake-typed"):
+            return run_intake_subscriber(raw=args.kind == "intake")
+        if args.kind == "intake-ee":
+            return run_intake_events_executor()
+        return run_reference_subscriber(args.kind)
+
+    sustained = args.sustained is not None
+    args.publishers = args.publishers or ([1] if sustained else [1, 4])
+    args.rates = args.rates or ([str(LOSSLESS_RATE)] if sustained else list(DEFAULT_RATES))
+    args.kinds = args.kinds or (["intake"] if sustained else list(DEFAULT_KINDS))
+    args.duration = args.duration or (args.sustained if sustained else 5.0)
+    env = {**os.environ, "ROS_DOMAIN_ID": str(args.domain), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+    env.pop("ROS_LOCALHOST_ONLY", None)
+    if args.udp:
+        env["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
+    from importlib.metadata import version
+
+    header = [
+        "## Intake benchmark (benchmarks/intake.py)",
+        "",
+        machine_line(),
+        f"rclpy {version('rclpy')}, RMW {env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp (default)')}, "
+        f"transport {'UDPv4' if args.udp else 'Fast DDS defaults (shared memory)'}; "
+        f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized.",
+    ]
+    print("\n".join(header), file=sys.stderr, flush=True)
+    started = time.monotonic()
+    rows = measure(args, env)
+    print("\n".join(header))
+    print(f"Load average at the end: {os.getloadavg()[0]:.2f} (run took {time.monotonic() - started:.0f} s)")
+    print()
+    print(report(rows, args))
+
+
+if __name__ == "__main__":
+    main()
