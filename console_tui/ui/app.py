@@ -279,7 +279,6 @@ class ConsoleApp(App[None]):
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
-            lost=self.queue.dropped + sum(status.lost for status in statuses),
         )
         self.status_bar.show_facts(facts)
 

@@ -25,7 +25,6 @@ class StatusFacts:
     paused: bool = False
     new_while_paused: int = 0
     sources: list[SourceStatus] = field(default_factory=list)
-    lost: int = 0
     note: str = ""
 
 
@@ -71,10 +70,11 @@ def render_status(facts: StatusFacts) -> Text:
             text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
         if status.path:
             text.append(f" {status.path}" if status.topic else f"  {status.path}", style="dim")
+        loss = status.loss_text()
+        if loss:
+            text.append(f"  {loss}", style="bold red")
         if status.problem:
             text.append(f"  {status.problem}", style="bold red")
-    if facts.lost:
-        text.append(f"  lost {facts.lost:,}", style="bold red")
     if facts.note:
         text.append(f"  {facts.note}", style="italic")
     return text
