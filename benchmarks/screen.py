@@ -142,8 +142,8 @@ def main() -> int:
 
     print(f"machine: {machine()}")
     print(f"feed: {result['rate']:,.0f} records/s offered, {result['stored']:,} stored, 160x48 headless\n")
-    print(f"| figure | value | target | |")
-    print(f"| --- | --- | --- | --- |")
+    print("| figure | value | target | |")
+    print("| --- | --- | --- | --- |")
     print(f"| longest event-loop stall | {result['stall_max']:.1f} ms | {STALL_TARGET_MS} ms | {verdict(result['stall_max'], STALL_TARGET_MS)} |")
     print(f"| event-loop stall, 99th percentile | {result['stall_p99']:.1f} ms | | |")
     print(f"| key to effect, median | {result['key_median']:.1f} ms | {KEY_TARGET_MS} ms | {verdict(result['key_median'], KEY_TARGET_MS)} |")

@@ -66,7 +66,7 @@ class RecordMaker:
 
     def batch(self, size: int = BATCH) -> list[LogRecord]:
         """Records with unique message texts (each its own ``str``, as decoded messages are)."""
-        rng, choice = self.rng, self.rng.choice
+        choice = self.rng.choice
         nodes, files, functions, levels, phrases = self.nodes, self.files, self.functions, self.levels, self.phrases
         out = []
         for _ in range(size):

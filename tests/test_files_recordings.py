@@ -148,7 +148,6 @@ def test_unindexed_ros1_bag_says_to_reindex(tmp_path):
 
 def test_several_files_merge_by_time_each_keeping_its_source(tmp_path):
     early = [LogRecord(t, 20, "a", f"a{t}") for t in range(0, 100, 2)]
-    late = [LogRecord(t, 20, "b", f"b{t}") for t in range(1, 100, 2)]
     write_rosbag2(tmp_path / "a", early)
     (tmp_path / "b.log").write_text("".join(f"[INFO] [0.{t:09d}] [b]: b{t}\n" for t in range(1, 100, 2)))
     files = [open_log_file(tmp_path / "a"), open_log_file(tmp_path / "b.log")]

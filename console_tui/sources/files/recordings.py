@@ -20,9 +20,9 @@ from pathlib import Path
 from typing import Any
 
 from ...model.formats import FormatError
-from ...model.levels import from_ros1
 from ...model.record import LogRecord
-from ..ros2.log_source import log_to_record
+from ..log_message import log_to_record
+from ..ros2.cdr import LogDecoder
 from .base import Cancel, LogFile
 
 ROS2_LOG = "rcl_interfaces/msg/Log"
@@ -64,24 +64,13 @@ def decoder(msgtype: str, encoding: str, source: str) -> Callable[[bytes], LogRe
         type_name = ROS1_LOG
 
         def decode_ros1(data: bytes) -> LogRecord:
-            message = deserialize(data, type_name)
-            stamp = message.header.stamp
-            return LogRecord(
-                stamp_ns=stamp.sec * 1_000_000_000 + stamp.nanosec,
-                level=from_ros1(message.level),
-                node=message.name,
-                msg=message.msg,
-                file=message.file,
-                function=message.function,
-                line=message.line,
-                source=source,
-            )
+            return log_to_record(deserialize(data, type_name), source, ros1=True)
 
         return decode_ros1
-    deserialize = _typestore(False).deserialize_cdr
+    decode = LogDecoder().decode  # the live intake's decoder: one reading of Log's CDR
 
     def decode_cdr(data: bytes) -> LogRecord:
-        return log_to_record(deserialize(data, ROS2_LOG), source)
+        return decode(bytes(data), source)
 
     return decode_cdr
 

@@ -38,6 +38,7 @@ from typing import Any
 
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from ..log_message import log_to_record
 from ..status import SourceStatus
 from .cdr import CdrError, LogDecoder
 from .runtime import RosRuntime
@@ -54,21 +55,6 @@ COALESCE_BELOW = 64
 COALESCE_S = 0.002
 PATH_RAW = "raw+cdr"
 PATH_TYPED = "typed"
-
-
-def log_to_record(message: Any, source: str) -> LogRecord:
-    """An ``rcl_interfaces/msg/Log`` (or anything with its fields) as a record."""
-    stamp = message.stamp
-    return LogRecord(
-        stamp_ns=stamp.sec * 1_000_000_000 + stamp.nanosec,
-        level=message.level,
-        node=message.name,
-        msg=message.msg,
-        file=message.file,
-        function=message.function,
-        line=message.line,
-        source=source,
-    )
 
 
 class LossCounts:
