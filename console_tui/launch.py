@@ -17,6 +17,7 @@ def run_app(args: argparse.Namespace) -> int:
     queue = IntakeQueue()
     sources: list = []
     cleanups: list = []
+    logger_control = None
     try:
         if args.demo:
             from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
@@ -27,6 +28,10 @@ def run_app(args: argparse.Namespace) -> int:
         from .sources.ros2.log_source import LiveLogSource
 
         sources.append(LiveLogSource(runtime, queue, topic=args.topic))
+        from .sources.ros2.loggers import LoggerControl
+
+        logger_control = LoggerControl(runtime)  # the app starts it after its first frame
+        cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
         if args.demo:
             sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
     except RosUnavailable as error:
@@ -34,7 +39,7 @@ def run_app(args: argparse.Namespace) -> int:
         return 2
     from .ui.app import ConsoleApp
 
-    app = ConsoleApp(store=store, queue=queue, sources=sources, utc=args.utc)
+    app = ConsoleApp(store=store, queue=queue, sources=sources, utc=args.utc, logger_control=logger_control)
     try:
         app.run()
     finally:

@@ -5,10 +5,11 @@ from __future__ import annotations
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
+from textual.containers import Horizontal
 from textual.screen import Screen
 from textual.widgets import Footer
 
@@ -23,7 +24,11 @@ from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
 from .widgets.columns import COLUMNS
 from .widgets.log_table import LogTable
+from .widgets.logger_pane import LoggerPane
 from .widgets.status_bar import StatusBar, StatusFacts
+
+if TYPE_CHECKING:
+    from ..sources.ros2.loggers import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -51,6 +56,8 @@ class ConsoleApp(App[None]):
         Binding("space", "toggle_pause", "Pause"),
         Binding("c", "clear", "Clear"),
         Binding("C", "columns", "Columns"),
+        Binding("l", "toggle_loggers", "Loggers"),
+        Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False),
         Binding("question_mark,f1", "help", "Help"),
         Binding("q", "quit", "Quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
@@ -65,6 +72,7 @@ class ConsoleApp(App[None]):
         utc: bool = False,
         drain_interval: float = DRAIN_INTERVAL,
         clock: Callable[[], float] = time.monotonic,
+        logger_control: LoggerControl | None = None,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -80,11 +88,16 @@ class ConsoleApp(App[None]):
         self.collection_policy = CollectionPolicy()
         self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
+        #: Started after the first frame with the sources; whoever made it closes it.
+        self.logger_control = logger_control
+        self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
 
     # -- layout -------------------------------------------------------------------------------
 
     def compose(self) -> ComposeResult:
-        yield self.table
+        with Horizontal(id="main"):
+            yield self.table
+            yield self.logger_pane
         yield self.status_bar
         yield Footer()
 
@@ -98,7 +111,7 @@ class ConsoleApp(App[None]):
         self.call_after_refresh(self.start_sources)
 
     def start_sources(self) -> None:
-        for source in self.sources:
+        for source in [*self.sources, *([self.logger_control] if self.logger_control is not None else [])]:
             try:
                 source.start()
             except Exception as error:
@@ -207,10 +220,29 @@ class ConsoleApp(App[None]):
         table.move_cursor(row)
         return self.store.get(self.view.seq_at(row))
 
+    # -- logger levels pane ------------------------------------------------------------------
+
+    def action_toggle_loggers(self) -> None:
+        self.logger_pane.toggle()
+
+    def action_loggers_for_row(self) -> None:
+        """Open the logger levels pane on the node of the table's selected row."""
+        seq = self.table.cursor_seq
+        if seq is None or seq not in self.store:
+            self.logger_pane.open()
+        else:
+            self.logger_pane.open_for_logger(self.store.get(seq).node)
+
+    def on_logger_pane_leave(self, _message: LoggerPane.Leave) -> None:
+        self.table.focus()
+
+    # -- help and command palette ---------------------------------------------------------------
+
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         return [
             ("Table", list(LogTable.BINDINGS)),
             ("Console", list(self.BINDINGS)),
+            ("Logger levels pane", list(LoggerPane.BINDINGS)),
             ("Details", list(DetailScreen.BINDINGS)),
             ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
         ]
@@ -230,4 +262,8 @@ class ConsoleApp(App[None]):
                 f"Show or hide the {column.title} column",
                 lambda key=column.key: self.table.set_column_shown(key, key not in self.table.shown_columns),
             )
+        yield SystemCommand("Logger levels", "Show or hide the logger levels pane", self.action_toggle_loggers)
+        yield SystemCommand(
+            "Logger levels of this row's node", "Open the logger levels pane on the selected row's node", self.action_loggers_for_row
+        )
         yield SystemCommand("Keys", "Every key, on the help screen", self.action_help)
