@@ -8,7 +8,7 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
 from textual.screen import ModalScreen
-from textual.widgets import Input, Label, OptionList, Static
+from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from ...model.levels import MESSAGE_SEVERITIES, Severity
@@ -20,7 +20,7 @@ class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
     DEFAULT_CSS = """
     TemporaryLevelScreen { align: center middle; }
     TemporaryLevelScreen > Vertical {
-        width: 50; height: auto; border: thick $primary; background: $surface; padding: 0 1;
+        width: 56; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 0 1;
     }
     TemporaryLevelScreen OptionList { height: auto; border: none; padding: 0; }
     TemporaryLevelScreen #temporary-error { color: $text-error; height: auto; }
@@ -40,12 +40,12 @@ class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(Text(f"Temporary level for {self.logger} on {self.node}"))
+            yield Static(Text(f"Temporary level for {self.logger} on {self.node}", style="bold"))
             yield OptionList(*(Option(s.name, id=s.name) for s in MESSAGE_SEVERITIES), id="temporary-levels")
-            yield Label("for how many seconds, then the level before comes back:")
+            yield Static("For how many seconds (then the level before comes back):")
             yield Input(f"{self.seconds:g}", id="temporary-seconds", type="number")
             yield Static("", id="temporary-error")
-            yield Label(Text("↑/↓ level · Enter sets it · Esc cancels", style="dim"))
+            yield Static(Text("↑/↓ level · Enter sets it · Esc cancels", style="dim"))
 
     def on_mount(self) -> None:
         levels = self.query_one(OptionList)

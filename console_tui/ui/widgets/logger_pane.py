@@ -98,7 +98,7 @@ class LevelBar(Static):
     def on_mount(self) -> None:
         parts = [f"[@click=choose({int(s)})]{s.name}[/]" for s in MESSAGE_SEVERITIES]
         parts.append(f"[@click=choose({int(Severity.UNSET)})]unset[/]")
-        parts.append("[@click=temporary]for N s[/]")
+        parts.append("[@click=temporary]temporary[/]")
         self.update(" ".join(parts))
 
     def action_choose(self, level: int) -> None:
@@ -114,7 +114,7 @@ class LoggerPane(Vertical):
     DEFAULT_CSS = """
     LoggerPane {
         width: 46;
-        max-width: 60%;
+        max-width: 50%;
         height: 100%;
         display: none;
         background: $surface;
@@ -136,18 +136,18 @@ class LoggerPane(Vertical):
     """
 
     BINDINGS = [
-        Binding("d,1", "set_level(10)", "DEBUG", show=False),
-        Binding("i,2", "set_level(20)", "INFO", show=False),
-        Binding("w,3", "set_level(30)", "WARN", show=False),
-        Binding("e,4", "set_level(40)", "ERROR", show=False),
-        Binding("f,5", "set_level(50)", "FATAL", show=False),
-        Binding("u,0", "set_level(0)", "Unset (inherit)", show=False),
-        Binding("t", "temporary", "Level for N s"),
-        Binding("x", "end_temporary", "End temporary level now", show=False),
-        Binding("a,plus", "add_logger", "Add a logger name", show=False),
-        Binding("r", "refresh", "Read levels again", show=False),
-        Binding("left", "focus_nodes", "Nodes list", show=False),
-        Binding("right", "focus_loggers", "Loggers list", show=False),
+        Binding("d,1", "set_level(10)", "Set DEBUG", show=False),
+        Binding("i,2", "set_level(20)", "Set INFO", show=False),
+        Binding("w,3", "set_level(30)", "Set WARN", show=False),
+        Binding("e,4", "set_level(40)", "Set ERROR", show=False),
+        Binding("f,5", "set_level(50)", "Set FATAL", show=False),
+        Binding("u,0", "set_level(0)", "Unset: inherit the level", show=False),
+        Binding("t", "temporary", "Temporary level"),
+        Binding("x", "end_temporary", "End the temporary level now", show=False),
+        Binding("a,plus", "add_logger", "Add a logger by name", show=False),
+        Binding("r", "refresh", "Read the levels again", show=False),
+        Binding("left", "focus_nodes", "To the nodes", show=False),
+        Binding("right", "focus_loggers", "To the loggers", show=False),
         Binding("escape", "leave", "Back to the table", show=False),
     ]
 
@@ -197,15 +197,17 @@ class LoggerPane(Vertical):
         self.node_list = NodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
         self.name_input = Input(placeholder="add a logger: type its name, Enter", id="logger-name", compact=True)
+        self.heading = Static("Loggers", id="logger-heading")
+        self.notice_line = Static("", id="logger-notice")
 
     # -- layout ---------------------------------------------------------------------------------
 
     def compose(self) -> ComposeResult:
         yield Static("Logger levels · nodes", classes="pane-title")
         yield self.node_list
-        yield Static("", id="logger-heading")
+        yield self.heading
         yield self.logger_list
-        yield Static("", id="logger-notice")
+        yield self.notice_line
         yield LevelBar(id="logger-level-bar")
         yield self.name_input
         yield Static(
@@ -292,9 +294,8 @@ class LoggerPane(Vertical):
             loggers.add_typed(logger)
         if changed:
             self.notice = ""
-            index = self.node_list.get_option_index(fqn)
-            if self.node_list.highlighted != index:
-                self.node_list.highlighted = index
+            with self.node_list.prevent(OptionList.OptionHighlighted):
+                self.node_list.highlighted = self.node_list.get_option_index(fqn)
         self._render_loggers(highlight=logger if logger is not None else (None if not changed else loggers.own))
         if changed or logger is not None:
             self.read_levels(fqn)
@@ -503,7 +504,8 @@ class LoggerPane(Vertical):
     @on(OptionList.OptionHighlighted, "#logger-nodes")
     def _node_highlighted(self, message: OptionList.OptionHighlighted) -> None:
         message.stop()
-        if message.option.id is not None:
+        # Only the newest highlight counts: one moved since the message was sent is stale.
+        if message.option.id is not None and message.option_index == self.node_list.highlighted:
             self.select_node(message.option.id)
 
     @on(OptionList.OptionSelected, "#logger-nodes")
@@ -586,9 +588,7 @@ class LoggerPane(Vertical):
         self._render_notice()
 
     def _render_heading(self) -> None:
-        if not self.is_mounted:
-            return
-        heading = self.query_one("#logger-heading", Static)
+        heading = self.heading
         if self.selected is None:
             heading.update("Loggers")
             return
@@ -596,9 +596,7 @@ class LoggerPane(Vertical):
         heading.update(Text(f"Loggers of {self.selected}{busy}", no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
-        if not self.is_mounted:
-            return
-        notice = self.query_one("#logger-notice", Static)
+        notice = self.notice_line
         text, error = self._notice_text()
         notice.update(Text(text))
         notice.set_class(error, "-error")
