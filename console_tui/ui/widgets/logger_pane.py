@@ -211,7 +211,7 @@ class LoggerPane(Vertical):
         yield LevelBar(id="logger-level-bar")
         yield self.name_input
         yield Static(
-            "d i w e f: level · u: inherit · t: for N s · x: end it · a: add · r: read · Esc: table",
+            "d i w e f: level · u: inherit · t: temporary · x: end it · a: add · r: read · Esc: table",
             id="logger-keys",
         )
 
@@ -271,14 +271,14 @@ class LoggerPane(Vertical):
             self._say(f"{selected} left the ROS graph")
         self._note_seen_loggers(force=True)
         self._render_nodes()
-        if self.selected is None and self.is_open and self.nodes:
-            self.node_list.highlighted = 0
+        if selected is None and self.is_open and self.nodes:
+            self.node_list.highlighted = 0  # the first nodes since the pane opened: show one
         elif self.selected is not None:
             node = self.node(self.selected)
             old = before.get(self.selected)
             if node is not None and node.has_logger_services and not (old and old.has_logger_services):
                 self.read_levels(node.fqn)  # its services just showed up
-            self._render_loggers()
+        self._render_loggers()
         self._update_ticker()
 
     def select_node(self, fqn: str, logger: str | None = None) -> bool:
@@ -602,6 +602,8 @@ class LoggerPane(Vertical):
         notice.set_class(error, "-error")
 
     def _notice_text(self) -> tuple[str, bool]:
+        if self.control is not None and self.control.problem:
+            return self.control.problem, True
         if self.notice:
             return self.notice, self.notice_is_error
         if not self.nodes:
@@ -664,6 +666,8 @@ class LoggerPane(Vertical):
 
     def _tick(self) -> None:
         if self.control is not None:
+            if self.control.problem and self.control.problem not in str(self.notice_line.content):
+                self._render_notice()
             temporaries = self.control.temporaries()
             if temporaries != self.temporaries:
                 self.temporaries = temporaries
