@@ -6,23 +6,14 @@ its ``LoggerControl`` would; what ROS does is tested in test_e2e_logger_pane.py.
 
 from __future__ import annotations
 
-from feed import records
+from feed import GRAPH, PLANNER, feed_logger_pane, records
 
-from console_tui.model.loggers import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
+from console_tui.model.loggers import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
 from console_tui.model.store import LogStore
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.help import HelpScreen
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 from console_tui.ui.widgets.logger_pane import NO_ROS_TEXT, LoggerPane
-
-PLANNER = "/navigation/planner"
-NODES = (
-    GraphNode("/", "count_and_log", True),
-    GraphNode("/navigation", "planner", True),
-    GraphNode("/power", "battery_monitor", False),
-    GraphNode("/sensors", "lidar_driver", False),
-)
-LEVELS = {"navigation.planner": 10, "navigation.planner.costmap": 0, "navigation": 0, "": 20}
 
 
 def make_app(count: int = 100) -> ConsoleApp:
@@ -31,11 +22,13 @@ def make_app(count: int = 100) -> ConsoleApp:
     return ConsoleApp(store=store, utc=True, clock=lambda: 100.0)
 
 
-def feed(pane: LoggerPane) -> None:
-    """The state a LoggerControl would report: four nodes, one still being checked."""
-    pane.show_nodes(NODES, checking={"/sensors/lidar_driver"})
-    pane.select_node(PLANNER)
-    pane.show_levels(PLANNER, LEVELS)
+async def open_fed_pane(pilot) -> LoggerPane:
+    """Open the pane with ``l`` and give it the fixed state of ``feed_logger_pane``."""
+    pane = pilot.app.logger_pane
+    await pilot.press("l")
+    feed_logger_pane(pane)
+    await pilot.pause()
+    return pane
 
 
 def lines(option_list) -> list[str]:
@@ -80,10 +73,7 @@ async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
 async def test_nodes_marks_loggers_and_levels_as_shown():
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
-        pane = app.logger_pane
-        await pilot.press("l")
-        feed(pane)
-        await pilot.pause()
+        pane = await open_fed_pane(pilot)
         nodes = lines(pane.node_list)
         assert nodes[0].startswith("/count_and_log") and nodes[0].strip() == "/count_and_log"
         assert "no logger services" in nodes[2] and "checking…" in nodes[3]
@@ -103,16 +93,14 @@ async def test_nodes_marks_loggers_and_levels_as_shown():
         await pilot.click("#logger-nodes", offset=(2, 1))
         assert pane.selected == PLANNER
         # The node leaves the graph.
-        pane.show_nodes(NODES[:1])
+        pane.show_nodes(GRAPH[:1])
         assert pane.selected is None and f"{PLANNER} left the ROS graph" in notice(pane)
 
 
 async def test_arrows_move_between_the_lists_and_keys_pick_the_logger():
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
-        pane = app.logger_pane
-        await pilot.press("l")
-        feed(pane)
+        pane = await open_fed_pane(pilot)
         await pilot.press("right")
         assert pane.logger_list.has_focus
         await pilot.press("down")
@@ -128,9 +116,7 @@ async def test_arrows_move_between_the_lists_and_keys_pick_the_logger():
 async def test_a_typed_logger_name_is_offered_and_highlighted():
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
-        pane = app.logger_pane
-        await pilot.press("l")
-        feed(pane)
+        pane = await open_fed_pane(pilot)
         await pilot.press("a")
         assert pane.name_input.has_focus
         await pilot.press(*"navigation.planner.extra", "enter")
@@ -145,9 +131,7 @@ async def test_a_typed_logger_name_is_offered_and_highlighted():
 async def test_temporary_level_shows_its_countdown():
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
-        pane = app.logger_pane
-        await pilot.press("l")
-        feed(pane)
+        pane = await open_fed_pane(pilot)
         pane.show_temporaries([TemporaryLevel(PLANNER, "navigation.planner.costmap", 10, 0, deadline=165.2)])
         await pilot.pause()
         row = next(line for line in lines(pane.logger_list) if ".costmap" in line)
@@ -158,7 +142,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
     app = make_app(10)
     async with app.run_test(size=(140, 30)) as pilot:
         pane = app.logger_pane
-        pane.show_nodes(NODES)
+        pane.show_nodes(GRAPH)
         row = next(i for i in range(10) if app.store.get(i).node == "navigation.planner.costmap")
         app.table.move_cursor(row)
         await pilot.press("L")
