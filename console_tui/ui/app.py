@@ -111,7 +111,10 @@ class ConsoleApp(App[None]):
         self.call_after_refresh(self.start_sources)
 
     def start_sources(self) -> None:
-        for source in [*self.sources, *([self.logger_control] if self.logger_control is not None else [])]:
+        starting: list = list(self.sources)
+        if self.logger_control is not None:
+            starting.append(self.logger_control)  # started here, but closed by whoever made it
+        for source in starting:
             try:
                 source.start()
             except Exception as error:
