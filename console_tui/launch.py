@@ -17,6 +17,7 @@ def run_app(args: argparse.Namespace) -> int:
     queue = IntakeQueue()
     sources: list = []
     cleanups: list = []
+    logger_control = None
     files = list(getattr(args, "files", None) or [])
     live = args.demo or getattr(args, "live", False) or not files
     if live:
@@ -28,8 +29,11 @@ def run_app(args: argparse.Namespace) -> int:
             runtime = _start_ros()
             cleanups.append(runtime.shutdown)
             from .sources.ros2.log_source import LiveLogSource
+            from .sources.ros2.loggers import LoggerControl
 
             sources.append(LiveLogSource(runtime, queue, topic=args.topic))
+            logger_control = LoggerControl(runtime)  # the app starts it after its first frame
+            cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
             if args.demo:
                 sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
         except RosUnavailable as error:
@@ -44,6 +48,7 @@ def run_app(args: argparse.Namespace) -> int:
         utc=args.utc,
         files=files,
         log_format=getattr(args, "log_format", None),
+        logger_control=logger_control,
     )
     try:
         app.run()

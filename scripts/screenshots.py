@@ -22,6 +22,7 @@ async def capture(out: Path, seconds: float) -> list[Path]:
     from console_tui.demo.launcher import DemoNodes
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.sources.ros2.log_source import LiveLogSource
+    from console_tui.sources.ros2.loggers import LoggerControl
     from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
@@ -29,7 +30,8 @@ async def capture(out: Path, seconds: float) -> list[Path]:
     demo.start()
     runtime = RosRuntime()
     queue = IntakeQueue()
-    app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)])
+    control = LoggerControl(runtime)
+    app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)], logger_control=control)
     saved: list[Path] = []
 
     async def shot(pilot, name: str) -> None:
@@ -46,12 +48,18 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await shot(pilot, "detail")
             await pilot.press("escape", "question_mark")
             await shot(pilot, "help")
-            await pilot.press("escape")
+            await pilot.press("escape", "end", "l", "down")  # the logger levels of the second node
+            await pilot.pause(1.0)
+            await pilot.press("right", "t", "enter")  # DEBUG for 30 s
+            await pilot.pause(3.0)
+            await shot(pilot, "logger-pane")
+            await pilot.press("escape", "l")
         narrow = ConsoleApp(store=app.store)
         async with narrow.run_test(size=(80, 24)) as pilot:
             await pilot.pause(1.0)
             await shot(pilot, "live-table-80x24")
     finally:
+        control.close()
         runtime.shutdown()
         demo.stop()
     return saved

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from console_tui.model.loggers import GraphNode
 from console_tui.model.record import LogRecord
 
 BASE_NS = 1_795_000_000_000_000_000  # a fixed moment; snapshot tests show it in UTC
@@ -37,3 +38,22 @@ def record(i: int) -> LogRecord:
 
 def records(count: int, start: int = 0) -> list[LogRecord]:
     return [record(i) for i in range(start, start + count)]
+
+
+# -- the logger levels pane, fed as its LoggerControl would feed it ---------------------------
+
+PLANNER = "/navigation/planner"
+GRAPH = (
+    GraphNode("/", "count_and_log", True),
+    GraphNode("/navigation", "planner", True),
+    GraphNode("/power", "battery_monitor", False),
+    GraphNode("/sensors", "lidar_driver", False),
+)
+PLANNER_LEVELS = {"navigation.planner": 10, "navigation.planner.costmap": 0, "navigation": 0, "": 20}
+
+
+def feed_logger_pane(pane) -> None:
+    """Four nodes (one without logger services, one still being checked), the planner selected."""
+    pane.show_nodes(GRAPH, checking={"/sensors/lidar_driver"})
+    pane.select_node(PLANNER)
+    pane.show_levels(PLANNER, PLANNER_LEVELS)

@@ -5,10 +5,12 @@ from __future__ import annotations
 import importlib.util
 import json
 import os
-import selectors
+import queue
 import subprocess
 import sys
+import threading
 import time
+from collections import deque
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +26,8 @@ class NodeProcess:
 
     The script prints one JSON object per line on stdout; ``READY`` objects and others
     are read with ``expect``. Closing its stdin (``stop``) ends it; ``kill`` does not wait.
+    Its stderr (where rclpy prints every log message) is read all the time, its tail kept:
+    a full pipe would block the node's logging, and with it the whole node.
     """
 
     def __init__(self, script: str, *args: str, env: dict[str, str]) -> None:
@@ -36,9 +40,13 @@ class NodeProcess:
             text=True,
         )
         self.lines: list[dict[str, Any]] = []
-        self._selector = selectors.DefaultSelector()
-        assert self.process.stdout is not None
-        self._selector.register(self.process.stdout, selectors.EVENT_READ)
+        self.stderr_tail: deque[str] = deque(maxlen=50)
+        # Both streams are read by threads: selecting on a buffered pipe misses lines
+        # already in the buffer, and an unread stderr pipe fills up and blocks the node.
+        self._incoming: queue.Queue[dict[str, Any] | None] = queue.Queue()
+        threading.Thread(target=self._read_stdout, daemon=True).start()
+        self._stderr_reader = threading.Thread(target=self._read_stderr, daemon=True)
+        self._stderr_reader.start()
 
     def expect(self, key: str, timeout: float = 20.0) -> dict[str, Any]:
         """Read stdout until an object with ``"event": key`` arrives; return it."""
@@ -46,23 +54,35 @@ class NodeProcess:
             if line.get("event") == key:
                 return line
         deadline = time.monotonic() + timeout
-        stdout = self.process.stdout
-        assert stdout is not None
-        while time.monotonic() < deadline:
-            if not self._selector.select(timeout=max(0.0, deadline - time.monotonic())):
-                continue
-            raw = stdout.readline()
-            if not raw:
-                break
+        while (remaining := deadline - time.monotonic()) > 0:
             try:
-                item = json.loads(raw)
-            except json.JSONDecodeError:
-                continue
+                item = self._incoming.get(timeout=remaining)
+            except queue.Empty:
+                break
+            if item is None:  # the end of stdout: the process is gone
+                self._incoming.put(None)
+                break
             self.lines.append(item)
             if item.get("event") == key:
                 return item
-        stderr = self.process.stderr.read() if self.process.poll() is not None and self.process.stderr else ""
+        if self.process.poll() is not None:
+            self._stderr_reader.join(2.0)
+        stderr = "".join(self.stderr_tail)
         raise TimeoutError(f"{self.process.args[2]} never said {key!r}; stderr: {stderr[-2000:]}")
+
+    def _read_stdout(self) -> None:
+        assert self.process.stdout is not None
+        for raw in self.process.stdout:
+            try:
+                self._incoming.put(json.loads(raw))
+            except json.JSONDecodeError:
+                continue
+        self._incoming.put(None)
+
+    def _read_stderr(self) -> None:
+        assert self.process.stderr is not None
+        for line in self.process.stderr:
+            self.stderr_tail.append(line)
 
     def expect_next(self, key: str, timeout: float = 20.0) -> dict[str, Any]:
         """Like ``expect``, but only an object that was not read before."""
@@ -86,7 +106,6 @@ class NodeProcess:
             except subprocess.TimeoutExpired:
                 self.process.kill()
                 self.process.wait(timeout)
-        self._selector.close()
 
     def kill(self) -> None:
         self.process.kill()

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import pytest
-from feed import records
+from feed import PLANNER, feed_logger_pane, records
 
+from console_tui.model.loggers import TemporaryLevel
 from console_tui.model.store import LogStore
 from console_tui.ui.app import ConsoleApp
 
@@ -37,3 +38,17 @@ def test_detail(snap_compare):
 
 def test_help(snap_compare):
     assert snap_compare(feed_app(), terminal_size=(80, 24), press=["question_mark"])
+
+
+@pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])
+def test_logger_pane_beside_the_table(snap_compare, size):
+    """The pane in a fixed state, fed as its LoggerControl would feed it (no live graph)."""
+
+    async def open_pane_on_the_planner(pilot):
+        pane = pilot.app.logger_pane
+        await pilot.press("l")
+        feed_logger_pane(pane)
+        pane.show_temporaries([TemporaryLevel(PLANNER, "navigation.planner.costmap", 10, 0, deadline=25.0)])
+        await pilot.press("right", "down")
+
+    assert snap_compare(feed_app(), terminal_size=size, run_before=open_pane_on_the_planner)

@@ -7,11 +7,12 @@ import os
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from textual import work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
+from textual.containers import Horizontal
 from textual.screen import Screen
 from textual.widgets import Footer
 
@@ -32,7 +33,11 @@ from .screens.problems import ProblemsScreen
 from .widgets.columns import COLUMNS
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
+from .widgets.logger_pane import LoggerPane
 from .widgets.status_bar import StatusBar, StatusFacts
+
+if TYPE_CHECKING:
+    from ..sources.ros2.loggers import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
 #: Records gathered per event-loop turn when saving.
@@ -66,6 +71,8 @@ class ConsoleApp(App[None]):
         Binding("x", "cancel_load", "Cancel load"),
         Binding("exclamation_mark", "problems", "Problems", show=False),
         Binding("C", "columns", "Columns"),
+        Binding("l", "toggle_loggers", "Loggers"),
+        Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False),
         Binding("question_mark,f1", "help", "Help"),
         Binding("q", "quit", "Quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
@@ -82,6 +89,7 @@ class ConsoleApp(App[None]):
         clock: Callable[[], float] = time.monotonic,
         files: Sequence[str] = (),
         log_format: str | None = None,
+        logger_control: LoggerControl | None = None,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -104,11 +112,16 @@ class ConsoleApp(App[None]):
         self.problems: list[str] = []
         self._initial_files = list(files)
         self.log_format = log_format
+        #: Started after the first frame with the sources; whoever made it closes it.
+        self.logger_control = logger_control
+        self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
 
     # -- layout -------------------------------------------------------------------------------
 
     def compose(self) -> ComposeResult:
-        yield self.table
+        with Horizontal(id="main"):
+            yield self.table
+            yield self.logger_pane
         yield self.load_bar
         yield self.status_bar
         yield Footer()
@@ -125,7 +138,10 @@ class ConsoleApp(App[None]):
             self.open_files(self._initial_files, log_format=self.log_format)
 
     def start_sources(self) -> None:
-        for source in self.sources:
+        starting: list = list(self.sources)
+        if self.logger_control is not None:
+            starting.append(self.logger_control)  # started here, but closed by whoever made it
+        for source in starting:
             try:
                 source.start()
             except Exception as error:
@@ -328,10 +344,29 @@ class ConsoleApp(App[None]):
         table.move_cursor(row)
         return self.store.get(self.view.seq_at(row))
 
+    # -- logger levels pane ------------------------------------------------------------------
+
+    def action_toggle_loggers(self) -> None:
+        self.logger_pane.toggle()
+
+    def action_loggers_for_row(self) -> None:
+        """Open the logger levels pane on the node of the table's selected row."""
+        seq = self.table.cursor_seq
+        if seq is None or seq not in self.store:
+            self.logger_pane.open()
+        else:
+            self.logger_pane.open_for_logger(self.store.get(seq).node)
+
+    def on_logger_pane_leave(self, _message: LoggerPane.Leave) -> None:
+        self.table.focus()
+
+    # -- help and command palette ---------------------------------------------------------------
+
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         return [
             ("Table", list(LogTable.BINDINGS)),
             ("Console", list(self.BINDINGS)),
+            ("Logger levels pane", list(LoggerPane.BINDINGS)),
             ("Details", list(DetailScreen.BINDINGS)),
             ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
         ]
@@ -354,4 +389,8 @@ class ConsoleApp(App[None]):
                 f"Show or hide the {column.title} column",
                 lambda key=column.key: self.table.set_column_shown(key, key not in self.table.shown_columns),
             )
+        yield SystemCommand("Logger levels", "Show or hide the logger levels pane", self.action_toggle_loggers)
+        yield SystemCommand(
+            "Logger levels of this row's node", "Open the logger levels pane on the selected row's node", self.action_loggers_for_row
+        )
         yield SystemCommand("Keys", "Every key, on the help screen", self.action_help)
