@@ -298,3 +298,23 @@ def test_describe_is_readable():
     assert exclude(WARN, inverted=True).describe() == "not severity WARN"
     assert MessageRule("x", ignore_case=True).describe() == "message 'x' (ignore case)"
     assert CustomRule((WARN, NAV)).describe() == "severity WARN and node nav*"
+
+
+@pytest.mark.parametrize(
+    ("pattern", "ignore_case"),
+    [("time(out|d out)", True), (r"\d{3}\.\d ms", False), ("^goal", False), ("ab?c", True), ("K", True),
+     ("s$", True), ("a|b", False), ("x\x00", False), ("(?i)ABC", False)],
+)
+def test_regex_prefilter_agrees_with_plain_search(pattern, ignore_case):
+    """The literal prefilter must never change a regex's answer (ASCII or not)."""
+    import re
+
+    msgs = ["timeout", "TIMED OUT", "took 123.4 ms", "goal", "a goal", "abc", "AC", "\u212a", "ſ", "bus",
+            "x\x00y", "xabcx", "", "Größe", "ABC abc"] * 300
+    for chunk in (msgs, [m for m in msgs if m.isascii() and "\x00" not in m]):
+        store = LogStore()
+        store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in chunk)
+        test = MessageRule(pattern, ignore_case=ignore_case, regex=True).compile(store)
+        got = b"".join(test(s.chunk, s.lo, s.hi) for s in store.spans(0, len(chunk)))
+        search = re.compile(pattern, re.I if ignore_case else 0).search
+        assert list(got) == [int(search(m) is not None) for m in chunk]

@@ -16,7 +16,7 @@ import re
 from array import array
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
-from itertools import repeat
+from itertools import compress, repeat
 from operator import contains
 from typing import Any, ClassVar
 
@@ -167,10 +167,13 @@ class TextMatch:
     def mask_function(self) -> Callable[[list[str]], bytes]:
         """``strings -> mask``, the fastest way this kind of match allows."""
         if self.regex:
-            search = self.pattern().search
-            return lambda strings: bytes(map(bool, map(search, strings)))
+            pattern = self.pattern()
+            literal = required_literal(pattern)
+            return _RegexMasker(pattern, _RowFinder(literal, bool(pattern.flags & re.IGNORECASE)) if literal else None)
         if self.ignore_case:
-            return _CaselessFinder(self.text.casefold())
+            folded = self.text.casefold()
+            finder = _RowFinder(folded, True)
+            return lambda strings: finder(strings) or bytes(map(contains, map(str.casefold, strings), repeat(folded)))
         text = self.text
         return lambda strings: bytes(map(contains, strings, repeat(text)))
 
@@ -180,28 +183,57 @@ class TextMatch:
         return shown + (f" ({', '.join(options)})" if options else "")
 
 
-class _CaselessFinder:
-    """Case-insensitive substring masks (``casefold`` semantics).
+def required_literal(pattern: re.Pattern[str]) -> str:
+    """The longest run of plain characters every match of ``pattern`` contains ("" if none
+    is known): a fast ``str.find`` over many messages then leaves few for the regex."""
+    try:
+        from re import _parser as parser  # Python 3.11+
+    except ImportError:  # pragma: no cover - Python 3.10
+        import sre_parse as parser  # type: ignore[no-redef]
+    try:
+        items = list(parser.parse(pattern.pattern, pattern.flags & ~re.UNICODE))
+    except Exception:  # noqa: BLE001 - an internal API: no literal rather than an error
+        return ""
+    best, run = "", []
+    for op, argument in items + [(None, None)]:
+        if str(op) == "LITERAL":
+            run.append(chr(argument))
+            continue
+        if len(run) > len(best):
+            best = "".join(run)
+        run = []
+    return best
 
-    Mostly-ASCII logs take a fast path: the strings joined, lowered once, and searched
-    with ``str.find``; for ASCII text ``lower`` is ``casefold`` and keeps offsets.
+
+class _RowFinder:
+    """Which of many strings contain ``needle``, found by ``str.find`` over them all joined.
+
+    Case-insensitive finding lowers the joined text once, which equals case folding only for
+    ASCII text: ``__call__`` returns None when it cannot answer (non-ASCII text or needle,
+    or a string holding the separator) and the caller tests string by string.
     """
 
-    __slots__ = ("_folded",)
+    __slots__ = ("_needle", "_ignore_case")
 
-    def __init__(self, folded: str) -> None:
-        self._folded = folded
+    def __init__(self, needle: str, ignore_case: bool) -> None:
+        self._needle = needle.lower() if ignore_case else needle
+        self._ignore_case = ignore_case
 
-    def __call__(self, strings: list[str]) -> bytes:
-        folded = self._folded
+    def __call__(self, strings: list[str]) -> bytes | None:
+        needle = self._needle
+        if _SEPARATOR in needle or (self._ignore_case and not needle.isascii()):
+            return None
         joined = _SEPARATOR.join(strings)
-        if not joined.isascii() or joined.count(_SEPARATOR) != len(strings) - 1 or _SEPARATOR in folded:
-            return bytes(map(contains, map(str.casefold, strings), repeat(folded)))
-        lowered = joined.lower()
+        if self._ignore_case:
+            if not joined.isascii():
+                return None
+            joined = joined.lower()
+        if joined.count(_SEPARATOR) != len(strings) - 1:
+            return None
         mask = bytearray(len(strings))
-        find, count = lowered.find, lowered.count
+        find, count = joined.find, joined.count
         row, counted_to = 0, 0  # ``row`` is the row that position ``counted_to`` is in
-        position = find(folded)
+        position = find(needle)
         while position >= 0:
             row += count(_SEPARATOR, counted_to, position)
             mask[row] = 1
@@ -209,5 +241,26 @@ class _CaselessFinder:
             if row_end < 0:
                 break
             row, counted_to = row + 1, row_end + 1
-            position = find(folded, counted_to)
+            position = find(needle, counted_to)
+        return bytes(mask)
+
+
+class _RegexMasker:
+    """Regex masks; with a required literal, only strings that contain it are searched."""
+
+    __slots__ = ("_search", "_finder")
+
+    def __init__(self, pattern: re.Pattern[str], finder: _RowFinder | None) -> None:
+        self._search = pattern.search
+        self._finder = finder
+
+    def __call__(self, strings: list[str]) -> bytes:
+        search = self._search
+        candidates = self._finder(strings) if self._finder is not None else None
+        if candidates is None:
+            return bytes(map(bool, map(search, strings)))
+        mask = bytearray(len(strings))
+        for row in compress(range(len(strings)), candidates):
+            if search(strings[row]) is not None:
+                mask[row] = 1
         return bytes(mask)
