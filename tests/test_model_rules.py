@@ -318,3 +318,21 @@ def test_regex_prefilter_agrees_with_plain_search(pattern, ignore_case):
         got = b"".join(test(s.chunk, s.lo, s.hi) for s in store.spans(0, len(chunk)))
         search = re.compile(pattern, re.I if ignore_case else 0).search
         assert list(got) == [int(search(m) is not None) for m in chunk]
+
+
+def test_custom_rule_narrowing_agrees_with_each_part():
+    """Text parts are tested only on records the other parts let through: same answers."""
+    records = [rec(level=10 * (1 + i % 5), node=f"n{i % 9}", msg=f"goal {i} {'x' * (i % 4)}", line=i % 11)
+               for i in range(5000)]
+    store = LogStore()
+    store.extend(records)
+    for parts in (
+        (SeverityRule.of("warn"), MessageRule("xx"), MessageRule("goal 1", regex=True)),
+        (NodeRule(("n1",)), LocationRule(line=3), MessageRule("X", ignore_case=True)),
+        (MessageRule("xxx"), MessageRule("9")),
+        (SeverityRule.of("fatal"), NodeRule(("n2",)), MessageRule("goal")),
+    ):
+        rule = CustomRule(parts)
+        test = rule.compile(store)
+        got = b"".join(test(s.chunk, s.lo, s.hi) for s in store.spans(0, len(records)))
+        assert list(got) == [int(all(p.matches(r) for p in parts)) for r in records]

@@ -29,7 +29,7 @@ from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 #: Rows filtered synchronously when the rules change (more than a screen).
 FIRST_SCREEN_ROWS = 200
 #: Longest the synchronous part of ``set_rules`` keeps looking for the first screen.
-FIRST_SCREEN_BUDGET_S = 0.05
+FIRST_SCREEN_BUDGET_S = 0.03
 _MIN_PIECE, _START_PIECE = 256, 1024
 
 

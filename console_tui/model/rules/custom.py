@@ -4,10 +4,12 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from itertools import compress
 from typing import Any
 
 from ..store import Chunk, LogStore
-from .base import Rule, RuleError, SpanTest, all_of
+from .base import Rule, RuleError, SpanTest, all_of, mask_and
+from .message import MessageRule
 
 
 @dataclass(frozen=True)
@@ -29,10 +31,28 @@ class CustomRule(Rule):
         return all(part.is_empty for part in self.parts)
 
     def compile(self, store: LogStore) -> SpanTest:
-        tests = [part.compile(store) for part in self.parts if not part.is_empty]
+        """Column tests first; message text last, and then only on the records still in."""
+        parts = [part for part in self.parts if not part.is_empty]
+        columns = [part.compile(store) for part in parts if not isinstance(part, MessageRule)]
+        texts = [part.match.mask_function() for part in parts if isinstance(part, MessageRule)]
 
         def test(chunk: Chunk, lo: int, hi: int) -> bytes:
-            return all_of((part(chunk, lo, hi) for part in tests), hi - lo)
+            size = hi - lo
+            mask = all_of((part(chunk, lo, hi) for part in columns), size)
+            for mask_of in texts:
+                candidates = mask.count(1)
+                if candidates == 0:
+                    break
+                if candidates * 4 > size:
+                    mask = mask_and(mask, mask_of(chunk.msgs[lo:hi]))
+                    continue
+                rows = list(compress(range(size), mask))
+                msgs = chunk.msgs
+                narrowed = bytearray(size)
+                for row, hit in zip(rows, mask_of([msgs[lo + row] for row in rows])):
+                    narrowed[row] = hit
+                mask = bytes(narrowed)
+            return mask
 
         return test
 
