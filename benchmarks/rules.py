@@ -16,14 +16,14 @@ Prints a table with the targets beside the figures. Not a test: figures depend o
 from __future__ import annotations
 
 import argparse
-import os
-import platform
 import random
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from machine import machine  # noqa: E402
 
 from console_tui.model.record import LogRecord  # noqa: E402
 from console_tui.model.rules import (  # noqa: E402
@@ -59,18 +59,6 @@ TEMPLATES = [
     "Parameter update: max_velocity={t:.2f}, min_velocity={x:.2f}, acc_limit={y:.2f} for {part}",
 ]
 LEVELS = [10] * 20 + [20] * 60 + [30] * 12 + [40] * 7 + [50]
-
-
-def machine() -> str:
-    model = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}"
 
 
 def make_records(count: int) -> list[LogRecord]:
