@@ -16,8 +16,6 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import os
-import platform
 import statistics
 import sys
 import threading
@@ -28,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from feed import record  # noqa: E402
+from machine import machine  # noqa: E402
 from textual import events  # noqa: E402
 
 from console_tui.model.intake_queue import IntakeQueue  # noqa: E402
@@ -35,18 +34,6 @@ from console_tui.ui.app import ConsoleApp  # noqa: E402
 
 STALL_TARGET_MS = 33
 KEY_TARGET_MS = 100
-
-
-def machine() -> str:
-    model = "unknown CPU"
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{model}, {os.cpu_count()} cores, Python {platform.python_version()}"
 
 
 def feeder(queue: IntakeQueue, rate: int, stop: threading.Event, sent: list[int]) -> None:

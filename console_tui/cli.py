@@ -56,7 +56,44 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
     )
     parser.add_argument("--utc", action="store_true", help="show times in UTC instead of local time")
+    parser.add_argument(
+        "--query",
+        metavar="QUERY",
+        help=(
+            "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' "
+            "(syntax: docs/rules.md)"
+        ),
+    )
+    parser.add_argument(
+        "--rules",
+        metavar="FILE",
+        help="start with the exclude and highlight rules saved in this TOML file",
+    )
     return parser
+
+
+def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Compile ``--query`` and read ``--rules`` before the app starts; a problem exits 2.
+
+    Sets ``args.query_entries`` (the query's rule entries, or ``()``) and ``args.rule_set``
+    (the file's ``RuleSet``, or None).
+    """
+    from .model.rules.base import RuleError
+    from .model.rules.query import QueryError, caret_line, parse_query
+    from .model.rules.rulesfile import load_rules
+
+    args.query_entries = ()
+    args.rule_set = None
+    if args.query:
+        try:
+            args.query_entries = parse_query(args.query, utc=args.utc)
+        except QueryError as error:
+            parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(args.query, error)}")
+    if args.rules:
+        try:
+            args.rule_set = load_rules(args.rules)
+        except RuleError as error:
+            parser.error(f"--rules: {error.message}")
 
 
 def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
@@ -91,7 +128,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         from .commands.convert import main as convert_main
 
         return convert_main(args_list[1:])
-    args = build_parser().parse_args(args_list)
+    parser = build_parser()
+    args = parser.parse_args(args_list)
+    check_rule_arguments(parser, args)
     from .launch import run_app
 
     return run_app(args)

@@ -1,93 +1,278 @@
-"""The table's rows: which stored records are shown, in order.
+"""The table's rows: which stored records are shown, in order, and how each is marked.
 
-A ``LogView`` maps row numbers to store seqs. With no filter every kept record is a row
-(no index is built); with a filter, an index of the seqs that pass is extended as
-records arrive (each new record is tested once) and trimmed lazily as the store evicts.
+A ``LogView`` maps row numbers to store seqs under a ``RuleSet``. With no active rule every
+kept record is a row (no index is built). Otherwise an index of the seqs that pass is kept:
+
+- records that arrive are tested once, in ``update()``;
+- when the rules change (``set_rules``) the newest rows are filtered at once (the first
+  screen) and the rest by ``refilter_step(budget)``, newest first, in small pieces that the
+  caller runs from a timer or when idle. Meanwhile the rows are the newest ones done so far
+  plus everything that arrived since; records evicted meanwhile simply drop out.
+
+Each rule's match mask is kept per store chunk, so counts per rule are cheap, a rule is never
+tested twice on a record, and switching entries on and off, inverting them or moving them
+between exclude and highlight only recombines masks.
 """
 
 from __future__ import annotations
 
 from array import array
-from bisect import bisect_left
-from collections.abc import Callable, Iterable
+from bisect import bisect_left, bisect_right
+from itertools import compress
+from operator import neg
+from time import perf_counter
 
-from .store import ChunkSpan, LogStore
+from .rules.base import Rule, SpanTest
+from .rules.ruleset import Decoration, RuleSet
+from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 
-#: Given the store and a span of it, the seqs in the span that are shown, in order.
-SpanFilter = Callable[[LogStore, ChunkSpan], Iterable[int]]
+#: Rows filtered synchronously when the rules change (more than a screen).
+FIRST_SCREEN_ROWS = 200
+#: Longest the synchronous part of ``set_rules`` keeps looking for the first screen.
+FIRST_SCREEN_BUDGET_S = 0.03
+_MIN_PIECE, _START_PIECE = 256, 1024
 
 
 class LogView:
-    """Rows of the table over a ``LogStore``, optionally filtered."""
+    """Rows of the table over a ``LogStore`` under a ``RuleSet``."""
 
-    def __init__(self, store: LogStore, span_filter: SpanFilter | None = None) -> None:
+    def __init__(self, store: LogStore, rules: RuleSet | None = None) -> None:
         self.store = store
-        self._filter: SpanFilter | None = None
-        self._index = array("q")  # seqs that pass, ascending; entries < store.first_seq are stale
-        self._start = 0  # first live entry of _index
-        self._indexed_to = store.first_seq  # seqs below this have been tested
-        self.set_filter(span_filter)
+        self.rules = RuleSet()
+        self._tests: dict[Rule, SpanTest] = {}
+        #: chunk base seq -> rule -> [first offset covered, mask bytes from there]
+        self._masks: dict[int, dict[Rule, list]] = {}
+        self._masks_from = store.first_seq
+        self._indexed = False
+        self._reset_index()
+        self._piece = _START_PIECE
+        self.set_rules(rules or RuleSet())
+
+    def _reset_index(self) -> None:
+        # Rows are ``reversed(_front) + _back[_start:]``: the refiltered part (seqs descending,
+        # extended at the end as older records are done) then the part kept since.
+        self._front = array("q")
+        self._front_marks = bytearray()  # 1 where the row is highlighted
+        self._back = array("q")
+        self._back_marks = bytearray()
+        self._start = 0  # first live entry of _back
+        self._pending_lo = self._pending_hi = self.store.first_seq  # seqs still to refilter
+        self._indexed_to = self.store.end_seq  # seqs below this are in the index (or pending)
+
+    # -- rules ------------------------------------------------------------------------------
 
     @property
     def filtered(self) -> bool:
-        return self._filter is not None
+        """Some records may be hidden (not every kept record is a row)."""
+        return self.rules.filtering
 
-    def set_filter(self, span_filter: SpanFilter | None) -> None:
-        """Use a new filter and re-index every kept record."""
-        self._filter = span_filter
-        self._index = array("q")
-        self._start = 0
-        self._indexed_to = self.store.first_seq
-        self.update()
+    @property
+    def highlighting(self) -> bool:
+        return self.rules.highlighting
+
+    def set_rules(
+        self,
+        rules: RuleSet,
+        *,
+        first_screen: int = FIRST_SCREEN_ROWS,
+        budget_s: float = FIRST_SCREEN_BUDGET_S,
+    ) -> None:
+        """Use new rules: the newest ``first_screen`` rows at once (within ``budget_s``),
+        the rest by ``refilter_step``."""
+        store = self.store
+        self.rules = rules
+        active = rules.active_rules()
+        self._tests = {rule: self._tests.get(rule) or rule.compile(store) for rule in active}
+        known = {entry.rule for entry in rules.entries}
+        for per_chunk in self._masks.values():
+            for rule in [rule for rule in per_chunk if rule not in known]:
+                del per_chunk[rule]
+        self._indexed = bool(active)
+        self._reset_index()
+        if self._indexed:
+            self._pending_lo, self._pending_hi = store.first_seq, store.end_seq
+            deadline = perf_counter() + budget_s
+            while self.refiltering and len(self._front) < first_screen and perf_counter() < deadline:
+                self._refilter_piece(self._piece)
 
     def rebuild(self) -> None:
         """Re-index from scratch (after the store was cleared)."""
-        self.set_filter(self._filter)
+        self._masks.clear()
+        self.set_rules(self.rules)
+
+    @property
+    def refiltering(self) -> bool:
+        """Older records are still to be filtered under the current rules."""
+        return self._pending_hi > max(self._pending_lo, self.store.first_seq)
+
+    @property
+    def pending(self) -> int:
+        """Records still to be filtered under the current rules."""
+        return max(self._pending_hi - max(self._pending_lo, self.store.first_seq), 0)
+
+    def refilter_step(self, budget_s: float = 0.008) -> bool:
+        """Filter older records, newest first, for about ``budget_s``; True when all are done."""
+        if not self.refiltering:
+            return True
+        self._trim()
+        deadline = perf_counter() + budget_s
+        while self.refiltering:
+            began = perf_counter()
+            rows = self._refilter_piece(self._piece)
+            now = perf_counter()
+            if rows:
+                # Size pieces to about a quarter of the budget, so a step overshoots little.
+                per_row = max(now - began, 1e-9) / rows
+                self._piece = min(max(int(budget_s / 4 / per_row), _MIN_PIECE), CHUNK_SIZE)
+            if now >= deadline:
+                break
+        return not self.refiltering
+
+    def _refilter_piece(self, rows: int) -> int:
+        hi = self._pending_hi
+        lo = max(self._pending_lo, self.store.first_seq, hi - rows)
+        front, marks = self._front, self._front_marks
+        for span in self.store.spans(lo, hi, newest_first=True):
+            seqs, highlighted = self._evaluate(span)
+            seqs.reverse()
+            front.extend(seqs)
+            marks.extend(highlighted[::-1])
+        self._pending_hi = lo
+        return hi - lo
 
     def update(self) -> None:
         """Take in records appended (and forget those evicted) since the last call."""
-        store = self.store
-        if self._filter is None:
+        if not self._indexed:
             return
+        store = self.store
         self._trim()
         start = max(self._indexed_to, store.first_seq)
-        if start < store.end_seq:
-            for span in store.spans(start, store.end_seq):
-                self._index.extend(self._filter(store, span))
+        for span in store.spans(start, store.end_seq):
+            seqs, highlighted = self._evaluate(span)
+            self._back.extend(seqs)
+            self._back_marks.extend(highlighted)
         self._indexed_to = store.end_seq
+
+    # -- testing spans ----------------------------------------------------------------------
+
+    def _evaluate(self, span: ChunkSpan) -> tuple[array, bytes]:
+        """The seqs of ``span`` that are shown, and their highlight marks."""
+        chunk, lo, hi, seq = span
+        base = seq - lo
+        masks = {rule: self._rule_mask(base, chunk, rule, lo, hi) for rule in self._tests}
+        shown, highlighted = self.rules.decide(masks, hi - lo)
+        return array("q", compress(range(seq, seq + hi - lo), shown)), bytes(compress(highlighted, shown))
+
+    def _rule_mask(self, base: int, chunk: Chunk, rule: Rule, lo: int, hi: int) -> bytes:
+        """The rule's matches over ``chunk[lo:hi]``, testing only records not tested before."""
+        per_chunk = self._masks.setdefault(base, {})
+        cached = per_chunk.get(rule)
+        test = self._tests[rule]
+        if cached is None:
+            mask = test(chunk, lo, hi)
+            per_chunk[rule] = [lo, bytearray(mask)]
+            return mask
+        start, mask = cached
+        if lo < start:
+            mask[0:0] = test(chunk, lo, start)
+            cached[0] = start = lo
+        end = start + len(mask)
+        if hi > end:
+            mask.extend(test(chunk, end, hi))
+        return bytes(mask[lo - start : hi - start])
+
+    def match_counts(self) -> list[int | None]:
+        """For each entry of the rules: kept records its rule matches (inverted: does not
+        match), among those tested so far; ``None`` for entries that are not active."""
+        first = self.store.first_seq
+        self._drop_evicted_masks()
+        counts: list[int | None] = []
+        for entry in self.rules.entries:
+            if not entry.active or entry.rule not in self._tests:
+                counts.append(None)
+                continue
+            matched = tested = 0
+            for base, per_chunk in self._masks.items():
+                cached = per_chunk.get(entry.rule)
+                if cached is None:
+                    continue
+                start, mask = cached
+                skip = min(max(first - base - start, 0), len(mask))
+                matched += mask.count(1, skip)
+                tested += len(mask) - skip
+            counts.append(tested - matched if entry.inverted else matched)
+        return counts
+
+    # -- eviction ---------------------------------------------------------------------------
 
     def _trim(self) -> None:
         first = self.store.first_seq
-        index = self._index
-        if self._start < len(index) and index[self._start] < first:
-            self._start = bisect_left(index, first, self._start)
-        if self._start > 4096 and self._start * 2 > len(index):
-            del index[: self._start]
+        front = self._front
+        if front and front[-1] < first:
+            keep = bisect_right(front, -first, key=neg)  # entries >= first (descending array)
+            del front[keep:]
+            del self._front_marks[keep:]
+        back = self._back
+        if self._start < len(back) and back[self._start] < first:
+            self._start = bisect_left(back, first, self._start)
+        if self._start > 4096 and self._start * 2 > len(back):
+            del back[: self._start]
+            del self._back_marks[: self._start]
             self._start = 0
+        self._drop_evicted_masks()
+
+    def _drop_evicted_masks(self) -> None:
+        first = self.store.first_seq
+        if first - self._masks_from >= CHUNK_SIZE:
+            for base in [base for base in self._masks if base + CHUNK_SIZE <= first]:
+                del self._masks[base]
+            self._masks_from = first
+
+    # -- rows -------------------------------------------------------------------------------
 
     def __len__(self) -> int:
-        if self._filter is None:
+        if not self._indexed:
             return len(self.store)
         self._trim()
-        return len(self._index) - self._start
+        return len(self._front) + len(self._back) - self._start
 
     def seq_at(self, row: int) -> int:
         """The seq shown at ``row`` (0 is the oldest row); ``IndexError`` past the end."""
         if row < 0:
             raise IndexError(row)
-        if self._filter is None:
+        if not self._indexed:
             if row >= len(self.store):
                 raise IndexError(row)
             return self.store.first_seq + row
-        return self._index[self._start + row]
+        older = len(self._front)
+        if row < older:
+            return self._front[older - 1 - row]
+        return self._back[self._start + row - older]
 
     def row_of(self, seq: int) -> int:
         """The row showing ``seq``, or the row of the next shown record after it."""
-        if self._filter is None:
+        if not self._indexed:
             return min(max(seq - self.store.first_seq, 0), len(self.store))
         self._trim()
-        return bisect_left(self._index, seq, self._start) - self._start
+        front = self._front
+        if front and seq <= front[0]:
+            return len(front) - bisect_right(front, -seq, key=neg)
+        return len(front) + bisect_left(self._back, seq, self._start) - self._start
 
     def count_before(self, seq: int) -> int:
         """How many rows show records older than ``seq``."""
         return self.row_of(seq)
+
+    def decoration_of(self, seq: int) -> Decoration:
+        """How the row of ``seq`` is marked: "highlight", "dim", or None (no highlight rules)."""
+        if not self._indexed or not self.rules.highlighting:
+            return None
+        front = self._front
+        if front and seq <= front[0]:
+            at = bisect_left(front, -seq, key=neg)
+            found = at < len(front) and front[at] == seq and self._front_marks[at]
+        else:
+            back = self._back
+            at = bisect_left(back, seq, self._start)
+            found = at < len(back) and back[at] == seq and self._back_marks[at]
+        return "highlight" if found else "dim"

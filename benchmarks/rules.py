@@ -1,0 +1,170 @@
+"""Rules benchmark: re-filtering a full store of 1,000,000 records when the rules change.
+
+    .venv/bin/python benchmarks/rules.py [--records 1000000] [--step-ms 8]
+
+Fills a ``LogStore`` with realistic records (60 nodes, 90 files, 120 functions, a ROS-like
+mix of severities, 60-120 character messages with numbers), then for each rule change
+measures, the way the app drives the view (``set_rules`` then ``refilter_step`` from a timer):
+- first screen: from the change until the newest 50 rows are final (they are checked against
+  the finished result);
+- complete: from the change until every record is filtered;
+- longest step: the longest single blocking call (``set_rules`` or one ``refilter_step``),
+  which is the longest the event loop would stall.
+Prints a table with the targets beside the figures. Not a test: figures depend on the machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import random
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from machine import machine  # noqa: E402
+
+from console_tui.model.record import LogRecord  # noqa: E402
+from console_tui.model.rules import (  # noqa: E402
+    CustomRule,
+    MessageRule,
+    NodeRule,
+    RuleSet,
+    SeverityRule,
+    exclude,
+    highlight,
+)
+from console_tui.model.rules.query import parse_query  # noqa: E402
+from console_tui.model.store import LogStore  # noqa: E402
+from console_tui.model.view import LogView  # noqa: E402
+
+FIRST_SCREEN_TARGET_MS = 100
+COMPLETE_TARGET_MS = 1000
+STALL_TARGET_MS = 50
+SCREEN_ROWS = 50
+
+AREAS = ["nav", "perception", "control", "localization", "drivers", "rviz2", "system", "planning"]
+PARTS = ["planner", "controller", "costmap", "lidar", "camera", "imu", "ekf", "amcl", "monitor", "bridge"]
+TEMPLATES = [
+    "Planner failed to find a path from ({x:.2f}, {y:.2f}) to goal {n}, retrying with tolerance {t:.2f} m",
+    "Costmap updated in {ms:.1f} ms: {n} obstacles, resolution 0.05 m/cell, origin ({x:.2f}, {y:.2f})",
+    "Received scan {n} with {k} points in {ms:.2f} ms from frame base_laser_link",
+    "Timed out waiting for transform from map to base_link after {t:.2f} s (tf buffer {k} entries)",
+    "Request timeout on service /{part}/get_state after {ms:.0f} ms, attempt {k} of 5",
+    "Battery voltage {t:.2f} V, current {x:.2f} A, estimated {n} minutes remaining",
+    "Goal {n} reached: position error {x:.3f} m, heading error {y:.3f} rad, took {t:.1f} s",
+    "Dropped {k} packets from 192.0.2.{k} on /{part}/points: checksum mismatch in frame {n}",
+    "Controller loop overrun: {ms:.2f} ms over a 10.00 ms period (iteration {n})",
+    "Parameter update: max_velocity={t:.2f}, min_velocity={x:.2f}, acc_limit={y:.2f} for {part}",
+]
+LEVELS = [10] * 20 + [20] * 60 + [30] * 12 + [40] * 7 + [50]
+
+
+def make_records(count: int) -> list[LogRecord]:
+    rng = random.Random(7)
+    nodes = [f"{rng.choice(AREAS)}.{rng.choice(PARTS)}_{i}" for i in range(60)]
+    files = [f"/opt/robot/src/{rng.choice(AREAS)}/src/{rng.choice(PARTS)}_{i}.cpp" for i in range(90)]
+    functions = [f"{rng.choice(['on_', 'update_', 'handle_', ''])}{rng.choice(PARTS)}_{i}" for i in range(120)]
+    start = 1_795_000_000_000_000_000
+    records = []
+    for i in range(count):
+        part = rng.choice(PARTS)
+        msg = rng.choice(TEMPLATES).format(
+            x=rng.uniform(-50, 50), y=rng.uniform(-50, 50), t=rng.uniform(0, 30), ms=rng.uniform(0, 200),
+            n=rng.randrange(100000), k=rng.randrange(1, 250), part=part,
+        )
+        records.append(
+            LogRecord(
+                stamp_ns=start + i * 1_000_000,
+                level=rng.choice(LEVELS),
+                node=rng.choice(nodes),
+                msg=msg,
+                file=rng.choice(files),
+                function=rng.choice(functions),
+                line=rng.randrange(1, 2000),
+            )
+        )
+    return records
+
+
+def scenarios() -> list[tuple[str, RuleSet]]:
+    warn_up = RuleSet((exclude(SeverityRule.of("debug", "info")),))
+    example = (
+        'level>=warn node:nav* -node:rviz* "planner failed" /time(out|d out)/i file:planner'
+    )
+    return [
+        ("severity: hide debug, info", warn_up),
+        ("node glob: hide rviz2.*", RuleSet((exclude(NodeRule(("rviz2.*",))),))),
+        ("text: only 'Planner failed'", RuleSet((exclude(MessageRule("Planner failed"), inverted=True),))),
+        ("text, ignore case: hide 'timeout'", RuleSet((exclude(MessageRule("timeout", ignore_case=True)),))),
+        ("regex /time(out|d out)/i, highlight", RuleSet((highlight(MessageRule("time(out|d out)", True, True)),))),
+        ("  + highlighted only (masks kept)", RuleSet((highlight(MessageRule("time(out|d out)", True, True)),), True)),
+        (
+            "custom: warn+ AND nav* AND 'goal'",
+            RuleSet((exclude(CustomRule((SeverityRule.at_least(30), NodeRule(("nav*",)), MessageRule("goal")))),)),
+        ),
+        ("query: issue example", RuleSet().with_query(parse_query(example))),
+        ("everything off again", RuleSet()),
+        ("4 rules at once", RuleSet((
+            exclude(SeverityRule.of("debug")), exclude(NodeRule(("rviz2.*", "system.*"))),
+            highlight(MessageRule("failed", ignore_case=True)), highlight(MessageRule(r"\d{3}\.\d ms", regex=True)),
+        ))),
+    ]
+
+
+def measure(view: LogView, rules: RuleSet, step_s: float) -> tuple[float, float, float, int]:
+    began = time.perf_counter()
+    view.set_rules(rules)
+    longest = time.perf_counter() - began
+    first_screen = None
+    if len(view) >= SCREEN_ROWS or not view.refiltering:
+        first_screen = time.perf_counter() - began
+    newest = [view.seq_at(r) for r in range(max(len(view) - SCREEN_ROWS, 0), len(view))]
+    while view.refiltering:
+        t0 = time.perf_counter()
+        view.refilter_step(step_s)
+        longest = max(longest, time.perf_counter() - t0)
+        if first_screen is None and len(view) >= SCREEN_ROWS:
+            first_screen = time.perf_counter() - began
+            newest = [view.seq_at(r) for r in range(len(view) - SCREEN_ROWS, len(view))]
+    complete = time.perf_counter() - began
+    final = [view.seq_at(r) for r in range(max(len(view) - SCREEN_ROWS, 0), len(view))]
+    assert newest == final, "the first screen was not the final one"
+    return (first_screen if first_screen is not None else complete), complete, longest, len(view)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--records", type=int, default=1_000_000)
+    parser.add_argument("--step-ms", type=float, default=8.0)
+    args = parser.parse_args()
+
+    t0 = time.perf_counter()
+    store = LogStore(max_messages=args.records)
+    records = make_records(args.records)
+    made = time.perf_counter() - t0
+    store.extend(records)
+    del records
+    print(f"{machine()}\n{args.records:,} records made in {made:.1f} s, stored in {time.perf_counter() - t0 - made:.1f} s; "
+          f"steps of {args.step_ms:g} ms\n")
+    view = LogView(store)
+    rows = []
+    for name, rules in scenarios():
+        first, complete, longest, shown = measure(view, rules, args.step_ms / 1000)
+        rows.append((name, first * 1000, complete * 1000, longest * 1000, shown))
+
+    header = f"| rule change | first screen ms (<{FIRST_SCREEN_TARGET_MS}) | complete ms (<{COMPLETE_TARGET_MS}) | longest step ms (<{STALL_TARGET_MS}) | rows shown |"
+    print(header)
+    print("|---|---:|---:|---:|---:|")
+    for name, first, complete, longest, shown in rows:
+        def mark(value: float, target: float) -> str:
+            return f"{value:.0f}" + ("" if value < target else " ✗")
+        print(
+            f"| {name} | {mark(first, FIRST_SCREEN_TARGET_MS)} | {mark(complete, COMPLETE_TARGET_MS)} | "
+            f"{mark(longest, STALL_TARGET_MS)} | {shown:,} |"
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,32 @@
+"""Exclude and highlight rules (rqt_console's filters), rule sets, the query line, rules files.
+
+One module per rule kind; ``ruleset`` holds the semantics; ``query`` compiles the query
+line to the same rules; ``rulesfile`` reads and writes TOML rule sets.
+"""
+
+from .base import Rule, RuleError, TextMatch
+from .custom import CustomRule
+from .location import LocationRule
+from .message import MessageRule
+from .node import NodeRule
+from .ruleset import Decoration, Entry, Role, RuleSet, exclude, highlight
+from .severity import SeverityRule
+from .time_range import TimeRangeRule
+
+__all__ = [
+    "CustomRule",
+    "Decoration",
+    "Entry",
+    "LocationRule",
+    "MessageRule",
+    "NodeRule",
+    "Role",
+    "Rule",
+    "RuleError",
+    "RuleSet",
+    "SeverityRule",
+    "TextMatch",
+    "TimeRangeRule",
+    "exclude",
+    "highlight",
+]

@@ -1,0 +1,75 @@
+"""Node: exact logger names or glob patterns (``nav*``, ``/ns/*``)."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from fnmatch import translate
+from typing import Any
+
+from ..store import Chunk, LogStore
+from .base import IdLookup, Rule, SpanTest
+from .fields import read_str_list
+
+_GLOB_CHARS = frozenset("*?[")
+
+
+def logger_name(name: str) -> str:
+    """A node name as its logger name: ``/ns/talker`` -> ``ns.talker``; logger names unchanged."""
+    name = name.strip()
+    if name.startswith("/"):
+        name = name.lstrip("/").replace("/", ".")
+    return name
+
+
+def is_glob(pattern: str) -> bool:
+    return not _GLOB_CHARS.isdisjoint(pattern)
+
+
+@dataclass(frozen=True)
+class NodeRule(Rule):
+    """Matches records from any of ``names``: exact logger names or globs (case-sensitive).
+
+    A name written as a ROS node name (``/ns/talker``) matches its logger name (``ns.talker``).
+    """
+
+    kind = "node"
+
+    names: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        names = (self.names,) if isinstance(self.names, str) else self.names
+        object.__setattr__(self, "names", tuple(n.strip() for n in names if n.strip()))
+
+    @property
+    def is_empty(self) -> bool:
+        return not self.names
+
+    def predicate(self):
+        exact = {logger_name(n) for n in self.names if not is_glob(n)}
+        globs = [translate(logger_name(n)) for n in self.names if is_glob(n)]
+        match = re.compile("|".join(globs)).match if globs else None
+
+        def test_name(name: str) -> bool:
+            return name in exact or (match is not None and match(name) is not None)
+
+        return test_name
+
+    def compile(self, store: LogStore) -> SpanTest:
+        lookup = IdLookup(store.nodes, self.predicate())
+
+        def test(chunk: Chunk, lo: int, hi: int) -> bytes:
+            return lookup.mask(chunk.nodes, lo, hi)
+
+        return test
+
+    def describe(self) -> str:
+        return "node " + ", ".join(self.names)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "names": list(self.names)}
+
+    @classmethod
+    def from_fields(cls, fields: Mapping[str, Any]) -> NodeRule:
+        return cls(read_str_list(fields, "names"))

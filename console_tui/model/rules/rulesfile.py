@@ -1,0 +1,136 @@
+"""Rule sets in TOML files, and where the last rule set and the query history are kept.
+
+    highlighted_only = false
+
+    [[rules]]
+    role = "exclude"        # or "highlight"
+    enabled = true
+    inverted = false
+    kind = "severity"       # message, severity, node, location, time, custom
+    levels = ["debug"]
+
+    [[rules]]
+    role = "highlight"
+    kind = "custom"
+    [[rules.parts]]
+    kind = "node"
+    names = ["nav*"]
+
+Reading uses ``tomllib``; writing is the small writer below (the values are only text,
+booleans, whole numbers, lists of text and nested rule tables).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+from ..formats.atomic import atomic_output
+from ..timefmt import full_text
+from .base import RuleError
+from .ruleset import RuleSet
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib  # type: ignore[no-redef]
+
+APP_DIR = "console-tui"
+
+
+class RulesFileError(RuleError):
+    """A rules file that cannot be read: the message names the file and the problem."""
+
+
+def config_dir() -> Path:
+    """``$XDG_CONFIG_HOME/console-tui``, by default ``~/.config/console-tui``."""
+    base = os.environ.get("XDG_CONFIG_HOME") or ""
+    root = Path(base) if os.path.isabs(base) else Path.home() / ".config"
+    return root / APP_DIR
+
+
+def last_rules_path() -> Path:
+    """Where the rule set in use is saved on exit, to be restored at the next start."""
+    return config_dir() / "last-rules.toml"
+
+
+def query_history_path() -> Path:
+    return config_dir() / "query-history.txt"
+
+
+def loads_rules(text: str, name: str = "rules") -> RuleSet:
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise RulesFileError(f"{name}: not valid TOML: {error}") from None
+    try:
+        return RuleSet.from_dict(data)
+    except RuleError as error:
+        raise RulesFileError(f"{name}: {error.message}", error.position) from None
+
+
+def load_rules(path: str | os.PathLike[str]) -> RuleSet:
+    """Read a rule set; ``RulesFileError`` naming the file and the line or key at fault."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as error:
+        raise RulesFileError(f"{path}: cannot read: {getattr(error, 'strerror', None) or error}") from None
+    return loads_rules(text, str(path))
+
+
+def dumps_rules(rules: RuleSet) -> str:
+    data = rules.to_dict()
+    lines = ["# console-tui rule set", f"highlighted_only = {_value(data['highlighted_only'])}"]
+    for rule in data["rules"]:
+        lines.append("")
+        _table(lines, "rules", rule)
+    return "\n".join(lines) + "\n"
+
+
+def save_rules(rules: RuleSet, path: str | os.PathLike[str]) -> None:
+    """Write atomically (a crash never leaves half a file); ``OSError`` if it cannot."""
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    with atomic_output(target) as stream:
+        stream.write(dumps_rules(rules).encode("utf-8"))
+
+
+def _table(lines: list[str], name: str, fields: dict[str, Any]) -> None:
+    lines.append(f"[[{name}]]")
+    nested = []
+    for key, value in fields.items():
+        if isinstance(value, list) and value and isinstance(value[0], dict):
+            nested.append((key, value))
+            continue
+        comment = f"  # {full_text(value, utc=True)}" if key.endswith("_ns") else ""
+        lines.append(f"{key} = {_value(value)}{comment}")
+    for key, tables in nested:
+        for table in tables:
+            _table(lines, f"{name}.{key}", table)
+
+
+def _value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        return _string(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_value(item) for item in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} to a rules file")
+
+
+def _string(text: str) -> str:
+    out = ['"']
+    for ch in text:
+        code = ord(ch)
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif code < 0x20 or code == 0x7F:
+            out.append({"\n": "\\n", "\t": "\\t", "\r": "\\r"}.get(ch, f"\\u{code:04X}"))
+        else:
+            out.append(ch)
+    out.append('"')
+    return "".join(out)
