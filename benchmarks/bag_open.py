@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import platform
 import shutil
 import sys
 import tempfile
@@ -28,6 +27,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
+from _report import machine_line  # noqa: E402
 from recordings import write_rosbag2  # noqa: E402
 
 from console_tui.model.record import LogRecord  # noqa: E402
@@ -143,7 +143,7 @@ def main() -> None:
             for reader_name, read in (("console-tui", read_with_console_tui), ("rosbags messages()", read_with_library)):
                 got, seconds, rchar, disk = measure(path, read)
                 rows.append((name, reader_name, size, got, seconds, rchar, disk))
-        print(f"\n{platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}")
+        print("\n" + machine_line())
         header = ("recording", "reader", "file MB", "log msgs", "seconds", "read MB", "% of file", "disk MB")
         print("| " + " | ".join(header) + " |")
         print("|" + "---|" * len(header))

@@ -23,7 +23,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from machine import machine  # noqa: E402
+from _report import machine_line  # noqa: E402
 
 from console_tui.model.record import LogRecord  # noqa: E402
 from console_tui.model.rules import (  # noqa: E402
@@ -146,7 +146,7 @@ def main() -> None:
     made = time.perf_counter() - t0
     store.extend(records)
     del records
-    print(f"{machine()}\n{args.records:,} records made in {made:.1f} s, stored in {time.perf_counter() - t0 - made:.1f} s; "
+    print(f"{machine_line()}\n{args.records:,} records made in {made:.1f} s, stored in {time.perf_counter() - t0 - made:.1f} s; "
           f"steps of {args.step_ms:g} ms\n")
     view = LogView(store)
     rows = []

@@ -26,7 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from feed import record  # noqa: E402
-from machine import machine  # noqa: E402
+from _report import machine_line  # noqa: E402
 from textual import events  # noqa: E402
 
 from console_tui.model.intake_queue import IntakeQueue  # noqa: E402
@@ -127,7 +127,7 @@ def main() -> int:
     def verdict(value: float, target: float) -> str:
         return "met" if value <= target else f"MISSED by {value - target:.1f} ms"
 
-    print(f"machine: {machine()}")
+    print(machine_line())
     print(f"feed: {result['rate']:,.0f} records/s offered, {result['stored']:,} stored, 160x48 headless\n")
     print("| figure | value | target | |")
     print("| --- | --- | --- | --- |")

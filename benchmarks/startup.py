@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import platform
 import pty
 import select
 import signal
@@ -22,6 +21,8 @@ import termios
 import fcntl
 import time
 from pathlib import Path
+
+from _report import machine_line
 
 TARGET_S = 1.5
 ROOT = Path(__file__).resolve().parent.parent
@@ -71,7 +72,7 @@ def main() -> int:
     args = parser.parse_args()
     command = str(Path(sys.executable).parent / "console-tui")
     cases = [args.args] if args.args else [[], ["--demo"]]
-    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}\n")
+    print(machine_line() + "\n")
     print("| command | runs | median | min | max | target | |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for n, case in enumerate(cases):
