@@ -51,14 +51,14 @@ def feeder(queue: IntakeQueue, rate: int, stop: threading.Event, sent: list[int]
     sent.append(i)
 
 
-async def run(rate: int, seconds: float, presses: int) -> dict[str, float]:
+async def run(rate: int, seconds: float, presses: int, size: tuple[int, int] = (160, 48)) -> dict[str, float]:
     queue = IntakeQueue()
     app = ConsoleApp(queue=queue)
     stop = threading.Event()
     sent: list[int] = []
     stalls: list[float] = []
     key_latencies: list[float] = []
-    async with app.run_test(size=(160, 48)) as pilot:
+    async with app.run_test(size=size) as pilot:
         table = app.table
         frames: list[float] = []
         original = table.render_lines
@@ -122,19 +122,30 @@ def main() -> int:
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--presses", type=int, default=40)
     args = parser.parse_args()
-    result = asyncio.run(run(args.rate, args.seconds, args.presses))
+    parser.add_argument("--size", default="160x48", help="terminal size, COLUMNSxROWS")
+    args = parser.parse_args()
+    size = tuple(int(n) for n in args.size.split("x"))
+    # The same app, keys and probe with (almost) nothing arriving: the floor this machine
+    # sets for stalls (drawing after a key, the OS, the hypervisor).
+    floor = asyncio.run(run(1, args.seconds, args.presses, size))
+    result = asyncio.run(run(args.rate, args.seconds, args.presses, size))
 
     def verdict(value: float, target: float) -> str:
         return "met" if value <= target else f"MISSED by {value - target:.1f} ms"
 
     print(machine_line())
-    print(f"feed: {result['rate']:,.0f} records/s offered, {result['stored']:,} stored, 160x48 headless\n")
-    print("| figure | value | target | |")
-    print("| --- | --- | --- | --- |")
-    print(f"| longest event-loop stall | {result['stall_max']:.1f} ms | {STALL_TARGET_MS} ms | {verdict(result['stall_max'], STALL_TARGET_MS)} |")
-    print(f"| event-loop stall, 99th percentile | {result['stall_p99']:.1f} ms | | |")
-    print(f"| key to effect, median | {result['key_median']:.1f} ms | {KEY_TARGET_MS} ms | {verdict(result['key_median'], KEY_TARGET_MS)} |")
-    print(f"| key to effect, worst | {result['key_max']:.1f} ms | {KEY_TARGET_MS} ms | {verdict(result['key_max'], KEY_TARGET_MS)} |")
+    print(f"feed: {result['rate']:,.0f} records/s offered, {result['stored']:,} stored, {args.size} headless\n")
+    print(f"| figure | at {args.rate:,}/s | with nothing arriving | target | |")
+    print("| --- | --- | --- | --- | --- |")
+    rows = [
+        ("longest event-loop stall", "stall_max", STALL_TARGET_MS),
+        ("event-loop stall, 99th percentile", "stall_p99", None),
+        ("key to effect, median", "key_median", KEY_TARGET_MS),
+        ("key to effect, worst", "key_max", KEY_TARGET_MS),
+    ]
+    for title, key, target in rows:
+        judged = f"{target} ms | {verdict(result[key], target)}" if target else " | "
+        print(f"| {title} | {result[key]:.1f} ms | {floor[key]:.1f} ms | {judged} |")
     return 0
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import time
 from datetime import datetime, timezone
+from functools import lru_cache
 
 NS_PER_S = 1_000_000_000
 
@@ -19,17 +20,23 @@ def stamp_text(stamp_ns: int) -> str:
     return f"{sec}.{nsec:09d}"
 
 
-def clock_text(stamp_ns: int, *, utc: bool = False, digits: int = 3) -> str:
-    """``HH:MM:SS.mmm`` in local time (or UTC), for the table's time column."""
-    sec, nsec = split_stamp(stamp_ns)
+@lru_cache(maxsize=4096)
+def _clock_of_second(sec: int, utc: bool) -> str | None:
+    """``HH:MM:SS`` of a whole second (cached: a screen of rows shares a few seconds)."""
     try:
         parts = time.gmtime(sec) if utc else time.localtime(sec)
     except (OverflowError, OSError, ValueError):
+        return None
+    return f"{parts.tm_hour:02d}:{parts.tm_min:02d}:{parts.tm_sec:02d}"
+
+
+def clock_text(stamp_ns: int, *, utc: bool = False, digits: int = 3) -> str:
+    """``HH:MM:SS.mmm`` in local time (or UTC), for the table's time column."""
+    sec, nsec = split_stamp(stamp_ns)
+    clock = _clock_of_second(sec, utc)
+    if clock is None:
         return stamp_text(stamp_ns)
-    fraction = f"{nsec:09d}"[:digits]
-    return f"{parts.tm_hour:02d}:{parts.tm_min:02d}:{parts.tm_sec:02d}" + (
-        f".{fraction}" if digits else ""
-    )
+    return f"{clock}.{nsec:09d}"[: len(clock) + 1 + digits] if digits else clock
 
 
 def full_text(stamp_ns: int, *, utc: bool = False) -> str:
