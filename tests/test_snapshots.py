@@ -52,3 +52,8 @@ def test_logger_pane_beside_the_table(snap_compare, size):
         await pilot.press("right", "down")
 
     assert snap_compare(feed_app(), terminal_size=size, run_before=open_pane_on_the_planner)
+
+
+def test_empty_table_shows_its_header(snap_compare):
+    """The first frame before any message: the header row and the status line."""
+    assert snap_compare(ConsoleApp(store=LogStore(), utc=True, clock=lambda: 0.0), terminal_size=(80, 24))

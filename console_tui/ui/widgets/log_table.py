@@ -340,14 +340,17 @@ class LogTable(ScrollView, can_focus=True):
         # thousands of messages a second every visible row is new in every frame.
         filters = self.get_line_filters()
         background = self.background_colors[1]
+        full_width = self.size.width  # the scrollbar gutter too, when no scrollbar covers it
         strips = []
         for y in crop.line_range:
             strip = self.render_line(y)
+            if strip.cell_length < full_width:
+                strip = strip.extend_cell_length(full_width, self._base)
             for line_filter in filters:
                 strip = strip.apply_filter(line_filter, background)
             strips.append(strip)
         x1, x2 = crop.column_span
-        if (x1, x2) != (0, self._width):
+        if (x1, x2) != (0, full_width):
             strips = [strip.crop(x1, x2) for strip in strips]
         return strips
 
