@@ -118,6 +118,11 @@ def main() -> None:
             elif kind == "log":
                 message = BY_LEVEL[command.get("level", "info")](target, command.get("msg", ""))
                 say(event="logged", messages=[message])
+            elif kind == "burst":
+                count = int(command.get("count", 1000))
+                for number in range(count):
+                    logger.info(f"burst {number}")
+                say(event="burst", count=count)
             elif kind == "periodic":
                 state["timer"] = node.create_timer(float(command.get("period", 0.1)), tick)
                 say(event="periodic")

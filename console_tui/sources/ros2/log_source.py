@@ -45,7 +45,7 @@ from .runtime import RosRuntime
 
 ROSOUT = "/rosout"
 ROSOUT_AGG = "/rosout_agg"
-QUEUE_DEPTH = 10_000
+QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profile.xml (else 5,000)
 WAIT_TIMEOUT_NS = 100_000_000
 GRAPH_PERIOD_S = 1.0
 UNKNOWN_PUBLISHER_REFRESH_S = 0.2

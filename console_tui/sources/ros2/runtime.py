@@ -4,9 +4,30 @@ from __future__ import annotations
 
 import os
 import threading
+from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 from .rclpy_loader import load_rclpy
+
+
+FASTDDS_PROFILE = Path(__file__).with_name("fastdds_reader_profile.xml")
+_PROFILE_VARIABLES = ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE")
+
+
+def reader_profile_environment(environ: Mapping[str, str], cwd: str | os.PathLike[str] = ".") -> dict[str, str]:
+    """What to add to the environment so that this process's Fast DDS readers can hold
+    more unread messages (see fastdds_reader_profile.xml): nothing under another RMW, or
+    when the user has a Fast DDS profiles file of their own (named by a variable, or the
+    DEFAULT_FASTDDS_PROFILES.xml that Fast DDS reads from the working directory)."""
+    rmw = environ.get("RMW_IMPLEMENTATION", "rmw_fastrtps_cpp")
+    if not rmw.startswith("rmw_fastrtps"):
+        return {}
+    if any(environ.get(name) for name in _PROFILE_VARIABLES):
+        return {}
+    if any((Path(cwd) / name).exists() for name in ("DEFAULT_FASTDDS_PROFILES.xml", "DEFAULT_FASTRTPS_PROFILES.xml")):
+        return {}
+    return {"FASTDDS_DEFAULT_PROFILES_FILE": str(FASTDDS_PROFILE)}
 
 
 class RosRuntime:
@@ -17,6 +38,8 @@ class RosRuntime:
     """
 
     def __init__(self, args: list[str] | None = None) -> None:
+        # Before the first participant of the process: Fast DDS reads its profiles once.
+        os.environ.update(reader_profile_environment(os.environ))
         rclpy = load_rclpy()
         from rclpy.context import Context
         from rclpy.signals import SignalHandlerOptions

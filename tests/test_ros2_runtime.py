@@ -1,0 +1,32 @@
+"""The runtime's Fast DDS reader profile: used only when the user has none of their own."""
+
+from console_tui.sources.ros2.runtime import FASTDDS_PROFILE, reader_profile_environment
+
+
+def test_profile_added_under_fast_dds_when_the_user_has_none(tmp_path):
+    assert reader_profile_environment({}, tmp_path) == {"FASTDDS_DEFAULT_PROFILES_FILE": str(FASTDDS_PROFILE)}
+    assert FASTDDS_PROFILE.is_file() and "max_samples" in FASTDDS_PROFILE.read_text()
+
+
+def test_the_users_own_profiles_and_other_rmws_are_left_alone(tmp_path):
+    assert reader_profile_environment({"FASTDDS_DEFAULT_PROFILES_FILE": "/mine.xml"}, tmp_path) == {}
+    assert reader_profile_environment({"FASTRTPS_DEFAULT_PROFILES_FILE": "/mine.xml"}, tmp_path) == {}
+    assert reader_profile_environment({"RMW_IMPLEMENTATION": "rmw_cyclonedds_cpp"}, tmp_path) == {}
+    (tmp_path / "DEFAULT_FASTDDS_PROFILES.xml").write_text("<dds/>")
+    assert reader_profile_environment({}, tmp_path) == {}
+
+
+def test_a_stalled_console_loses_nothing_of_a_burst_of_20000(nodes):
+    """The intake stops taking (as when the UI hogs the interpreter) while a node logs
+    20,000 messages; Fast DDS holds them all for the console (its default holds 5,000)."""
+    talker = nodes.start("talker.py", "--name", "burst_talker")
+    talker.expect("ready")
+    reader = nodes.start("stalled_intake.py", "20001")
+    reader.expect("ready", timeout=30)
+    talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
+    reader.expect("stalled")
+    talker.send({"cmd": "burst", "count": 20_000})
+    talker.expect("burst", timeout=60)
+    reader.send({"cmd": "go"})
+    result = reader.expect("received", timeout=60)
+    assert result["count"] == 20_001 and result["lost"] == 0
