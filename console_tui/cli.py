@@ -67,7 +67,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--rules",
         metavar="FILE",
-        help="start with the exclude and highlight rules saved in this TOML file",
+        help=(
+            "start with the exclude and highlight rules saved in this TOML file; "
+            "'last' restores the rules in force when console-tui last exited"
+        ),
     )
     return parser
 
@@ -80,7 +83,7 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
     """
     from .model.rules.base import RuleError
     from .model.rules.query import QueryError, caret_line, parse_query
-    from .model.rules.rulesfile import load_rules
+    from .model.rules.rulesfile import last_rules_path, load_rules
 
     args.query_entries = ()
     args.rule_set = None
@@ -90,8 +93,13 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
         except QueryError as error:
             parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(args.query, error)}")
     if args.rules:
+        path = args.rules
+        if path == "last":
+            path = last_rules_path()
+            if not path.exists():
+                parser.error(f"--rules last: no rule set was saved by an earlier run ({path})")
         try:
-            args.rule_set = load_rules(args.rules)
+            args.rule_set = load_rules(path)
         except RuleError as error:
             parser.error(f"--rules: {error.message}")
 

@@ -49,6 +49,9 @@ def run_app(args: argparse.Namespace) -> int:
         files=files,
         log_format=getattr(args, "log_format", None),
         logger_control=logger_control,
+        rules=getattr(args, "rule_set", None),
+        query=getattr(args, "query", None) or "",
+        remember_rules=True,
     )
     try:
         app.run()

@@ -57,3 +57,34 @@ def test_logger_pane_beside_the_table(snap_compare, size):
 def test_empty_table_shows_its_header(snap_compare):
     """The first frame before any message: the header row and the status line."""
     assert snap_compare(ConsoleApp(store=LogStore(), utc=True, clock=lambda: 0.0), terminal_size=(80, 24))
+
+
+@pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])
+def test_highlighted_and_dimmed_rows(snap_compare, size):
+    """Highlight rules on: matching rows marked, the others dimmed; an exclude rule hides some."""
+    app = feed_app()
+    app._initial_query = "+level:error,fatal +node:navigation.planner -msg:scan"
+    assert snap_compare(app, terminal_size=size)
+
+
+def test_rules_pane(snap_compare):
+    async def open_pane_with_rules(pilot):
+        from console_tui.model.rules import MessageRule, NodeRule, RuleSet, SeverityRule, TimeRangeRule, exclude, highlight
+
+        app = pilot.app
+        app.apply_rules(
+            RuleSet(
+                (
+                    exclude(NodeRule(("sensors.*",))),
+                    exclude(MessageRule("costmap", ignore_case=True), enabled=False),
+                    highlight(SeverityRule.at_least(40)),
+                    highlight(MessageRule(r"time(out|d out)", ignore_case=True, regex=True), inverted=True),
+                    exclude(TimeRangeRule(None, 1_795_000_005_000_000_000)),
+                    exclude(MessageRule("")),
+                )
+            )
+        )
+        await pilot.press("r")
+        await pilot.pause()
+
+    assert snap_compare(feed_app(), terminal_size=(160, 48), run_before=open_pane_with_rules)

@@ -19,6 +19,11 @@ from textual.widgets import Footer
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
 from ..model.formats.save import save_records
+from ..model.rules.base import RuleError
+from ..model.rules.history import QueryHistory
+from ..model.rules.query import parse_query
+from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
+from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.store import LogStore
 from ..model.text import one_line
 from ..model.view import LogView
@@ -27,11 +32,15 @@ from ..sources.status import SourceStatus
 from .gc_policy import CollectionPolicy
 from .screens.columns import ColumnsScreen
 from .screens.detail import DetailScreen
-from .screens.files import OpenScreen, SaveRequest, SaveScreen
+from .screens.files import OpenScreen, PathScreen, SaveRequest, SaveScreen
 from .screens.help import HelpScreen
 from .screens.problems import ProblemsScreen
+from .screens.quick_rule import QuickRuleScreen
+from .screens.rule_editor import RuleEditor
 from .widgets.columns import COLUMNS
 from .widgets.load_bar import LoadBar
+from .widgets.query_bar import QueryBar
+from .widgets.rules_pane import RulesPane
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
 from .widgets.status_bar import StatusBar, StatusFacts
@@ -40,6 +49,9 @@ if TYPE_CHECKING:
     from ..sources.ros2.loggers import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
+#: Background filtering after a rule change: a slice of this long, this often.
+REFILTER_BUDGET_S = 0.008
+REFILTER_INTERVAL = 0.015
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -70,6 +82,11 @@ class ConsoleApp(App[None]):
         Binding("s", "save", "Save"),
         Binding("x", "cancel_load", "Cancel load"),
         Binding("exclamation_mark", "problems", "Problems", show=False),
+        Binding("slash", "query", "Query"),
+        Binding("r", "toggle_rules", "Rules"),
+        Binding("H", "toggle_highlighted_only", "Highlighted only", show=False),
+        Binding("minus", "quick_rule('exclude')", "Hide like this row", show=False),
+        Binding("plus", "quick_rule('highlight')", "Highlight like this row", show=False),
         Binding("C", "columns", "Columns"),
         Binding("l", "toggle_loggers", "Loggers"),
         Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False),
@@ -90,6 +107,9 @@ class ConsoleApp(App[None]):
         files: Sequence[str] = (),
         log_format: str | None = None,
         logger_control: LoggerControl | None = None,
+        rules: RuleSet | None = None,
+        query: str = "",
+        remember_rules: bool = False,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -105,6 +125,16 @@ class ConsoleApp(App[None]):
         self.collection_policy = CollectionPolicy()
         self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
+        #: The rules in force; a new set replaces it whole (rule sets are values).
+        self.rules = RuleSet()
+        self._initial_rules = rules
+        self._initial_query = query
+        #: Keep the last rule set and the query history in the user's config folder.
+        self.remember_rules = remember_rules
+        self.query_history = QueryHistory.load(query_history_path()) if remember_rules else QueryHistory()
+        self.query_bar = QueryBar(self.query_history, utc=utc, id="query-bar")
+        self.rules_pane = RulesPane(id="rules-pane")
+        self._counts_at = 0.0
         self.load_bar = LoadBar(id="load-bar")
         #: File loads: their records come through a queue of their own, ahead of live ones.
         self.file_queue = IntakeQueue()
@@ -120,8 +150,10 @@ class ConsoleApp(App[None]):
 
     def compose(self) -> ComposeResult:
         with Horizontal(id="main"):
+            yield self.rules_pane
             yield self.table
             yield self.logger_pane
+        yield self.query_bar
         yield self.load_bar
         yield self.status_bar
         yield Footer()
@@ -130,6 +162,8 @@ class ConsoleApp(App[None]):
         self.collection_policy.start()
         self.table.focus()
         self.set_interval(self.drain_interval, self.drain_intake)
+        self._refilter_timer = self.set_interval(REFILTER_INTERVAL, self.refilter_step, pause=True)
+        self._apply_initial_rules()
         self.update_status()
         # After the first frame: starting sources (threads, child processes) costs CPU
         # the first frame should not wait for.
@@ -149,6 +183,8 @@ class ConsoleApp(App[None]):
 
     def on_unmount(self) -> None:
         self.stop_sources()
+        if self.remember_rules:
+            self._remember_rules()
         for load in self.loads:
             load.cancel()
 
@@ -174,6 +210,8 @@ class ConsoleApp(App[None]):
             self.add_records(records)
         if self.loads:
             self._check_loads()
+        if self.rules_pane.is_open:
+            self._show_rules(at_most_every=0.5)
         self.update_status()
         self.collection_policy.tick(len(records))
 
@@ -295,11 +333,173 @@ class ConsoleApp(App[None]):
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
+            note=self._rules_note(),
         )
         self.status_bar.show_facts(facts)
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
+
+    # -- rules ----------------------------------------------------------------------------------------
+
+    def apply_rules(self, rules: RuleSet) -> None:
+        """Put ``rules`` in force: the newest screenful at once, the rest in the background."""
+        table = self.table
+        with table.keeping_position():
+            self.view.set_rules(rules)
+        self.rules = rules
+        table.decoration_of = self.view.decoration_of if rules.highlighting else None
+        table.restyle()
+        if self.view.refiltering:
+            self._refilter_timer.resume()
+        self._show_rules()
+        self.update_status()
+
+    def refilter_step(self) -> None:
+        """One slice of the background filtering (a few ms), newest records first."""
+        with self.table.keeping_position():
+            done = self.view.refilter_step(REFILTER_BUDGET_S)
+        if done:
+            self._refilter_timer.pause()
+            self._show_rules()
+        self.update_status()
+
+    def _rules_note(self) -> str:
+        active = sum(1 for entry in self.rules.entries if entry.active)
+        if not active:
+            return "rules off" if self.rules.entries else ""
+        note = f"{active} rule{'s' if active != 1 else ''}"
+        if self.rules.highlighted_only and self.rules.highlighting:
+            note += ", highlighted only"
+        if self.view.refiltering:
+            note += f", filtering {self._refilter_percent()}%"
+        return note
+
+    def _refilter_percent(self) -> int:
+        total = max(len(self.store), 1)
+        return min(99, int(100 * (1 - self.view.pending / total)))
+
+    def _show_rules(self, at_most_every: float = 0.0) -> None:
+        now = self.clock()
+        if at_most_every and now - self._counts_at < at_most_every:
+            return
+        self._counts_at = now
+        progress = f"filtering {self._refilter_percent()}%" if self.view.refiltering else ""
+        self.rules_pane.show(self.rules, self.view.match_counts(), progress)
+
+    def _apply_initial_rules(self) -> None:
+        rules = self._initial_rules or RuleSet()
+        if self._initial_query:
+            try:
+                rules = rules.with_query(parse_query(self._initial_query, utc=self.utc))
+                self.query_bar.applied_text = self._initial_query
+            except RuleError as error:
+                self.notify(f"--query not applied: {error.message}", severity="error", timeout=10)
+        if rules.entries:
+            self.apply_rules(rules)
+
+    def _remember_rules(self) -> None:
+        try:
+            save_rules(self.rules, last_rules_path())
+            self.query_history.save(query_history_path())
+        except OSError:
+            pass  # nothing to tell anyone at exit; the rules in force were not lost from the session
+
+    def action_query(self) -> None:
+        self.query_bar.open()
+
+    def on_query_bar_applied(self, message: QueryBar.Applied) -> None:
+        self.apply_rules(self.rules.with_query(message.entries))
+
+    def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
+        self.table.focus()
+
+    def action_toggle_rules(self) -> None:
+        self._show_rules()
+        self.rules_pane.toggle()
+
+    def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
+        self.apply_rules(message.rules)
+
+    def on_rules_pane_leave(self, _message: RulesPane.Leave) -> None:
+        self.table.focus()
+
+    def action_toggle_highlighted_only(self) -> None:
+        self.apply_rules(self.rules.with_highlighted_only(not self.rules.highlighted_only))
+        state = "on" if self.rules.highlighted_only else "off"
+        note = "" if self.rules.highlighting else " (no highlight rule is active, so it hides nothing)"
+        self.notify(f"Highlighted only: {state}{note}", timeout=4)
+
+    def on_rules_pane_edit_requested(self, message: RulesPane.EditRequested) -> None:
+        index = message.index
+        entry = self.rules.entries[index] if index is not None else None
+
+        def edited(result: Entry | None) -> None:
+            if result is None:
+                return
+            rules = self.rules.add(result) if index is None else self.rules.replace(index, result)
+            self.apply_rules(rules)
+
+        self.push_screen(RuleEditor(entry, utc=self.utc), edited)
+
+    def action_quick_rule(self, role: str) -> None:
+        seq = self.table.cursor_seq
+        if seq is None:
+            return
+
+        def chosen(entry: Entry | None) -> None:
+            if entry is not None:
+                self.apply_rules(self.rules.add(entry))
+
+        self.push_screen(QuickRuleScreen(self.store.get(seq), Role(role)), chosen)
+
+    def on_rules_pane_file_requested(self, message: RulesPane.FileRequested) -> None:
+        if message.save:
+            self.action_save_rules()
+        else:
+            self.action_load_rules()
+
+    def action_save_rules(self) -> None:
+        def chosen(path: str | None) -> None:
+            if not path:
+                return
+            try:
+                save_rules(self.rules, path)
+            except OSError as error:
+                self.notify(f"Rules not saved: {error}", severity="error", timeout=10)
+                return
+            self.notify(f"Saved {len(self.rules.entries)} rules to {path}", timeout=5)
+
+        default = os.path.join(os.getcwd(), "console-tui-rules.toml")
+        self.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
+
+    def action_load_rules(self, path: str | None = None) -> None:
+        def chosen(path: str | None) -> None:
+            if not path:
+                return
+            try:
+                rules = load_rules(path)
+            except RuleError as error:
+                self.notify(f"Rules not loaded, the rules in force stay: {error.message}", severity="error", timeout=15)
+                return
+            self.apply_rules(rules)
+            self.notify(f"Loaded {len(rules.entries)} rules from {path}", timeout=5)
+
+        if path is not None:
+            chosen(path)
+        else:
+            self.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
+
+    def action_restore_rules(self) -> None:
+        path = last_rules_path()
+        if not path.exists():
+            self.notify("No rule set was saved at the end of an earlier run.", timeout=5)
+            return
+        self.action_load_rules(str(path))
+
+    def action_clear_rules(self) -> None:
+        self.query_bar.applied_text = ""
+        self.apply_rules(RuleSet(highlighted_only=self.rules.highlighted_only))
 
     # -- actions ------------------------------------------------------------------------------------
 
@@ -366,6 +566,8 @@ class ConsoleApp(App[None]):
         return [
             ("Table", list(LogTable.BINDINGS)),
             ("Console", list(self.BINDINGS)),
+            ("Rules pane", list(RulesPane.BINDINGS)),
+            ("Query line", list(QueryBar.BINDINGS)),
             ("Logger levels pane", list(LoggerPane.BINDINGS)),
             ("Details", list(DetailScreen.BINDINGS)),
             ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
@@ -393,4 +595,14 @@ class ConsoleApp(App[None]):
         yield SystemCommand(
             "Logger levels of this row's node", "Open the logger levels pane on the selected row's node", self.action_loggers_for_row
         )
+        yield SystemCommand("Query", "Type rules as a query: level>=warn node:nav* -node:rviz* +\"failed\"", self.action_query)
+        yield SystemCommand("Rules", "Show or hide the rules pane: every rule, its switches and counts", self.action_toggle_rules)
+        yield SystemCommand("Add a rule", "A new exclude or highlight rule of any kind", lambda: self.on_rules_pane_edit_requested(RulesPane.EditRequested(None)))
+        yield SystemCommand("Hide messages like this row", "Exclude this row's node, severity, message or location", lambda: self.action_quick_rule("exclude"))
+        yield SystemCommand("Highlight messages like this row", "Highlight this row's node, severity, message or location", lambda: self.action_quick_rule("highlight"))
+        yield SystemCommand("Highlighted only", "Show only highlighted messages (or all again)", self.action_toggle_highlighted_only)
+        yield SystemCommand("Save rules", "Save the rule set to a TOML file", self.action_save_rules)
+        yield SystemCommand("Open rules", "Load a rule set from a TOML file", self.action_load_rules)
+        yield SystemCommand("Restore the last rules", "The rule set in force when console-tui last exited", self.action_restore_rules)
+        yield SystemCommand("Clear rules", "Remove every rule", self.action_clear_rules)
         yield SystemCommand("Keys", "Every key, on the help screen", self.action_help)

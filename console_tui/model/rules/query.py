@@ -314,3 +314,10 @@ def parse_query(text: str, *, now_ns: int | None = None, utc: bool = False) -> t
     """
     now = time.time_ns() if now_ns is None else now_ns
     return _Parser(text, now, timezone.utc if utc else None).parse()
+
+
+def parse_time(text: str, *, now_ns: int | None = None, utc: bool = False) -> int:
+    """One time as the query line reads it (``12:30``, ``2024-05-01T12:30``, epoch seconds,
+    ``5m`` ago) in nanoseconds since the epoch; ``QueryError`` if it is none of those."""
+    now = time.time_ns() if now_ns is None else now_ns
+    return _Parser(text, now, timezone.utc if utc else None).stamp(text.strip(), 0)

@@ -85,6 +85,35 @@ class OpenScreen(_Dialog):
         self.dismiss(paths)
 
 
+class PathScreen(_Dialog):
+    """Asks for one path (Tab completes); returns it, or None."""
+
+    def __init__(self, title: str, default: str = "", *, must_exist: bool = False) -> None:
+        super().__init__()
+        self.title_text = title
+        self.default = default
+        self.must_exist = must_exist
+
+    def compose(self) -> ComposeResult:
+        with Vertical():
+            yield Label(f"{self.title_text} (Tab completes; Enter, Esc cancels)")
+            yield Input(self.default, suggester=PathSuggester(), id="path")
+            yield Label("", classes="error", id="error")
+
+    @on(Input.Submitted)
+    def submitted(self, event: Input.Submitted) -> None:
+        path = os.path.expanduser(event.value.strip())
+        error = self.query_one("#error", Label)
+        if not path:
+            error.update("Type a path")
+        elif self.must_exist and not os.path.isfile(path):
+            error.update(f"No such file: {path}")
+        elif not self.must_exist and not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+            error.update(f"No such folder: {os.path.dirname(os.path.abspath(path))}")
+        else:
+            self.dismiss(path)
+
+
 @dataclass(frozen=True)
 class SaveRequest:
     path: str

@@ -61,7 +61,7 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--severity-warn { color: $warning; text-style: bold; }
     LogTable > .log-table--severity-error { color: $error; text-style: bold; }
     LogTable > .log-table--severity-fatal { background: $error; color: $text; text-style: bold reverse; }
-    LogTable > .log-table--highlight { background: $accent 30%; }
+    LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
     """
 

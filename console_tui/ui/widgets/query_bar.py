@@ -1,0 +1,112 @@
+"""The query line: type rules as text, see mistakes as you type, Enter applies."""
+
+from __future__ import annotations
+
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Vertical
+from textual.message import Message
+from textual.widgets import Input, Static
+
+from ...model.rules.history import QueryHistory
+from ...model.rules.query import QueryError, caret_line, parse_query
+from ...model.rules.ruleset import Entry
+from ...model.text import one_line
+
+PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
+
+
+class QueryBar(Vertical):
+    """Hidden until opened; while the text does not parse, the rules in force stay."""
+
+    DEFAULT_CSS = """
+    QueryBar { height: auto; display: none; background: $panel; padding: 0 1; }
+    QueryBar.-open { display: block; }
+    QueryBar > Input { border: none; height: 1; padding: 0; background: $panel; }
+    QueryBar > #query-problem { color: $text-error; height: auto; }
+    QueryBar > #query-problem.-ok { color: $text-muted; }
+    """
+
+    BINDINGS = [
+        Binding("escape", "close", "Close", show=False),
+        Binding("up", "history(-1)", "Earlier query", show=False),
+        Binding("down", "history(1)", "Later query", show=False),
+    ]
+
+    class Applied(Message):
+        """Enter on a query that parses: its entries replace the previous query's."""
+
+        def __init__(self, text: str, entries: tuple[Entry, ...]) -> None:
+            super().__init__()
+            self.text = text
+            self.entries = entries
+
+    class Closed(Message):
+        """Escape (or after applying): focus goes back to the table."""
+
+    def __init__(self, history: QueryHistory, *, utc: bool = False, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self.history = history
+        self.utc = utc
+        self.applied_text = ""
+
+    def compose(self) -> ComposeResult:
+        yield Input(placeholder=PLACEHOLDER, id="query-input")
+        yield Static("Enter applies · Esc closes · ↑↓ history · -term excludes, +term highlights", id="query-problem", classes="-ok")
+
+    @property
+    def input(self) -> Input:
+        return self.query_one(Input)
+
+    @property
+    def is_open(self) -> bool:
+        return self.has_class("-open")
+
+    def open(self) -> None:
+        self.add_class("-open")
+        self.input.value = self.applied_text
+        self.input.cursor_position = len(self.applied_text)
+        self.input.focus()
+
+    def action_close(self) -> None:
+        self.remove_class("-open")
+        self.post_message(self.Closed())
+
+    def action_history(self, step: int) -> None:
+        current = self.input.value
+        found = self.history.previous(current) if step < 0 else self.history.following()
+        if found is not None and found == current and step < 0:
+            found = self.history.previous(current) or found  # the query shown is the newest: skip it
+        if found is not None:
+            self.input.value = found
+            self.input.cursor_position = len(found)
+
+    def check(self, text: str) -> tuple[Entry, ...] | None:
+        """The entries of ``text``, or None after showing where it goes wrong."""
+        problem = self.query_one("#query-problem", Static)
+        try:
+            entries = parse_query(text, utc=self.utc)
+        except QueryError as error:
+            problem.remove_class("-ok")
+            caret = caret_line(one_line(text), error)
+            problem.update(f"{caret}\n(the rules in force stay until the query is fixed)")
+            return None
+        problem.add_class("-ok")
+        count = len(entries)
+        problem.update(f"{count} rule{'s' if count != 1 else ''} · Enter applies · Esc closes · ↑↓ history")
+        return entries
+
+    @on(Input.Changed, "#query-input")
+    def changed(self, event: Input.Changed) -> None:
+        self.check(event.value)
+
+    @on(Input.Submitted, "#query-input")
+    def submitted(self, event: Input.Submitted) -> None:
+        entries = self.check(event.value)
+        if entries is None:
+            return
+        self.applied_text = event.value.strip()
+        self.history.add(self.applied_text)
+        self.post_message(self.Applied(self.applied_text, entries))
+        self.action_close()

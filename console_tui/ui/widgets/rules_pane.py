@@ -1,0 +1,179 @@
+"""The rules pane: every exclude and highlight rule, its switches and its match count."""
+
+from __future__ import annotations
+
+from rich.text import Text
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.containers import Vertical
+from textual.message import Message
+from textual.widgets import Label, OptionList, Static
+from textual.widgets.option_list import Option
+
+from ...model.rules.ruleset import Entry, Role, RuleSet
+from ...model.text import one_line
+
+HINT = "space on/off · i invert · h exclude⇄highlight · e edit · d delete · a add · H highlighted only · S save · O open · Esc table"
+
+
+def entry_text(entry: Entry, count: int | None) -> Text:
+    """One line of the list: on/off, role, the rule, its count (or why it is inactive)."""
+    text = Text(no_wrap=True, overflow="ellipsis")
+    text.append("● " if entry.enabled else "○ ", style="bold green" if entry.enabled else "dim")
+    if entry.role is Role.EXCLUDE:
+        text.append("hide ", style="bold red")
+    else:
+        text.append("mark ", style="bold yellow")
+    description = one_line(entry.describe(), 200)
+    text.append(description, style="" if entry.active else "dim strike" if not entry.enabled else "dim")
+    if entry.from_query:
+        text.append("  (query)", style="dim italic")
+    if count is not None:
+        text.append(f"  {count:,}", style="bold cyan")
+    elif entry.enabled and entry.rule.is_empty:
+        text.append("  (empty: matches nothing)", style="dim italic")
+    return text
+
+
+class RulesPane(Vertical):
+    """Lists a ``RuleSet``; every change is posted as a new set (the app applies it)."""
+
+    DEFAULT_CSS = """
+    RulesPane { dock: left; width: 52; max-width: 50%; display: none; border-right: vkey $primary; padding: 0 1; background: $surface; }
+    RulesPane.-open { display: block; }
+    RulesPane > .title { text-style: bold; color: $accent; }
+    RulesPane > OptionList { height: 1fr; border: none; padding: 0; background: $surface; }
+    RulesPane > #rules-state { color: $text-muted; height: auto; }
+    RulesPane > #rules-hint { color: $text-muted; height: auto; }
+    """
+
+    BINDINGS = [
+        Binding("space", "toggle_enabled", "On/off", show=False),
+        Binding("i", "toggle_inverted", "Invert", show=False),
+        Binding("h", "toggle_role", "Exclude/highlight", show=False),
+        Binding("e,enter", "edit", "Edit", show=False),
+        Binding("d,delete", "delete", "Delete", show=False),
+        Binding("a", "add", "Add rule", show=False),
+        Binding("S", "save_rules", "Save rule set", show=False),
+        Binding("O", "load_rules", "Open rule set", show=False),
+        Binding("escape", "leave", "Back to the table", show=False),
+    ]
+
+    class Changed(Message):
+        """The user changed the rules through the pane."""
+
+        def __init__(self, rules: RuleSet) -> None:
+            super().__init__()
+            self.rules = rules
+
+    class EditRequested(Message):
+        """Open the rule editor: on entry ``index``, or for a new rule (None)."""
+
+        def __init__(self, index: int | None) -> None:
+            super().__init__()
+            self.index = index
+
+    class FileRequested(Message):
+        """Save the rule set to a file, or open one (``save`` False)."""
+
+        def __init__(self, save: bool) -> None:
+            super().__init__()
+            self.save = save
+
+    class Leave(Message):
+        """Escape: focus back to the table."""
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self.rules = RuleSet()
+        self.counts: list[int | None] = []
+        self.progress = ""
+
+    def compose(self) -> ComposeResult:
+        yield Label("Rules", classes="title")
+        yield Static("", id="rules-state")
+        yield OptionList(id="rules-list")
+        yield Static(HINT, id="rules-hint")
+
+    @property
+    def is_open(self) -> bool:
+        return self.has_class("-open")
+
+    def toggle(self) -> None:
+        self.set_class(not self.is_open, "-open")
+        if self.is_open:
+            self.query_one(OptionList).focus()
+        else:
+            self.post_message(self.Leave())
+
+    def show(self, rules: RuleSet, counts: list[int | None], progress: str = "") -> None:
+        """Show these rules with these counts (only redrawn when something changed)."""
+        if rules == self.rules and counts == self.counts and progress == self.progress and self.is_mounted:
+            return
+        self.rules, self.counts, self.progress = rules, list(counts), progress
+        options = self.query_one(OptionList)
+        highlighted = options.highlighted
+        options.clear_options()
+        if rules.entries:
+            options.add_options(
+                [Option(entry_text(entry, counts[i] if i < len(counts) else None), id=str(i)) for i, entry in enumerate(rules.entries)]
+            )
+            options.highlighted = min(highlighted or 0, len(rules.entries) - 1)
+        else:
+            options.add_option(Option(Text("No rules. a adds one; / types a query; - or + on a row.", style="dim"), disabled=True))
+        state = f"highlighted only: {'ON' if rules.highlighted_only else 'off'}"
+        if progress:
+            state += f" · {progress}"
+        self.query_one("#rules-state", Static).update(state)
+
+    @property
+    def selected(self) -> int | None:
+        index = self.query_one(OptionList).highlighted
+        if index is None or not self.rules.entries or index >= len(self.rules.entries):
+            return None
+        return index
+
+    def _change(self, rules: RuleSet) -> None:
+        self.post_message(self.Changed(rules))
+
+    def action_toggle_enabled(self) -> None:
+        index = self.selected
+        if index is not None:
+            self._change(self.rules.with_enabled(index, not self.rules.entries[index].enabled))
+
+    def action_toggle_inverted(self) -> None:
+        index = self.selected
+        if index is not None:
+            self._change(self.rules.with_inverted(index, not self.rules.entries[index].inverted))
+
+    def action_toggle_role(self) -> None:
+        index = self.selected
+        if index is not None:
+            role = Role.HIGHLIGHT if self.rules.entries[index].role is Role.EXCLUDE else Role.EXCLUDE
+            self._change(self.rules.with_role(index, role))
+
+    def action_delete(self) -> None:
+        index = self.selected
+        if index is not None:
+            self._change(self.rules.remove(index))
+
+    def action_edit(self) -> None:
+        index = self.selected
+        if index is not None:
+            self.post_message(self.EditRequested(index))
+
+    def action_add(self) -> None:
+        self.post_message(self.EditRequested(None))
+
+    def action_save_rules(self) -> None:
+        self.post_message(self.FileRequested(save=True))
+
+    def action_load_rules(self) -> None:
+        self.post_message(self.FileRequested(save=False))
+
+    def action_leave(self) -> None:
+        self.post_message(self.Leave())
+
+    def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
+        event.stop()
+        self.action_edit()
