@@ -53,7 +53,13 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await pilot.press("right", "t", "enter")  # DEBUG for 30 s
             await pilot.pause(3.0)
             await shot(pilot, "logger-pane")
-            await pilot.press("escape", "l")
+            await pilot.press("escape", "l", "slash")
+            pilot.app.query_bar.input.value = '-node:sensors.* +level>=warn +"failed"'
+            await shot(pilot, "query-line")
+            await pilot.press("enter", "r")
+            await pilot.pause(1.0)
+            await shot(pilot, "rules-pane")
+            await pilot.press("escape", "r")
         narrow = ConsoleApp(store=app.store)
         async with narrow.run_test(size=(80, 24)) as pilot:
             await pilot.pause(1.0)

@@ -50,8 +50,8 @@ if TYPE_CHECKING:
 
 DRAIN_INTERVAL = 1 / 15
 #: Background filtering after a rule change: a slice of this long, this often.
-REFILTER_BUDGET_S = 0.008
-REFILTER_INTERVAL = 0.015
+REFILTER_BUDGET_S = 0.015
+REFILTER_INTERVAL = 0.03
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
