@@ -120,3 +120,17 @@ async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
         await pilot.press("enter")
         assert isinstance(app.screen, SaveScreen)
         assert "No such folder" in str(app.screen.query_one("#error").render())
+
+
+async def test_with_live_records_waiting_the_files_come_first(tmp_path):
+    """--live with files: live records wait until the files are in, so time order holds."""
+    from console_tui.model.intake_queue import IntakeQueue
+
+    write_jsonl(tmp_path / "old.jsonl", 500)
+    live = IntakeQueue()
+    live.put(records(5, start=10_000))  # newer than every file record, already waiting
+    app = ConsoleApp(queue=live, files=[str(tmp_path / "old.jsonl")])
+    async with app.run_test(size=(120, 30)) as pilot:
+        await until(pilot, lambda: len(app.store) == 505)
+        stamps = [r.stamp_ns for r in app.store]
+        assert stamps == sorted(stamps)
