@@ -84,10 +84,9 @@ def size_of(path: Path) -> int:
 
 def write_ros1_with_images(path: Path, records: list[LogRecord], logs_per_image: int) -> Path:
     """A ROS 1 bag like write_ros1_bag's, with a 1 MB image before every few log messages."""
+    import numpy as np
     from rosbags.rosbag1 import Writer
     from rosbags.typesys import Stores, get_typestore
-
-    import numpy as np
 
     from console_tui.model.levels import to_ros1
 

@@ -62,8 +62,8 @@ def say(**fields: Any) -> None:
 
 def message_pool(index: int, size: int = 512) -> list[bytes]:
     """Realistic serialized Log messages: a few nodes, files and functions, 60-120 char texts."""
-    from rclpy.serialization import serialize_message
     from rcl_interfaces.msg import Log
+    from rclpy.serialization import serialize_message
 
     rng = random.Random(index)
     words = "goal plan costmap laser scan tf frame odom map timeout received sending ok failed retry".split()
@@ -109,9 +109,9 @@ def subscriber_qos():
 
 def run_publisher(index: int) -> None:
     import rclpy
+    from rcl_interfaces.msg import Log
     from rclpy.node import Node
     from rclpy.signals import SignalHandlerOptions
-    from rcl_interfaces.msg import Log
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node(f"bench_publisher_{index}")
@@ -237,9 +237,9 @@ class EventsExecutorThread:
 def run_intake_events_executor() -> None:
     """The intake's decoder, queue and store, fed by an EventsExecutor callback: the alternative design."""
     import rclpy
+    from rcl_interfaces.msg import Log
     from rclpy.node import Node
     from rclpy.signals import SignalHandlerOptions
-    from rcl_interfaces.msg import Log
 
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.model.store import LogStore
@@ -278,9 +278,9 @@ def run_intake_events_executor() -> None:
 
 def run_reference_subscriber(kind: str) -> None:
     import rclpy
+    from rcl_interfaces.msg import Log
     from rclpy.node import Node
     from rclpy.signals import SignalHandlerOptions
-    from rcl_interfaces.msg import Log
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node(f"bench_{kind.replace('-', '_')}")

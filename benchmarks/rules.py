@@ -143,32 +143,18 @@ async def measure_in_app(store: LogStore) -> list[tuple[str, float, float, float
     and the longest the event loop was busy meanwhile (a probe task sleeping 1 ms)."""
     import asyncio
 
+    from _probe import StallProbe, count_frames
+
     from console_tui.ui.app import ConsoleApp
 
     app = ConsoleApp(store=store)
     results = []
     async with app.run_test(size=(160, 48)) as pilot:
         await pilot.pause(0.5)
-        table = app.table
-        frames: list[float] = []
-        original = table.render_lines
-
-        def counting_render_lines(crop):
-            frames.append(time.perf_counter())
-            return original(crop)
-
-        table.render_lines = counting_render_lines  # type: ignore[method-assign]
+        frames = count_frames(app.table)
         for name, rules in scenarios():
-            stalls: list[float] = []
-            running = True
-
-            async def probe() -> None:
-                while running:
-                    before = time.perf_counter()
-                    await asyncio.sleep(0.001)
-                    stalls.append(time.perf_counter() - before - 0.001)
-
-            task = asyncio.create_task(probe())
+            probe = StallProbe()
+            probe.start()
             await asyncio.sleep(0.05)
             began = time.perf_counter()
             app.apply_rules(rules)  # as the query line, the pane or a quick rule does
@@ -179,8 +165,7 @@ async def measure_in_app(store: LogStore) -> list[tuple[str, float, float, float
             while app.view.refiltering:
                 await asyncio.sleep(0.005)
             complete = time.perf_counter() - began
-            running = False
-            await task
+            stalls = await probe.stop()
             final = [app.view.seq_at(r) for r in range(max(len(app.view) - SCREEN_ROWS, 0), len(app.view))]
             # Nothing arrives meanwhile, so a first screen that was already final stays so.
             first = first_frame if shown_first == final else complete

@@ -25,8 +25,9 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from feed import record  # noqa: E402
+from _probe import StallProbe, count_frames  # noqa: E402
 from _report import machine_line  # noqa: E402
+from feed import record  # noqa: E402
 from textual import events  # noqa: E402
 
 from console_tui.model.intake_queue import IntakeQueue  # noqa: E402
@@ -56,31 +57,16 @@ async def run(rate: int, seconds: float, presses: int, size: tuple[int, int] = (
     app = ConsoleApp(queue=queue)
     stop = threading.Event()
     sent: list[int] = []
-    stalls: list[float] = []
     key_latencies: list[float] = []
     async with app.run_test(size=size) as pilot:
         table = app.table
-        frames: list[float] = []
-        original = table.render_lines
-
-        def counting_render_lines(crop):
-            frames.append(time.perf_counter())
-            return original(crop)
-
-        table.render_lines = counting_render_lines  # type: ignore[method-assign]
+        frames = count_frames(table)
         thread = threading.Thread(target=feeder, args=(queue, rate, stop, sent), daemon=True)
         thread.start()
-        running = True
-
-        async def probe() -> None:
-            while running:
-                before = time.perf_counter()
-                await asyncio.sleep(0.001)
-                stalls.append(time.perf_counter() - before - 0.001)
-
-        probe_task = asyncio.create_task(probe())
+        probe = StallProbe()
+        probe.start()
         await asyncio.sleep(1.0)  # warm up: the store fills, the tail is followed
-        stalls.clear()
+        probe.stalls.clear()
         started = time.perf_counter()
         interval = max((seconds - 1.0) / max(presses, 1), 0.05)
         for n in range(presses):
@@ -101,9 +87,8 @@ async def run(rate: int, seconds: float, presses: int, size: tuple[int, int] = (
             await pilot.press("end") if key == "down" else None
             await asyncio.sleep(interval)
         elapsed = time.perf_counter() - started
-        running = False
+        stalls = await probe.stop()
         stop.set()
-        await probe_task
         thread.join()
         shown = len(app.store)
     return {

@@ -10,6 +10,7 @@ own and loopback-only discovery. Prints a table with the target beside the figur
 from __future__ import annotations
 
 import argparse
+import fcntl
 import os
 import pty
 import select
@@ -18,7 +19,6 @@ import statistics
 import struct
 import sys
 import termios
-import fcntl
 import time
 from pathlib import Path
 

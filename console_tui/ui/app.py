@@ -16,14 +16,19 @@ from textual.containers import Horizontal
 from textual.screen import Screen
 from textual.widgets import Footer
 
+from ..model.formats.save import save_records
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
-from ..model.formats.save import save_records
 from ..model.rules.base import RuleError
 from ..model.rules.history import QueryHistory
 from ..model.rules.query import parse_query
-from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
 from ..model.rules.ruleset import Entry, Role, RuleSet
+from ..model.rules.rulesfile import (
+    last_rules_path,
+    load_rules,
+    query_history_path,
+    save_rules,
+)
 from ..model.store import LogStore
 from ..model.text import one_line
 from ..model.view import LogView
@@ -39,10 +44,11 @@ from .screens.quick_rule import QuickRuleScreen
 from .screens.rule_editor import RuleEditor
 from .widgets.columns import COLUMNS
 from .widgets.load_bar import LoadBar
-from .widgets.query_bar import QueryBar
-from .widgets.rules_pane import RulesPane
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
+from .widgets.query_bar import QueryBar
+from .widgets.rules_pane import RulesPane
+from .widgets.side_pane import SidePane
 from .widgets.status_bar import StatusBar, StatusFacts
 
 if TYPE_CHECKING:
@@ -421,9 +427,6 @@ class ConsoleApp(App[None]):
     def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
         self.apply_rules(message.rules)
 
-    def on_rules_pane_leave(self, _message: RulesPane.Leave) -> None:
-        self.table.focus()
-
     def action_toggle_highlighted_only(self) -> None:
         self.apply_rules(self.rules.with_highlighted_only(not self.rules.highlighted_only))
         state = "on" if self.rules.highlighted_only else "off"
@@ -557,7 +560,7 @@ class ConsoleApp(App[None]):
         else:
             self.logger_pane.open_for_logger(self.store.get(seq).node)
 
-    def on_logger_pane_leave(self, _message: LoggerPane.Leave) -> None:
+    def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
         self.table.focus()
 
     # -- help and command palette ---------------------------------------------------------------

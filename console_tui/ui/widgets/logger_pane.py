@@ -18,9 +18,9 @@ from rich.text import Text
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
-from textual.containers import Vertical
 from textual.message import Message
 from textual.timer import Timer
+from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
@@ -36,6 +36,7 @@ from ...model.loggers import (
     format_remaining,
     node_of_logger,
 )
+from .side_pane import SidePane
 
 if TYPE_CHECKING:
     from ...sources.ros2.loggers import LoggerControl
@@ -108,7 +109,7 @@ class LevelBar(Static):
         self.post_message(self.Chosen(-1))
 
 
-class LoggerPane(Vertical):
+class LoggerPane(SidePane):
     """Nodes, then the selected node's loggers; keys set the highlighted logger's level."""
 
     DEFAULT_CSS = """
@@ -116,11 +117,9 @@ class LoggerPane(Vertical):
         width: 46;
         max-width: 50%;
         height: 100%;
-        display: none;
         background: $surface;
         border-left: vkey $border-blurred;
         padding: 0 0 0 1;
-        &.-open { display: block; }
         &:focus-within { border-left: vkey $border; }
         & > .pane-title { text-style: bold; color: $text-primary; height: 1; }
         & > NodeList { height: auto; max-height: 40%; }
@@ -167,9 +166,6 @@ class LoggerPane(Vertical):
             self.fqn = fqn
             self.what = what
             self.then = then
-
-    class Leave(Message):
-        """Escape in the pane, or the pane closed with focus in it: the table should take focus."""
 
     def __init__(
         self,
@@ -222,41 +218,20 @@ class LoggerPane(Vertical):
             self.show_nodes(control.nodes)
         self._render_all()
 
-    @property
-    def is_open(self) -> bool:
-        return self.has_class("-open")
+    def when_opened(self) -> None:
+        self._note_seen_loggers()
+        self._refresh_checking()
+        if self.selected is None and self.node_list.option_count:
+            self.node_list.highlighted = 0
+        elif self.selected is not None:
+            self.read_levels(self.selected)
+        self._update_ticker()
 
-    def open(self, focus: bool = True) -> None:
-        if not self.is_open:
-            self.add_class("-open")
-            self._note_seen_loggers()
-            self._refresh_checking()
-            if self.selected is None and self.node_list.option_count:
-                self.node_list.highlighted = 0
-            elif self.selected is not None:
-                self.read_levels(self.selected)
-            self._update_ticker()
-        if focus and not self.has_focus_within:
-            (self.logger_list if self.selected and self.logger_list.option_count else self.node_list).focus()
+    def when_closed(self) -> None:
+        self._update_ticker()
 
-    def close(self) -> None:
-        if self.is_open:
-            had_focus = self.has_focus_within
-            self.remove_class("-open")
-            self._update_ticker()
-            if had_focus:
-                self.post_message(self.Leave())
-
-    def toggle(self) -> None:
-        if self.is_open:
-            self.close()
-        else:
-            self.open()
-
-    @property
-    def has_focus_within(self) -> bool:
-        focused = self.screen.focused if self.is_mounted else None
-        return focused is not None and self in focused.ancestors_with_self
+    def focus_target(self) -> Widget:
+        return self.logger_list if self.selected and self.logger_list.option_count else self.node_list
 
     # -- UI state -----------------------------------------------------------------------------
 
@@ -499,7 +474,7 @@ class LoggerPane(Vertical):
             self.name_input.value = ""
             self.logger_list.focus()
         else:
-            self.post_message(self.Leave())
+            super().action_leave()
 
     @on(OptionList.OptionHighlighted, "#logger-nodes")
     def _node_highlighted(self, message: OptionList.OptionHighlighted) -> None:

@@ -5,13 +5,14 @@ from __future__ import annotations
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
-from textual.containers import Vertical
 from textual.message import Message
+from textual.widget import Widget
 from textual.widgets import Label, OptionList, Static
 from textual.widgets.option_list import Option
 
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.text import one_line
+from .side_pane import SidePane
 
 HINT = "space on/off · i invert · h exclude⇄highlight · e edit · d delete · a add · H highlighted only · S save · O open · Esc table"
 
@@ -35,12 +36,11 @@ def entry_text(entry: Entry, count: int | None) -> Text:
     return text
 
 
-class RulesPane(Vertical):
+class RulesPane(SidePane):
     """Lists a ``RuleSet``; every change is posted as a new set (the app applies it)."""
 
     DEFAULT_CSS = """
-    RulesPane { dock: left; width: 52; max-width: 50%; display: none; border-right: vkey $primary; padding: 0 1; background: $surface; }
-    RulesPane.-open { display: block; }
+    RulesPane { dock: left; width: 52; max-width: 50%; border-right: vkey $primary; padding: 0 1; background: $surface; }
     RulesPane > .title { text-style: bold; color: $accent; }
     RulesPane > OptionList { height: 1fr; border: none; padding: 0; background: $surface; }
     RulesPane > #rules-state { color: $text-muted; height: auto; }
@@ -80,9 +80,6 @@ class RulesPane(Vertical):
             super().__init__()
             self.save = save
 
-    class Leave(Message):
-        """Escape: focus back to the table."""
-
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self.rules = RuleSet()
@@ -95,16 +92,8 @@ class RulesPane(Vertical):
         yield OptionList(id="rules-list")
         yield Static(HINT, id="rules-hint")
 
-    @property
-    def is_open(self) -> bool:
-        return self.has_class("-open")
-
-    def toggle(self) -> None:
-        self.set_class(not self.is_open, "-open")
-        if self.is_open:
-            self.query_one(OptionList).focus()
-        else:
-            self.post_message(self.Leave())
+    def focus_target(self) -> Widget:
+        return self.query_one(OptionList)
 
     def show(self, rules: RuleSet, counts: list[int | None], progress: str = "") -> None:
         """Show these rules with these counts (only redrawn when something changed)."""
@@ -170,9 +159,6 @@ class RulesPane(Vertical):
 
     def action_load_rules(self) -> None:
         self.post_message(self.FileRequested(save=False))
-
-    def action_leave(self) -> None:
-        self.post_message(self.Leave())
 
     def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
         event.stop()
