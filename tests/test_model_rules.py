@@ -19,6 +19,7 @@ from console_tui.model.rules import (
     exclude,
     highlight,
 )
+from console_tui.model.rules.base import RequiredLiteral, required_literal
 from console_tui.model.store import LogStore
 
 S = 1_000_000_000
@@ -74,7 +75,7 @@ def test_empty_inputs_match_nothing():
 
 
 def test_caseless_fast_path_over_many_messages():
-    """The joined-and-lowered search must map every hit to its own row."""
+    """Case folding string by string over whole chunks, separators and empty strings included."""
     store = LogStore()
     msgs = ["abc", "xABCx", "", "ab", "c abc abc", "\x00abc", "nothing", "ABC"] * 700
     store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in msgs)
@@ -303,14 +304,19 @@ def test_describe_is_readable():
 @pytest.mark.parametrize(
     ("pattern", "ignore_case"),
     [("time(out|d out)", True), (r"\d{3}\.\d ms", False), ("^goal", False), ("ab?c", True), ("K", True),
-     ("s$", True), ("a|b", False), ("x\x00", False), ("(?i)ABC", False)],
+     ("s$", True), ("a|b", False), ("x\x00", False), ("(?i)ABC", False),
+     # the search window around the literal: lookarounds, anchors, overlaps, unbounded parts
+     (r"(?<=k )\d+\.\d ms", False), (r"\bms\b", False), (r" ms(?!x)", False), (r"\d ms$", False),
+     ("aab", False), ("abab", True), (r"(\d)\1\d\.\d ms", False), (r"to.*ms", False), (r"o{2,3}k", True),
+     (r"(bc|b)c?d", False), (r"\d{3}\.\d MS", True)],
 )
 def test_regex_prefilter_agrees_with_plain_search(pattern, ignore_case):
     """The literal prefilter must never change a regex's answer (ASCII or not)."""
     import re
 
     msgs = ["timeout", "TIMED OUT", "took 123.4 ms", "goal", "a goal", "abc", "AC", "\u212a", "ſ", "bus",
-            "x\x00y", "xabcx", "", "Größe", "ABC abc"] * 300
+            "x\x00y", "xabcx", "", "Größe", "ABC abc", "took 1.2 ms then 445.5 ms", "1.5 msx 22.3 ms",
+            "aaab", "ababab", "xabab", "bcd bd", "TOOK 12.25 MS", "ms", " ms", "9 ms", "toOOk", "ook"] * 300
     for chunk in (msgs, [m for m in msgs if m.isascii() and "\x00" not in m]):
         store = LogStore()
         store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in chunk)
@@ -341,3 +347,18 @@ def test_custom_rule_narrowing_agrees_with_each_part():
             mask = b"".join(part_test(s.chunk, s.lo, s.hi) for s in store.spans(0, len(records)))
             wanted = [a & b for a, b in zip(wanted, mask)]
         assert list(got) == wanted
+
+
+@pytest.mark.parametrize(
+    ("pattern", "expected"),
+    [
+        (r"\d{3}\.\d ms", RequiredLiteral(" ms", lead=5, tail=0)),
+        ("time(out|d out)", RequiredLiteral("time", lead=0, tail=5)),
+        ("^goal", RequiredLiteral("goal", lead=0, tail=None)),  # an anchor: no end to the window
+        (r"x.*abc", RequiredLiteral("abc", lead=None, tail=0)),
+    ],
+)
+def test_required_literal_and_its_window(pattern, expected):
+    import re
+
+    assert required_literal(re.compile(pattern)) == expected

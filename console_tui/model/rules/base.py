@@ -13,11 +13,12 @@ file and function predicates once per distinct string instead of once per record
 from __future__ import annotations
 
 import re
+import sys
 from array import array
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
-from itertools import compress, repeat
-from operator import contains
+from dataclasses import dataclass, replace
+from itertools import chain, compress, repeat
+from operator import add, contains, sub
 from typing import Any, ClassVar
 
 from ..record import LogRecord
@@ -125,9 +126,6 @@ class IdLookup:
         return bytes(map(answers.__getitem__, ids[lo:hi]))
 
 
-_SEPARATOR = "\x00"
-
-
 @dataclass(frozen=True)
 class TextMatch:
     """Text to look for in a string: a substring, or a regex (``re.search``), either case."""
@@ -167,13 +165,10 @@ class TextMatch:
     def mask_function(self) -> Callable[[list[str]], bytes]:
         """``strings -> mask``, the fastest way this kind of match allows."""
         if self.regex:
-            pattern = self.pattern()
-            literal = required_literal(pattern)
-            return _RegexMasker(pattern, _RowFinder(literal, bool(pattern.flags & re.IGNORECASE)) if literal else None)
+            return _RegexMasker(self.pattern())
         if self.ignore_case:
             folded = self.text.casefold()
-            finder = _RowFinder(folded, True)
-            return lambda strings: finder(strings) or bytes(map(contains, map(str.casefold, strings), repeat(folded)))
+            return lambda strings: bytes(map(contains, map(str.casefold, strings), repeat(folded)))
         text = self.text
         return lambda strings: bytes(map(contains, strings, repeat(text)))
 
@@ -183,84 +178,116 @@ class TextMatch:
         return shown + (f" ({', '.join(options)})" if options else "")
 
 
-def required_literal(pattern: re.Pattern[str]) -> str:
-    """The longest run of plain characters every match of ``pattern`` contains ("" if none
-    is known): a fast ``str.find`` over many messages then leaves few for the regex."""
+@dataclass(frozen=True)
+class RequiredLiteral:
+    """Plain text every match of a regex contains, and where matches can lie around it.
+
+    ``lead`` and ``tail``: at most how many characters a match holds before and after the
+    text (None: unbounded, or, for ``tail``, a pattern whose answer depends on what lies
+    outside the match: anchors, ``\\b``, lookarounds).
+    """
+
+    text: str = ""
+    lead: int | None = None
+    tail: int | None = None
+
+
+_MAX_WIDTH = 10_000
+_CONTEXT_OPS = frozenset({"AT", "ASSERT", "ASSERT_NOT"})
+
+
+def required_literal(pattern: re.Pattern[str]) -> RequiredLiteral:
+    """The longest run of plain characters every match of ``pattern`` contains, if any.
+
+    A fast ``in`` over many messages then leaves few for the regex, and those are searched
+    only around the run's occurrences."""
     try:
         from re import _parser as parser  # Python 3.11+
     except ImportError:  # pragma: no cover - Python 3.10
         import sre_parse as parser  # type: ignore[no-redef]
     try:
-        items = list(parser.parse(pattern.pattern, pattern.flags & ~re.UNICODE))
+        parsed = parser.parse(pattern.pattern, pattern.flags & ~re.UNICODE)
+        items = list(parsed)
+        best, best_start, run = "", 0, []
+        for index, (op, argument) in enumerate(items + [(None, None)]):
+            if str(op) == "LITERAL":
+                run.append(chr(argument))
+                continue
+            if len(run) > len(best):
+                best, best_start = "".join(run), index - len(run)
+            run = []
+        _, lead = parser.SubPattern(parsed.state, items[:best_start]).getwidth()
+        _, tail = parser.SubPattern(parsed.state, items[best_start + len(best) :]).getwidth()
     except Exception:  # noqa: BLE001 - an internal API: no literal rather than an error
-        return ""
-    best, run = "", []
-    for op, argument in items + [(None, None)]:
-        if str(op) == "LITERAL":
-            run.append(chr(argument))
-            continue
-        if len(run) > len(best):
-            best = "".join(run)
-        run = []
-    return best
+        return RequiredLiteral()
+    return RequiredLiteral(
+        best,
+        lead if lead < _MAX_WIDTH else None,
+        tail if tail < _MAX_WIDTH and not _uses_context(items) else None,
+    )
 
 
-class _RowFinder:
-    """Which of many strings contain ``needle``, found by ``str.find`` over them all joined.
+def _uses_context(node: object) -> bool:
+    """Whether a parsed regex holds an op that looks outside the matched text."""
+    if isinstance(node, tuple) and len(node) == 2 and str(node[0]) in _CONTEXT_OPS:
+        return True
+    if isinstance(node, (list, tuple)):
+        return any(map(_uses_context, node))
+    data = getattr(node, "data", None)  # a SubPattern
+    return isinstance(data, list) and _uses_context(data)
 
-    Case-insensitive finding lowers the joined text once, which equals case folding only for
-    ASCII text: ``__call__`` returns None when it cannot answer (non-ASCII text or needle,
-    or a string holding the separator) and the caller tests string by string.
-    """
 
-    __slots__ = ("_needle", "_ignore_case")
-
-    def __init__(self, needle: str, ignore_case: bool) -> None:
-        self._needle = needle.lower() if ignore_case else needle
-        self._ignore_case = ignore_case
-
-    def __call__(self, strings: list[str]) -> bytes | None:
-        needle = self._needle
-        if _SEPARATOR in needle or (self._ignore_case and not needle.isascii()):
-            return None
-        joined = _SEPARATOR.join(strings)
-        if self._ignore_case:
-            if not joined.isascii():
-                return None
-            joined = joined.lower()
-        if joined.count(_SEPARATOR) != len(strings) - 1:
-            return None
-        mask = bytearray(len(strings))
-        find, count = joined.find, joined.count
-        row, counted_to = 0, 0  # ``row`` is the row that position ``counted_to`` is in
-        position = find(needle)
-        while position >= 0:
-            row += count(_SEPARATOR, counted_to, position)
-            mask[row] = 1
-            row_end = find(_SEPARATOR, position)
-            if row_end < 0:
-                break
-            row, counted_to = row + 1, row_end + 1
-            position = find(needle, counted_to)
-        return bytes(mask)
+def mask_of_rows(rows: Iterable[int], size: int) -> bytes:
+    mask = bytearray(size)
+    for row in rows:
+        mask[row] = 1
+    return bytes(mask)
 
 
 class _RegexMasker:
-    """Regex masks; with a required literal, only strings that contain it are searched."""
+    """Regex masks. With a required literal, only strings that contain it are searched, and
+    only around its occurrences (from the first one less the lead, to the last one plus the
+    tail) where those are bounded.
 
-    __slots__ = ("_search", "_finder")
+    Ignoring case, the literal is looked for in lower-cased text, which is exact for an ASCII
+    literal in ASCII text; other strings are searched whole, and a non-ASCII literal is not used.
+    """
 
-    def __init__(self, pattern: re.Pattern[str], finder: _RowFinder | None) -> None:
+    __slots__ = ("_ignore_case", "_literal", "_search")
+
+    def __init__(self, pattern: re.Pattern[str]) -> None:
         self._search = pattern.search
-        self._finder = finder
+        self._ignore_case = bool(pattern.flags & re.IGNORECASE)
+        literal = required_literal(pattern)
+        if self._ignore_case:
+            literal = replace(literal, text=literal.text.lower()) if literal.text.isascii() else RequiredLiteral()
+        self._literal = literal
 
     def __call__(self, strings: list[str]) -> bytes:
-        search = self._search
-        candidates = self._finder(strings) if self._finder is not None else None
-        if candidates is None:
+        search, literal = self._search, self._literal
+        text = literal.text
+        if not text:
             return bytes(map(bool, map(search, strings)))
-        mask = bytearray(len(strings))
-        for row in compress(range(len(strings)), candidates):
-            if search(strings[row]) is not None:
-                mask[row] = 1
-        return bytes(mask)
+        everything = range(len(strings))
+        searched_whole: list[int] = []
+        if self._ignore_case:
+            haystacks = list(map(str.lower, strings))
+            ascii_only = bytes(map(str.isascii, strings))
+            searched_whole = list(compress(everything, mask_not(ascii_only)))
+            candidates = mask_and(bytes(map(contains, haystacks, repeat(text))), ascii_only)
+        else:
+            haystacks = strings
+            candidates = bytes(map(contains, strings, repeat(text)))
+        # C-level loops over the candidates (``map``), a Python one only over the matches.
+        rows = list(compress(everything, candidates))
+        starts: Iterable[int] = repeat(0)
+        ends: Iterable[int] = repeat(sys.maxsize)
+        if literal.lead is not None:
+            firsts = map(str.find, map(haystacks.__getitem__, rows), repeat(text))
+            starts = map(max, map(sub, firsts, repeat(literal.lead)), repeat(0))
+        if literal.tail is not None:
+            lasts = map(str.rfind, map(haystacks.__getitem__, rows), repeat(text))
+            ends = map(add, lasts, repeat(len(text) + literal.tail))
+        found = compress(rows, map(search, map(strings.__getitem__, rows), starts, ends))
+        whole = compress(searched_whole, map(search, map(strings.__getitem__, searched_whole)))
+        return mask_of_rows(chain(found, whole), len(strings))
