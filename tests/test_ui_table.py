@@ -65,6 +65,27 @@ async def test_moving_up_stops_following_and_keeps_the_rows_in_place():
         assert table.following and table.cursor_seq == 149
 
 
+async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
+    app = make_app(100)
+    async with app.run_test(size=(100, 24)) as pilot:
+        table = app.table
+        await pilot.press("pageup")
+        await pilot.pause()
+        drawn = []
+        draw = table.render_line
+        table.render_line = lambda y: drawn.append(y) or draw(y)
+        screen_before = [line_text(table, y) for y in range(table.size.height)]
+        drawn.clear()
+        app.add_records(records(500, start=100))
+        await pilot.pause(0.3)  # the scrollbar follows within a tenth of a second
+        assert drawn == []  # no row drawn again: the same rows, the same strips
+        assert [line_text(table, y) for y in range(table.size.height)] == screen_before
+        assert table.vertical_scrollbar.window_virtual_size == 601
+        await pilot.press("end")
+        assert table.following and table.cursor_seq == 599
+        assert "600" in line_text(table, table.size.height - 1)
+
+
 async def test_position_survives_eviction_at_the_bound():
     app = make_app(100, max_messages=120)
     async with app.run_test(size=(100, 24)) as pilot:

@@ -56,8 +56,12 @@ if TYPE_CHECKING:
 
 DRAIN_INTERVAL = 1 / 15
 #: Background filtering after a rule change: a slice of this long, this often.
-REFILTER_BUDGET_S = 0.015
-REFILTER_INTERVAL = 0.03
+#: Background filtering: slices of this long, with the event loop free this long between them.
+REFILTER_BUDGET_S = 0.010
+REFILTER_PAUSE_S = 0.001
+REFILTER_FIRST_PAUSE_S = 0.02
+#: How often the status line's "filtering N%" moves.
+REFILTER_PROGRESS_PERIOD_S = 0.1
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -168,7 +172,6 @@ class ConsoleApp(App[None]):
         self.collection_policy.start()
         self.table.focus()
         self.set_interval(self.drain_interval, self.drain_intake)
-        self._refilter_timer = self.set_interval(REFILTER_INTERVAL, self.refilter_step, pause=True)
         self._apply_initial_rules()
         self.update_status()
         # After the first frame: starting sources (threads, child processes) costs CPU
@@ -357,17 +360,26 @@ class ConsoleApp(App[None]):
         table.decoration_of = self.view.decoration_of if rules.highlighting else None
         table.restyle()
         if self.view.refiltering:
-            self._refilter_timer.resume()
+            self._filter_in_background()
         self._show_rules()
         self.update_status()
 
-    def refilter_step(self) -> None:
-        """One slice of the background filtering (a few ms), newest records first."""
-        with self.table.keeping_position():
-            done = self.view.refilter_step(REFILTER_BUDGET_S)
-        if done:
-            self._refilter_timer.pause()
-            self._show_rules()
+    @work(exclusive=True, group="refilter")
+    async def _filter_in_background(self) -> None:
+        """Filter the older records in slices, newest first; between slices the event loop
+        draws frames and answers keys."""
+        await asyncio.sleep(REFILTER_FIRST_PAUSE_S)  # the newest screenful is drawn first
+        shown_at = self.clock()
+        while True:
+            with self.table.keeping_position():
+                done = self.view.refilter_step(REFILTER_BUDGET_S)
+            if done:
+                break
+            if self.clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
+                shown_at = self.clock()
+                self.update_status()
+            await asyncio.sleep(REFILTER_PAUSE_S)
+        self._show_rules()
         self.update_status()
 
     def _rules_note(self) -> str:

@@ -36,6 +36,8 @@ Decoration = str | None
 _SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
 _MESSAGE_LIMIT = 2000
 _NO_SPACING = Spacing(0, 0, 0, 0)
+#: How often the scrollbar follows changes that leave the rows on screen as they were (s).
+_QUIET_SCROLLBAR_PERIOD = 0.1
 
 
 class LogTable(ScrollView, can_focus=True):
@@ -117,6 +119,9 @@ class LogTable(ScrollView, can_focus=True):
         self._base = Style()
         self._styles_key: tuple | None = None
         self._width = 0
+        self._scrollbar_sync_due = False
+        #: The last strips ``render_lines`` returned, and what they were drawn from.
+        self._frame: tuple[tuple, list[Strip]] | None = None
 
     # -- rows --------------------------------------------------------------------------------
 
@@ -146,48 +151,81 @@ class LogTable(ScrollView, can_focus=True):
     @contextmanager
     def keeping_position(self) -> Iterator[None]:
         """Wrap a store/view update: the rows under the cursor and at the top stay put."""
-        rows = self.row_count
-        top_seq = self.view.seq_at(int(self.scroll_y)) if 0 <= self.scroll_y < rows else None
+        top = int(self.scroll_y)
+        top_seq = self.view.seq_at(top) if 0 <= top < self.row_count else None
         cursor_seq = self.cursor_seq
+        shown = self._shown_seqs(top)
         yield
-        self._after_update(top_seq, cursor_seq)
+        self._after_update(top_seq, cursor_seq, shown)
 
-    def _after_update(self, top_seq: int | None, cursor_seq: int | None) -> None:
+    def _after_update(self, top_seq: int | None, cursor_seq: int | None, shown: tuple | None = None) -> None:
         rows = self.row_count
-        self._update_virtual_size()
+        top: int | None
         if self.following and self.paused_end is None:
             self.cursor_row = max(rows - 1, 0)
-            self._scroll_to_row_end()
+            top = self._end_top()
         else:
             if cursor_seq is not None:
                 self.cursor_row = min(self.view.row_of(cursor_seq), max(rows - 1, 0))
             else:
                 self.cursor_row = min(self.cursor_row, max(rows - 1, 0))
-            if top_seq is not None:
-                self.set_scroll(None, self.view.row_of(top_seq))
+            top = self.view.row_of(top_seq) if top_seq is not None else None
+        if shown is not None and top is not None and self._shown_seqs(top) == shown:
+            # The same rows on screen (older ones were filtered in, or new ones arrived below
+            # while scrolled up): only the scroll offset and, a few times a second, the
+            # scrollbar move; the table is not redrawn.
+            self._update_virtual_size(quiet=True)
+            self.set_reactive(ScrollView.scroll_y, float(top))
+            self.set_reactive(ScrollView.scroll_target_y, float(top))
+            return
+        self._update_virtual_size()
+        if top is not None:
+            self.set_scroll(None, top)
         self.refresh()
         self.post_message(self.StateChanged())
 
+    def _shown_seqs(self, top: int) -> tuple[int | None, ...]:
+        """The cursor's seq and those of the rows on screen with ``top`` as the first row."""
+        seq_at = self.view.seq_at
+        end = min(top + self._body_height, self.row_count)
+        return (self.cursor_seq, *(seq_at(row) for row in range(max(top, 0), end)))
+
     def reset(self) -> None:
         """After a clear or a new filter: back to the tail."""
-        self._cache.clear()
+        self._forget_drawn_rows()
         self.cursor_row = 0
         self.following = True
         self._after_update(None, None)
 
+    def _forget_drawn_rows(self) -> None:
+        self._cache.clear()
+        self._frame = None
+
     def restyle(self) -> None:
         """Decorations changed (rules): drop cached rows and redraw."""
         self.style_generation += 1
-        self._cache.clear()
+        self._forget_drawn_rows()
         self.refresh()
 
-    def _update_virtual_size(self) -> None:
+    def _update_virtual_size(self, *, quiet: bool = False) -> None:
         size = Size(self.scrollable_content_region.width, self.row_count + 1)
         if size != self.virtual_size:
             # Not ``self.virtual_size = size``: that reactive asks for a layout of the whole
             # screen, many times a second while messages arrive. Only the scrollbars change.
             self.set_reactive(ScrollView.virtual_size, size)
-            self._scroll_update(size)
+            if not quiet:
+                self._scroll_update(size)
+        if quiet and not self._scrollbar_sync_due:
+            self._scrollbar_sync_due = True
+            self.set_timer(_QUIET_SCROLLBAR_PERIOD, self._sync_scrollbars)
+
+    def _sync_scrollbars(self) -> None:
+        """Scrollbars to the virtual size and scroll offset (redrawing the scrollbar region
+        redraws every widget under it, this table included)."""
+        self._scrollbar_sync_due = False
+        self._scroll_update(self.virtual_size)
+        if self.show_vertical_scrollbar:
+            self.vertical_scrollbar.position = self.scroll_y
 
     # -- following and pause -------------------------------------------------------------------
 
@@ -231,8 +269,12 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
         self.post_message(self.StateChanged())
 
+    def _end_top(self) -> int:
+        """The top row when the last row is at the bottom of the screen."""
+        return max(self.row_count + 1 - self.scrollable_content_region.height, 0)
+
     def _scroll_to_row_end(self) -> None:
-        self.set_scroll(None, max(self.row_count + 1 - self.scrollable_content_region.height, 0))
+        self.set_scroll(None, self._end_top())
 
     def watch_scroll_y(self, old: float, new: float) -> None:
         super().watch_scroll_y(old, new)
@@ -292,7 +334,7 @@ class LogTable(ScrollView, can_focus=True):
         if "message" not in columns:
             columns.add("message")
         self.shown_columns = frozenset(columns)
-        self._cache.clear()
+        self._forget_drawn_rows()
         self.refresh()
 
     def _layout(self, width: int) -> tuple[PlacedColumn, ...]:
@@ -305,7 +347,7 @@ class LogTable(ScrollView, can_focus=True):
         if key != self._layout_key:
             self._layout_key = key
             self._placed = layout_columns(width, self.shown_columns, node_width)
-            self._cache.clear()
+            self._forget_drawn_rows()
         return self._placed
 
     @property
@@ -326,7 +368,7 @@ class LogTable(ScrollView, can_focus=True):
             self._styles_key = key
             self._styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
             self._base = self.rich_style
-            self._cache.clear()
+            self._forget_drawn_rows()
 
     def render_lines(self, crop: Region) -> list[Strip]:
         # Everything a row needs that is the same for every row: worked out once a frame.
@@ -341,6 +383,15 @@ class LogTable(ScrollView, can_focus=True):
         filters = self.get_line_filters()
         background = self.background_colors[1]
         full_width = self.size.width  # the scrollbar gutter too, when no scrollbar covers it
+        # Textual redraws every widget under a changed region (the scrollbar, a notification):
+        # the same rows in the same styles give the same strips as last time.
+        top = int(self.scroll_y)
+        seq_at = self.view.seq_at
+        shown = tuple(seq_at(row) for row in range(top, min(top + self.size.height, self.row_count)))
+        frame_key = (crop, full_width, shown, self.cursor_row, self.style_generation, self._styles_key,
+                     self._layout_key, background, *map(id, filters))
+        if self._frame is not None and self._frame[0] == frame_key:
+            return self._frame[1]
         strips = []
         for y in crop.line_range:
             strip = self.render_line(y)
@@ -352,6 +403,7 @@ class LogTable(ScrollView, can_focus=True):
         x1, x2 = crop.column_span
         if (x1, x2) != (0, full_width):
             strips = [strip.crop(x1, x2) for strip in strips]
+        self._frame = (frame_key, strips)
         return strips
 
     def render_line(self, y: int) -> Strip:
