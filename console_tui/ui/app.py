@@ -55,8 +55,7 @@ if TYPE_CHECKING:
     from ..sources.ros2.loggers import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
-#: Background filtering after a rule change: a slice of this long, this often.
-#: Background filtering: slices of this long, with the event loop free this long between them.
+#: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
 REFILTER_BUDGET_S = 0.010
 REFILTER_PAUSE_S = 0.001
 REFILTER_FIRST_PAUSE_S = 0.02

@@ -385,11 +385,8 @@ class LogTable(ScrollView, can_focus=True):
         full_width = self.size.width  # the scrollbar gutter too, when no scrollbar covers it
         # Textual redraws every widget under a changed region (the scrollbar, a notification):
         # the same rows in the same styles give the same strips as last time.
-        top = int(self.scroll_y)
-        seq_at = self.view.seq_at
-        shown = tuple(seq_at(row) for row in range(top, min(top + self.size.height, self.row_count)))
-        frame_key = (crop, full_width, shown, self.cursor_row, self.style_generation, self._styles_key,
-                     self._layout_key, background, *map(id, filters))
+        frame_key = (crop, full_width, self._shown_seqs(int(self.scroll_y)), self.style_generation,
+                     self._styles_key, self._layout_key, background, *map(id, filters))
         if self._frame is not None and self._frame[0] == frame_key:
             return self._frame[1]
         strips = []
