@@ -1,6 +1,6 @@
 """Rules benchmark: re-filtering a full store of 1,000,000 records when the rules change.
 
-    .venv/bin/python benchmarks/rules.py [--records 1000000] [--step-ms 10] [--app]
+    .venv/bin/python benchmarks/rules.py [--records 1000000] [--step-ms 15] [--app]
 
 Fills a ``LogStore`` with realistic records (60 nodes, 90 files, 120 functions, a ROS-like
 mix of severities, 60-120 character messages with numbers), then for each rule change
@@ -191,7 +191,7 @@ def print_table(title: str, rows: list[tuple[str, float, float, float, int]], st
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--records", type=int, default=1_000_000)
-    parser.add_argument("--step-ms", type=float, default=10.0)
+    parser.add_argument("--step-ms", type=float, default=15.0)
     parser.add_argument("--app", action="store_true", help="also make the changes in the running app (headless)")
     args = parser.parse_args()
 

@@ -56,7 +56,7 @@ if TYPE_CHECKING:
 
 DRAIN_INTERVAL = 1 / 15
 #: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
-REFILTER_BUDGET_S = 0.010
+REFILTER_BUDGET_S = 0.015
 REFILTER_PAUSE_S = 0.001
 REFILTER_FIRST_PAUSE_S = 0.02
 #: How often the status line's "filtering N%" moves.
