@@ -192,6 +192,22 @@ async def test_quick_rules_from_a_row():
         assert app.view.decoration_of(seq) == expected
 
 
+async def test_quick_rules_from_selected_rows():
+    app = make_app()
+    async with app.run_test(size=(160, 45)) as pilot:
+        await pilot.press("shift+up", "shift+up", "shift+up")
+        assert len(app.table.selected_rows()) == 4
+        rows = [app.store.get(seq) for seq in app.table.selected_seqs(10)]
+        nodes = {row.node for row in rows}
+        await pilot.press("minus")
+        assert isinstance(app.screen, QuickRuleScreen)
+        await pilot.press("enter")  # the first choice: these nodes
+        assert app.rules.entries[-1].rule.names == tuple(dict.fromkeys(row.node for row in rows))
+        assert all(r.node not in nodes for r in shown(app))
+        await pilot.press("up", "shift+up", "escape")  # a plain move and Esc end a selection
+        assert len(app.table.selected_rows()) == 1
+
+
 async def test_highlighted_only_switch():
     app = make_app(query="+level:error,fatal")
     async with app.run_test(size=(160, 45)) as pilot:
@@ -259,3 +275,23 @@ def test_rules_last_at_start_restores_the_saved_set(tmp_path):
     args = parser.parse_args(["--rules", "last"])
     check_rule_arguments(parser, args)
     assert args.rule_set.entries[0].rule.levels == frozenset({10})
+
+
+def test_quick_rules_for_several_rows():
+    from console_tui.model.record import LogRecord
+    from console_tui.ui.screens.quick_rule import quick_rules
+
+    rows = [
+        LogRecord(stamp_ns=1, level=30, node="nav", msg="a (b)?", file="x.py", function="f", line=1),
+        LogRecord(stamp_ns=2, level=40, node="cam", msg="c|d", file="y.py", function="g", line=2),
+        LogRecord(stamp_ns=3, level=30, node="nav", msg="a (b)?", file="x.py", function="f", line=1),
+    ]
+    labels, rules = zip(*quick_rules(rows))
+    assert labels[0] == "these 2 nodes: nav, cam" and rules[0].names == ("nav", "cam")
+    assert labels[1] == "these 2 severities: WARN, ERROR" and rules[1].levels == frozenset({30, 40})
+    assert labels[2].startswith("these 2 messages")
+    assert [rules[2].matches(row) for row in rows] == [True, True, True]
+    assert not rules[2].matches(LogRecord(stamp_ns=4, level=20, node="n", msg="a b"))
+    assert len(rules) == 3  # two locations: no location rule
+    assert [label.split(":")[0] for label, _ in quick_rules(rows[:1])] == [
+        "this node", "this severity", "this message", "this location"]

@@ -61,6 +61,8 @@ REFILTER_PAUSE_S = 0.001
 REFILTER_FIRST_PAUSE_S = 0.02
 #: How often the status line's "filtering N%" moves.
 REFILTER_PROGRESS_PERIOD_S = 0.1
+#: Quick rules look at this many selected rows at most.
+QUICK_RULE_ROWS = 10_000
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -94,8 +96,8 @@ class ConsoleApp(App[None]):
         Binding("slash", "query", "Query"),
         Binding("r", "toggle_rules", "Rules"),
         Binding("H", "toggle_highlighted_only", "Highlighted only", show=False),
-        Binding("minus", "quick_rule('exclude')", "Hide like this row", show=False),
-        Binding("plus", "quick_rule('highlight')", "Highlight like this row", show=False),
+        Binding("minus", "quick_rule('exclude')", "Hide like the selected rows", show=False),
+        Binding("plus", "quick_rule('highlight')", "Highlight like the selected rows", show=False),
         Binding("C", "columns", "Columns"),
         Binding("l", "toggle_loggers", "Loggers"),
         Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False),
@@ -457,15 +459,15 @@ class ConsoleApp(App[None]):
         self.push_screen(RuleEditor(entry, utc=self.utc), edited)
 
     def action_quick_rule(self, role: str) -> None:
-        seq = self.table.cursor_seq
-        if seq is None:
+        seqs = self.table.selected_seqs(QUICK_RULE_ROWS)
+        if not seqs:
             return
 
         def chosen(entry: Entry | None) -> None:
             if entry is not None:
                 self.apply_rules(self.rules.add(entry))
 
-        self.push_screen(QuickRuleScreen(self.store.get(seq), Role(role)), chosen)
+        self.push_screen(QuickRuleScreen([self.store.get(seq) for seq in seqs], Role(role)), chosen)
 
     def on_rules_pane_file_requested(self, message: RulesPane.FileRequested) -> None:
         if message.save:
@@ -612,8 +614,8 @@ class ConsoleApp(App[None]):
         yield SystemCommand("Query", "Type rules as a query: level>=warn node:nav* -node:rviz* +\"failed\"", self.action_query)
         yield SystemCommand("Rules", "Show or hide the rules pane: every rule, its switches and counts", self.action_toggle_rules)
         yield SystemCommand("Add a rule", "A new exclude or highlight rule of any kind", lambda: self.on_rules_pane_edit_requested(RulesPane.EditRequested(None)))
-        yield SystemCommand("Hide messages like this row", "Exclude this row's node, severity, message or location", lambda: self.action_quick_rule("exclude"))
-        yield SystemCommand("Highlight messages like this row", "Highlight this row's node, severity, message or location", lambda: self.action_quick_rule("highlight"))
+        yield SystemCommand("Hide messages like the selected rows", "Exclude their nodes, severities, messages or location", lambda: self.action_quick_rule("exclude"))
+        yield SystemCommand("Highlight messages like the selected rows", "Highlight their nodes, severities, messages or location", lambda: self.action_quick_rule("highlight"))
         yield SystemCommand("Highlighted only", "Show only highlighted messages (or all again)", self.action_toggle_highlighted_only)
         yield SystemCommand("Save rules", "Save the rule set to a TOML file", self.action_save_rules)
         yield SystemCommand("Open rules", "Load a rule set from a TOML file", self.action_load_rules)

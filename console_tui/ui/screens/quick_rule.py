@@ -1,8 +1,11 @@
-"""Quick rules from a row: exclude or highlight its node, severity, message or location."""
+"""Quick rules from the selected rows: exclude or highlight their nodes, severities, messages
+or location."""
 
 from __future__ import annotations
 
 import os
+import re
+from collections.abc import Sequence
 
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -22,17 +25,38 @@ from ...model.rules.severity import SeverityRule
 from ...model.text import one_line
 
 
-def quick_rules(record: LogRecord) -> list[tuple[str, Rule]]:
-    """What a row offers, with a label each: its node, severity, message and location."""
-    return [
-        (f"this node: {record.node}", NodeRule((record.node,))),
-        (f"this severity: {severity_name(record.level)}", SeverityRule(frozenset({record.level}))),
-        (f"this message: {record.msg}", MessageRule(record.msg)),
-        (
-            f"this location: {os.path.basename(record.file)}:{record.function}:{record.line}",
-            LocationRule(file=record.file, function=record.function, line=record.line or None),
-        ),
+#: At most this many distinct messages make one "these messages" rule.
+MESSAGES_AT_MOST = 50
+
+
+def quick_rules(records: Sequence[LogRecord]) -> list[tuple[str, Rule]]:
+    """What selected rows offer, with a label each: their nodes, severities, messages and
+    (when they share it) location."""
+    nodes = list(dict.fromkeys(record.node for record in records))
+    levels = sorted({record.level for record in records})
+    messages = list(dict.fromkeys(record.msg for record in records))
+    locations = {(record.file, record.function, record.line) for record in records}
+    choices: list[tuple[str, Rule]] = [
+        (_label("node", nodes), NodeRule(tuple(nodes))),
+        (_label("severity", [severity_name(level) for level in levels]), SeverityRule(frozenset(levels))),
     ]
+    if len(messages) == 1:
+        choices.append((_label("message", messages), MessageRule(messages[0])))
+    elif len(messages) <= MESSAGES_AT_MOST:
+        any_of = "|".join(re.escape(message) for message in messages)
+        choices.append((_label("message", messages), MessageRule(any_of, regex=True)))
+    if len(locations) == 1:
+        file, function, line = locations.pop()
+        where = f"{os.path.basename(file)}:{function}:{line}"
+        choices.append((_label("location", [where]), LocationRule(file=file, function=function, line=line or None)))
+    return choices
+
+
+def _label(kind: str, values: Sequence[str]) -> str:
+    if len(values) == 1:
+        return f"this {kind}: {values[0]}"
+    plural = "severities" if kind == "severity" else f"{kind}s"
+    return f"these {len(values)} {plural}: " + ", ".join(one_line(value, 40) for value in values)
 
 
 class QuickRuleScreen(ModalScreen[Entry | None]):
@@ -45,10 +69,10 @@ class QuickRuleScreen(ModalScreen[Entry | None]):
     """
     BINDINGS = [Binding("escape", "cancel", "Cancel")]
 
-    def __init__(self, record: LogRecord, role: Role) -> None:
+    def __init__(self, records: Sequence[LogRecord], role: Role) -> None:
         super().__init__()
         self.role = role
-        self.choices = quick_rules(record)
+        self.choices = quick_rules(records)
 
     def compose(self) -> ComposeResult:
         verb = "Hide" if self.role is Role.EXCLUDE else "Highlight"

@@ -63,6 +63,7 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--severity-warn { color: $warning; text-style: bold; }
     LogTable > .log-table--severity-error { color: $error; text-style: bold; }
     LogTable > .log-table--severity-fatal { background: $error; color: $text; text-style: bold reverse; }
+    LogTable > .log-table--selected { background: $primary-muted; }
     LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
     """
@@ -70,6 +71,7 @@ class LogTable(ScrollView, can_focus=True):
     COMPONENT_CLASSES = {
         "log-table--header",
         "log-table--cursor",
+        "log-table--selected",
         "log-table--dim-column",
         *(f"log-table--row-{name}" for name in _SEVERITY_CLASS.values()),
         *(f"log-table--severity-{name}" for name in _SEVERITY_CLASS.values()),
@@ -80,6 +82,9 @@ class LogTable(ScrollView, can_focus=True):
     BINDINGS = [
         Binding("up,k", "cursor_up", "Up", show=False),
         Binding("down,j", "cursor_down", "Down", show=False),
+        Binding("shift+up,K", "select_up", "Select rows upwards", show=False),
+        Binding("shift+down,J", "select_down", "Select rows downwards", show=False),
+        Binding("escape", "clear_selection", "Clear the selection", show=False),
         Binding("pageup", "page_up", "Page up", show=False),
         Binding("pagedown", "page_down", "Page down", show=False),
         Binding("home,g", "first_row", "First", show=False),
@@ -106,6 +111,8 @@ class LogTable(ScrollView, can_focus=True):
         #: While paused, rows for seqs at or past this are not shown.
         self.paused_end: int | None = None
         self.cursor_row = 0
+        #: The seq where a selection of rows began (shift+arrows), or None: the cursor's row only.
+        self.selection_anchor: int | None = None
         self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
         #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
         self.decoration_of: Callable[[int], Decoration] | None = None
@@ -250,10 +257,15 @@ class LogTable(ScrollView, can_focus=True):
 
     # -- cursor and scrolling ----------------------------------------------------------------
 
-    def move_cursor(self, row: int) -> None:
+    def move_cursor(self, row: int, *, extend: bool = False) -> None:
+        """Move the cursor to ``row``; ``extend`` selects the rows from where it was."""
         rows = self.row_count
         if rows == 0:
             return
+        if not extend:
+            self.selection_anchor = None
+        elif self.selection_anchor is None:
+            self.selection_anchor = self.cursor_seq
         row = min(max(row, 0), rows - 1)
         self.cursor_row = row
         top = int(self.scroll_y)
@@ -287,6 +299,30 @@ class LogTable(ScrollView, can_focus=True):
     def action_cursor_down(self) -> None:
         self.move_cursor(self.cursor_row + 1)
 
+    def action_select_up(self) -> None:
+        self.move_cursor(self.cursor_row - 1, extend=True)
+
+    def action_select_down(self) -> None:
+        self.move_cursor(self.cursor_row + 1, extend=True)
+
+    def action_clear_selection(self) -> None:
+        if self.selection_anchor is not None:
+            self.selection_anchor = None
+            self.refresh()
+
+    def selected_rows(self) -> range:
+        """The selected rows (the cursor's alone when nothing else is selected)."""
+        if self.row_count == 0:
+            return range(0)
+        anchor = self.cursor_row if self.selection_anchor is None else self.view.row_of(self.selection_anchor)
+        anchor = min(anchor, self.row_count - 1)
+        return range(min(anchor, self.cursor_row), max(anchor, self.cursor_row) + 1)
+
+    def selected_seqs(self, at_most: int) -> list[int]:
+        """The seqs of the selected rows, the first ``at_most`` of them."""
+        rows = self.selected_rows()
+        return [self.view.seq_at(row) for row in rows[:at_most]]
+
     def action_page_up(self) -> None:
         self.move_cursor(self.cursor_row - self._body_height)
 
@@ -314,7 +350,7 @@ class LogTable(ScrollView, can_focus=True):
         row = self._row_at(event.y)
         if row is None:
             return
-        self.move_cursor(row)
+        self.move_cursor(row, extend=event.shift)
         if event.chain >= 2:
             self.action_activate()
 
@@ -385,8 +421,8 @@ class LogTable(ScrollView, can_focus=True):
         full_width = self.size.width  # the scrollbar gutter too, when no scrollbar covers it
         # Textual redraws every widget under a changed region (the scrollbar, a notification):
         # the same rows in the same styles give the same strips as last time.
-        frame_key = (crop, full_width, self._shown_seqs(int(self.scroll_y)), self.style_generation,
-                     self._styles_key, self._layout_key, background, *map(id, filters))
+        frame_key = (crop, full_width, self._shown_seqs(int(self.scroll_y)), self.selection_anchor,
+                     self.style_generation, self._styles_key, self._layout_key, background, *map(id, filters))
         if self._frame is not None and self._frame[0] == frame_key:
             return self._frame[1]
         strips = []
@@ -412,11 +448,12 @@ class LogTable(ScrollView, can_focus=True):
             return Strip.blank(width, base)
         seq = self.view.seq_at(row)
         is_cursor = row == self.cursor_row
+        selected = self.selection_anchor is not None and row in self.selected_rows()
         decoration = self.decoration_of(seq) if self.decoration_of is not None else None
-        key = (seq, is_cursor, decoration, self.style_generation)
+        key = (seq, is_cursor, selected, decoration, self.style_generation)
         strip = self._cache.get(key)
         if strip is None:
-            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, decoration)
+            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, selected, decoration)
             self._cache[key] = strip
         return strip
 
@@ -434,6 +471,7 @@ class LogTable(ScrollView, can_focus=True):
         width: int,
         base: Style,
         is_cursor: bool,
+        selected: bool,
         decoration: Decoration,
     ) -> Strip:
         styles = self._styles
@@ -443,6 +481,8 @@ class LogTable(ScrollView, can_focus=True):
             row_style += styles.get("log-table--highlight", Style())
         elif decoration == "dim":
             row_style += styles.get("log-table--dimmed", Style())
+        if selected:
+            row_style += styles.get("log-table--selected", Style())
         if is_cursor:
             row_style += styles.get("log-table--cursor", Style())
         muted = styles.get("log-table--dim-column", Style())
