@@ -27,11 +27,11 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from _report import machine_line  # noqa: E402
-from recordings import write_rosbag2  # noqa: E402
+from _report import machine_line
+from recordings import write_rosbag2
 
-from console_tui.model.record import LogRecord  # noqa: E402
-from console_tui.sources.files import open_log_file  # noqa: E402
+from console_tui.model.record import LogRecord
+from console_tui.sources.files import open_log_file
 
 IMAGE_BYTES = 1_000_000
 
@@ -92,13 +92,27 @@ def write_ros1_with_images(path: Path, records: list[LogRecord], logs_per_image:
 
     typestore = get_typestore(Stores.ROS1_NOETIC)
     types = typestore.types
-    Log, Header, Time, Image = (types[n] for n in (
-        "rosgraph_msgs/msg/Log", "std_msgs/msg/Header", "builtin_interfaces/msg/Time", "sensor_msgs/msg/Image"))
+    Log, Header, Time, Image = (
+        types[n]
+        for n in (
+            "rosgraph_msgs/msg/Log",
+            "std_msgs/msg/Header",
+            "builtin_interfaces/msg/Time",
+            "sensor_msgs/msg/Image",
+        )
+    )
     width = 1024
     height = IMAGE_BYTES // (width * 3)
     pixels = np.random.default_rng(1).integers(0, 255, width * height * 3, dtype=np.uint8)
-    image = Image(header=Header(seq=0, stamp=Time(sec=0, nanosec=0), frame_id="camera"), height=height,
-                  width=width, encoding="rgb8", is_bigendian=0, step=width * 3, data=pixels)
+    image = Image(
+        header=Header(seq=0, stamp=Time(sec=0, nanosec=0), frame_id="camera"),
+        height=height,
+        width=width,
+        encoding="rgb8",
+        is_bigendian=0,
+        step=width * 3,
+        data=pixels,
+    )
     image_data = typestore.serialize_ros1(image, "sensor_msgs/msg/Image")
     with Writer(path) as writer:
         rosout = writer.add_connection("/rosout", "rosgraph_msgs/msg/Log", typestore=typestore)
@@ -107,9 +121,16 @@ def write_ros1_with_images(path: Path, records: list[LogRecord], logs_per_image:
             if index % logs_per_image == 0:
                 writer.write(camera, record.stamp_ns - 1, image_data)
             sec, nanosec = divmod(record.stamp_ns, 1_000_000_000)
-            message = Log(header=Header(seq=index, stamp=Time(sec=sec, nanosec=nanosec), frame_id=""),
-                          level=to_ros1(record.level), name=record.node, msg=record.msg, file=record.file,
-                          function=record.function, line=record.line, topics=[])
+            message = Log(
+                header=Header(seq=index, stamp=Time(sec=sec, nanosec=nanosec), frame_id=""),
+                level=to_ros1(record.level),
+                name=record.node,
+                msg=record.msg,
+                file=record.file,
+                function=record.function,
+                line=record.line,
+                topics=[],
+            )
             writer.write(rosout, record.stamp_ns, typestore.serialize_ros1(message, "rosgraph_msgs/msg/Log"))
     return path
 
@@ -125,8 +146,15 @@ def main() -> None:
     base.mkdir(parents=True, exist_ok=True)
     count = args.image_mb * args.logs_per_image
     records = [
-        LogRecord(1_700_000_000_000_000_000 + i * 10_000_000, (10, 20, 30, 40, 50)[i % 5], f"node{i % 7}",
-                  f"log message {i}: something happened", "/ws/src/node.py", "tick", 100 + i % 50)
+        LogRecord(
+            1_700_000_000_000_000_000 + i * 10_000_000,
+            (10, 20, 30, 40, 50)[i % 5],
+            f"node{i % 7}",
+            f"log message {i}: something happened",
+            "/ws/src/node.py",
+            "tick",
+            100 + i % 50,
+        )
         for i in range(count)
     ]
     try:
@@ -139,7 +167,10 @@ def main() -> None:
         rows = []
         for name, path in recordings.items():
             size = size_of(path)
-            for reader_name, read in (("console-tui", read_with_console_tui), ("rosbags messages()", read_with_library)):
+            for reader_name, read in (
+                ("console-tui", read_with_console_tui),
+                ("rosbags messages()", read_with_library),
+            ):
                 got, seconds, rchar, disk = measure(path, read)
                 rows.append((name, reader_name, size, got, seconds, rchar, disk))
         print("\n" + machine_line())
@@ -158,8 +189,15 @@ def main() -> None:
 
 def _rosbag2(path: Path, records: list[LogRecord], storage: str, logs_per_image: int) -> Path:
     """Records on /rosout with a 1 MB image after every ``logs_per_image`` of them."""
-    return write_rosbag2(path, records, storage=storage, chatter_every=logs_per_image, image_bytes=IMAGE_BYTES,
-                         images_per_log=1, image_every=logs_per_image)
+    return write_rosbag2(
+        path,
+        records,
+        storage=storage,
+        chatter_every=logs_per_image,
+        image_bytes=IMAGE_BYTES,
+        images_per_log=1,
+        image_every=logs_per_image,
+    )
 
 
 if __name__ == "__main__":

@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _report import machine_line, table, verdict  # noqa: E402
+from _report import machine_line, table, verdict
 
 TOPIC = "/console_tui_bench_log"
 QUEUE_DEPTH = 10_000
@@ -66,7 +66,23 @@ def message_pool(index: int, size: int = 512) -> list[bytes]:
     from rclpy.serialization import serialize_message
 
     rng = random.Random(index)
-    words = "goal plan costmap laser scan tf frame odom map timeout received sending ok failed retry".split()
+    words = [
+        "goal",
+        "plan",
+        "costmap",
+        "laser",
+        "scan",
+        "tf",
+        "frame",
+        "odom",
+        "map",
+        "timeout",
+        "received",
+        "sending",
+        "ok",
+        "failed",
+        "retry",
+    ]
     pool = []
     for number in range(size):
         message = Log()
@@ -162,7 +178,7 @@ class Counter:
         self.count += 1
 
 
-def serve_commands(count, publishers, extra=lambda: {}) -> None:
+def serve_commands(count, publishers, extra=dict) -> None:
     """Answer the orchestrator on stdin until it says quit (or closes stdin)."""
     for raw in sys.stdin:
         command = json.loads(raw)
@@ -180,7 +196,7 @@ def serve_commands(count, publishers, extra=lambda: {}) -> None:
 def run_intake_subscriber(raw: bool) -> None:
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.model.store import LogStore
-    from console_tui.sources.ros2.log_source import LiveLogSource
+    from console_tui.sources.ros2.live_source import LiveLogSource
     from console_tui.sources.ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
@@ -241,9 +257,9 @@ def run_intake_events_executor() -> None:
     from rclpy.node import Node
     from rclpy.signals import SignalHandlerOptions
 
+    from console_tui.model.formats.ros2_log_msg import LogDecoder
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.model.store import LogStore
-    from console_tui.sources.ros2.cdr import LogDecoder
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node("bench_intake_ee")
@@ -457,8 +473,12 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         path=after.get("path", ""),
         stop_ms=stopped["seconds"] * 1000 if stopped else None,
     )
-    print(f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received {row.received:>8,} "
-          f"({row.received_per_s:,.0f}/s), lost {row.lost:,}", file=sys.stderr, flush=True)
+    print(
+        f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received {row.received:>8,} "
+        f"({row.received_per_s:,.0f}/s), lost {row.lost:,}",
+        file=sys.stderr,
+        flush=True,
+    )
     return row
 
 
@@ -474,16 +494,39 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
         vs_typed = f"{row.received_per_s / typed.received_per_s:.1f}x" if is_intake and typed else ""
         cpu_per_message = f"{row.cpu / row.received * 1e6:.0f}" if row.received else "-"
         reported = "" if row.lost_reported is None else f"{row.lost_reported:,}"
-        body.append([
-            row.publishers, row.rate, row.kind + (f" ({row.path})" if row.path else ""),
-            f"{row.sent / row.seconds:,.0f}", f"{row.received_per_s:,.0f}", f"{row.lost:,}",
-            f"{100 * row.lost / row.sent:.1f}%" if row.sent else "-", reported, cpu_per_message, vs_raw, vs_typed,
-        ])
-    lines.append(table(
-        ["pubs", "offered/s", "subscriber", "sent/s", "received/s", "lost", "lost %", "lost (status bar)",
-         "CPU us/msg", "intake ÷ raw-ee", "intake ÷ typed-spin"],
-        body,
-    ))
+        body.append(
+            [
+                row.publishers,
+                row.rate,
+                row.kind + (f" ({row.path})" if row.path else ""),
+                f"{row.sent / row.seconds:,.0f}",
+                f"{row.received_per_s:,.0f}",
+                f"{row.lost:,}",
+                f"{100 * row.lost / row.sent:.1f}%" if row.sent else "-",
+                reported,
+                cpu_per_message,
+                vs_raw,
+                vs_typed,
+            ]
+        )
+    lines.append(
+        table(
+            [
+                "pubs",
+                "offered/s",
+                "subscriber",
+                "sent/s",
+                "received/s",
+                "lost",
+                "lost %",
+                "lost (status bar)",
+                "CPU us/msg",
+                "intake ÷ raw-ee",
+                "intake ÷ typed-spin",
+            ],
+            body,
+        )
+    )
     lines.append("")
     lines.append("Targets:")
     for row in rows:
@@ -493,16 +536,22 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
         raw_ee = by_key.get((row.publishers, row.rate, "raw-ee"))
         if raw_ee:
             ratio = row.received_per_s / raw_ee.received_per_s
-            lines.append(f"- {where}: intake >= 90% of raw-ee: {ratio:.0%}, "
-                         + verdict(ratio >= TARGET_VS_RAW_EE, f"short by {TARGET_VS_RAW_EE - ratio:.0%} points"))
+            lines.append(
+                f"- {where}: intake >= 90% of raw-ee: {ratio:.0%}, "
+                + verdict(ratio >= TARGET_VS_RAW_EE, f"short by {TARGET_VS_RAW_EE - ratio:.0%} points")
+            )
         typed = by_key.get((row.publishers, row.rate, "typed-spin"))
         if typed and row.rate == "max":
             ratio = row.received_per_s / typed.received_per_s
-            lines.append(f"- {where}: intake >= 5x typed-spin: {ratio:.1f}x, "
-                         + verdict(ratio >= TARGET_VS_TYPED, f"short by {TARGET_VS_TYPED - ratio:.1f}x"))
+            lines.append(
+                f"- {where}: intake >= 5x typed-spin: {ratio:.1f}x, "
+                + verdict(ratio >= TARGET_VS_TYPED, f"short by {TARGET_VS_TYPED - ratio:.1f}x")
+            )
         if row.rate != "max" and float(row.rate) == LOSSLESS_RATE:
-            lines.append(f"- {where} for {row.seconds:.0f} s: 0 lost: {row.lost:,} lost, "
-                         + verdict(row.lost == 0, f"{row.lost:,} lost, {100 * row.lost / row.sent:.2f}%"))
+            lines.append(
+                f"- {where} for {row.seconds:.0f} s: 0 lost: {row.lost:,} lost, "
+                + verdict(row.lost == 0, f"{row.lost:,} lost, {100 * row.lost / row.sent:.2f}%")
+            )
     stops = [row.stop_ms for row in rows if row.stop_ms is not None]
     if stops:
         lines.append(f"- intake stop() (thread joined): at most {max(stops):.0f} ms over {len(stops)} runs")
@@ -512,14 +561,26 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--publishers", type=int, nargs="+", help="publisher process counts (default 1 4)")
-    parser.add_argument("--rates", nargs="+", help="total offered rates per second, or max (default max 1000 5000 20000 50000)")
-    parser.add_argument("--kinds", nargs="+", choices=ALL_KINDS, help=f"subscribers (default {' '.join(DEFAULT_KINDS)})")
+    parser.add_argument(
+        "--rates", nargs="+", help="total offered rates per second, or max (default max 1000 5000 20000 50000)"
+    )
+    parser.add_argument(
+        "--kinds", nargs="+", choices=ALL_KINDS, help=f"subscribers (default {' '.join(DEFAULT_KINDS)})"
+    )
     parser.add_argument("--duration", type=float, help="seconds of sending per measurement (default 5)")
     parser.add_argument("--repeat", type=int, default=1, help="rounds per measurement; the table shows medians")
-    parser.add_argument("--sustained", type=float, metavar="S",
-                        help="only the intake at 20k/s from 1 publisher for S seconds (flags above override)")
-    parser.add_argument("--udp", action="store_true", help="Fast DDS over UDP only (default: its defaults, shared memory)")
-    parser.add_argument("--domain", type=int, default=150 + os.getpid() % 80, help="ROS_DOMAIN_ID (default: from the pid)")
+    parser.add_argument(
+        "--sustained",
+        type=float,
+        metavar="S",
+        help="only the intake at 20k/s from 1 publisher for S seconds (flags above override)",
+    )
+    parser.add_argument(
+        "--udp", action="store_true", help="Fast DDS over UDP only (default: its defaults, shared memory)"
+    )
+    parser.add_argument(
+        "--domain", type=int, default=150 + os.getpid() % 80, help="ROS_DOMAIN_ID (default: from the pid)"
+    )
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)

@@ -27,10 +27,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from _report import machine_line  # noqa: E402
+from _report import machine_line
 
-from console_tui.model.record import LogRecord  # noqa: E402
-from console_tui.model.rules import (  # noqa: E402
+from console_tui.model.record import LogRecord
+from console_tui.model.rules import (
     CustomRule,
     MessageRule,
     NodeRule,
@@ -39,9 +39,9 @@ from console_tui.model.rules import (  # noqa: E402
     exclude,
     highlight,
 )
-from console_tui.model.rules.query import parse_query  # noqa: E402
-from console_tui.model.store import LogStore  # noqa: E402
-from console_tui.model.view import LogView  # noqa: E402
+from console_tui.model.rules.query import parse_query
+from console_tui.model.store import LogStore
+from console_tui.model.view import LogView
 
 FIRST_SCREEN_TARGET_MS = 100
 COMPLETE_TARGET_MS = 1000
@@ -75,8 +75,13 @@ def make_records(count: int) -> list[LogRecord]:
     for i in range(count):
         part = rng.choice(PARTS)
         msg = rng.choice(TEMPLATES).format(
-            x=rng.uniform(-50, 50), y=rng.uniform(-50, 50), t=rng.uniform(0, 30), ms=rng.uniform(0, 200),
-            n=rng.randrange(100000), k=rng.randrange(1, 250), part=part,
+            x=rng.uniform(-50, 50),
+            y=rng.uniform(-50, 50),
+            t=rng.uniform(0, 30),
+            ms=rng.uniform(0, 200),
+            n=rng.randrange(100000),
+            k=rng.randrange(1, 250),
+            part=part,
         )
         records.append(
             LogRecord(
@@ -94,9 +99,7 @@ def make_records(count: int) -> list[LogRecord]:
 
 def scenarios() -> list[tuple[str, RuleSet]]:
     warn_up = RuleSet((exclude(SeverityRule.of("debug", "info")),))
-    example = (
-        'level>=warn node:nav* -node:rviz* "planner failed" /time(out|d out)/i file:planner'
-    )
+    example = 'level>=warn node:nav* -node:rviz* "planner failed" /time(out|d out)/i file:planner'
     return [
         ("severity: hide debug, info", warn_up),
         ("node glob: hide rviz2.*", RuleSet((exclude(NodeRule(("rviz2.*",))),))),
@@ -110,10 +113,17 @@ def scenarios() -> list[tuple[str, RuleSet]]:
         ),
         ("query: issue example", RuleSet().with_query(parse_query(example))),
         ("everything off again", RuleSet()),
-        ("4 rules at once", RuleSet((
-            exclude(SeverityRule.of("debug")), exclude(NodeRule(("rviz2.*", "system.*"))),
-            highlight(MessageRule("failed", ignore_case=True)), highlight(MessageRule(r"\d{3}\.\d ms", regex=True)),
-        ))),
+        (
+            "4 rules at once",
+            RuleSet(
+                (
+                    exclude(SeverityRule.of("debug")),
+                    exclude(NodeRule(("rviz2.*", "system.*"))),
+                    highlight(MessageRule("failed", ignore_case=True)),
+                    highlight(MessageRule(r"\d{3}\.\d ms", regex=True)),
+                )
+            ),
+        ),
     ]
 
 
@@ -176,9 +186,12 @@ async def measure_in_app(store: LogStore) -> list[tuple[str, float, float, float
 
 def print_table(title: str, rows: list[tuple[str, float, float, float, int]], stall_title: str) -> None:
     print(f"\n{title}\n")
-    print(f"| rule change | first screen ms (<{FIRST_SCREEN_TARGET_MS}) | complete ms (<{COMPLETE_TARGET_MS}) | {stall_title} ms (<{STALL_TARGET_MS}) | rows shown |")
+    print(
+        f"| rule change | first screen ms (<{FIRST_SCREEN_TARGET_MS}) | complete ms (<{COMPLETE_TARGET_MS}) | {stall_title} ms (<{STALL_TARGET_MS}) | rows shown |"
+    )
     print("|---|---:|---:|---:|---:|")
     for name, first, complete, longest, shown in rows:
+
         def mark(value: float, target: float) -> str:
             return f"{value:.0f}" + ("" if value < target else " ✗")
 
@@ -201,8 +214,10 @@ def main() -> None:
     made = time.perf_counter() - t0
     store.extend(records)
     del records
-    print(f"{machine_line()}\n{args.records:,} records made in {made:.1f} s, stored in {time.perf_counter() - t0 - made:.1f} s; "
-          f"steps of {args.step_ms:g} ms\n")
+    print(
+        f"{machine_line()}\n{args.records:,} records made in {made:.1f} s, stored in {time.perf_counter() - t0 - made:.1f} s; "
+        f"steps of {args.step_ms:g} ms\n"
+    )
     view = LogView(store)
     rows = []
     for name, rules in scenarios():
@@ -214,7 +229,9 @@ def main() -> None:
 
         view.set_rules(RuleSet())
         rows = asyncio.run(measure_in_app(store))
-        print_table("In the running app (headless 160x48; the first screen is the first frame drawn):", rows, "longest stall")
+        print_table(
+            "In the running app (headless 160x48; the first screen is the first frame drawn):", rows, "longest stall"
+        )
 
 
 if __name__ == "__main__":

@@ -25,13 +25,13 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
-from _probe import StallProbe, count_frames  # noqa: E402
-from _report import machine_line  # noqa: E402
-from feed import record  # noqa: E402
-from textual import events  # noqa: E402
+from _probe import StallProbe, count_frames
+from _report import machine_line
+from feed import record
+from textual import events
 
-from console_tui.model.intake_queue import IntakeQueue  # noqa: E402
-from console_tui.ui.app import ConsoleApp  # noqa: E402
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.ui.app import ConsoleApp
 
 STALL_TARGET_MS = 33
 KEY_TARGET_MS = 100

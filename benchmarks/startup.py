@@ -29,7 +29,12 @@ ROOT = Path(__file__).resolve().parent.parent
 
 
 def first_frame(argv: list[str], domain: int, timeout: float = 20.0) -> float:
-    env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": str(domain), "TERM": "xterm-256color"}
+    env = {
+        **os.environ,
+        "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+        "ROS_DOMAIN_ID": str(domain),
+        "TERM": "xterm-256color",
+    }
     started = time.perf_counter()
     pid, fd = pty.fork()
     if pid == 0:
@@ -80,7 +85,9 @@ def main() -> int:
         median = statistics.median(times)
         verdict = "met" if median <= TARGET_S else f"MISSED by {median - TARGET_S:.2f} s"
         label = " ".join(["console-tui", *case])
-        print(f"| `{label}` | {len(times)} | {median:.2f} s | {min(times):.2f} s | {max(times):.2f} s | {TARGET_S} s | {verdict} |")
+        print(
+            f"| `{label}` | {len(times)} | {median:.2f} s | {min(times):.2f} s | {max(times):.2f} s | {TARGET_S} s | {verdict} |"
+        )
     return 0
 
 

@@ -29,18 +29,54 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _report import machine_line, table, verdict  # noqa: E402
+from _report import machine_line, table, verdict
 
-from console_tui.model.record import LogRecord  # noqa: E402
-from console_tui.model.store import LogStore  # noqa: E402
+from console_tui.model.record import LogRecord
+from console_tui.model.store import LogStore
 
 BATCH = 1_000
 TARGET_MB = 300
-WORDS = (
-    "goal received planning path costmap update laser scan dropped frame transform timeout odom map "
-    "battery voltage motor current joint limit reached velocity command published subscriber matched "
-    "parameter changed retrying connection camera exposure image latency ms ok failed waiting for"
-).split()
+WORDS = [
+    "goal",
+    "received",
+    "planning",
+    "path",
+    "costmap",
+    "update",
+    "laser",
+    "scan",
+    "dropped",
+    "frame",
+    "transform",
+    "timeout",
+    "odom",
+    "map",
+    "battery",
+    "voltage",
+    "motor",
+    "current",
+    "joint",
+    "limit",
+    "reached",
+    "velocity",
+    "command",
+    "published",
+    "subscriber",
+    "matched",
+    "parameter",
+    "changed",
+    "retrying",
+    "connection",
+    "camera",
+    "exposure",
+    "image",
+    "latency",
+    "ms",
+    "ok",
+    "failed",
+    "waiting",
+    "for",
+]
 
 
 def rss_mb() -> float:
@@ -58,7 +94,9 @@ class RecordMaker:
         rng = self.rng = random.Random(seed)
         self.nodes = [f"robot.{rng.choice(['nav', 'perception', 'hw', 'ui'])}.node_{i}" for i in range(40)]
         self.files = [f"/opt/robot/src/pkg_{i % 17}/src/module_{i}.cpp" for i in range(120)]
-        self.functions = [f"{rng.choice(['on', 'handle', 'update', 'publish'])}_{rng.choice(WORDS)}_{i}" for i in range(300)]
+        self.functions = [
+            f"{rng.choice(['on', 'handle', 'update', 'publish'])}_{rng.choice(WORDS)}_{i}" for i in range(300)
+        ]
         self.levels = [10] * 5 + [20] * 80 + [30] * 10 + [40] * 4 + [50]
         self.phrases = [" ".join(rng.choice(WORDS) for _ in range(20)) for _ in range(1024)]
         self.stamp = 1_700_000_000_000_000_000
@@ -73,10 +111,18 @@ class RecordMaker:
             self.number += 1
             self.stamp += 10_000 + (self.number * 7919) % 2_000_000
             text = f"{self.number}: {choice(phrases)}"[: 60 + self.number % 61]
-            out.append(LogRecord(
-                self.stamp, choice(levels), choice(nodes), text, choice(files), choice(functions),
-                1 + self.number % 3000, "/rosout",
-            ))
+            out.append(
+                LogRecord(
+                    self.stamp,
+                    choice(levels),
+                    choice(nodes),
+                    text,
+                    choice(files),
+                    choice(functions),
+                    1 + self.number % 3000,
+                    "/rosout",
+                )
+            )
         return out
 
 
@@ -107,7 +153,7 @@ def load_the_apps_libraries() -> tuple[str, Any]:
 
     Returns what was loaded, and the ROS runtime (or ``None``) to shut down at the end.
     """
-    import textual.app  # noqa: F401
+    import textual.app
     import textual.widgets  # noqa: F401
 
     loaded, runtime = "Textual", None
@@ -156,24 +202,40 @@ def main() -> None:
     per_record = (full_rss - baseline) * 1024 * 1024 / args.records
     rows = [
         ["process RSS before any record", f"{baseline:.0f} MB", f"Python with {loaded}"],
-        [f"process RSS holding {args.records:,} records", f"{full_rss:.0f} MB",
-         f"<= {TARGET_MB} MB: " + verdict(full_rss <= TARGET_MB, f"over by {full_rss - TARGET_MB:.0f} MB")],
+        [
+            f"process RSS holding {args.records:,} records",
+            f"{full_rss:.0f} MB",
+            f"<= {TARGET_MB} MB: " + verdict(full_rss <= TARGET_MB, f"over by {full_rss - TARGET_MB:.0f} MB"),
+        ],
         ["store's share", f"{full_rss - baseline:.0f} MB ({per_record:.0f} bytes/record)", ""],
         [f"RSS after {args.beyond:,} more at the bound", f"{after_rss:.0f} MB", "steady: the bound holds memory"],
-        [f"time to add {args.records:,} (batches of {BATCH:,})", f"{fill_seconds:.2f} s",
-         f"{args.records / fill_seconds:,.0f} records/s"],
-        [f"time to add {args.beyond:,} with the store full", f"{beyond_seconds:.2f} s",
-         f"{args.beyond / beyond_seconds:,.0f} records/s (eviction included)"],
-        ["per record: filling / at the bound",
-         f"{fill_seconds / args.records * 1e6:.2f} us / {beyond_seconds / args.beyond * 1e6:.2f} us",
-         "the difference is eviction's cost"],
+        [
+            f"time to add {args.records:,} (batches of {BATCH:,})",
+            f"{fill_seconds:.2f} s",
+            f"{args.records / fill_seconds:,.0f} records/s",
+        ],
+        [
+            f"time to add {args.beyond:,} with the store full",
+            f"{beyond_seconds:.2f} s",
+            f"{args.beyond / beyond_seconds:,.0f} records/s (eviction included)",
+        ],
+        [
+            "per record: filling / at the bound",
+            f"{fill_seconds / args.records * 1e6:.2f} us / {beyond_seconds / args.beyond * 1e6:.2f} us",
+            "the difference is eviction's cost",
+        ],
         ["get(seq) of a stored record", f"{get_us:.2f} us", ""],
     ]
     if args.list_reference:
         reference = subprocess.run(
-            [sys.executable, __file__, "--reference-only", str(args.records)], capture_output=True, text=True, check=True
+            [sys.executable, __file__, "--reference-only", str(args.records)],
+            capture_output=True,
+            text=True,
+            check=True,
         )
-        rows.append([f"reference: {args.records:,} LogRecord objects in a list", f"{float(reference.stdout):.0f} MB", ""])
+        rows.append(
+            [f"reference: {args.records:,} LogRecord objects in a list", f"{float(reference.stdout):.0f} MB", ""]
+        )
     print("## Store benchmark (benchmarks/store.py)\n")
     print(machine_line())
     print()

@@ -7,6 +7,7 @@ import sys
 from collections.abc import Sequence
 
 from . import __version__
+from .commands.arguments import add_log_format_argument, positive_int
 from .model.store import DEFAULT_MAX_MESSAGES
 
 
@@ -51,7 +52,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--max-messages",
         metavar="N",
-        type=_positive_int,
+        type=positive_int,
         default=DEFAULT_MAX_MESSAGES,
         help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
     )
@@ -60,8 +61,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--query",
         metavar="QUERY",
         help=(
-            "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' "
-            "(syntax: docs/rules.md)"
+            "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' (syntax: docs/rules.md)"
         ),
     )
     parser.add_argument(
@@ -81,8 +81,8 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
     Sets ``args.query_entries`` (the query's rule entries, or ``()``) and ``args.rule_set``
     (the file's ``RuleSet``, or None).
     """
-    from .model.rules.base import RuleError
     from .model.rules.query import QueryError, caret_line, parse_query
+    from .model.rules.rule import RuleError
     from .model.rules.rulesfile import last_rules_path, load_rules
 
     args.query_entries = ()
@@ -102,28 +102,6 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
             args.rule_set = load_rules(path)
         except RuleError as error:
             parser.error(f"--rules: {error.message}")
-
-
-def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--log-format",
-        metavar="FMT",
-        help=(
-            "the RCUTILS_CONSOLE_OUTPUT_FORMAT that ROS 2 log files were written with, for example "
-            "'[{severity}] [{time}] [{name}]: {message}' (the default, always recognised; "
-            "$RCUTILS_CONSOLE_OUTPUT_FORMAT is tried too)"
-        ),
-    )
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError("must be at least 1")
-    return value
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -28,8 +28,8 @@ def run_app(args: argparse.Namespace) -> int:
                 os.environ.update(DEMO_ENVIRONMENT)
             runtime = _start_ros()
             cleanups.append(runtime.shutdown)
-            from .sources.ros2.log_source import LiveLogSource
-            from .sources.ros2.loggers import LoggerControl
+            from .sources.ros2.live_source import LiveLogSource
+            from .sources.ros2.logger_control import LoggerControl
 
             sources.append(LiveLogSource(runtime, queue, topic=args.topic))
             logger_control = LoggerControl(runtime)  # the app starts it after its first frame

@@ -21,8 +21,8 @@ sys.path.insert(0, str(ROOT))
 async def capture(out: Path, seconds: float) -> list[Path]:
     from console_tui.demo.launcher import DemoNodes
     from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.sources.ros2.log_source import LiveLogSource
-    from console_tui.sources.ros2.loggers import LoggerControl
+    from console_tui.sources.ros2.live_source import LiveLogSource
+    from console_tui.sources.ros2.logger_control import LoggerControl
     from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 

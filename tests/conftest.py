@@ -11,20 +11,48 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from rosproc import ros_available  # noqa: E402
+from support.rosproc import ros_available
 
 _counter = itertools.count()
 
 
-def _worker_number() -> int:
+#: ``CONSOLE_TUI_TEST_DOMAINS=FIRST-LAST`` picks the ROS_DOMAIN_IDs the tests may use (both
+#: included); the default keeps them in 1-100. On a shared network, pick a range nobody else
+#: uses: the tests' nodes talk only over loopback, but a domain is a domain.
+DOMAINS_VARIABLE = "CONSOLE_TUI_TEST_DOMAINS"
+DEFAULT_DOMAINS = (1, 100)
+
+
+def domain_range() -> tuple[int, int]:
+    """The first and last ROS_DOMAIN_ID the tests may use."""
+    text = os.environ.get(DOMAINS_VARIABLE, "").strip()
+    if not text:
+        return DEFAULT_DOMAINS
+    try:
+        first, _, last = text.partition("-")
+        low, high = int(first), int(last or first)
+    except ValueError:
+        raise pytest.UsageError(f"{DOMAINS_VARIABLE}={text!r}: write it as FIRST-LAST, for example 120-160") from None
+    if not 0 <= low <= high <= 232:
+        raise pytest.UsageError(f"{DOMAINS_VARIABLE}={text!r}: domain ids run from 0 to 232, first <= last")
+    return low, high
+
+
+def _worker() -> tuple[int, int]:
+    """This xdist worker's number and how many workers there are."""
     worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0")
     digits = "".join(ch for ch in worker if ch.isdigit())
-    return int(digits or 0)
+    count = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1)
+    return int(digits or 0) % max(count, 1), max(count, 1)
 
 
 def next_domain_id() -> int:
-    """A ROS_DOMAIN_ID no other test of this run uses at the same time (1..100)."""
-    return 1 + (_worker_number() % 4) * 25 + next(_counter) % 25
+    """A ROS_DOMAIN_ID no other test of this run uses at the same time: each xdist worker
+    takes turns through a share of the range of its own."""
+    low, high = domain_range()
+    number, workers = _worker()
+    share = max((high - low + 1) // workers, 1)
+    return low + (number * share + next(_counter) % share) % (high - low + 1)
 
 
 @pytest.fixture
@@ -52,7 +80,7 @@ def ros_env(monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
 @pytest.fixture
 def nodes(ros_env):
     """Start node scripts from tests/nodes in the test's ROS environment."""
-    from rosproc import NodeProcesses
+    from support.rosproc import NodeProcesses
 
     processes = NodeProcesses(ros_env)
     yield processes

@@ -9,11 +9,10 @@ from collections.abc import Sequence
 from ..model.formats import SAVE_FORMATS, save_records
 from ..model.formats.save import save_format_for
 from ..sources.files import load_records, open_files
+from .arguments import add_log_format_argument
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from ..cli import add_log_format_argument
-
     parser = argparse.ArgumentParser(
         prog="console-tui convert",
         description=(
@@ -66,7 +65,7 @@ def main(argv: Sequence[str]) -> int:
 def _write_stdout(records, save_format: str) -> int:
     count = 0
     stream = sys.stdout.buffer
-    for count in SAVE_FORMATS[save_format]().write(records, stream):
+    for count in SAVE_FORMATS[save_format]().write(records, stream):  # noqa: B007 - the last count is the total
         pass
     stream.flush()
     return count

@@ -16,7 +16,7 @@ from contextlib import contextmanager
 from typing import Any
 
 from ..model.levels import Severity, parse_severity, severity_name
-from ..model.loggers import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
+from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -64,11 +64,18 @@ def build_parser() -> argparse.ArgumentParser:
 
     def add(name: str, help_text: str, wait: float, usage: str | None = None) -> argparse.ArgumentParser:
         sub = commands.add_parser(
-            name, help=help_text, description=help_text, epilog=EXIT_CODES, usage=usage,
+            name,
+            help=help_text,
+            description=help_text,
+            epilog=EXIT_CODES,
+            usage=usage,
             formatter_class=argparse.RawDescriptionHelpFormatter,
         )
         sub.add_argument(
-            "--wait", type=_seconds, default=wait, metavar="SECONDS",
+            "--wait",
+            type=_seconds,
+            default=wait,
+            metavar="SECONDS",
             help=f"how long to wait for nodes to be discovered (default {wait:g})",
         )
         return sub
@@ -80,24 +87,37 @@ def build_parser() -> argparse.ArgumentParser:
     getting = add("get", "print loggers' levels: 'inherited' when a logger has none of its own", DEFAULT_WAIT_S)
     getting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
     getting.add_argument(
-        "loggers", nargs="*", metavar="LOGGER",
+        "loggers",
+        nargs="*",
+        metavar="LOGGER",
         help=f"logger names (default: the node's own logger and the process default {DEFAULT_LOGGER_SHOWN})",
     )
-    getting.add_argument("--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)")
+    getting.add_argument(
+        "--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
+    )
     getting.add_argument("--json", action="store_true", help="print JSON")
 
     setting = add(
-        "set", "set a logger's level (LOGGER defaults to the node's own logger)", DEFAULT_WAIT_S,
+        "set",
+        "set a logger's level (LOGGER defaults to the node's own logger)",
+        DEFAULT_WAIT_S,
         usage="%(prog)s [-h] [--wait SECONDS] [--timeout SECONDS] [--for SECONDS] NODE [LOGGER] LEVEL",
     )
     setting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
     setting.add_argument(
-        "rest", nargs="+", metavar="[LOGGER] LEVEL",
+        "rest",
+        nargs="+",
+        metavar="[LOGGER] LEVEL",
         help="debug, info, warn, error, fatal (any case), or unset to inherit again",
     )
-    setting.add_argument("--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)")
     setting.add_argument(
-        "--for", dest="duration", type=_seconds, metavar="SECONDS",
+        "--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
+    )
+    setting.add_argument(
+        "--for",
+        dest="duration",
+        type=_seconds,
+        metavar="SECONDS",
         help="put the previous level back after SECONDS (the command waits until then; Ctrl+C ends it early)",
     )
     return parser
@@ -168,7 +188,7 @@ def _level_request(rest: list[str]) -> tuple[str | None, int]:
 
 @contextmanager
 def _ros_control(args: argparse.Namespace, runtime: Any):
-    from ..sources.ros2.loggers import LoggerControl
+    from ..sources.ros2.logger_control import LoggerControl
     from ..sources.ros2.rclpy_loader import RosUnavailable
     from ..sources.ros2.runtime import RosRuntime
 
@@ -178,7 +198,9 @@ def _ros_control(args: argparse.Namespace, runtime: Any):
             runtime = RosRuntime()
         except RosUnavailable as error:
             raise CommandError(str(error), EXIT_ERROR) from None
-    control = LoggerControl(runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False))
+    control = LoggerControl(
+        runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False)
+    )
     control.start()
     try:
         yield control
@@ -218,7 +240,7 @@ def _find_node(control: Any, query: str, wait: float) -> GraphNode:
         raise CommandError(f"{query!r} names several nodes: {names}; give the full name", EXIT_USAGE)
     node = matches[0]
     if not node.has_logger_services:
-        from ..sources.ros2.loggers import NoLoggerServices
+        from ..sources.ros2.logger_control import NoLoggerServices
 
         raise CommandError(str(NoLoggerServices(node.fqn)), EXIT_NOT_FOUND)
     return node
@@ -228,7 +250,13 @@ def _list(control: Any, args: argparse.Namespace) -> int:
     nodes = control.wait_for_graph(args.wait)
     if args.json:
         items = [
-            {"node": n.fqn, "namespace": n.namespace, "name": n.name, "logger": n.logger_name, "logger_services": n.has_logger_services}
+            {
+                "node": n.fqn,
+                "namespace": n.namespace,
+                "name": n.name,
+                "logger": n.logger_name,
+                "logger_services": n.has_logger_services,
+            }
             for n in nodes
         ]
         print(json.dumps(items, indent=2))
@@ -250,7 +278,10 @@ def _get(control: Any, node: GraphNode, args: argparse.Namespace) -> int:
     rows = {row.name: row for row in loggers.rows()}
     chosen = [rows[name.strip()] for name in dict.fromkeys(wanted)]
     if args.json:
-        items = [{"name": r.name, "level": r.level, "level_name": level_text(r.level), "effective": r.effective} for r in chosen]
+        items = [
+            {"name": r.name, "level": r.level, "level_name": level_text(r.level), "effective": r.effective}
+            for r in chosen
+        ]
         print(json.dumps({"node": node.fqn, "loggers": items}, indent=2))
     else:
         for row in chosen:
@@ -277,7 +308,9 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
     control.subscribe(on_event)
     entry: TemporaryLevel = _result(control.set_temporary(node.fqn, logger, level, duration))
     print(f"{shown_logger(logger)}\t{level_text(level)}", flush=True)
-    _say(f"{shown_logger(logger)} on {node.fqn} at {level_text(level)} for {duration:g} s, then back to {level_text(entry.previous)}")
+    _say(
+        f"{shown_logger(logger)} on {node.fqn} at {level_text(level)} for {duration:g} s, then back to {level_text(entry.previous)}"
+    )
     try:
         while not ended.wait(0.2):
             pass
@@ -294,7 +327,7 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
 
 def _result(future: Any) -> Any:
     """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
-    from ..sources.ros2.loggers import LoggerCallError, NodeNotFound, NoLoggerServices
+    from ..sources.ros2.logger_control import LoggerCallError, NodeNotFound, NoLoggerServices
 
     try:
         return future.result()

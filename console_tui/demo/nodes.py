@@ -46,7 +46,9 @@ def planner(node) -> None:
         elif plan % 7 == 0:
             logger.warning("planner failed to find a path within 0.5 s, retrying with relaxed tolerance")
         else:
-            logger.info(f"Planned path to ({goal[0]:.2f}, {goal[1]:.2f}): {12 + plan % 30} poses, {1.5 + plan % 9 * 0.3:.1f} m")
+            logger.info(
+                f"Planned path to ({goal[0]:.2f}, {goal[1]:.2f}): {12 + plan % 30} poses, {1.5 + plan % 9 * 0.3:.1f} m"
+            )
         if plan % 5 == 0:
             update_costmap(plan)
 

@@ -46,7 +46,7 @@ class StringTable:
         ids = list(map(self._ids.get, texts))
         if None in ids:
             id_of = self.id_of
-            ids = [ident if ident is not None else id_of(text) for ident, text in zip(ids, texts)]
+            ids = [ident if ident is not None else id_of(text) for ident, text in zip(ids, texts, strict=False)]
         return ids
 
     def __getitem__(self, ident: int) -> str:
@@ -62,7 +62,7 @@ class StringTable:
 class Chunk:
     """Up to ``CHUNK_SIZE`` consecutive records, one array or list per field."""
 
-    __slots__ = ("stamps", "levels", "lines", "nodes", "files", "functions", "sources", "msgs")
+    __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "sources", "stamps")
 
     def __init__(self) -> None:
         self.stamps = array("q")

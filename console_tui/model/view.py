@@ -22,7 +22,7 @@ from itertools import compress
 from operator import neg
 from time import perf_counter
 
-from .rules.base import Rule, SpanTest
+from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
 from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 

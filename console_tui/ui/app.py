@@ -19,9 +19,9 @@ from textual.widgets import Footer
 from ..model.formats.save import save_records
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
-from ..model.rules.base import RuleError
 from ..model.rules.history import QueryHistory
 from ..model.rules.query import parse_query
+from ..model.rules.rule import RuleError
 from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.rulesfile import (
     last_rules_path,
@@ -35,14 +35,13 @@ from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
 from .gc_policy import CollectionPolicy
-from .screens.columns import ColumnsScreen
+from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.files import OpenScreen, PathScreen, SaveRequest, SaveScreen
 from .screens.help import HelpScreen
 from .screens.problems import ProblemsScreen
 from .screens.quick_rule import QuickRuleScreen
 from .screens.rule_editor import RuleEditor
-from .widgets.columns import COLUMNS
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
@@ -50,9 +49,10 @@ from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 from .widgets.side_pane import SidePane
 from .widgets.status_bar import StatusBar, StatusFacts
+from .widgets.table_columns import COLUMNS
 
 if TYPE_CHECKING:
-    from ..sources.ros2.loggers import LoggerControl
+    from ..sources.ros2.logger_control import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
 #: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
@@ -597,7 +597,9 @@ class ConsoleApp(App[None]):
         yield SystemCommand("Details", "Every field of the selected message", self.table.action_activate)
         yield SystemCommand("Columns", "Choose the table's columns", self.action_columns)
         yield SystemCommand("Open files", "Log files and recordings, merged by time", self.action_open)
-        yield SystemCommand("Save", "Save the rows shown, or everything (rqt_console CSV or JSON Lines)", self.action_save)
+        yield SystemCommand(
+            "Save", "Save the rows shown, or everything (rqt_console CSV or JSON Lines)", self.action_save
+        )
         yield SystemCommand("Load problems", "What went wrong while loading files, and where", self.action_problems)
         for column in COLUMNS:
             if column.key == "message":
@@ -609,16 +611,38 @@ class ConsoleApp(App[None]):
             )
         yield SystemCommand("Logger levels", "Show or hide the logger levels pane", self.action_toggle_loggers)
         yield SystemCommand(
-            "Logger levels of this row's node", "Open the logger levels pane on the selected row's node", self.action_loggers_for_row
+            "Logger levels of this row's node",
+            "Open the logger levels pane on the selected row's node",
+            self.action_loggers_for_row,
         )
-        yield SystemCommand("Query", "Type rules as a query: level>=warn node:nav* -node:rviz* +\"failed\"", self.action_query)
-        yield SystemCommand("Rules", "Show or hide the rules pane: every rule, its switches and counts", self.action_toggle_rules)
-        yield SystemCommand("Add a rule", "A new exclude or highlight rule of any kind", lambda: self.on_rules_pane_edit_requested(RulesPane.EditRequested(None)))
-        yield SystemCommand("Hide messages like the selected rows", "Exclude their nodes, severities, messages or location", lambda: self.action_quick_rule("exclude"))
-        yield SystemCommand("Highlight messages like the selected rows", "Highlight their nodes, severities, messages or location", lambda: self.action_quick_rule("highlight"))
-        yield SystemCommand("Highlighted only", "Show only highlighted messages (or all again)", self.action_toggle_highlighted_only)
+        yield SystemCommand(
+            "Query", 'Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"', self.action_query
+        )
+        yield SystemCommand(
+            "Rules", "Show or hide the rules pane: every rule, its switches and counts", self.action_toggle_rules
+        )
+        yield SystemCommand(
+            "Add a rule",
+            "A new exclude or highlight rule of any kind",
+            lambda: self.on_rules_pane_edit_requested(RulesPane.EditRequested(None)),
+        )
+        yield SystemCommand(
+            "Hide messages like the selected rows",
+            "Exclude their nodes, severities, messages or location",
+            lambda: self.action_quick_rule("exclude"),
+        )
+        yield SystemCommand(
+            "Highlight messages like the selected rows",
+            "Highlight their nodes, severities, messages or location",
+            lambda: self.action_quick_rule("highlight"),
+        )
+        yield SystemCommand(
+            "Highlighted only", "Show only highlighted messages (or all again)", self.action_toggle_highlighted_only
+        )
         yield SystemCommand("Save rules", "Save the rule set to a TOML file", self.action_save_rules)
         yield SystemCommand("Open rules", "Load a rule set from a TOML file", self.action_load_rules)
-        yield SystemCommand("Restore the last rules", "The rule set in force when console-tui last exited", self.action_restore_rules)
+        yield SystemCommand(
+            "Restore the last rules", "The rule set in force when console-tui last exited", self.action_restore_rules
+        )
         yield SystemCommand("Clear rules", "Remove every rule", self.action_clear_rules)
         yield SystemCommand("Keys", "Every key, on the help screen", self.action_help)

@@ -13,7 +13,7 @@ import threading
 import time
 
 from console_tui.model.intake_queue import IntakeQueue
-from console_tui.sources.ros2.log_source import LiveLogSource
+from console_tui.sources.ros2.live_source import LiveLogSource
 from console_tui.sources.ros2.runtime import RosRuntime
 
 

@@ -129,7 +129,7 @@ def main() -> None:
             elif kind == "block":
                 seconds = float(command.get("seconds", 5))
 
-                def block() -> None:
+                def block(seconds: float = seconds) -> None:
                     state["block"].cancel()
                     say(event="blocking")
                     stopping.wait(seconds)

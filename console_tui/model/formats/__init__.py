@@ -10,7 +10,6 @@ Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS lib
 
 from __future__ import annotations
 
-from .base import TextFormat, read_batches
 from .detect import detect_text_format, recording_kind
 from .jsonl import JsonLinesFormat
 from .problems import FormatError, Problem, Problems, RecordError
@@ -18,6 +17,7 @@ from .rcutils_log import DEFAULT_TEMPLATE, RcutilsLogFormat
 from .rosout_log import RosoutLogFormat
 from .rqt_csv import RqtCsvFormat
 from .save import SAVE_FORMATS, SaveCancelled, save_format_for, save_records
+from .text_format import TextFormat, read_batches
 from .textlines import TextLines
 
 
@@ -39,6 +39,7 @@ def text_formats(log_format: str | None = None, extra_templates: tuple[str, ...]
 
 __all__ = [
     "DEFAULT_TEMPLATE",
+    "SAVE_FORMATS",
     "FormatError",
     "JsonLinesFormat",
     "Problem",
@@ -47,7 +48,6 @@ __all__ = [
     "RecordError",
     "RosoutLogFormat",
     "RqtCsvFormat",
-    "SAVE_FORMATS",
     "SaveCancelled",
     "TextFormat",
     "TextLines",

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from .base import TextFormat
 from .problems import FormatError
+from .text_format import TextFormat
 from .textlines import BLOCK_SIZE
 
 #: Recordings, by the magic bytes they start with.
@@ -45,9 +45,7 @@ def detect_text_format(head: bytes, candidates: Sequence[TextFormat], name: str)
         raise FormatError(f"{name}: a ROS 1 bag of the old version 1.x format: 'rosbag fix' it first")
     if b"\x00" in head[:4096] or _mostly_binary(head[:4096]):
         shown = head[:8].hex(" ")
-        raise FormatError(
-            f"{name}: binary data, not a log file or a recording this tool reads (first bytes: {shown})"
-        )
+        raise FormatError(f"{name}: binary data, not a log file or a recording this tool reads (first bytes: {shown})")
     text = head[:BLOCK_SIZE].decode("utf-8", errors="replace")
     lines = text.split("\n")
     if len(head) >= HEAD_SIZE and len(lines) > 1:

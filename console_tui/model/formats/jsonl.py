@@ -14,8 +14,8 @@ from typing import Any, BinaryIO
 
 from ..levels import parse_severity
 from ..record import LogRecord
-from .base import TextFormat, TextFormatWriter
 from .problems import Problems, RecordError
+from .text_format import TextFormat, TextFormatWriter
 from .textlines import TextLines
 
 FIELDS = ("stamp_ns", "level", "node", "msg", "file", "function", "line", "source")

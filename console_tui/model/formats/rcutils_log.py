@@ -20,8 +20,8 @@ from dataclasses import dataclass
 
 from ..levels import Severity
 from ..record import LogRecord
-from .base import TextFormat
 from .problems import Problems, RecordError
+from .text_format import TextFormat
 from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
 
 DEFAULT_TEMPLATE = "[{severity}] [{time}] [{name}]: {message}"
@@ -139,10 +139,7 @@ def _head_and_tail(parts: list[tuple[bool, str]]) -> tuple[list[tuple[bool, str]
 
 
 def _line_pattern(parts: list[tuple[bool, str]]) -> str:
-    return "".join(
-        re.escape(text) if not is_token else f"(?:{_TOKEN_PATTERNS[text]})"
-        for is_token, text in parts
-    )
+    return "".join(re.escape(text) if not is_token else f"(?:{_TOKEN_PATTERNS[text]})" for is_token, text in parts)
 
 
 def _strip_colour(text: str) -> str:

@@ -17,8 +17,8 @@ from collections.abc import Iterator
 
 from ..levels import from_ros1
 from ..record import LogRecord
-from .base import TextFormat
 from .problems import Problems, RecordError
+from .text_format import TextFormat
 from .textlines import LineKind, TextLines, group_lines, stray_text_problem
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}

@@ -26,11 +26,11 @@ import re
 from collections.abc import Iterable, Iterator
 from typing import BinaryIO
 
-from ..levels import ROS1_TO_ROS2, MESSAGE_SEVERITIES, from_ros1, to_ros1
+from ..levels import MESSAGE_SEVERITIES, ROS1_TO_ROS2, from_ros1, to_ros1
 from ..record import LogRecord
 from ..timefmt import stamp_text
-from .base import TextFormat, TextFormatWriter
 from .problems import Problems, RecordError
+from .text_format import TextFormat, TextFormatWriter
 from .textlines import LineKind, TextLines, group_lines, stray_text_problem
 
 ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
@@ -159,7 +159,7 @@ def _parse_row(text: str, columns: tuple[str, ...], ros1: bool, source: str) -> 
     values = text[1:-1].split('";"', len(columns) - 1)
     if len(values) != len(columns):
         raise RecordError(f"row has {len(values)} fields, the header {len(columns)}")
-    fields = dict(zip(columns, values))
+    fields = dict(zip(columns, values, strict=False))
     record = LogRecord(stamp_ns=0, level=20, node=fields.get("node", ""), msg="", source=source)
     record.msg = unescape_message(fields["message"])
     if "severity" in fields:

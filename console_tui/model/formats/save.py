@@ -9,9 +9,9 @@ from typing import Protocol
 
 from ..record import LogRecord
 from .atomic import atomic_output
-from .base import TextFormatWriter
 from .jsonl import JsonLinesWriter
 from .rqt_csv import RqtCsvWriter
+from .text_format import TextFormatWriter
 
 #: Save formats by name: rqt_console ROS 2 (``rqt``), its ROS 1 variant, JSON Lines.
 SAVE_FORMATS: dict[str, Callable[[], TextFormatWriter]] = {

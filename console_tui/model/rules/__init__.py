@@ -4,13 +4,14 @@ One module per rule kind; ``ruleset`` holds the semantics; ``query`` compiles th
 line to the same rules; ``rulesfile`` reads and writes TOML rule sets.
 """
 
-from .base import Rule, RuleError, TextMatch
 from .custom import CustomRule
 from .location import LocationRule
 from .message import MessageRule
 from .node import NodeRule
+from .rule import Rule, RuleError
 from .ruleset import Decoration, Entry, Role, RuleSet, exclude, highlight
 from .severity import SeverityRule
+from .text_match import TextMatch
 from .time_range import TimeRangeRule
 
 __all__ = [

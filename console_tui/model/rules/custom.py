@@ -8,8 +8,8 @@ from itertools import compress
 from typing import Any
 
 from ..store import Chunk, LogStore
-from .base import Rule, RuleError, SpanTest, all_of, mask_and
 from .message import MessageRule
+from .rule import Rule, RuleError, SpanTest, all_of, mask_and
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,7 @@ class CustomRule(Rule):
                 rows = list(compress(range(size), mask))
                 msgs = chunk.msgs
                 narrowed = bytearray(size)
-                for row, hit in zip(rows, mask_of([msgs[lo + row] for row in rows])):
+                for row, hit in zip(rows, mask_of([msgs[lo + row] for row in rows]), strict=False):
                     narrowed[row] = hit
                 mask = bytes(narrowed)
             return mask

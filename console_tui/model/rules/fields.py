@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from .base import RuleError
+from .rule import RuleError
 
 
 def _wrong(key: str, wanted: str, value: Any) -> RuleError:

@@ -7,8 +7,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..store import Chunk, LogStore
-from .base import IdLookup, Rule, RuleError, SpanTest, TextMatch, all_of
 from .fields import read_bool, read_int, read_str
+from .rule import IdLookup, Rule, RuleError, SpanTest, all_of
+from .text_match import TextMatch
 
 
 @dataclass(frozen=True)

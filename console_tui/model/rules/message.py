@@ -7,8 +7,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..store import Chunk, LogStore
-from .base import Rule, SpanTest, TextMatch
 from .fields import read_bool, read_str
+from .rule import Rule, SpanTest
+from .text_match import TextMatch
 
 
 @dataclass(frozen=True)

@@ -9,8 +9,8 @@ from fnmatch import translate
 from typing import Any
 
 from ..store import Chunk, LogStore
-from .base import IdLookup, Rule, SpanTest
 from .fields import read_str_list
+from .rule import IdLookup, Rule, SpanTest
 
 _GLOB_CHARS = frozenset("*?[")
 

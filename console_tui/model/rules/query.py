@@ -29,13 +29,14 @@ from datetime import date, datetime, timedelta, timezone, tzinfo
 
 from ..levels import parse_severity
 from ..timefmt import NS_PER_S
-from .base import Rule, RuleError, TextMatch
 from .custom import CustomRule
 from .location import LocationRule
 from .message import MessageRule
 from .node import NodeRule
+from .rule import Rule, RuleError
 from .ruleset import Entry, Role
 from .severity import SeverityRule
+from .text_match import TextMatch
 from .time_range import TimeRangeRule
 
 

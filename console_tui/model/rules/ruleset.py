@@ -22,7 +22,7 @@ from typing import Any, Literal
 
 from ..record import LogRecord
 from ..store import LogStore
-from .base import Rule, RuleError
+from .rule import Rule, RuleError
 
 Decoration = Literal["highlight", "dim"] | None
 

@@ -28,7 +28,7 @@ from typing import Any
 
 from ..formats.atomic import atomic_output
 from ..timefmt import full_text
-from .base import RuleError
+from .rule import RuleError
 from .ruleset import RuleSet
 
 try:

@@ -8,8 +8,8 @@ from typing import Any
 
 from ..levels import MESSAGE_SEVERITIES, parse_severity, severity_bucket, severity_name
 from ..store import Chunk, LogStore
-from .base import Rule, RuleError, SpanTest
 from .fields import read_str_list
+from .rule import Rule, RuleError, SpanTest
 
 
 @dataclass(frozen=True)

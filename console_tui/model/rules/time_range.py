@@ -8,8 +8,8 @@ from typing import Any
 
 from ..store import Chunk, LogStore
 from ..timefmt import full_text
-from .base import Rule, RuleError, SpanTest, mask_and
 from .fields import read_int
+from .rule import Rule, RuleError, SpanTest, mask_and
 
 
 @dataclass(frozen=True)

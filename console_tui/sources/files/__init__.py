@@ -14,8 +14,8 @@ The UI's entry points:
 from __future__ import annotations
 
 from ...model.formats import FormatError, Problem
-from .base import LogFile, TextLogFile
 from .loader import FileLoad, FileProgress, LoadProgress, load_records, open_files
+from .log_file import LogFile, TextLogFile
 from .merge import merge_by_time, sorted_by_stamp
 from .opener import open_log_file, source_names
 

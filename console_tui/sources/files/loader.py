@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
-from .base import LogFile
+from .log_file import LogFile
 from .merge import merge_by_time
 from .opener import open_log_file, source_names
 
@@ -55,7 +55,7 @@ def open_files(
     """Open every path; the ones that cannot be read become problems, not exceptions."""
     opened: list[LogFile] = []
     failures: list[Problem] = []
-    for path, name in zip(paths, source_names(paths)):
+    for path, name in zip(paths, source_names(paths), strict=False):
         try:
             opened.append(open_log_file(path, log_format=log_format, source=name))
         except FormatError as error:
@@ -148,7 +148,7 @@ class FileLoad:
 
     def _run(self) -> None:
         try:
-            for path, name in zip(self.paths, self._names):
+            for path, name in zip(self.paths, self._names, strict=False):
                 if self.cancel_event.is_set():
                     break
                 try:

@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ...model.formats import FormatError, detect_text_format, recording_kind, text_formats
 from ...model.formats.detect import HEAD_SIZE
-from .base import LogFile, TextLogFile
+from .log_file import LogFile, TextLogFile
 
 #: The environment variable rcutils reads its output format from.
 FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
@@ -62,6 +62,6 @@ def source_names(paths: Sequence[str | os.PathLike[str]]) -> list[str]:
         depth += 1
         counts = {n: names.count(n) for n in names}
         names = [
-            "/".join(p.parts[-depth:]) if counts[name] > 1 else name for p, name in zip(resolved, names)
+            "/".join(p.parts[-depth:]) if counts[name] > 1 else name for p, name in zip(resolved, names, strict=False)
         ]
     return names

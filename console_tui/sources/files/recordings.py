@@ -15,21 +15,20 @@ from __future__ import annotations
 import heapq
 import os
 from collections.abc import Callable, Iterable, Iterator
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 from typing import Any
 
 from ...model.formats import FormatError
+from ...model.formats.ros2_log_msg import LogDecoder
 from ...model.record import LogRecord
 from ..log_message import log_to_record
-from ..ros2.cdr import LogDecoder
-from .base import Cancel, LogFile
+from ..log_topics import ROSOUT, ROSOUT_AGG
+from .log_file import Cancel, LogFile
 
 ROS2_LOG = "rcl_interfaces/msg/Log"
 ROS1_LOG = "rosgraph_msgs/msg/Log"
 LOG_TYPES = frozenset({ROS2_LOG, ROS1_LOG})
-ROSOUT = "/rosout"
-ROSOUT_AGG = "/rosout_agg"
 BATCH = 5_000
 MISSING_EXTRA = "reading recordings needs the 'files' extra: pip install 'console-tui[files]' (rosbags, mcap)"
 
@@ -49,7 +48,7 @@ def choose_log_topics(topic_types: Iterable[tuple[str, str]]) -> set[str]:
     return topics
 
 
-@lru_cache(maxsize=None)
+@cache
 def _typestore(ros1: bool) -> Any:
     from rosbags.typesys import Stores, get_typestore
 
@@ -59,7 +58,7 @@ def _typestore(ros1: bool) -> Any:
 def decoder(msgtype: str, encoding: str, source: str) -> Callable[[bytes], LogRecord]:
     """A function from a serialized log message (CDR or ROS 1) to a record."""
     msgtype = normalize_type(msgtype)
-    if encoding == "ros1" or msgtype == ROS1_LOG and encoding != "cdr":
+    if encoding == "ros1" or (msgtype == ROS1_LOG and encoding != "cdr"):
         deserialize = _typestore(True).deserialize_ros1
         type_name = ROS1_LOG
 
@@ -349,7 +348,7 @@ class Rosbag2File(_RecordingFile):
         super().__init__(path, source)
         from rosbags.rosbag2 import Reader
 
-        if path.suffix == ".db3" or path.is_dir() and any(path.glob("*.db3")):
+        if path.suffix == ".db3" or (path.is_dir() and any(path.glob("*.db3"))):
             self.kind, self.title = "sqlite3", "rosbag2 sqlite3"
         try:
             self._reader = Reader(path)

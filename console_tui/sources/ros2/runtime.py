@@ -10,7 +10,6 @@ from typing import Any
 
 from .rclpy_loader import load_rclpy
 
-
 FASTDDS_PROFILE = Path(__file__).with_name("fastdds_reader_profile.xml")
 _PROFILE_VARIABLES = ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE")
 

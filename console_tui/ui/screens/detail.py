@@ -67,7 +67,9 @@ class DetailScreen(ModalScreen[None]):
         Binding("y", "copy", "Copy message"),
     ]
 
-    def __init__(self, record: LogRecord, *, utc: bool = False, step: Callable[[int, int], LogRecord | None] | None = None) -> None:
+    def __init__(
+        self, record: LogRecord, *, utc: bool = False, step: Callable[[int, int], LogRecord | None] | None = None
+    ) -> None:
         super().__init__()
         self.record = record
         self.utc = utc

@@ -32,7 +32,7 @@ class PathSuggester(Suggester):
         super().__init__(use_cache=False, case_sensitive=True)
 
     async def get_suggestion(self, value: str) -> str | None:
-        head, _, last = value.rpartition(" ")
+        _, _, last = value.rpartition(" ")
         if not last:
             return None
         expanded = os.path.expanduser(last)

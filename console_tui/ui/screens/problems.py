@@ -25,7 +25,9 @@ class ProblemsScreen(ModalScreen[None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(f"{len(self.problems)} problem{'s' if len(self.problems) != 1 else ''} while loading (Escape closes)")
+            yield Label(
+                f"{len(self.problems)} problem{'s' if len(self.problems) != 1 else ''} while loading (Escape closes)"
+            )
             log = Log(highlight=False)
             yield log
 

@@ -16,14 +16,13 @@ from textual.widgets.option_list import Option
 
 from ...model.levels import severity_name
 from ...model.record import LogRecord
-from ...model.rules.base import Rule
 from ...model.rules.location import LocationRule
 from ...model.rules.message import MessageRule
 from ...model.rules.node import NodeRule
+from ...model.rules.rule import Rule
 from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.text import one_line
-
 
 #: At most this many distinct messages make one "these messages" rule.
 MESSAGES_AT_MOST = 50

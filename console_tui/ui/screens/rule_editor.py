@@ -10,12 +10,12 @@ from textual.screen import ModalScreen
 from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet, Select
 
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.rules.base import Rule, RuleError
 from ...model.rules.custom import CustomRule
 from ...model.rules.location import LocationRule
 from ...model.rules.message import MessageRule
 from ...model.rules.node import NodeRule
 from ...model.rules.query import parse_time
+from ...model.rules.rule import Rule, RuleError
 from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.rules.time_range import TimeRangeRule
@@ -61,7 +61,9 @@ class RuleEditor(ModalScreen[Entry | None]):
     """
     BINDINGS = [Binding("escape", "cancel", "Cancel"), Binding("ctrl+s,f2", "apply", "Apply")]
 
-    def __init__(self, entry: Entry | None = None, *, kind: str = "message", role: Role = Role.EXCLUDE, utc: bool = False) -> None:
+    def __init__(
+        self, entry: Entry | None = None, *, kind: str = "message", role: Role = Role.EXCLUDE, utc: bool = False
+    ) -> None:
         super().__init__()
         self.entry = entry
         self.kind = entry.rule.kind if entry is not None else kind
@@ -81,7 +83,11 @@ class RuleEditor(ModalScreen[Entry | None]):
             with RadioSet(id="role"):
                 yield RadioButton("Exclude", value=self.role is Role.EXCLUDE, name="exclude")
                 yield RadioButton("Highlight", value=self.role is Role.HIGHLIGHT, name="highlight")
-            yield Checkbox("Inverted: matches what the rule does not", value=bool(self.entry and self.entry.inverted), id="inverted")
+            yield Checkbox(
+                "Inverted: matches what the rule does not",
+                value=bool(self.entry and self.entry.inverted),
+                id="inverted",
+            )
             with Vertical(classes="group", id="group-message"):
                 yield Input(message.text, placeholder="text the message contains", id="message-text")
                 with Horizontal():
@@ -91,17 +97,27 @@ class RuleEditor(ModalScreen[Entry | None]):
                 for level in MESSAGE_SEVERITIES:
                     yield Checkbox(level.name, value=int(level) in severity.levels, id=f"severity-{level.name.lower()}")
             with Vertical(classes="group", id="group-node"):
-                yield Input(", ".join(node.names), placeholder="node names or globs, comma separated: nav*, /ns/talker", id="node-names")
+                yield Input(
+                    ", ".join(node.names),
+                    placeholder="node names or globs, comma separated: nav*, /ns/talker",
+                    id="node-names",
+                )
             with Vertical(classes="group", id="group-location"):
                 with Horizontal():
                     yield Input(location.file, placeholder="file contains", id="location-file")
                     yield Input(location.function, placeholder="function contains", id="location-function")
-                    yield Input("" if location.line is None else str(location.line), placeholder="line", id="location-line")
+                    yield Input(
+                        "" if location.line is None else str(location.line), placeholder="line", id="location-line"
+                    )
                 with Horizontal():
                     yield Checkbox("Ignore case", value=location.ignore_case, id="location-ignore-case")
                     yield Checkbox("Regular expressions", value=location.regex, id="location-regex")
             with Horizontal(classes="group", id="group-time"):
-                yield Input(self._time(period.start_ns), placeholder="from (12:30, 2024-05-01T12:30, 5m); empty: open", id="time-from")
+                yield Input(
+                    self._time(period.start_ns),
+                    placeholder="from (12:30, 2024-05-01T12:30, 5m); empty: open",
+                    id="time-from",
+                )
                 yield Input(self._time(period.end_ns), placeholder="to; empty: open", id="time-to")
             yield Label("", id="rule-error")
             yield Label("Enter or F2 applies · Esc cancels", classes="hint")
@@ -163,10 +179,14 @@ class RuleEditor(ModalScreen[Entry | None]):
         return self.query_one(f"#{name}", Checkbox).value
 
     def _message_rule(self) -> Rule:
-        return MessageRule(self._value("message-text"), self._checked("message-ignore-case"), self._checked("message-regex"))
+        return MessageRule(
+            self._value("message-text"), self._checked("message-ignore-case"), self._checked("message-regex")
+        )
 
     def _severity_rule(self) -> Rule:
-        return SeverityRule(frozenset(int(level) for level in MESSAGE_SEVERITIES if self._checked(f"severity-{level.name.lower()}")))
+        return SeverityRule(
+            frozenset(int(level) for level in MESSAGE_SEVERITIES if self._checked(f"severity-{level.name.lower()}"))
+        )
 
     def _node_rule(self) -> Rule:
         return NodeRule(tuple(name.strip() for name in self._value("node-names").split(",") if name.strip()))

@@ -32,6 +32,10 @@ class LoadBar(Horizontal):
         done = sum(1.0 if f.failed else f.fraction for f in files) / max(len(files), 1)
         records = sum(p.records for p in active)
         reading = next((f for f in files if not f.failed and f.fraction < 1.0), files[-1] if files else None)
-        name = f"{reading.source} ({reading.title})" if reading and reading.title else (reading.source if reading else "")
-        self.query_one(Label).update(f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  x cancels")
+        name = (
+            f"{reading.source} ({reading.title})" if reading and reading.title else (reading.source if reading else "")
+        )
+        self.query_one(Label).update(
+            f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  x cancels"
+        )
         self.query_one(ProgressBar).update(progress=done)

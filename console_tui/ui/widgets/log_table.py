@@ -28,7 +28,7 @@ from ...model.store import LogStore
 from ...model.text import one_line
 from ...model.timefmt import clock_text
 from ...model.view import LogView
-from .columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
+from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
 
 #: How a row is marked by the rules: None (plain), "highlight" or "dim".
 Decoration = str | None
@@ -421,8 +421,17 @@ class LogTable(ScrollView, can_focus=True):
         full_width = self.size.width  # the scrollbar gutter too, when no scrollbar covers it
         # Textual redraws every widget under a changed region (the scrollbar, a notification):
         # the same rows in the same styles give the same strips as last time.
-        frame_key = (crop, full_width, self._shown_seqs(int(self.scroll_y)), self.selection_anchor,
-                     self.style_generation, self._styles_key, self._layout_key, background, *map(id, filters))
+        frame_key = (
+            crop,
+            full_width,
+            self._shown_seqs(int(self.scroll_y)),
+            self.selection_anchor,
+            self.style_generation,
+            self._styles_key,
+            self._layout_key,
+            background,
+            *map(id, filters),
+        )
         if self._frame is not None and self._frame[0] == frame_key:
             return self._frame[1]
         strips = []
@@ -531,4 +540,4 @@ def _fit(text: str, width: int, align: str = "left") -> str:
     return text + " " * (width - length)
 
 
-__all__ = ["LogTable", "BY_KEY"]
+__all__ = ["BY_KEY", "LogTable"]

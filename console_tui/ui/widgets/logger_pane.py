@@ -25,7 +25,7 @@ from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from ...model.levels import MESSAGE_SEVERITIES, Severity, severity_name
-from ...model.loggers import (
+from ...model.logger_levels import (
     DEFAULT_LOGGER,
     ENABLE_LOGGER_SERVICE_HINT,
     GraphNode,
@@ -39,7 +39,7 @@ from ...model.loggers import (
 from .side_pane import SidePane
 
 if TYPE_CHECKING:
-    from ...sources.ros2.loggers import LoggerControl
+    from ...sources.ros2.logger_control import LoggerControl
 
 #: How long ``t`` sets a temporary level for unless told otherwise.
 DEFAULT_TEMPORARY_S = 30.0
@@ -353,7 +353,9 @@ class LoggerPane(SidePane):
         def done(entry: TemporaryLevel) -> None:
             self.show_levels(fqn, {logger: level})
             self.show_temporaries(control.temporaries())
-            self._say(f"{_shown(logger)} at {_level_word(level)} for {seconds:g} s, then back to {_level_word(entry.previous)}")
+            self._say(
+                f"{_shown(logger)} at {_level_word(level)} for {seconds:g} s, then back to {_level_word(entry.previous)}"
+            )
             self.read_levels(fqn)
 
         what = f"set {_shown(logger)} to {_level_word(level)} for {seconds:g} s"
@@ -396,7 +398,7 @@ class LoggerPane(SidePane):
         self.post_message(self.ControlEvent(event))
 
     def on_logger_pane_control_event(self, message: ControlEvent) -> None:
-        from ...sources.ros2.loggers import NodesChanged, TemporaryEnded
+        from ...sources.ros2.logger_control import NodesChanged, TemporaryEnded
 
         message.stop()
         event = message.event
@@ -406,7 +408,9 @@ class LoggerPane(SidePane):
             self.show_temporaries(self.control.temporaries())
             entry = event.entry
             if event.error is not None:
-                self.show_failure(f"Could not put {_shown(entry.logger)} of {entry.node} back to {_level_word(entry.previous)}: {event.error}")
+                self.show_failure(
+                    f"Could not put {_shown(entry.logger)} of {entry.node} back to {_level_word(entry.previous)}: {event.error}"
+                )
             else:
                 self._say(f"{_shown(entry.logger)} of {entry.node} is back to {_level_word(entry.previous)}")
             self.read_levels(entry.node)
@@ -546,7 +550,10 @@ class LoggerPane(SidePane):
         rows = self.rows()
         node = self.node(self.selected) if self.selected else None
         own = node.logger_name if node is not None else ""
-        options = [Option(_two_columns(Text(logger_label(row, own)), level_cell(row, now)), id=_option_id(row.name)) for row in rows]
+        options = [
+            Option(_two_columns(Text(logger_label(row, own)), level_cell(row, now)), id=_option_id(row.name))
+            for row in rows
+        ]
         current = [_logger_of_option(option) for option in logger_list.options]
         if current == [row.name for row in rows]:
             for index, option in enumerate(options):

@@ -53,7 +53,11 @@ class QueryBar(Vertical):
 
     def compose(self) -> ComposeResult:
         yield Input(placeholder=PLACEHOLDER, id="query-input")
-        yield Static("Enter applies · Esc closes · ↑↓ history · -term excludes, +term highlights", id="query-problem", classes="-ok")
+        yield Static(
+            "Enter applies · Esc closes · ↑↓ history · -term excludes, +term highlights",
+            id="query-problem",
+            classes="-ok",
+        )
 
     @property
     def input(self) -> Input:

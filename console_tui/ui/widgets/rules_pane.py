@@ -105,11 +105,16 @@ class RulesPane(SidePane):
         options.clear_options()
         if rules.entries:
             options.add_options(
-                [Option(entry_text(entry, counts[i] if i < len(counts) else None), id=str(i)) for i, entry in enumerate(rules.entries)]
+                [
+                    Option(entry_text(entry, counts[i] if i < len(counts) else None), id=str(i))
+                    for i, entry in enumerate(rules.entries)
+                ]
             )
             options.highlighted = min(highlighted or 0, len(rules.entries) - 1)
         else:
-            options.add_option(Option(Text("No rules. a adds one; / types a query; - or + on a row.", style="dim"), disabled=True))
+            options.add_option(
+                Option(Text("No rules. a adds one; / types a query; - or + on a row.", style="dim"), disabled=True)
+            )
         state = f"highlighted only: {'ON' if rules.highlighted_only else 'off'}"
         if progress:
             state += f" · {progress}"

@@ -10,7 +10,13 @@ from textual.widget import Widget
 from ...model.levels import MESSAGE_SEVERITIES
 from ...sources.status import SourceStatus
 
-_SEVERITY_LETTER = {10: ("D", "dim"), 20: ("I", "green"), 30: ("W", "yellow"), 40: ("E", "red"), 50: ("F", "bold white on red")}
+_SEVERITY_LETTER = {
+    10: ("D", "dim"),
+    20: ("I", "green"),
+    30: ("W", "yellow"),
+    40: ("E", "red"),
+    50: ("F", "bold white on red"),
+}
 
 
 @dataclass

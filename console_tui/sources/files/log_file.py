@@ -1,0 +1,92 @@
+"""One opened log file, whatever its format: record batches, progress, problems."""
+
+from __future__ import annotations
+
+import os
+import threading
+from abc import ABC, abstractmethod
+from collections.abc import Iterator
+from pathlib import Path
+from typing import BinaryIO
+
+from ...model.formats import Problems, TextFormat, TextLines, read_batches
+from ...model.record import LogRecord
+
+#: Anything with ``is_set()``: a ``threading.Event`` is what callers pass.
+Cancel = threading.Event
+
+
+class LogFile(ABC):
+    """An opened log file or recording, ready to be read once into record batches.
+
+    ``source`` is what every record read from it carries in ``LogRecord.source``.
+    ``done``/``total`` measure progress in ``unit`` (bytes for text files, messages or
+    chunks for recordings); they may be read from any thread while ``batches`` runs.
+    Problems found while reading (bad lines, truncation) go to ``problems``; reading
+    goes on past them. Recordings also list the log ``topics`` they read.
+    """
+
+    kind: str = ""
+    title: str = ""
+    unit: str = "bytes"
+
+    def __init__(self, path: Path, source: str) -> None:
+        self.path = path
+        self.source = source
+        self.problems = Problems(source)
+        self.total = 1
+        self.done = 0
+
+    @abstractmethod
+    def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
+        """The records, in batches, in the file's order; stops early once ``cancel`` is set."""
+
+    def close(self) -> None:  # noqa: B027 - most files hold nothing to release
+        """Release what opening took (file handles); safe to call more than once."""
+
+    @property
+    def fraction(self) -> float:
+        return min(1.0, self.done / self.total) if self.total > 0 else 1.0
+
+    def __enter__(self) -> LogFile:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.source!r} {self.kind}>"
+
+
+class TextLogFile(LogFile):
+    """A text log file in one of ``console_tui.model.formats``' formats."""
+
+    def __init__(self, path: Path, source: str, text_format: TextFormat) -> None:
+        super().__init__(path, source)
+        self.format = text_format
+        self.kind = text_format.name
+        self.title = text_format.title
+        self.total = max(1, os.path.getsize(path))
+
+    def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
+        with open(self.path, "rb") as stream:
+            lines = _ProgressLines(stream, self)
+            for batch in read_batches(stream, self.format, self.source, self.problems, lines=lines):
+                yield batch
+                if cancel is not None and cancel.is_set():
+                    return
+        self.done = self.total
+
+
+class _ProgressLines(TextLines):
+    """Lines that keep their file's ``done`` up to date."""
+
+    def __init__(self, stream: BinaryIO, owner: LogFile) -> None:
+        super().__init__(stream, owner.problems)
+        self._owner = owner
+
+    def __iter__(self) -> Iterator[tuple[int, str]]:
+        owner = self._owner
+        for item in super().__iter__():
+            owner.done = self.offset
+            yield item

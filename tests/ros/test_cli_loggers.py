@@ -1,0 +1,128 @@
+"""``console-tui loggers``: output and exit status, against real rclpy node processes."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from console_tui.commands.loggers import EXIT_FAILED, EXIT_NOT_FOUND, EXIT_OK, EXIT_USAGE, main, parse_level
+
+
+def run(capsys, *argv, runtime=None):
+    status = main(list(argv), runtime)
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+@pytest.mark.parametrize(
+    ("text", "level"), [("debug", 10), ("INFO", 20), ("Warning", 30), ("warn", 30), ("unset", 0), ("Inherited", 0)]
+)
+def test_level_names_any_case(text, level):
+    assert parse_level(text) == level
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [["set", "/x", "loud"], ["set", "/x", "lg", "15"], ["set", "/x", "", "unset"], ["set", "/x", "a", "b", "info"]],
+)
+def test_bad_set_lines_exit_2_before_touching_ros(capsys, argv):
+    status, out, err = run(capsys, *argv)
+    assert status == EXIT_USAGE and out == ""
+    assert err.startswith("console-tui loggers: ")
+
+
+def test_unknown_level_names_the_accepted_ones(capsys):
+    status, _out, err = run(capsys, "set", "/x", "loud")
+    assert status == EXIT_USAGE
+    assert "unknown level 'loud'" in err and "debug, info, warn, error, fatal" in err
+
+
+def test_usage_errors_exit_2(capsys):
+    with pytest.raises(SystemExit) as exited:
+        main(["frobnicate"])
+    assert exited.value.code == EXIT_USAGE
+
+
+@pytest.mark.ros2
+def test_list_get_set_and_failures(nodes, ros_runtime, capsys):
+    started = [
+        nodes.start("talker.py", "--name", "alpha", "--namespace", "/ns"),
+        nodes.start("talker.py", "--name", "beta", "--no-logger-service"),
+    ]
+    for process in started:
+        process.expect("ready")
+
+    # Waits for the node, then sets its own logger.
+    assert run(capsys, "set", "alpha", "DEBUG", "--wait", "15", runtime=ros_runtime) == (
+        EXIT_OK,
+        "ns.alpha\tDEBUG\n",
+        "",
+    )
+    status, out, err = run(capsys, "get", "/ns/alpha", "ns.alpha", "ns.alpha.sub", '""', runtime=ros_runtime)
+    assert status == EXIT_OK, err
+    assert out.splitlines() == ["ns.alpha\tDEBUG\tDEBUG", "ns.alpha.sub\tinherited\tDEBUG", '""\tINFO\tINFO']
+    assert run(capsys, "set", "ns/alpha", "ns.alpha.sub", "error", runtime=ros_runtime)[:2] == (
+        EXIT_OK,
+        "ns.alpha.sub\tERROR\n",
+    )
+    status, out, _err = run(capsys, "get", "ns.alpha", "ns.alpha.sub", "--json", runtime=ros_runtime)
+    assert json.loads(out) == {
+        "node": "/ns/alpha",
+        "loggers": [{"name": "ns.alpha.sub", "level": 40, "level_name": "ERROR", "effective": 40}],
+    }
+
+    status, out, err = run(capsys, "set", "beta", "debug", "--wait", "15", runtime=ros_runtime)
+    assert status == EXIT_NOT_FOUND and out == ""
+    assert "/beta has no logger services" in err and "enable_logger_service=True" in err
+
+    status, out, _err = run(capsys, "list", "--json", "--wait", "0", runtime=ros_runtime)
+    listed = {item["node"]: item["logger_services"] for item in json.loads(out)}
+    assert status == EXIT_OK and listed == {"/ns/alpha": True, "/beta": False}
+    status, out, _err = run(capsys, "list", "--wait", "0", runtime=ros_runtime)
+    assert out.splitlines() == ["/beta\tbeta\tno-logger-services", "/ns/alpha\tns.alpha\tlogger-services"]
+
+    status, out, err = run(capsys, "get", "gamma", "--wait", "0.5", runtime=ros_runtime)
+    assert status == EXIT_NOT_FOUND and "no node 'gamma'" in err
+
+
+@pytest.mark.ros2
+def test_set_for_puts_the_level_back(nodes, capsys):
+    nodes.start("talker.py", "--name", "alpha").expect("ready")
+    status, out, err = run(capsys, "set", "alpha", "warn", "--for", "0.5", "--wait", "15")
+    assert status == EXIT_OK
+    assert out.splitlines() == ["alpha\tWARN", "alpha\tinherited"]
+    assert "then back to inherited" in err
+    assert run(capsys, "get", "alpha")[1].splitlines()[0] == "alpha\tinherited\tINFO"
+
+
+@pytest.mark.ros2
+def test_a_busy_node_times_out_with_status_4(nodes, ros_env):
+    alpha = nodes.start("talker.py", "--name", "alpha")
+    alpha.expect("ready")
+    alpha.send({"cmd": "block", "seconds": 30})
+    alpha.expect("blocking")
+    result = subprocess.run(
+        [sys.executable, "-m", "console_tui", "loggers", "set", "/alpha", "debug", "--wait", "15", "--timeout", "0.5"],
+        env=ros_env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert result.returncode == EXIT_FAILED, result.stderr
+    assert result.stdout == ""
+    assert "console-tui loggers: /alpha did not answer within 0.5 s" in result.stderr
+
+
+def test_without_rclpy_exit_1_with_advice(capsys, monkeypatch):
+    from console_tui.sources.ros2 import runtime
+    from console_tui.sources.ros2.rclpy_loader import HOW_TO_GET_ROS2, RosUnavailable
+
+    def unavailable():
+        raise RosUnavailable(HOW_TO_GET_ROS2)
+
+    monkeypatch.setattr(runtime, "load_rclpy", unavailable)
+    status, out, err = run(capsys, "list")
+    assert status == 1 and out == "" and "source /opt/ros" in err

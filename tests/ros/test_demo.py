@@ -1,0 +1,63 @@
+"""The built-in demo: real node processes whose messages the app shows, and that end with it."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+from test_e2e_live import until
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.ui.app import ConsoleApp
+
+from support.rosproc import pid_alive, wait_until
+
+pytestmark = pytest.mark.ros2
+
+
+async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
+    from console_tui.demo.launcher import DemoNodes
+    from console_tui.sources.ros2.live_source import LiveLogSource
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    demo = DemoNodes()
+    demo.start()
+    runtime = RosRuntime()
+    queue = IntakeQueue()
+    app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)])
+    try:
+        async with app.run_test(size=(160, 40)) as pilot:
+            expected = {"count_and_log", "navigation.planner", "sensors.lidar_driver", "power.battery_monitor"}
+            await until(pilot, lambda: expected <= {r.node for r in app.store}, timeout=30)
+            nodes = {r.node for r in app.store}
+            assert "navigation.planner.costmap" in nodes or len(app.store) > 0
+            levels = {r.level for r in app.store if r.node == "count_and_log"}
+            assert 20 in levels  # INFO on every third count
+    finally:
+        runtime.shutdown()
+        pids = [p.pid for p in demo.processes]
+        demo.stop()
+    assert not any(pid_alive(pid) for pid in pids)
+
+
+def test_demo_nodes_end_when_the_console_dies(ros_env):
+    script = textwrap.dedent(
+        """
+        import time
+        from console_tui.demo.launcher import DemoNodes
+        demo = DemoNodes(["battery_monitor", "planner"])
+        demo.start()
+        print(" ".join(str(p.pid) for p in demo.processes), flush=True)
+        time.sleep(60)
+        """
+    )
+    parent = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, env=ros_env)
+    pids = [int(pid) for pid in parent.stdout.readline().split()]
+    assert len(pids) == 2 and all(pid_alive(pid) for pid in pids)
+    time.sleep(1.0)
+    parent.kill()  # no chance to clean up: the children must notice on their own
+    parent.wait()
+    assert wait_until(lambda: not any(pid_alive(pid) for pid in pids), timeout=15)

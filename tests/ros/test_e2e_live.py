@@ -1,0 +1,127 @@
+"""End to end with real ROS 2: node processes log, the headless app shows every field."""
+
+from __future__ import annotations
+
+import asyncio
+import subprocess
+import sys
+
+import pytest
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.ui.app import ConsoleApp
+
+from support.ui import until
+
+pytestmark = pytest.mark.ros2
+
+
+def live_app(topic: str | None = None) -> tuple[ConsoleApp, object]:
+    from console_tui.sources.ros2.live_source import LiveLogSource
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    queue = IntakeQueue()
+    source = LiveLogSource(runtime, queue, topic=topic)
+    return ConsoleApp(queue=queue, sources=[source], utc=True), runtime
+
+
+def fields(record) -> dict:
+    return {
+        "level": record.level,
+        "msg": record.msg,
+        "file": record.file,
+        "function": record.function,
+        "line": record.line,
+    }
+
+
+def records_of(app: ConsoleApp, node: str) -> list:
+    return [record for record in app.store if record.node == node]
+
+
+async def test_every_severity_with_every_field_in_order_late_join_and_volatile(nodes):
+    early = nodes.start("talker.py", "--name", "early", "--namespace", "/e2e", "--debug")
+    await asyncio.to_thread(early.expect, "ready")
+    early.send({"cmd": "log_all", "tag": "before the console started"})
+    logged_early = (await asyncio.to_thread(early.expect, "logged"))["messages"]
+
+    app, runtime = live_app()
+    try:
+        async with app.run_test(size=(200, 50)) as pilot:
+            # Late join: the history kept by the TRANSIENT_LOCAL rosout publisher arrives.
+            await until(pilot, lambda: len(records_of(app, "e2e.early")) >= 5)
+            assert [fields(r) for r in records_of(app, "e2e.early")] == logged_early
+            assert [r.level for r in records_of(app, "e2e.early")] == [10, 20, 30, 40, 50]
+
+            # A node whose rosout QoS is VOLATILE is still received.
+            volatile = nodes.start("talker.py", "--name", "volatile_talker", "--volatile", "--debug")
+            await asyncio.to_thread(volatile.expect, "ready")
+            sent: dict[str, list] = {}
+            for attempt in range(40):
+                tag = f"volatile {attempt}"
+                volatile.send({"cmd": "log_all", "tag": tag})
+                sent[tag] = (await asyncio.to_thread(volatile.expect_next, "logged"))["messages"]
+                await pilot.pause(0.3)
+                if any(r.msg.startswith(tag) for r in records_of(app, "volatile_talker")):
+                    break
+            await pilot.pause(0.5)
+            received = [fields(r) for r in records_of(app, "volatile_talker")]
+            all_sent = [message for batch in sent.values() for message in batch]
+            assert received and received == all_sent[-len(received) :]  # nothing lost or doubled once matched
+
+            # Still the live stream of the first node, in order, shown in the table.
+            early.send({"cmd": "log_all", "tag": "while watching"})
+            logged_live = (await asyncio.to_thread(early.expect_next, "logged"))["messages"]
+            await until(pilot, lambda: len(records_of(app, "e2e.early")) >= 10)
+            assert [fields(r) for r in records_of(app, "e2e.early")[5:]] == logged_live
+            await pilot.pause(0.2)
+            table = app.table
+            shown = [table.render_line(y).text for y in range(1, table.size.height)]
+            for message in logged_live:
+                line = next(text for text in shown if message["msg"] in text)
+                assert "e2e.early" in line and "talker.py" in line and str(message["line"]) in line
+                assert {10: "DEBUG", 20: "INFO", 30: "WARN", 40: "ERROR", 50: "FATAL"}[message["level"]] in line
+            status = app.sources[0].status
+            assert status.topic == "/rosout" and status.publishers >= 2
+    finally:
+        runtime.shutdown()
+
+
+async def test_reads_rosout_agg_when_something_publishes_it(nodes):
+    aggregator = nodes.start("aggregator.py")
+    talker = nodes.start("talker.py", "--name", "agg_talker")
+    await asyncio.to_thread(aggregator.expect, "ready")
+    await asyncio.to_thread(talker.expect, "ready")
+    await asyncio.sleep(1.0)
+    app, runtime = live_app()
+    try:
+        async with app.run_test(size=(160, 30)) as pilot:
+            # Chosen at start when discovery is quick, else switched to within a second.
+            await until(pilot, lambda: app.sources[0].status.topic == "/rosout_agg")
+            talker.send({"cmd": "log", "level": "warn", "msg": "through the aggregator"})
+            await until(pilot, lambda: any(r.msg == "through the aggregator" for r in app.store))
+            record = next(r for r in app.store if r.msg == "through the aggregator")
+            assert record.source == "/rosout_agg" and record.level == 30
+    finally:
+        runtime.shutdown()
+
+
+async def test_topic_flag_picks_the_topic(nodes):
+    aggregator = nodes.start("aggregator.py")
+    await asyncio.to_thread(aggregator.expect, "ready")
+    app, runtime = live_app(topic="/rosout")
+    try:
+        async with app.run_test(size=(160, 30)) as pilot:
+            await until(pilot, lambda: app.sources[0].status.running)
+            assert app.sources[0].status.topic == "/rosout"
+    finally:
+        runtime.shutdown()
+
+
+def test_without_ros_a_clear_message_and_no_traceback():
+    code = "import sys; sys.modules['rclpy'] = None; from console_tui.cli import main; sys.exit(main([]))"
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2
+    assert "source your ROS 2 install" in result.stderr and "console-tui[ros]" in result.stderr
+    assert "Traceback" not in result.stderr

@@ -1,0 +1,160 @@
+"""ROS 1 files made by the real tools: a bag from Debian's 'rosbag record' and the
+rosout.log of a real roscore, with a rospy node logging."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+from console_tui.cli import main as cli_main
+from console_tui.sources.files import open_log_file
+
+from support.formats import fields
+
+pytestmark = pytest.mark.ros1
+
+NODES = Path(__file__).parent.parent / "nodes"
+SYSTEM_PYTHON = "/usr/bin/python3"
+
+
+def _ros1_missing() -> str:
+    for tool in ("roscore", "rosbag"):
+        if shutil.which(tool) is None:
+            return f"{tool} is not installed (apt-get install ros-core python3-rospy)"
+    probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rospy"], capture_output=True)
+    if probe.returncode != 0:
+        return "rospy is not importable by /usr/bin/python3"
+    return ""
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def _wait_for_port(port: int, timeout: float) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        with socket.socket() as sock:
+            if sock.connect_ex(("127.0.0.1", port)) == 0:
+                return True
+        time.sleep(0.1)
+    return False
+
+
+def _stop(process: subprocess.Popen, timeout: float = 20) -> None:
+    """SIGINT to the process group it leads (it and its children), then SIGKILL if needed."""
+    if process.poll() is None:
+        try:
+            os.killpg(process.pid, signal.SIGINT)
+            process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait(5)
+        except ProcessLookupError:
+            pass
+
+
+@pytest.fixture(scope="module")
+def ros1_run(tmp_path_factory):
+    """roscore + 'rosbag record -a' + a rospy node that logs; returns the bag, the
+    rosout.log and what the node says it logged."""
+    reason = _ros1_missing()
+    if reason:
+        pytest.skip(reason)
+    base = tmp_path_factory.mktemp("ros1")
+    port = _free_port()
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTHON", "VIRTUAL_ENV"))}
+    env.update(
+        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
+        ROS_IP="127.0.0.1",
+        ROS_LOG_DIR=str(base / "log"),
+        ROS_HOME=str(base / "home"),
+    )
+    env.pop("ROS_HOSTNAME", None)
+    bag = base / "run.bag"
+    started: list[subprocess.Popen] = []
+    try:
+        core = subprocess.Popen(
+            ["roscore", "-p", str(port)],
+            env=env,
+            start_new_session=True,
+            stdout=open(base / "roscore.out", "wb"),
+            stderr=subprocess.STDOUT,
+        )
+        started.append(core)
+        assert _wait_for_port(port, 30), (base / "roscore.out").read_text()
+        recorder = subprocess.Popen(
+            ["rosbag", "record", "-a", "-O", str(bag), "__name:=recorder"],
+            env=env,
+            start_new_session=True,
+            stdout=open(base / "record.out", "wb"),
+            stderr=subprocess.STDOUT,
+        )
+        started.append(recorder)
+        talker = subprocess.run(
+            [SYSTEM_PYTHON, str(NODES / "ros1_talker.py")], env=env, capture_output=True, text=True, timeout=90
+        )
+        assert talker.returncode == 0, talker.stdout + talker.stderr
+        logged = next(json.loads(line) for line in talker.stdout.splitlines() if '"logged"' in line)["messages"]
+        _stop(recorder)
+    finally:
+        for process in reversed(started):
+            _stop(process)
+    assert bag.exists(), (base / "record.out").read_text()
+    [rosout_log] = [p for p in (base / "log").glob("*/rosout.log") if p.parent.name != "latest"]
+    return {"bag": bag, "rosout_log": rosout_log, "logged": logged}
+
+
+def _records(path) -> tuple[list, object]:
+    log_file = open_log_file(path)
+    return [r for batch in log_file.batches() for r in batch], log_file
+
+
+def _matches(records, logged) -> None:
+    ours = [r for r in records if r.file == "ros1_talker.py"]  # rospy logs its own DEBUG too
+    assert [(r.level, r.msg, r.file, r.function, r.line) for r in ours] == [
+        ({1: 10, 2: 20, 4: 30, 8: 40, 16: 50}[m["level"]], m["msg"], m["file"], m["function"], m["line"])
+        for m in logged
+    ]
+
+
+def test_bag_recorded_by_rosbag(ros1_run):
+    records, log_file = _records(ros1_run["bag"])
+    assert log_file.kind == "ros1-bag" and list(log_file.problems) == []
+    assert log_file.topics == ["/rosout_agg"]  # /rosout was recorded too; not read twice
+    _matches(records, ros1_run["logged"])
+    assert {r.source for r in records} == {"run.bag"}
+
+
+def test_rosout_log_of_roscore(ros1_run):
+    records, log_file = _records(ros1_run["rosout_log"])
+    assert log_file.kind == "rosout" and list(log_file.problems) == []
+    _matches(records, ros1_run["logged"])
+
+
+def test_bag_and_rosout_log_agree(ros1_run):
+    from_bag, _ = _records(ros1_run["bag"])
+    from_log, _ = _records(ros1_run["rosout_log"])
+    # rospy's own DEBUG messages from before 'rosbag record' subscribed are only in rosout.log.
+    ours = [[fields(r)[:7] for r in records if r.file == "ros1_talker.py"] for records in (from_bag, from_log)]
+    assert ours[0] == ours[1] and len(ours[0]) == len(ros1_run["logged"])
+
+
+def test_convert_merges_both(ros1_run, tmp_path, capsys):
+    out = tmp_path / "both.jsonl"
+    assert cli_main(["convert", str(ros1_run["bag"]), str(ros1_run["rosout_log"]), "-o", str(out)]) == 0
+    lines = [json.loads(line) for line in out.read_text().splitlines()]
+    assert sum(1 for line in lines if line["file"] == "ros1_talker.py") == 2 * len(ros1_run["logged"])
+    assert {line["source"] for line in lines} == {"run.bag", "rosout.log"}
+    stamps = [line["stamp_ns"] for line in lines]
+    assert stamps == sorted(stamps)

@@ -1,0 +1,166 @@
+"""The live ROS 2 intake against real node processes: both decode paths, loss counts, stopping."""
+
+from __future__ import annotations
+
+import contextlib
+import struct
+
+import pytest
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.record import LogRecord
+
+from support.rosproc import wait_until
+
+pytestmark = pytest.mark.ros2
+
+
+@contextlib.contextmanager
+def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue | None = None):
+    from console_tui.sources.ros2.live_source import LiveLogSource
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    source = LiveLogSource(runtime, IntakeQueue() if queue is None else queue, topic, raw=raw)
+    source.start()
+    try:
+        yield source
+    finally:
+        source.stop()
+        runtime.shutdown()
+    assert source._thread is not None and not source._thread.is_alive(), "the intake thread did not stop"
+
+
+def collect(source, enough, timeout: float = 15.0) -> list[LogRecord]:
+    records: list[LogRecord] = []
+
+    def done() -> bool:
+        records.extend(source.queue.drain())
+        return enough(records)
+
+    wait_until(done, timeout)
+    return records
+
+
+@pytest.mark.parametrize("raw", [True, False], ids=["raw+cdr", "typed"])
+def test_every_field_arrives_on_either_path(nodes, raw):
+    talker = nodes.start("talker.py", "--name", "fields_talker", "--namespace", "/ns", "--debug")
+    logger = talker.expect("ready")["logger"]
+    with live_source(raw=raw) as source:
+        assert wait_until(lambda: source.status.publishers >= 1)
+        talker.send({"cmd": "log_all", "tag": "fields"})
+        logged = talker.expect("logged")["messages"]
+        records = collect(source, lambda got: sum(r.msg.startswith("fields ") for r in got) >= len(logged))
+        status = source.status
+    mine = [r for r in records if r.msg.startswith("fields ")]
+    assert [(r.level, r.msg, r.file, r.function, r.line) for r in mine] == [
+        (m["level"], m["msg"], m["file"], m["function"], m["line"]) for m in logged
+    ]
+    assert {r.node for r in mine} == {logger} and {r.source for r in mine} == {"/rosout"}
+    assert all(r.stamp_ns > 0 for r in mine)
+    assert status.path == ("raw+cdr" if raw else "typed")
+    assert (status.lost, status.decoded_by_rclpy, status.incompatible) == (0, 0, 0)
+
+
+def serialized_log(msg: str, kind: int = 1) -> str:
+    """A little-endian Log message with encapsulation ``kind``, as hex."""
+    payload = struct.pack("<iIB", 5, 6, 20)
+    for text in (b"raw.node", msg.encode(), b"f.py", b"fn"):
+        payload += b"\x00" * (-len(payload) % 4) + struct.pack("<I", len(text) + 1) + text + b"\x00"
+    payload += b"\x00" * (-len(payload) % 4) + struct.pack("<I", 3)
+    return (bytes([0, kind, 0, 0]) + payload).hex()
+
+
+@pytest.mark.parametrize("raw", [True, False], ids=["raw+cdr", "typed"])
+def test_unreadable_messages_are_counted_as_lost_and_others_still_arrive(nodes, raw):
+    topic = "/raw_test_log"
+    with live_source(topic, raw=raw) as source:
+        publisher = nodes.start("raw_publisher.py", "--topic", topic)
+        publisher.expect("ready")
+        messages = [
+            serialized_log("plain cdr"),
+            serialized_log("parameter-list encapsulation", kind=3),  # rclpy reads it, the direct decoder does not
+            "00010000ffffffff",  # truncated: nobody can read it
+            "0001000005000000060000001400000000ffffff",  # a string length past the end
+            serialized_log("after the bad ones"),
+        ]
+        publisher.send({"cmd": "publish", "hex": messages})
+        publisher.expect("published")
+        records = collect(source, lambda got: any(r.msg == "after the bad ones" for r in got))
+        if raw:  # a typed take drops what it cannot deserialize inside the RMW, unseen
+            assert wait_until(lambda: source.status.lost_undecodable >= 2)
+        status = source.status
+    assert [r.msg for r in records] == ["plain cdr", "parameter-list encapsulation", "after the bad ones"]
+    assert records[0] == LogRecord(5_000_000_006, 20, "raw.node", "plain cdr", "f.py", "fn", 3, topic, -1)
+    assert (status.lost, status.lost_undecodable, status.lost_queue) == ((2, 2, 0) if raw else (0, 0, 0))
+    assert status.decoded_by_rclpy == (1 if raw else 0)
+    assert status.running and status.problem == ""
+
+
+def test_a_full_queue_counts_dropped_messages_as_lost(nodes):
+    talker = nodes.start("talker.py", "--name", "overflow_talker", "--debug")
+    talker.expect("ready")
+    queue = IntakeQueue(limit=1)
+    with live_source(queue=queue) as source:
+        assert wait_until(lambda: source.status.publishers >= 1)
+        for number in range(3):
+            talker.send({"cmd": "log_all", "tag": f"burst{number}"})
+            talker.expect("logged")
+        assert wait_until(lambda: queue.received >= 15)  # nothing drains the queue: all but one dropped
+        assert wait_until(lambda: source.status.lost_queue == queue.dropped)
+        status = source.status
+    assert status.lost_queue == queue.dropped == queue.received - len(queue) >= 14
+    assert status.lost == status.lost_queue
+
+
+def test_volatile_publishers_are_read_through_the_second_subscription(nodes):
+    talker = nodes.start("talker.py", "--name", "volatile_talker", "--volatile")
+    talker.expect("ready")
+    with live_source() as source:
+        assert wait_until(lambda: source.status.publishers >= 1)
+        records: list[LogRecord] = []
+        sent = []
+        # A VOLATILE publisher's messages reach only subscriptions already matched: log until one arrives.
+        for number in range(40):
+            sent.append(f"from a volatile node {number}")
+            talker.send({"cmd": "log", "level": "warn", "msg": sent[-1]})
+            talker.expect("logged")
+            records += collect(source, lambda got: any(r.msg in sent for r in got), timeout=0.5)
+            if any(r.msg in sent for r in records):
+                break
+        status = source.status
+    arrived = [r.msg for r in records if r.msg in sent]
+    assert arrived and len(arrived) == len(set(arrived)), "nothing arrived, or something arrived twice"
+    assert (status.lost, status.incompatible, status.path) == (0, 0, "raw+cdr")
+
+
+class _OldRclpyHandle:
+    """A subscription handle from an rclpy that cannot take serialized messages."""
+
+    def __init__(self, messages):
+        self.messages = list(messages)
+
+    def take_message(self, msg_type, raw):
+        if raw:
+            raise TypeError("take_message() takes 2 positional arguments but 3 were given")
+        return (self.messages.pop(0), {}) if self.messages else None
+
+
+def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
+    from types import SimpleNamespace
+
+    from rcl_interfaces.msg import Log
+
+    from console_tui.sources.ros2.live_source import LossCounts, _TopicReader
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    try:
+        reader = _TopicReader(runtime.create_node("fallback"), Log, "/fallback_log", LossCounts())
+        assert reader.path == "raw+cdr"
+        reader.close()
+        reader.main = SimpleNamespace(handle=_OldRclpyHandle([Log(name="n", msg="one"), Log(name="n", msg="two")]))
+        assert [r.msg for r in reader.take_all(10)] == ["one", "two"]
+        assert reader.path == "typed"
+    finally:
+        runtime.shutdown()

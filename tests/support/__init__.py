@@ -1,0 +1,1 @@
+"""Helpers the tests share: fixed records, file fixtures, node processes, app driving."""

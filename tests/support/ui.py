@@ -1,0 +1,60 @@
+"""Driving the app in tests as a person does: fixed records, keys, and the screen as text."""
+
+from __future__ import annotations
+
+import io
+import time
+from collections.abc import Callable
+
+from rich.console import Console
+from textual.keys import _character_to_key
+
+from console_tui.model.store import DEFAULT_MAX_MESSAGES, LogStore
+from console_tui.ui.app import ConsoleApp
+
+from support.feed import records
+
+
+def make_app(count: int = 100, *, max_messages: int = DEFAULT_MAX_MESSAGES, **options) -> ConsoleApp:
+    """The app over ``count`` fixed records (``support.feed``), times in UTC."""
+    store = LogStore(max_messages=max_messages)
+    store.extend(records(count))
+    options.setdefault("utc", True)
+    return ConsoleApp(store=store, **options)
+
+
+async def until(pilot, condition: Callable[[], object], timeout: float = 20.0, what: str = "the app") -> None:
+    """Let the app run until ``condition()`` holds; fail after ``timeout`` seconds."""
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        await pilot.pause(0.02)
+
+
+def screen_text(app) -> str:
+    """What the terminal shows now, as plain text: one line per terminal row, every
+    screen on the stack composed as the terminal gets it."""
+    width, height = app.size
+    console = Console(
+        width=width,
+        height=height,
+        file=io.StringIO(),
+        force_terminal=True,
+        color_system=None,
+        record=True,
+        legacy_windows=False,
+    )
+    update = app.screen._compositor.render_update(full=True, screen_stack=app._background_screens)
+    console.print(update)
+    return console.export_text(styles=False)
+
+
+async def type_text(pilot, text: str) -> None:
+    """Type ``text`` one key at a time, as a person does."""
+    for char in text:
+        await pilot.press(_key_name(char))
+
+
+def _key_name(char: str) -> str:
+    return _character_to_key(char)

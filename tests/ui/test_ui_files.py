@@ -1,0 +1,143 @@
+"""Pilot tests of files in the app: open (dialog and start-up), progress, cancel, problems, save."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from console_tui.model.formats.save import save_records
+from console_tui.model.store import LogStore
+from console_tui.ui.app import ConsoleApp
+from console_tui.ui.screens.files import OpenScreen, SaveScreen
+from console_tui.ui.screens.problems import ProblemsScreen
+
+from support.feed import records
+from support.ui import until
+
+
+def write_jsonl(path: Path, count: int, start: int = 0) -> list:
+    rows = records(count, start)
+    save_records(rows, path, "jsonl")
+    return rows
+
+
+async def test_files_given_at_start_load_merged_with_their_source(tmp_path):
+    first = write_jsonl(tmp_path / "a.jsonl", 50, start=0)
+    second_rows = records(50, start=25)
+    save_records(second_rows, tmp_path / "b.csv", "rqt")
+    app = ConsoleApp(files=[str(tmp_path / "a.jsonl"), str(tmp_path / "b.csv")], utc=True)
+    async with app.run_test(size=(160, 30)) as pilot:
+        await until(pilot, lambda: len(app.store) == 100 and not app.loading)
+        stamps = [r.stamp_ns for r in app.store]
+        assert stamps == sorted(stamps)
+        assert {r.source for r in app.store} == {"/rosout", "b.csv"}  # JSON Lines keeps the recorded source
+        await pilot.pause()
+        assert "Source" in app.table.render_line(0).text
+        assert first[0].msg in {r.msg for r in app.store}
+
+
+async def test_open_dialog_loads_and_reports_problems(tmp_path):
+    good = tmp_path / "good.jsonl"
+    write_jsonl(good, 10)
+    bad = tmp_path / "bad.csv"
+    bad.write_bytes(b"\x00\x01\x02 binary garbage \xff\xfe")
+    app = ConsoleApp(store=LogStore(), utc=True)
+    async with app.run_test(size=(160, 30)) as pilot:
+        await pilot.press("o")
+        assert isinstance(app.screen, OpenScreen)
+        app.screen.query_one("#paths").value = f"{good} {bad}"
+        await pilot.press("enter")
+        await until(pilot, lambda: len(app.store) == 10 and not app.loading)
+        await until(pilot, lambda: bool(app.problems))
+        assert any("bad.csv" in problem for problem in app.problems)
+        await pilot.press("exclamation_mark")
+        assert isinstance(app.screen, ProblemsScreen)
+        await pilot.press("escape")
+
+
+async def test_open_dialog_refuses_a_missing_file(tmp_path):
+    app = ConsoleApp(store=LogStore())
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("o")
+        app.screen.query_one("#paths").value = str(tmp_path / "nope.bag")
+        await pilot.press("enter")
+        assert isinstance(app.screen, OpenScreen)
+        assert "No such file" in str(app.screen.query_one("#error").render())
+        await pilot.press("escape")
+        assert not isinstance(app.screen, OpenScreen)
+
+
+async def test_a_large_load_shows_progress_answers_keys_and_cancels(tmp_path):
+    big = tmp_path / "big.jsonl"
+    with big.open("w") as stream:
+        for i in range(300_000):
+            stream.write(
+                json.dumps(
+                    {
+                        "stamp_ns": i,
+                        "level": 20,
+                        "node": "n",
+                        "msg": f"m{i}",
+                        "file": "f",
+                        "function": "g",
+                        "line": 1,
+                        "source": "s",
+                    }
+                )
+                + "\n"
+            )
+    app = ConsoleApp(files=[str(big)])
+    async with app.run_test(size=(160, 30)) as pilot:
+        await until(pilot, lambda: len(app.store) > 0)
+        assert app.load_bar.has_class("-loading")
+        await pilot.press("up")  # keys work while loading
+        await pilot.press("x")
+        await until(pilot, lambda: not app.loading)
+        assert 0 < len(app.store) < 300_000
+        assert not app.load_bar.has_class("-loading")
+
+
+async def test_save_what_is_shown_then_load_it_back(tmp_path):
+    store = LogStore()
+    store.extend(records(40))
+    app = ConsoleApp(store=store, utc=True)
+    target = tmp_path / "saved.jsonl"
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("s")
+        assert isinstance(app.screen, SaveScreen)
+        path_input = app.screen.query_one("#path")
+        path_input.value = str(target)
+        await pilot.press("enter")
+        await until(pilot, lambda: target.exists())
+    again = ConsoleApp(files=[str(target)])
+    async with again.run_test(size=(120, 30)) as pilot:
+        await until(pilot, lambda: len(again.store) == 40 and not again.loading)
+        original = [(r.stamp_ns, r.level, r.node, r.msg, r.file, r.function, r.line) for r in store]
+        loaded = [(r.stamp_ns, r.level, r.node, r.msg, r.file, r.function, r.line) for r in again.store]
+        assert loaded == original
+
+
+async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
+    store = LogStore()
+    store.extend(records(3))
+    app = ConsoleApp(store=store)
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("s")
+        app.screen.query_one("#path").value = str(tmp_path / "no" / "such" / "x.csv")
+        await pilot.press("enter")
+        assert isinstance(app.screen, SaveScreen)
+        assert "No such folder" in str(app.screen.query_one("#error").render())
+
+
+async def test_with_live_records_waiting_the_files_come_first(tmp_path):
+    """--live with files: live records wait until the files are in, so time order holds."""
+    from console_tui.model.intake_queue import IntakeQueue
+
+    write_jsonl(tmp_path / "old.jsonl", 500)
+    live = IntakeQueue()
+    live.put(records(5, start=10_000))  # newer than every file record, already waiting
+    app = ConsoleApp(queue=live, files=[str(tmp_path / "old.jsonl")])
+    async with app.run_test(size=(120, 30)) as pilot:
+        await until(pilot, lambda: len(app.store) == 505)
+        stamps = [r.stamp_ns for r in app.store]
+        assert stamps == sorted(stamps)

@@ -1,0 +1,183 @@
+"""Pilot tests of the logger levels pane without ROS: keys, focus, what it shows for a given state.
+
+The pane's state is fed through its public methods (nodes, levels, temporary levels), as
+its ``LoggerControl`` would; what ROS does is tested in test_e2e_logger_pane.py.
+"""
+
+from __future__ import annotations
+
+from functools import partial
+
+from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
+from console_tui.ui.screens.help import HelpScreen
+from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
+from console_tui.ui.widgets.logger_pane import NO_ROS_TEXT, LoggerPane
+
+from support import ui
+from support.feed import GRAPH, PLANNER, feed_logger_pane, records
+
+make_app = partial(ui.make_app, clock=lambda: 100.0)  # nodes include navigation.planner and its costmap
+
+
+async def open_fed_pane(pilot) -> LoggerPane:
+    """Open the pane with ``l`` and give it the fixed state of ``feed_logger_pane``."""
+    pane = pilot.app.logger_pane
+    await pilot.press("l")
+    feed_logger_pane(pane)
+    await pilot.pause()
+    return pane
+
+
+def lines(option_list) -> list[str]:
+    return [option_list.render_line(y).text.rstrip() for y in range(option_list.option_count)]
+
+
+def notice(pane: LoggerPane) -> str:
+    return str(pane.notice_line.content)
+
+
+async def test_l_toggles_the_pane_escape_gives_the_table_the_keys_and_the_table_follows():
+    app = make_app()
+    async with app.run_test(size=(120, 30)) as pilot:
+        pane = app.logger_pane
+        assert not pane.is_open and app.table.has_focus
+        await pilot.press("l")
+        assert pane.is_open and pane.display and pane.node_list.has_focus
+        app.add_records(records(20, start=100))
+        await pilot.pause()
+        assert app.table.following and app.table.cursor_seq == 119
+        await pilot.press("escape")
+        assert app.table.has_focus and pane.is_open
+        await pilot.press("space")  # the table's keys work with the pane open
+        assert app.table.paused_end is not None
+        await pilot.press("l")
+        assert not pane.is_open and app.table.has_focus
+
+
+async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
+    app = make_app()
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("l")
+        pane = app.logger_pane
+        assert notice(pane) == NO_ROS_TEXT
+        await pilot.press("d", "t", "x")
+        assert notice(pane) == NO_ROS_TEXT and pane.notice_is_error
+        assert not isinstance(app.screen, TemporaryLevelScreen)
+        await pilot.press("L")
+        assert "No node in the ROS graph logs as" in notice(pane)
+
+
+async def test_nodes_marks_loggers_and_levels_as_shown():
+    app = make_app()
+    async with app.run_test(size=(140, 30)) as pilot:
+        pane = await open_fed_pane(pilot)
+        nodes = lines(pane.node_list)
+        assert nodes[0].startswith("/count_and_log") and nodes[0].strip() == "/count_and_log"
+        assert "no logger services" in nodes[2] and "checking…" in nodes[3]
+        rows = {line.split()[0]: line for line in lines(pane.logger_list)}
+        assert rows["navigation.planner"].endswith("DEBUG")
+        assert rows[".costmap"].endswith("inherited (DEBUG)"), "a child logger seen in the records, inheriting"
+        assert rows['""'].endswith("INFO") and '"" (default)' in rows['""']
+        assert pane.highlighted_logger == "navigation.planner"
+        # A node without the services: the hint; a node still being checked: says so.
+        pane.select_node("/power/battery_monitor")
+        await pilot.pause()
+        assert pane.rows() == [] and ENABLE_LOGGER_SERVICE_HINT in notice(pane)
+        pane.select_node("/sensors/lidar_driver")
+        await pilot.pause()
+        assert "Checking whether /sensors/lidar_driver offers logger services" in notice(pane)
+        # A click on a node selects it.
+        await pilot.click("#logger-nodes", offset=(2, 1))
+        assert pane.selected == PLANNER
+        # The node leaves the graph.
+        pane.show_nodes(GRAPH[:1])
+        assert pane.selected is None and f"{PLANNER} left the ROS graph" in notice(pane)
+
+
+async def test_arrows_move_between_the_lists_and_keys_pick_the_logger():
+    app = make_app()
+    async with app.run_test(size=(140, 30)) as pilot:
+        pane = await open_fed_pane(pilot)
+        await pilot.press("right")
+        assert pane.logger_list.has_focus
+        await pilot.press("down")
+        assert pane.highlighted_logger == "navigation.planner.costmap"
+        await pilot.press("left")
+        assert pane.node_list.has_focus and pane.selected == PLANNER
+        await pilot.press("down")
+        assert pane.selected == "/power/battery_monitor"
+        await pilot.press("up", "enter")
+        assert pane.selected == PLANNER and pane.logger_list.has_focus
+
+
+async def test_a_typed_logger_name_is_offered_and_highlighted():
+    app = make_app()
+    async with app.run_test(size=(140, 30)) as pilot:
+        pane = await open_fed_pane(pilot)
+        await pilot.press("a")
+        assert pane.name_input.has_focus
+        await pilot.press(*"navigation.planner.extra", "enter")
+        assert pane.logger_list.has_focus and pane.highlighted_logger == "navigation.planner.extra"
+        assert next(line for line in lines(pane.logger_list) if "extra" in line).endswith("?"), "not read yet"
+        pane.show_levels(PLANNER, {"navigation.planner.extra": 0})
+        assert next(line for line in lines(pane.logger_list) if "extra" in line).endswith("inherited (DEBUG)")
+        await pilot.press("a", "x", "escape")  # Escape in the box drops the text, back to the loggers
+        assert pane.logger_list.has_focus and pane.name_input.value == ""
+
+
+async def test_temporary_level_shows_its_countdown():
+    app = make_app()
+    async with app.run_test(size=(140, 30)) as pilot:
+        pane = await open_fed_pane(pilot)
+        pane.show_temporaries([TemporaryLevel(PLANNER, "navigation.planner.costmap", 10, 0, deadline=165.2)])
+        await pilot.pause()
+        row = next(line for line in lines(pane.logger_list) if ".costmap" in line)
+        assert row.endswith("DEBUG for 1:06")  # 65.2 s left on the app's clock, rounded up
+
+
+async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
+    app = make_app(10)
+    async with app.run_test(size=(140, 30)) as pilot:
+        pane = app.logger_pane
+        pane.show_nodes(GRAPH)
+        row = next(i for i in range(10) if app.store.get(i).node == "navigation.planner.costmap")
+        app.table.move_cursor(row)
+        await pilot.press("L")
+        assert pane.is_open and pane.selected == PLANNER
+        assert pane.highlighted_logger == "navigation.planner.costmap" and pane.logger_list.has_focus
+
+
+async def test_help_and_command_palette_offer_the_pane():
+    app = make_app(5)
+    async with app.run_test(size=(100, 40)) as pilot:
+        titles = [command.title for command in app.get_system_commands(app.screen)]
+        assert "Logger levels" in titles and "Logger levels of this row's node" in titles
+        groups = dict(app.binding_groups())
+        assert any(b.action == "set_level(10)" for b in groups["Logger levels pane"])
+        await pilot.press("question_mark")
+        assert isinstance(app.screen, HelpScreen)
+        await pilot.press("escape", "ctrl+p", *"logger levels", "enter")
+        await pilot.pause()
+        assert app.logger_pane.is_open
+
+
+async def test_temporary_level_dialog():
+    app = make_app(5)
+    async with app.run_test(size=(100, 30)) as pilot:
+        results: list = []
+        app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
+        await pilot.pause()
+        await pilot.press("enter")
+        assert results == [(10, 30.0)]
+        app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
+        await pilot.pause()
+        await pilot.press("down", "down", "0", "enter")
+        screen = app.screen
+        assert isinstance(screen, TemporaryLevelScreen), "0 s is refused"
+        assert "above 0" in str(screen.query_one("#temporary-error").content)
+        await pilot.press("backspace", "1", ".", "5", "enter")
+        assert results[-1] == (30, 1.5)
+        app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
+        await pilot.pause()
+        await pilot.press("escape")
+        assert results[-1] is None

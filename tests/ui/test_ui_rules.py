@@ -1,0 +1,296 @@
+"""Pilot tests of the rules in the app: query line, rules pane, editor, quick rules, files."""
+
+from __future__ import annotations
+
+from functools import partial
+
+import pytest
+
+from console_tui.cli import build_parser, check_rule_arguments
+from console_tui.model.rules.query import parse_query
+from console_tui.model.rules.ruleset import Role
+from console_tui.model.rules.rulesfile import last_rules_path, query_history_path
+from console_tui.ui.app import ConsoleApp
+from console_tui.ui.screens.files import PathScreen
+from console_tui.ui.screens.quick_rule import QuickRuleScreen
+from console_tui.ui.screens.rule_editor import RuleEditor
+
+from support import ui
+from support.feed import NODES, records
+from support.ui import until
+
+make_app = partial(ui.make_app, count=300)
+
+
+@pytest.fixture(autouse=True)
+def own_config(tmp_path, monkeypatch):
+    """Rule sets and query history of these tests stay in a folder of their own."""
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "config"))
+
+
+def shown(app: ConsoleApp) -> list:
+    return [app.store.get(app.view.seq_at(row)) for row in range(len(app.view))]
+
+
+async def type_query(pilot, app: ConsoleApp, text: str) -> None:
+    await pilot.press("slash")
+    app.query_bar.input.value = text
+    await pilot.pause()
+
+
+async def test_query_line_applies_and_replaces_its_rules():
+    app = make_app()
+    async with app.run_test(size=(160, 40)) as pilot:
+        await type_query(pilot, app, "level>=warn node:nav*")
+        await pilot.press("enter")
+        assert not app.query_bar.is_open and app.table.has_focus
+        rows = shown(app)
+        assert rows and all(r.level >= 30 and r.node.startswith("nav") for r in rows)
+        await type_query(pilot, app, "-level:debug")
+        await pilot.press("enter")
+        assert len(app.rules.entries) == 1  # the previous query's rule was replaced
+        assert all(r.level != 10 for r in shown(app)) and len(shown(app)) == 270
+
+
+async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
+    app = make_app()
+    async with app.run_test(size=(160, 40)) as pilot:
+        await type_query(pilot, app, "level>=warn")
+        await pilot.press("enter")
+        before = len(app.view)
+        await type_query(pilot, app, "level>=loud /time(out/")
+        problem = str(app.query_bar.query_one("#query-problem").render())
+        assert "^" in problem and "loud" in problem
+        await pilot.press("enter")
+        assert app.query_bar.is_open  # not applied
+        assert len(app.view) == before and app.query_bar.applied_text == "level>=warn"
+        await pilot.press("escape")
+        assert not app.query_bar.is_open and len(app.view) == before
+
+
+async def test_query_history_walks_back_and_is_kept_between_runs():
+    app = make_app(remember_rules=True)
+    async with app.run_test(size=(160, 40)) as pilot:
+        for text in ("level:error", "node:count*", "-msg:scan"):
+            await type_query(pilot, app, text)
+            await pilot.press("enter")
+        await pilot.press("slash", "up")
+        assert app.query_bar.input.value == "node:count*"  # the current one is shown first: up goes back
+        await pilot.press("up")
+        assert app.query_bar.input.value == "level:error"
+        await pilot.press("down", "down")
+        assert app.query_bar.input.value == "-msg:scan"
+        await pilot.press("escape")
+    assert query_history_path().read_text().split("\n")[:3] == ["level:error", "node:count*", "-msg:scan"]
+    assert 'kind = "message"' in last_rules_path().read_text() and "scan" in last_rules_path().read_text()
+
+
+async def test_query_given_at_start():
+    app = make_app(query="+level:fatal")
+    async with app.run_test(size=(160, 40)) as pilot:
+        await pilot.pause()
+        assert app.rules.highlighting and len(app.view) == 300
+        assert app.query_bar.applied_text == "+level:fatal"
+
+
+async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], role: str = "exclude") -> None:
+    """Through the rules pane: a, choose the kind, fill the fields, Enter."""
+    if not app.rules_pane.is_open:
+        await pilot.press("r")
+    await pilot.press("a")
+    editor = app.screen
+    assert isinstance(editor, RuleEditor)
+    editor.query_one("#kind").value = kind
+    await pilot.pause()
+    for name, value in fill.items():
+        widget = editor.query_one(f"#{name}")
+        widget.value = value
+    if role == "highlight":
+        editor.query_one("RadioButton[name='highlight']").value = True
+    await pilot.pause()
+    editor.action_apply()
+    await pilot.pause()
+
+
+@pytest.mark.parametrize(
+    "kind, fill, check",
+    [
+        ("message", {"message-text": "scan"}, lambda r: "scan" not in r.msg),
+        ("message", {"message-text": r"^\d+ is", "message-regex": True}, lambda r: not r.msg[0].isdigit()),
+        ("severity", {"severity-info": True, "severity-debug": True}, lambda r: r.level >= 30),
+        ("node", {"node-names": "navigation.*, count_and_log"}, lambda r: r.node.startswith(("sensors", "power"))),
+        ("location", {"location-file": "planner.cpp"}, lambda r: "planner.cpp" not in r.file),
+        ("location", {"location-line": "47"}, lambda r: r.line != 47),
+        ("time", {"time-from": "1795000010", "time-to": ""}, lambda r: r.stamp_ns < 1795000010_000_000_000),
+        (
+            "custom",
+            {"node-names": "count_and_log", "severity-info": True},
+            lambda r: not (r.node == "count_and_log" and r.level == 20),
+        ),
+    ],
+)
+async def test_every_kind_of_rule_through_the_editor(kind, fill, check):
+    app = make_app()
+    async with app.run_test(size=(160, 45)) as pilot:
+        await add_rule(pilot, app, kind, fill)
+        assert len(app.rules.entries) == 1 and app.rules.entries[0].rule.kind == kind
+        rows = shown(app)
+        assert 0 < len(rows) < 300 and all(check(r) for r in rows)
+
+
+async def test_an_invalid_regex_is_refused_in_the_editor_and_nothing_changes():
+    app = make_app()
+    async with app.run_test(size=(160, 45)) as pilot:
+        await add_rule(pilot, app, "message", {"message-text": "time(out", "message-regex": True})
+        assert isinstance(app.screen, RuleEditor)
+        assert "regular expression" in str(app.screen.query_one("#rule-error").render())
+        assert not app.rules.entries and len(app.view) == 300
+        await pilot.press("escape")
+        assert not isinstance(app.screen, RuleEditor)
+
+
+async def test_rules_pane_switches_inverts_changes_role_edits_and_deletes():
+    app = make_app()
+    async with app.run_test(size=(160, 45)) as pilot:
+        await add_rule(pilot, app, "severity", {"severity-debug": True})
+        assert len(app.view) == 270
+        assert "30" in str(app.rules_pane.query_one("#rules-list").get_option_at_index(0).prompt)  # the count
+        await pilot.press("space")
+        assert not app.rules.entries[0].enabled and len(app.view) == 300
+        await pilot.press("space", "i")
+        assert app.rules.entries[0].inverted and len(app.view) == 30
+        await pilot.press("i", "h")
+        assert app.rules.entries[0].role is Role.HIGHLIGHT and len(app.view) == 300
+        assert app.table.decoration_of is not None
+        await pilot.press("e")
+        assert isinstance(app.screen, RuleEditor)
+        app.screen.query_one("#severity-warn").value = True
+        app.screen.action_apply()
+        await pilot.pause()
+        assert app.rules.entries[0].rule.levels == frozenset({10, 30})
+        await pilot.press("d")
+        assert not app.rules.entries and app.table.decoration_of is None
+
+
+async def test_quick_rules_from_a_row():
+    app = make_app()
+    async with app.run_test(size=(160, 45)) as pilot:
+        row = app.store.get(app.table.cursor_seq)
+        await pilot.press("minus")
+        assert isinstance(app.screen, QuickRuleScreen)
+        await pilot.press("enter")  # the first choice: this node
+        assert all(r.node != row.node for r in shown(app)) and len(app.view) == 240
+        await pilot.press("plus", "down", "enter")  # highlight this severity
+        assert app.rules.entries[-1].role is Role.HIGHLIGHT
+        seq = app.view.seq_at(len(app.view) - 1)
+        expected = "highlight" if app.store.get(seq).level == app.store.get(app.table.cursor_seq).level else "dim"
+        assert app.view.decoration_of(seq) == expected
+
+
+async def test_quick_rules_from_selected_rows():
+    app = make_app()
+    async with app.run_test(size=(160, 45)) as pilot:
+        await pilot.press("shift+up", "shift+up", "shift+up")
+        assert len(app.table.selected_rows()) == 4
+        rows = [app.store.get(seq) for seq in app.table.selected_seqs(10)]
+        nodes = {row.node for row in rows}
+        await pilot.press("minus")
+        assert isinstance(app.screen, QuickRuleScreen)
+        await pilot.press("enter")  # the first choice: these nodes
+        assert app.rules.entries[-1].rule.names == tuple(dict.fromkeys(row.node for row in rows))
+        assert all(r.node not in nodes for r in shown(app))
+        await pilot.press("up", "shift+up", "escape")  # a plain move and Esc end a selection
+        assert len(app.table.selected_rows()) == 1
+
+
+async def test_highlighted_only_switch():
+    app = make_app(query="+level:error,fatal")
+    async with app.run_test(size=(160, 45)) as pilot:
+        await pilot.pause()
+        assert len(app.view) == 300
+        await pilot.press("H")
+        assert app.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
+        await pilot.press("H")
+        assert len(app.view) == 300
+
+
+async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
+    app = make_app(query=f"-node:{NODES[0]} +level:warn")
+    target = tmp_path / "rules.toml"
+    async with app.run_test(size=(160, 45)) as pilot:
+        await pilot.pause()
+        saved = app.rules
+        await pilot.press("r")
+        await pilot.press("S")
+        assert isinstance(app.screen, PathScreen)
+        app.screen.query_one("#path").value = str(target)
+        await pilot.press("enter")
+        assert target.exists()
+        app.action_clear_rules()
+        await pilot.pause()
+        assert not app.rules.entries and len(app.view) == 300
+        await pilot.press("O")
+        app.screen.query_one("#path").value = str(target)
+        await pilot.press("enter")
+        await pilot.pause()
+        assert [e.describe() for e in app.rules.entries] == [e.describe() for e in saved.entries]
+        bad = tmp_path / "bad.toml"
+        bad.write_text('[[rules]]\nkind = "severity"\nlevels = ["warm"]\n')
+        before = app.rules
+        app.action_load_rules(str(bad))
+        await pilot.pause()
+        assert app.rules == before
+        assert any("warm" in str(n.message) for n in app._notifications)
+
+
+async def test_rule_changes_over_a_large_store_refilter_in_the_background():
+    app = make_app(count=200_000)
+    async with app.run_test(size=(160, 45)) as pilot:
+        await pilot.pause()
+        app.apply_rules(app.rules.with_query(parse_query("-level:info")))
+        # Straight after the change: the newest screen is right, the rest is still to do.
+        assert app.view.refiltering
+        bottom = [app.store.get(app.view.seq_at(row)) for row in range(len(app.view) - 40, len(app.view))]
+        assert len(bottom) == 40 and all(r.level != 20 for r in bottom)
+        cursor = app.table.cursor_row
+        await pilot.press("up")  # keys are answered meanwhile
+        assert app.table.cursor_row != cursor
+        await until(pilot, lambda: not app.view.refiltering)
+        info_per_ten = sum(1 for r in records(10) if r.level == 20)
+        assert len(app.view) == 200_000 - info_per_ten * 20_000
+
+
+def test_rules_last_at_start_restores_the_saved_set(tmp_path):
+    parser = build_parser()
+    args = parser.parse_args(["--rules", "last"])
+    with pytest.raises(SystemExit):
+        check_rule_arguments(parser, args)  # nothing saved yet: a clear error, exit 2
+    last_rules_path().parent.mkdir(parents=True, exist_ok=True)
+    last_rules_path().write_text('[[rules]]\nkind = "severity"\nlevels = ["debug"]\n')
+    args = parser.parse_args(["--rules", "last"])
+    check_rule_arguments(parser, args)
+    assert args.rule_set.entries[0].rule.levels == frozenset({10})
+
+
+def test_quick_rules_for_several_rows():
+    from console_tui.model.record import LogRecord
+    from console_tui.ui.screens.quick_rule import quick_rules
+
+    rows = [
+        LogRecord(stamp_ns=1, level=30, node="nav", msg="a (b)?", file="x.py", function="f", line=1),
+        LogRecord(stamp_ns=2, level=40, node="cam", msg="c|d", file="y.py", function="g", line=2),
+        LogRecord(stamp_ns=3, level=30, node="nav", msg="a (b)?", file="x.py", function="f", line=1),
+    ]
+    labels, rules = zip(*quick_rules(rows), strict=False)
+    assert labels[0] == "these 2 nodes: nav, cam" and rules[0].names == ("nav", "cam")
+    assert labels[1] == "these 2 severities: WARN, ERROR" and rules[1].levels == frozenset({30, 40})
+    assert labels[2].startswith("these 2 messages")
+    assert [rules[2].matches(row) for row in rows] == [True, True, True]
+    assert not rules[2].matches(LogRecord(stamp_ns=4, level=20, node="n", msg="a b"))
+    assert len(rules) == 3  # two locations: no location rule
+    assert [label.split(":")[0] for label, _ in quick_rules(rows[:1])] == [
+        "this node",
+        "this severity",
+        "this message",
+        "this location",
+    ]

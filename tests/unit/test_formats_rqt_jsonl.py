@@ -1,0 +1,146 @@
+"""rqt_console CSV and JSON Lines: byte-exact rqt files, round trips, bad rows."""
+
+from __future__ import annotations
+
+import io
+import json
+
+import pytest
+
+from console_tui.model.formats import JsonLinesFormat, RqtCsvFormat, save_records
+from console_tui.model.formats.jsonl import JsonLinesWriter
+from console_tui.model.formats.rqt_csv import RqtCsvWriter, split_location
+from console_tui.model.record import LogRecord
+
+from support.formats import DATA, fields, hostile_records, read_text
+
+
+def _write(writer, records) -> bytes:
+    stream = io.BytesIO()
+    for _ in writer.write(records, stream):
+        pass
+    return stream.getvalue()
+
+
+def _rec(msg, level, node, stamp, file, function, line, source="rqt_console_ros2.csv"):
+    return LogRecord(stamp, level, node, msg, file, function, line, source)
+
+
+ROS2_EXPECTED = [
+    _rec("hello", 20, "talker", 1700000000_000000005, "/ws/src/talker.py", "tick", 42),
+    _rec('say "hi"; bye', 30, "ns.talker", 1700000000_100000000, "/ws/src/talker.py", "tick", 43),
+    _rec(
+        'first line\nsecond "q"\n\nafter a blank line',
+        40,
+        "ns.talker.child",
+        1700000001_000000000,
+        "/ws/src/talker.py",
+        "on_timer",
+        7,
+    ),
+    _rec("naïve ✓ 日本語", 10, "talker", 1700000001_000000001, "/ws/src/talker.py", "tick", 44),
+    _rec("path C:\\dir\\", 50, "talker", 1700000002_999999999, "/ws/src/talker.py", "tick", 45),
+    _rec('a \\"b\\"', 20, "talker", 1700000003_000000000, "/ws/src/talker.py", "tick", 46),
+    _rec("", 20, "talker", 1700000003_000000001, "/ws/src/talker.py", "tick", 47),
+    _rec('x";"y', 20, "talker", 1700000003_000000002, "/ws/src/talker.py", "tick", 48),
+    _rec("timer fired", 30, "cpp_node", 1700000004_000000000, "/ws/src/node.cpp", "void ns::Node::on_timer()", 7),
+    _rec("ends with a newline\n", 20, "talker", 1700000005_000000000, "/ws/src/talker.py", "tick", 49),
+    _rec("tab\there", 20, "talker", 0, "", "", 0),
+]
+
+
+def test_reads_rqt_console_ros2_file_exactly():
+    data = (DATA / "rqt_console_ros2.csv").read_bytes()
+    records, problems = read_text(data, RqtCsvFormat(), "rqt_console_ros2.csv")
+    assert list(problems) == []
+    assert [fields(r) for r in records] == [fields(r) for r in ROS2_EXPECTED]
+
+
+def test_writes_the_bytes_rqt_console_writes():
+    data = (DATA / "rqt_console_ros2.csv").read_bytes()
+    assert _write(RqtCsvWriter(), ROS2_EXPECTED) == data
+
+
+def test_reads_and_writes_rqt_console_ros1_variant():
+    data = (DATA / "rqt_console_ros1.csv").read_bytes()
+    records, problems = read_text(data, RqtCsvFormat(), "r1")
+    assert list(problems) == []
+    assert [r.level for r in records] == [20, 30, 10, 40, 50]
+    assert records[1].msg == 'say "hi";\nsecond line'
+    assert records[3].msg == "error ✓"
+    assert records[3].file == "/src/node.cpp"
+    assert records[3].function == "void Node::cb(const std_msgs::String_<std::allocator<void> >::ConstPtr&)"
+    assert records[3].line == 30
+    # Written back as ROS 1: same bytes except the topics, which records do not keep.
+    written = _write(RqtCsvWriter(ros1=True), records).decode()
+    expected = data.decode().replace('"/chatter,/rosout"', '""').replace('"/rosout"', '""')
+    assert written == expected
+
+
+@pytest.mark.parametrize("save_format", ["rqt", "rqt1", "jsonl"])
+def test_round_trip_keeps_every_field(tmp_path, save_format):
+    records = hostile_records(source="robot.bag")
+    path = tmp_path / ("out.jsonl" if save_format == "jsonl" else "out.csv")
+    assert save_records(records, path, save_format) == len(records)
+    text_format = JsonLinesFormat() if save_format == "jsonl" else RqtCsvFormat()
+    loaded, problems = read_text(path.read_bytes(), text_format, "out")
+    assert list(problems) == []
+    if save_format == "jsonl":
+        assert [fields(r) for r in loaded] == [fields(r) for r in records]
+    else:  # rqt_console's format has no source column: records take the file's name
+        assert [fields(r)[:7] for r in loaded] == [fields(r)[:7] for r in records]
+        assert {r.source for r in loaded} == {"out"}
+
+
+def test_jsonl_keeps_lone_surrogates_and_unknown_levels():
+    record = LogRecord(5, 25, "n\udc80", "bad \ud800 text", "", "", 0, "")
+    data = _write(JsonLinesWriter(), [record])
+    data.decode("utf-8")  # always valid UTF-8
+    loaded, problems = read_text(data, JsonLinesFormat(), "src")
+    assert list(problems) == []
+    assert loaded[0].msg == "bad \ud800 text" and loaded[0].level == 25 and loaded[0].source == "src"
+
+
+def test_split_location():
+    assert split_location("/a/b.py:tick:42") == ("/a/b.py", "tick", 42)
+    assert split_location("/a/n.cpp:void A::b():7") == ("/a/n.cpp", "void A::b()", 7)
+    assert split_location("C:\\src\\n.cpp:main:3") == ("C:\\src\\n.cpp", "main", 3)
+    assert split_location("::0") == ("", "", 0)
+    assert split_location("no line here") == ("no line here", "", 0)
+
+
+def test_rqt_bad_rows_are_reported_by_line_and_the_rest_loads():
+    data = (
+        b"message;severity;node;stamp;location\n"
+        b"stray text\n"
+        b'"ok";"20";"n";"1.000000000";"f:g:1"\n'
+        b'"bad severity";"21";"n";"1.000000000";"f:g:1"\n'
+        b'"bad stamp";"20";"n";"yesterday";"f:g:1"\n'
+        b'"too few";"20"\n'
+        b'"ok2";"30";"n";"2.000000000";"f:g:2"\n'
+        b'"cut off in the mid'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "bad.csv")
+    assert [r.msg for r in records] == ["ok", "ok2"]
+    found = {(p.line, p.what.split(":")[0]) for p in problems}
+    assert (2, "not a rqt_console CSV record") in found
+    assert (4, "unknown severity 21 (expected 10, 20, 30, 40 or 50)") in found
+    assert (5, "stamp is not sec.nsec") in found
+    assert (6, "row has 2 fields, the header 5") in found
+    assert (8, "row does not end with '\"' (truncated?)") in found
+    assert (8, "the file ends in the middle of a line") in found
+
+
+def test_rqt_without_header_says_so():
+    records, problems = read_text(b'"a";"20";"n";"1.0";"f:g:1"\n', RqtCsvFormat(), "x.csv")
+    assert records == []
+    assert "no rqt_console header" in problems.items[0].what and problems.items[0].line == 1
+
+
+def test_jsonl_bad_lines_are_reported():
+    good = json.dumps({"stamp_ns": 1, "level": "warn", "node": "n", "msg": "m"})
+    data = "\n".join([good, "{not json", '{"stamp_ns": "x", "msg": "m"}', "[1, 2]", "", good, '{"stamp']).encode()
+    records, problems = read_text(data, JsonLinesFormat(), "x.jsonl")
+    assert [r.level for r in records] == [30, 30]
+    assert [p.line for p in problems] == [2, 3, 4, 7, 7]
+    assert "'stamp_ns' is not an integer" in problems.items[1].what

@@ -1,0 +1,73 @@
+"""Levels, inert text and time formatting."""
+
+import pytest
+
+from console_tui.model import levels, text, timefmt
+from console_tui.model.levels import Severity
+
+
+@pytest.mark.parametrize(
+    "name,expected",
+    [("debug", 10), ("INFO", 20), ("Warn", 30), ("warning", 30), ("error", 40), ("FATAL", 50), ("30", 30)],
+)
+def test_parse_severity(name, expected):
+    assert levels.parse_severity(name) == expected
+
+
+@pytest.mark.parametrize("bad", ["loud", "", "15", "unset"])
+def test_parse_severity_rejects_with_names(bad):
+    with pytest.raises(ValueError, match="debug, info, warn, error, fatal"):
+        levels.parse_severity(bad)
+
+
+def test_unset_only_when_allowed():
+    assert levels.parse_severity("unset", allow_unset=True) is Severity.UNSET
+
+
+def test_ros1_mapping_both_ways():
+    assert [levels.from_ros1(v) for v in (1, 2, 4, 8, 16)] == [10, 20, 30, 40, 50]
+    assert [levels.to_ros1(v) for v in (10, 20, 30, 40, 50)] == [1, 2, 4, 8, 16]
+    assert levels.from_ros1(0) == 10 and levels.from_ros1(12) == 40
+
+
+def test_severity_names():
+    assert levels.severity_name(30) == "WARN"
+    assert levels.severity_name(33) == "33"
+    assert levels.severity_bucket(33) == Severity.WARN
+
+
+def test_one_line_makes_controls_visible():
+    hostile = "a\x1b[31mred\x1b]0;title\x07\x00b\nc\td\u202eevil\x9b"
+    out = text.one_line(hostile)
+    assert "\x1b" not in out and "\x00" not in out and "\n" not in out and "\u202e" not in out
+    assert "\x9b" not in out and "\x07" not in out
+    assert out.startswith("a\u241b[31mred")
+    assert "<U+202E>" in out
+
+
+def test_one_line_cuts_before_work():
+    assert len(text.one_line("x" * 1_000_000, limit=50)) == 50
+
+
+def test_multi_line_keeps_newlines_and_cjk():
+    out = text.multi_line("漢字 🚀 שלום\r\nline2\x1b[0m")
+    assert out == "漢字 🚀 שלום\nline2\u241b[0m"
+
+
+def test_surrogates_become_replacement():
+    assert text.one_line("bad\udcff") == "bad\ufffd"
+
+
+def test_first_line():
+    assert text.first_line("one\ntwo", 100) == ("one", True)
+    assert text.first_line("abcdef", 3) == ("abc", True)
+    assert text.first_line("abc", 3) == ("abc", False)
+
+
+def test_stamp_text_pads_nanoseconds():
+    assert timefmt.stamp_text(1_700_000_000_000_000_042) == "1700000000.000000042"
+
+
+def test_clock_text_utc():
+    assert timefmt.clock_text(1_700_000_000_123_456_789, utc=True) == "22:13:20.123"
+    assert timefmt.full_text(1_700_000_000_123_456_789, utc=True) == "2023-11-14 22:13:20.123456789 +0000"
