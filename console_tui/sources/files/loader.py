@@ -66,10 +66,23 @@ def open_files(
 def load_records(
     files: Sequence[LogFile], cancel: threading.Event | None = None, *, batch_size: int = 5_000
 ) -> Iterator[list[LogRecord]]:
-    """Every record of ``files`` merged by stamp, in batches (in the calling thread)."""
+    """Every record of ``files`` merged by stamp, in batches (in the calling thread).
+
+    A file that gives no record at all, and had no problem to explain it, gets one that
+    says so (an empty result always comes with its reason)."""
     if not files:
         return iter(())
-    return merge_by_time([f.batches(cancel) for f in files], batch_size=batch_size)
+    return merge_by_time([_counted(f, cancel) for f in files], batch_size=batch_size)
+
+
+def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[LogRecord]]:
+    count = 0
+    for batch in file.batches(cancel):
+        count += len(batch)
+        yield batch
+    file.records = count
+    if count == 0 and not len(file.problems) and not (cancel is not None and cancel.is_set()):
+        file.problems.add(file.empty_reason())
 
 
 class FileLoad:

@@ -36,10 +36,16 @@ class LogFile(ABC):
         self.problems = Problems(source)
         self.total = 1
         self.done = 0
+        #: Records read, once ``batches`` has run to its end (set by the loader).
+        self.records = 0
 
     @abstractmethod
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         """The records, in batches, in the file's order; stops early once ``cancel`` is set."""
+
+    def empty_reason(self) -> str:
+        """Why reading gave no record, when no problem says it already."""
+        return "no log records in it"
 
     def close(self) -> None:  # noqa: B027 - most files hold nothing to release
         """Release what opening took (file handles); safe to call more than once."""
