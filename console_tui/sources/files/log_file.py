@@ -16,6 +16,15 @@ from ...model.record import LogRecord
 Cancel = threading.Event
 
 
+def describe_error(error: BaseException) -> str:
+    """An unexpected error of a reading library, for a user: its kind and its text, or
+    what an error without text means (a library's internal check failed on bad data)."""
+    text = str(error)
+    if text:
+        return f"{type(error).__name__}: {text}"
+    return f"{type(error).__name__} (a check of the reading library failed on this data: the file is probably damaged)"
+
+
 class LogFile(ABC):
     """An opened log file or recording, ready to be read once into record batches.
 
