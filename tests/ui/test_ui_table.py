@@ -14,7 +14,7 @@ from console_tui.ui.screens.help import HelpScreen
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records
-from support.ui import make_app
+from support.ui import make_app, screen_text
 
 
 def line_text(table: LogTable, y: int) -> str:
@@ -147,13 +147,34 @@ async def test_double_click_opens_details():
         assert app.screen.record.seq == 2
 
 
+def words_on_screen(app: ConsoleApp) -> list[str]:
+    """The screen's rows with each run of spaces (and the dialog's border) made one space."""
+    return [" ".join(line.replace("█", " ").split()) for line in screen_text(app).splitlines()]
+
+
 async def test_help_lists_keys_and_closes():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.press("question_mark")
         assert isinstance(app.screen, HelpScreen)
+        await pilot.pause()
+        first_page = words_on_screen(app)
+        for row in ("Table", "↑, k Up", "end, G Follow tail", "⏎ Details", "Console", "space Pause", "c Clear"):
+            assert any(line.endswith(row) or f" {row} " in f" {line} " for line in first_page), row
+        await pilot.press("pagedown")  # the rest of the keys, further down
+        await pilot.pause()
+        middle_page = words_on_screen(app)
+        await pilot.press("end")
+        await pilot.pause()
+        last_page = words_on_screen(app)
+        assert any("?, f1 Help" in line for line in middle_page)
+        assert any("/ Query" in line for line in middle_page)
+        assert any("a Add rule" in line for line in middle_page)
+        assert any("^p Command palette: every action by name" in line for line in last_page)
+        assert any("y Copy message" in line for line in last_page)
         await pilot.press("escape")
         assert not isinstance(app.screen, HelpScreen)
+        assert not any("space Pause" in line for line in words_on_screen(app)[:-1]), "only the footer names keys"
 
 
 async def test_columns_can_be_hidden_and_shown():
