@@ -29,7 +29,7 @@ class McapFile(RecordingFile):
         super().__init__(path, source)
         from mcap.reader import SeekingReader
 
-        self._stream = open(path, "rb")
+        self._stream: Any = open(path, "rb")
         self.summary: Any = None
         try:
             self.summary = SeekingReader(self._stream).get_summary()
@@ -51,6 +51,7 @@ class McapFile(RecordingFile):
         ]
         topics = choose_log_topics(topic_types)
         self.topics = sorted(topics)
+        self.all_topics = sorted({topic for topic, _type in topic_types})
         self._decoders = {
             channel_id: decoder(schemas[ch.schema_id].name, ch.message_encoding, source)
             for channel_id, ch in channels.items()

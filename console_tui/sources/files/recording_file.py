@@ -70,13 +70,27 @@ class RecordingFile(LogFile):
     """What the recording readers share: decoding with problems noted, batching."""
 
     unit = "messages"
+    #: The log topics read, and every topic the recording holds (when known).
+    topics: list[str]
+    all_topics: list[str]
 
     def _select_log_connections(self, connections: list[Any]) -> None:
         """Keep the log connections of a rosbags reader; progress counts their messages."""
         topics = choose_log_topics((c.topic, c.msgtype) for c in connections)
         self.connections = [c for c in connections if c.topic in topics]
         self.topics = sorted(topics)
+        self.all_topics = sorted({c.topic for c in connections})
         self.total = max(1, sum(c.msgcount for c in self.connections))
+
+    def empty_reason(self) -> str:
+        topics = getattr(self, "topics", [])
+        if topics:
+            return f"no log messages: its log topics ({', '.join(topics)}) hold none"
+        others = getattr(self, "all_topics", [])
+        if not others:
+            return "no log messages: the recording holds no topics"
+        shown = ", ".join(others[:8]) + (f" and {len(others) - 8} more" if len(others) > 8 else "")
+        return f"no log messages: no log topic (rcl_interfaces/msg/Log, rosgraph_msgs/Log) was recorded, only {shown}"
 
     def _decode_all(
         self,
