@@ -108,7 +108,7 @@ class Ros1LiveSource:
     # -- control ---------------------------------------------------------------------------------
 
     def start(self) -> None:
-        self._set_status(running=True, problem=f"connecting to the ROS 1 master at {self.environment.master_uri}")
+        self._set_status(running=True, problem=self._waiting(""))
         self._thread = threading.Thread(target=self._run_guarded, name="console-tui-ros1-graph", daemon=True)
         self._thread.start()
 
@@ -220,12 +220,18 @@ class Ros1LiveSource:
         except Ros1CallError as error:
             if error.unreachable:
                 self._master_ok = False
-                self._master_problem = f"waiting for master at {self.environment.master_uri} ({error})"
+                self._master_problem = self._waiting(error.reason)
             else:
-                self._master_problem = f"the master refused: {error}"
+                self._master_problem = f"the master at {self.environment.master_uri} refused: {error.reason}"
             return
         self._master_ok = True
         self._master_problem = ""
+
+    def _waiting(self, reason: str) -> str:
+        text = f"waiting for master at {self.environment.master_uri}"
+        if self.environment.master_defaulted:
+            text += " (ROS_MASTER_URI is not set)"
+        return f"{text}: {reason}" if reason else text
 
     def _choose_topic(self, agg_publishers: list[str]) -> None:
         """``/rosout_agg`` while a reachable rosout node publishes it, else ``/rosout``."""

@@ -19,11 +19,12 @@ PROBE_TIMEOUT_S = 0.8
 
 
 class Ros1CallError(Exception):
-    """An XML-RPC call failed; ``str()`` says which URI and why."""
+    """An XML-RPC call failed; ``str()`` says which URI and why, ``reason`` just why."""
 
-    def __init__(self, uri: str, message: str, *, unreachable: bool = False) -> None:
-        super().__init__(message)
+    def __init__(self, uri: str, reason: str, *, unreachable: bool = False) -> None:
+        super().__init__(f"{uri}: {reason}")
         self.uri = uri
+        self.reason = reason
         #: No answer at all (refused, timed out, not XML-RPC), rather than an answer saying no.
         self.unreachable = unreachable
 
@@ -45,18 +46,18 @@ def xmlrpc_call(uri: str, method: str, *args: Any, timeout: float = CALL_TIMEOUT
     try:
         answer = getattr(proxy, method)(*args)
     except TimeoutError:
-        raise Ros1CallError(uri, f"{uri} did not answer {method} within {timeout:g} s", unreachable=True) from None
+        raise Ros1CallError(uri, f"no answer within {timeout:g} s", unreachable=True) from None
     except ConnectionRefusedError:
-        raise Ros1CallError(uri, f"{uri} refused the connection (nothing listens there)", unreachable=True) from None
+        raise Ros1CallError(uri, "connection refused (nothing listens there)", unreachable=True) from None
     except (OSError, http.client.HTTPException, xmlrpc.client.ProtocolError, ExpatError, ValueError) as error:
-        raise Ros1CallError(uri, f"{uri}: {method} failed: {_reason(error)}", unreachable=True) from None
+        raise Ros1CallError(uri, f"{method} failed: {_reason(error)}", unreachable=True) from None
     except xmlrpc.client.Fault as fault:
-        raise Ros1CallError(uri, f"{uri}: {method} failed: {fault.faultString}") from None
+        raise Ros1CallError(uri, f"{method} failed: {fault.faultString}") from None
     if not isinstance(answer, (list, tuple)) or len(answer) != 3:
-        raise Ros1CallError(uri, f"{uri}: {method} gave an answer that is not [code, message, value]")
+        raise Ros1CallError(uri, f"{method} gave an answer that is not [code, message, value]")
     code, message, value = answer
     if code != 1:
-        raise Ros1CallError(uri, f"{uri}: {method}: {message or 'failed'} (code {code})")
+        raise Ros1CallError(uri, f"{method}: {message or 'failed'} (code {code})")
     return value
 
 
