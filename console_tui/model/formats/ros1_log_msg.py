@@ -196,6 +196,8 @@ class Ros1LogDecoder:
             raise Ros1LogError(f"Log message claims {count:,} topics in {size - p} bytes")
         topics: list[str] = []
         for _ in range(min(count, MAX_TOPICS)):
+            if p + 4 > size:
+                raise Ros1LogError(_past_end("topics", 4, size - p))
             (n,) = _U32(raw, p)
             p += 4
             q = p + n

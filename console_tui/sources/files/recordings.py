@@ -15,14 +15,13 @@ from __future__ import annotations
 import heapq
 import os
 from collections.abc import Callable, Iterable, Iterator
-from functools import cache
 from pathlib import Path
 from typing import Any
 
 from ...model.formats import FormatError
+from ...model.formats.ros1_log_msg import Ros1LogDecoder
 from ...model.formats.ros2_log_msg import LogDecoder
 from ...model.record import LogRecord
-from ..log_message import log_to_record
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from .log_file import Cancel, LogFile
 
@@ -48,25 +47,18 @@ def choose_log_topics(topic_types: Iterable[tuple[str, str]]) -> set[str]:
     return topics
 
 
-@cache
-def _typestore(ros1: bool) -> Any:
-    from rosbags.typesys import Stores, get_typestore
-
-    return get_typestore(Stores.ROS1_NOETIC if ros1 else Stores.LATEST)
-
-
 def decoder(msgtype: str, encoding: str, source: str) -> Callable[[bytes], LogRecord]:
-    """A function from a serialized log message (CDR or ROS 1) to a record."""
+    """A function from a serialized log message (CDR or ROS 1) to a record: the live
+    intakes' direct decoders, one reading of each layout."""
     msgtype = normalize_type(msgtype)
     if encoding == "ros1" or (msgtype == ROS1_LOG and encoding != "cdr"):
-        deserialize = _typestore(True).deserialize_ros1
-        type_name = ROS1_LOG
+        decode_ros1 = Ros1LogDecoder().decode
 
-        def decode_ros1(data: bytes) -> LogRecord:
-            return log_to_record(deserialize(data, type_name), source, ros1=True)
+        def decode_ros1_log(data: bytes) -> LogRecord:
+            return decode_ros1(data, source)
 
-        return decode_ros1
-    decode = LogDecoder().decode  # the live intake's decoder: one reading of Log's CDR
+        return decode_ros1_log
+    decode = LogDecoder().decode
 
     def decode_cdr(data: bytes) -> LogRecord:
         return decode(bytes(data), source)
