@@ -40,7 +40,7 @@ GENPY = textwrap.dedent(
 
 
 def _random_text(rng: random.Random, longest: int) -> str:
-    return "".join(rng.choice("abc XYZ/_.:é日本🤖\n\t\"\\") for _ in range(rng.randint(0, longest)))
+    return "".join(rng.choice('abc XYZ/_.:é日本🤖\n\t"\\') for _ in range(rng.randint(0, longest)))
 
 
 def test_decoder_and_encoder_agree_with_genpy():

@@ -199,7 +199,15 @@ def _pkg_config(packages: str) -> list[str]:
     result = subprocess.run(["pkg-config", "--cflags", "--libs", *packages.split()], capture_output=True, text=True)
     if result.returncode == 0:
         return result.stdout.split()
-    return ["-I/usr/include", "-lroscpp", "-lrosconsole", "-lroscpp_serialization", "-lrostime", "-lxmlrpcpp", "-lcpp_common"]
+    return [
+        "-I/usr/include",
+        "-lroscpp",
+        "-lrosconsole",
+        "-lroscpp_serialization",
+        "-lrostime",
+        "-lxmlrpcpp",
+        "-lcpp_common",
+    ]
 
 
 def wait_for(condition, timeout: float = 20.0, what: str = "the condition") -> None:
