@@ -76,12 +76,12 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
         raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     cleanups.append(runtime.shutdown)
     from .sources.ros2.live_source import LiveLogSource
-    from .sources.ros2.logger_control import LoggerControl
+    from .sources.ros2.logger_control import Ros2LoggerControl
 
     source = LiveLogSource(runtime, queue, topic=args.topic)
     source.status = replace(source.status, origin=f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}")
     sources.append(source)
-    logger_control = LoggerControl(runtime)  # the app starts it after its first frame
+    logger_control = Ros2LoggerControl(runtime)  # the app starts it after its first frame
     cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
     if args.demo:
         from .demo.launcher import DemoNodes

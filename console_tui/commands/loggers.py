@@ -188,7 +188,7 @@ def _level_request(rest: list[str]) -> tuple[str | None, int]:
 
 @contextmanager
 def _ros_control(args: argparse.Namespace, runtime: Any):
-    from ..sources.ros2.logger_control import LoggerControl
+    from ..sources.ros2.logger_control import Ros2LoggerControl
     from ..sources.ros2.rclpy_loader import RosUnavailable
     from ..sources.ros2.runtime import RosRuntime
 
@@ -198,7 +198,7 @@ def _ros_control(args: argparse.Namespace, runtime: Any):
             runtime = RosRuntime()
         except RosUnavailable as error:
             raise CommandError(str(error), EXIT_ERROR) from None
-    control = LoggerControl(
+    control = Ros2LoggerControl(
         runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False)
     )
     control.start()
@@ -240,9 +240,7 @@ def _find_node(control: Any, query: str, wait: float) -> GraphNode:
         raise CommandError(f"{query!r} names several nodes: {names}; give the full name", EXIT_USAGE)
     node = matches[0]
     if not node.has_logger_services:
-        from ..sources.ros2.logger_control import NoLoggerServices
-
-        raise CommandError(str(NoLoggerServices(node.fqn)), EXIT_NOT_FOUND)
+        raise CommandError(str(control.no_services(node.fqn)), EXIT_NOT_FOUND)
     return node
 
 
@@ -327,7 +325,7 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
 
 def _result(future: Any) -> Any:
     """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
-    from ..sources.ros2.logger_control import LoggerCallError, NodeNotFound, NoLoggerServices
+    from ..sources.logger_control import LoggerCallError, NodeNotFound, NoLoggerServices
 
     try:
         return future.result()
