@@ -40,6 +40,7 @@ def fields_table(record: LogRecord, *, utc: bool = False) -> Table:
         ("Function", record.function),
         ("Line", str(record.line)),
         ("Source", record.source),
+        *([("Topics", record.topics.replace(",", ", "))] if record.topics else []),
         ("Length", f"{len(record.msg):,} characters, {record.msg.count(chr(10)) + 1:,} lines"),
     ]
     for name, value in rows:
