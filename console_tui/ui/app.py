@@ -151,6 +151,8 @@ class ConsoleApp(App[None]):
         self.file_queue = IntakeQueue()
         self.loads: list[FileLoad] = []
         self.problems: list[str] = []
+        #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
+        self.source_notes: dict[str, list[str]] = {}
         self._initial_files = list(files)
         self.log_format = log_format
         #: Started after the first frame with the sources; whoever made it closes it.
@@ -249,6 +251,7 @@ class ConsoleApp(App[None]):
             progress = load.progress
             problems = [str(problem) for problem in load.problems()]
             self.problems.extend(problems)
+            self.source_notes.update(load.notes())
             files = len(progress.files)
             verb = "Cancelled after" if progress.cancelled else "Loaded"
             text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
@@ -549,7 +552,9 @@ class ConsoleApp(App[None]):
     def open_detail(self, seq: int) -> None:
         if seq not in self.store:
             return
-        self.push_screen(DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record))
+        self.push_screen(
+            DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record, source_notes=self.source_notes)
+        )
 
     def _step_record(self, seq: int, delta: int) -> LogRecord | None:
         """The record ``delta`` rows away from ``seq`` in the table, moving the cursor too."""
