@@ -66,6 +66,12 @@ STARTUP_S = 3.0
 #: services once it has been seen this long and shows other services (parameters), or
 #: three times as long when it shows none at all.
 NO_SERVICES_GRACE_S = 1.5
+#: A graph is taken as complete once it has been watched this long and no node has come, gone
+#: or changed for the quiet time. Fast DDS repeats its discovery every 3 s: on this project's
+#: shared 2-core machines, under load, a node missed by the first round was seen up to 4.6 s
+#: after start, and up to 2.5 s after the node seen before it.
+GRAPH_MIN_S = 5.0
+GRAPH_QUIET_S = 2.0
 RESTORE_ATTEMPTS = 3
 RESTORE_RETRY_S = 1.0
 MAX_IDLE_S = 0.1
@@ -164,6 +170,17 @@ class Call:
     sent: Any = None
 
 
+@dataclass(frozen=True)
+class GraphWait:
+    """What ``wait_for_graph`` saw: the nodes, how long it waited, and whether the graph had
+    settled (no change for the quiet time, every node's logger services known) or the deadline
+    came first."""
+
+    nodes: tuple[GraphNode, ...]
+    waited_s: float
+    settled: bool
+
+
 @dataclass
 class _Graph:
     nodes: tuple[GraphNode, ...] = ()
@@ -172,6 +189,8 @@ class _Graph:
     #: Nodes that show at least one service of any kind.
     with_services: frozenset[str] = frozenset()
     refreshes: int = 0
+    #: When the nodes last changed (the first look counts as a change).
+    changed_at: float = 0.0
 
     def settled(self, node: GraphNode, now: float) -> bool:
         """Whether what the graph says of the node's logger services can be believed."""
@@ -191,6 +210,11 @@ class LoggerControl(ABC):
 
     #: Appended to ``NoLoggerServices``: how a user gives a node the logger services.
     no_services_hint = ""
+    #: How long the graph must be watched, and then stay unchanged, to be taken as complete
+    #: (``wait_for_graph``); a ROS whose graph comes whole from one place (a ROS 1 master) may
+    #: make them shorter.
+    graph_min_s = GRAPH_MIN_S
+    graph_quiet_s = GRAPH_QUIET_S
 
     def __init__(
         self,
@@ -277,13 +301,31 @@ class LoggerControl(ABC):
                     return matches
                 self._graph_changed.wait(min(deadline - now, GRAPH_PERIOD_S))
 
-    def wait_for_graph(self, seconds: float) -> tuple[GraphNode, ...]:
-        """Blocking: the nodes after ``seconds`` of discovery (at least one graph look)."""
-        deadline = self.clock() + seconds
+    def wait_for_graph(self, deadline: float) -> GraphWait:
+        """Blocking: the nodes once the graph has settled, or at the latest after ``deadline`` s.
+
+        Settled: watched for ``graph_min_s`` at least, at least one node, none came, went or
+        changed for ``graph_quiet_s``, and what each says of its logger services can be
+        believed (``is_settled``). At least one look at the graph is always taken, even with a
+        deadline of 0.
+        """
+        started = self.clock()
+        end = started + deadline
         with self._graph_changed:
-            while (self.clock() < deadline or self._graph.refreshes == 0) and not self._stop.is_set():
-                self._graph_changed.wait(max(0.01, min(deadline - self.clock(), GRAPH_PERIOD_S)))
-            return self._graph.nodes
+            while True:
+                graph, now = self._graph, self.clock()
+                looked = graph.refreshes > 0
+                quiet_until = max(graph.changed_at + self.graph_quiet_s, started + self.graph_min_s)
+                settled = (
+                    looked
+                    and bool(graph.nodes)
+                    and now >= quiet_until
+                    and all(graph.settled(node, now) for node in graph.nodes)
+                )
+                if settled or (looked and now >= end) or self._stop.is_set():
+                    return GraphWait(graph.nodes, now - started, settled)
+                wake = min(end, quiet_until) if graph.nodes and now < quiet_until else end
+                self._graph_changed.wait(max(0.01, min(wake - now, GRAPH_PERIOD_S)))
 
     # -- calls ---------------------------------------------------------------------------------
 
@@ -460,7 +502,8 @@ class LoggerControl(ABC):
         with self._graph_changed:
             old = self._graph
             first_seen = {fqn: old.first_seen.get(fqn, now) for fqn in found}
-            self._graph = _Graph(nodes, found, first_seen, with_services, old.refreshes + 1)
+            changed_at = now if nodes != old.nodes or not old.refreshes else old.changed_at
+            self._graph = _Graph(nodes, found, first_seen, with_services, old.refreshes + 1, changed_at)
             self._graph_changed.notify_all()
         if nodes != old.nodes:
             self._emit(NodesChanged(nodes))

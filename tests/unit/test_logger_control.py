@@ -88,12 +88,96 @@ def control():
 
 
 def test_the_graph_leaves_out_hidden_nodes_and_says_who_has_services(control):
-    assert [(n.fqn, n.has_logger_services) for n in control.wait_for_graph(0.1)] == [
+    assert [(n.fqn, n.has_logger_services) for n in control.wait_for_graph(0.1).nodes] == [
         ("/beta", False),
         ("/ns/alpha", True),
     ]
     assert any(isinstance(event, NodesChanged) for event in control.events)
     assert control.is_settled("/ns/alpha") and control.node("/nobody") is None
+
+
+class StepClock:
+    """A clock that moves only when the test says."""
+
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_waiting_for_the_graph_lasts_until_no_node_came_for_the_quiet_time():
+    # As Fast DDS discovery goes under load: nodes seen at once, one more seconds later.
+    clock = StepClock()
+    control = MemoryControl([MemoryNode("/a")], clock=clock)
+    control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
+    control.start()
+    try:
+        assert wait_until(lambda: control.nodes, 5)
+        seen = []
+        waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(10.0)))
+        waiter.start()
+
+        def at(when: float, arriving: str | None = None) -> None:
+            clock.now = when
+            if arriving:
+                control.graph[arriving] = MemoryNode(arriving)
+                assert wait_until(lambda: control.node(arriving) is not None, 5)
+            else:
+                looks = control._graph.refreshes
+                assert wait_until(lambda: control._graph.refreshes > looks, 5)
+
+        at(1.0, "/b")
+        at(3.5)  # quiet for 2.5 s, but not watched for 5 s yet
+        at(4.6, "/c")
+        at(6.5)
+        waiter.join(0.3)
+        assert waiter.is_alive() and not seen  # /c came 1.9 s ago
+        clock.now = 6.6
+        waiter.join(5)
+        assert [node.fqn for node in seen[0].nodes] == ["/a", "/b", "/c"]
+        assert seen[0].settled and seen[0].waited_s == pytest.approx(6.6)
+    finally:
+        control.close()
+
+
+def test_a_graph_that_came_at_once_is_watched_for_the_minimum_time():
+    clock = StepClock()
+    control = MemoryControl([MemoryNode("/a"), MemoryNode("/b")], clock=clock)
+    control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
+    control.start()
+    try:
+        seen = []
+        waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(10.0)))
+        waiter.start()
+        assert wait_until(lambda: len(control.nodes) == 2, 5)
+        clock.now = 4.9
+        waiter.join(0.3)
+        assert waiter.is_alive()
+        clock.now = 5.0
+        waiter.join(5)
+        assert len(seen[0].nodes) == 2 and seen[0].settled and seen[0].waited_s == pytest.approx(5.0)
+    finally:
+        control.close()
+
+
+def test_waiting_for_an_empty_graph_ends_at_the_deadline_unsettled():
+    clock = StepClock()
+    control = MemoryControl([], clock=clock)
+    control.start()
+    try:
+        seen = []
+        waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(4.0)))
+        waiter.start()
+        assert wait_until(lambda: control._graph.refreshes > 0, 5)
+        clock.now = 3.9
+        waiter.join(0.3)
+        assert waiter.is_alive()
+        clock.now = 4.0
+        waiter.join(5)
+        assert seen[0].nodes == () and not seen[0].settled and seen[0].waited_s == pytest.approx(4.0)
+    finally:
+        control.close()
 
 
 def test_get_set_and_the_failures_each_with_its_own_error(control):
