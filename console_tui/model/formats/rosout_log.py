@@ -86,4 +86,5 @@ def parse_rosout_record(text: str, source: str) -> LogRecord:
         function=match["function"],
         line=int(match["line"]),
         source=source,
+        topics=",".join(filter(None, (topic.strip() for topic in (match["topics"] or "").split(",")))),
     )

@@ -45,6 +45,7 @@ def fields_table(record: LogRecord, *, utc: bool = False, notes: tuple[str, ...]
         ("Function", record.function),
         ("Line", str(record.line)),
         ("Source", record.source),
+        *([("Topics", record.topics.replace(",", ", "))] if record.topics else []),
         ("Length", f"{len(record.msg):,} characters, {record.msg.count(chr(10)) + 1:,} lines"),
     ]
     rows += [("File notes" if index == 0 else "", note) for index, note in enumerate(notes)]
