@@ -141,6 +141,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self.file_queue = IntakeQueue()
         self.loads: list[FileLoad] = []
         self.problems: list[str] = []
+        self.source_notes: dict[str, list[str]] = {}
         self._initial_files = list(files)
         self.log_format = log_format
         #: Started after the first frame with the sources; whoever made it closes it.
@@ -309,7 +310,9 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     def open_detail(self, seq: int) -> None:
         if seq not in self.store:
             return
-        self.push_screen(DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record))
+        self.push_screen(
+            DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record, source_notes=self.source_notes)
+        )
 
     def _step_record(self, seq: int, delta: int) -> LogRecord | None:
         """The record ``delta`` rows away from ``seq`` in the table, moving the cursor too."""

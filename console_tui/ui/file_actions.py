@@ -41,6 +41,8 @@ class FileActions(App[None]):
     loads: list[FileLoad]
     #: What went wrong while loading, for the problems screen.
     problems: list[str]
+    #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
+    source_notes: dict[str, list[str]]
     #: The format to read files in, or None: found from each file.
     log_format: str | None
 
@@ -67,6 +69,7 @@ class FileActions(App[None]):
             progress = load.progress
             problems = [str(problem) for problem in load.problems()]
             self.problems.extend(problems)
+            self.source_notes.update(load.notes())
             files = len(progress.files)
             verb = "Cancelled after" if progress.cancelled else "Loaded"
             text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
