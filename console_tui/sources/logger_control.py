@@ -30,7 +30,7 @@ The subclass provides, called on the loggers thread unless said otherwise:
 - ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
 - ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
 
-and may override ``_lost(call)`` (a sent call's service went away: default never),
+and may set ``lists_loggers`` and ``read_when_asked`` (see them), and may override ``_lost(call)`` (a sent call's service went away: default never),
 ``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
 ``no_services_hint`` (how a user gives a node the logger services).
 """
@@ -215,6 +215,11 @@ class LoggerControl(ABC):
     #: make them shorter.
     graph_min_s = GRAPH_MIN_S
     graph_quiet_s = GRAPH_QUIET_S
+    #: A read answers with every logger the node has, not only the names asked for (ROS 1).
+    lists_loggers = False
+    #: Read a node's levels only when the user asks, never because a node is highlighted
+    #: (ROS 1: ``get_loggers`` can crash roscpp nodes, so nothing sweeps it).
+    read_when_asked = False
 
     def __init__(
         self,
@@ -528,7 +533,7 @@ class LoggerControl(ABC):
         if call.sent.done():
             error = call.sent.exception()
             if error is not None:
-                return settle(call.future, error=LoggerCallError(call.node, f"{call.node}: {error}"))
+                return settle(call.future, error=_call_error(call.node, error))
             return settle(call.future, result=call.sent.result())
         if graph_node is None or self._lost(call):
             self._drop(call)
