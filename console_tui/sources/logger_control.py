@@ -302,7 +302,7 @@ class LoggerControl(ABC):
                 matches = match_nodes(query, graph.nodes)
                 now = self.clock()
                 settled = any(graph.settled(node, now) for node in matches)
-                if settled or now >= deadline or self._stop.is_set():
+                if settled or now >= deadline or self._stop.is_set() or (graph.refreshes and self.problem):
                     return matches
                 self._graph_changed.wait(min(deadline - now, GRAPH_PERIOD_S))
 
@@ -327,7 +327,8 @@ class LoggerControl(ABC):
                     and now >= quiet_until
                     and all(graph.settled(node, now) for node in graph.nodes)
                 )
-                if settled or (looked and now >= end) or self._stop.is_set():
+                # A problem (the ROS 1 master does not answer, the control stopped): say it now.
+                if settled or (looked and (now >= end or self.problem)) or self._stop.is_set():
                     return GraphWait(graph.nodes, now - started, settled)
                 wake = min(end, quiet_until) if graph.nodes and now < quiet_until else end
                 self._graph_changed.wait(max(0.01, min(wake - now, GRAPH_PERIOD_S)))
