@@ -37,8 +37,8 @@ ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
 ROS1_COLUMNS = ("message", "severity", "node", "stamp", "topics", "location")
 _KNOWN_COLUMNS = frozenset(ROS1_COLUMNS)
 _ROS2_LEVELS = frozenset(int(s) for s in MESSAGE_SEVERITIES)
-_STAMP = re.compile(r"(\d+)\.(\d+)\Z")
-_LINE_NUMBER = re.compile(r"\d+\Z")
+_STAMP = re.compile(r"(\d{1,20})\.(\d{1,18})\Z")
+_LINE_NUMBER = re.compile(r"\d{1,12}\Z")
 _WINDOWS_DRIVE = re.compile(r"[A-Za-z]:[\\/]")
 _FLUSH_EVERY = 10_000
 #: How many places a damaged row is tried to end at before it is given up.
