@@ -89,9 +89,10 @@ async def test_pane_lists_ros1_nodes_reads_on_enter_and_sets_debug(live, ros1_no
         await pilot.press("i")
         await until(pilot, lambda: "INFO" in pane_line(app, "rosout "), what="rosout at INFO")
 
-        # L on a table row opens the pane on that row's node.
+        # L on a table row opens the pane on that row's node (ROS 1 rows name their node).
         await pilot.press("escape")
         assert app.table.has_focus
-        record = app.store.get(app.store.end_seq - 1)
+        await pilot.press("up")  # the cursor stays on this row while rows arrive
+        record = app.store.get(app.table.cursor_seq)
         await pilot.press("L")
         assert pane.selected == record.node
