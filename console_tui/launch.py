@@ -5,10 +5,18 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from dataclasses import replace
+from typing import Any
 
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
 from .sources.ros2.rclpy_loader import RosUnavailable
+from .sources.ros_version import ROS1, choose_ros
+
+HOW_TO_USE_ROS1 = (
+    "  - For ROS 1: set ROS_MASTER_URI to the master (and ROS_IP to this machine's address) and run\n"
+    "      console-tui --ros1"
+)
 
 
 def run_app(args: argparse.Namespace) -> int:
@@ -22,20 +30,7 @@ def run_app(args: argparse.Namespace) -> int:
     live = args.demo or getattr(args, "live", False) or not files
     if live:
         try:
-            if args.demo:
-                from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
-
-                os.environ.update(DEMO_ENVIRONMENT)
-            runtime = _start_ros()
-            cleanups.append(runtime.shutdown)
-            from .sources.ros2.live_source import LiveLogSource
-            from .sources.ros2.logger_control import LoggerControl
-
-            sources.append(LiveLogSource(runtime, queue, topic=args.topic))
-            logger_control = LoggerControl(runtime)  # the app starts it after its first frame
-            cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
-            if args.demo:
-                sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+            logger_control = _start_live(args, queue, sources, cleanups)
         except RosUnavailable as error:
             print(f"console-tui: {error}", file=sys.stderr)
             return 2
@@ -63,6 +58,43 @@ def run_app(args: argparse.Namespace) -> int:
             except Exception:
                 pass
     return app.return_code or 0
+
+
+def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    """The live source for ROS 1 or ROS 2 (as ``--ros1``/``--ros2`` or the environment say),
+    the demo nodes when asked; returns the logger control (or None)."""
+    choice = choose_ros(getattr(args, "ros", None))
+    if choice.version == ROS1:
+        return _start_ros1(args, queue, sources, cleanups)
+    if args.demo:
+        from .demo.launcher import DEMO_ENVIRONMENT
+
+        os.environ.update(DEMO_ENVIRONMENT)
+    try:
+        runtime = _start_ros()
+    except RosUnavailable as error:
+        raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
+    cleanups.append(runtime.shutdown)
+    from .sources.ros2.live_source import LiveLogSource
+    from .sources.ros2.logger_control import Ros2LoggerControl
+
+    source = LiveLogSource(runtime, queue, topic=args.topic)
+    source.status = replace(source.status, origin=f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}")
+    sources.append(source)
+    logger_control = Ros2LoggerControl(runtime)  # the app starts it after its first frame
+    cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
+    if args.demo:
+        from .demo.launcher import DemoNodes
+
+        sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+    return logger_control
+
+
+def _start_ros1(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    from .sources.ros1.live_source import Ros1LiveSource
+
+    sources.append(Ros1LiveSource(queue, topic=args.topic))
+    return None
 
 
 def _start_ros():

@@ -62,7 +62,7 @@ class RecordColumns:
 
     @classmethod
     def from_records(cls, records: Sequence[LogRecord]) -> RecordColumns:
-        topics = [getattr(r, "topics", "") for r in records]
+        topics = [r.topics for r in records]
         return cls(
             stamps=[r.stamp_ns for r in records],
             levels=[r.level for r in records],
@@ -92,7 +92,7 @@ class RecordColumns:
         )
         if self.topics is not None:
             for record, topics in zip(records, self.topics, strict=True):
-                record.topics = topics  # type: ignore[attr-defined]
+                record.topics = topics
         return records
 
     def slice(self, lo: int, hi: int) -> RecordColumns:

@@ -2,7 +2,8 @@
 
 Records are kept column by column in fixed-size chunks: numbers in ``array``s, the
 repeated strings (node, file, function, source) as ids into string tables, messages as
-``str``. Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
+``str``; ROS 1's ``topics`` as ids too, in an array made only for chunks that have some
+(nothing for ROS 2). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
 when one does not); a full chunk keeps its messages joined in one string
 (``PackedTexts``), so a message costs its text and 4 bytes. Dropping the oldest chunk
 when the bound is passed costs O(1). ``extend`` works column by column, about 1 us a
@@ -72,7 +73,7 @@ class Chunk:
     usually a ``PackedTexts``: read it as a sequence of ``str`` (a slice is a list).
     """
 
-    __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "sources", "stamps")
+    __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "sources", "stamps", "topics")
 
     def __init__(self) -> None:
         self.stamps = array("q")
@@ -83,6 +84,8 @@ class Chunk:
         self.functions = array("H")
         self.sources = array("H")
         self.msgs: list[str] | PackedTexts = []
+        #: Ids of ROS 1 ``topics``; made only once a record of the chunk has some (ROS 2 never does).
+        self.topics: array | None = None
 
     def __len__(self) -> int:
         return len(self.msgs)
@@ -143,6 +146,8 @@ class LogStore:
         self.files = StringTable()
         self.functions = StringTable()
         self.sources = StringTable()
+        self.topics = StringTable()
+        self.topics.id_of("")  # id 0: no topics
         self._chunks: deque[Chunk] = deque()
         self._base_seq = 0  # seq of the first record of self._chunks[0]; all but the last are full
         self.first_seq = 0
@@ -207,6 +212,12 @@ class LogStore:
         chunk.files = _extended(chunk.files, self.files.ids_of(piece.files))
         chunk.functions = _extended(chunk.functions, self.functions.ids_of(piece.functions))
         chunk.sources = _extended(chunk.sources, self.sources.ids_of(piece.sources))
+        if piece.topics is not None:
+            if chunk.topics is None:
+                chunk.topics = array("H", bytes(2 * len(chunk.msgs)))  # the records before: none
+            chunk.topics = _extended(chunk.topics, self.topics.ids_of(piece.topics))
+        elif chunk.topics is not None:
+            chunk.topics = _extended(chunk.topics, [0] * len(piece))
         msgs = chunk.msgs
         assert isinstance(msgs, list), "only the newest chunk grows, and it is never sealed"
         msgs.extend(piece.msgs)
@@ -234,6 +245,7 @@ class LogStore:
             function=self.functions[chunk.functions[offset]],
             line=chunk.lines[offset],
             source=self.sources[chunk.sources[offset]],
+            topics=self.topics[chunk.topics[offset]] if chunk.topics is not None else "",
             seq=seq,
         )
 

@@ -30,9 +30,17 @@ class NodeProcess:
     a full pipe would block the node's logging, and with it the whole node.
     """
 
-    def __init__(self, script: str, *args: str, env: dict[str, str]) -> None:
+    def __init__(
+        self,
+        script: str,
+        *args: str,
+        env: dict[str, str],
+        python: str = sys.executable,
+        command: list[str] | None = None,
+    ) -> None:
+        """Runs ``python -u tests/nodes/SCRIPT ARGS``, or ``command + ARGS`` when given."""
         self.process = subprocess.Popen(
-            [sys.executable, "-u", str(NODES / script), *args],
+            [*(command or [python, "-u", str(NODES / script)]), *args],
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
@@ -68,7 +76,7 @@ class NodeProcess:
         if self.process.poll() is not None:
             self._stderr_reader.join(2.0)
         stderr = "".join(self.stderr_tail)
-        raise TimeoutError(f"{self.process.args[2]} never said {key!r}; stderr: {stderr[-2000:]}")
+        raise TimeoutError(f"{self.process.args[:3]} never said {key!r}; stderr: {stderr[-2000:]}")
 
     def _read_stdout(self) -> None:
         assert self.process.stdout is not None
@@ -145,3 +153,22 @@ def pid_alive(pid: int) -> bool:
     except OSError:
         return False
     return True
+
+
+class BusyProcesses:
+    """``count`` processes that only spin, to load the machine while a test runs (a context
+    manager: they are killed at the end)."""
+
+    def __init__(self, count: int = 1) -> None:
+        self.count = count
+        self.processes: list[subprocess.Popen] = []
+
+    def __enter__(self) -> BusyProcesses:
+        for _ in range(self.count):
+            self.processes.append(subprocess.Popen([sys.executable, "-c", "while True: pass"]))
+        return self
+
+    def __exit__(self, *_exc: object) -> None:
+        for process in self.processes:
+            process.kill()
+            process.wait(5)

@@ -99,3 +99,17 @@ def test_pack_reads_like_the_texts(texts):
     assert list(packed[1:]) == texts[1:] and list(packed[::2]) == texts[::2] and list(packed[::-1]) == texts[::-1]
     if "one\0two" in texts or texts[0].startswith("☃"):
         assert isinstance(packed, list)  # NUL inside, or joining would widen every text
+
+
+def test_ros1_topics_travel_and_are_stored_only_where_there_are_some():
+    plain = [make(i) for i in range(3)]
+    with_topics = [make(i) for i in range(3, 6)]
+    for record in with_topics:
+        record.topics = "/chatter,/rosout"
+    packer, unpacker = BatchPacker(), BatchUnpacker()
+    store = LogStore()
+    store.extend(unpacker.unpack(packer.pack(plain)))
+    assert next(store.spans(0, 1)).chunk.topics is None
+    store.extend(unpacker.unpack(packer.pack(with_topics)))
+    store.extend(plain)
+    assert [store.get(seq).topics for seq in range(9)] == [""] * 3 + ["/chatter,/rosout"] * 3 + [""] * 3

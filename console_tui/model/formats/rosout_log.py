@@ -8,6 +8,13 @@ LEVEL is FATAL, ERROR, WARN, INFO or DEBUG (an unknown level as its number); the
 ``[topics: ...] `` part is left out when ``/rosout/omit_topics`` is set. Each file
 starts with a blank line, another, and ``<time>  Node Startup``. A message with
 newlines in it continues on the lines after.
+
+Older rosout nodes (the log4cxx one of ROS Kinetic and before) wrote no name, and no
+``]`` after the function::
+
+    <sec>.<nsec> <LEVEL> [<file>:<line>(<function>) [topics: <t1>, <t2>] <msg>
+
+Such records are read with an empty node name.
 """
 
 from __future__ import annotations
@@ -22,12 +29,18 @@ from .text_format import TextFormat
 from .textlines import LineKind, TextLines, group_lines, stray_text_problem
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
-_START = re.compile(r"\d+\.\d{9} (?:FATAL|ERROR|WARN|INFO|DEBUG|\d+) ")
+_START = re.compile(r"\d+\.\d{9} (?:FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) ")
 _STARTUP = re.compile(r"\d+\.\d{9}  Node Startup\s*\Z")
 _RECORD = re.compile(
-    r"\A(?P<sec>\d+)\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d+) (?P<name>[^ \n]*) "
-    r"\[(?P<file>[^\n]*?):(?P<line>\d+)\((?P<function>[^\n]*?)\)\] "
+    r"\A(?P<sec>\d{1,20})\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) (?P<name>[^ \n]*) "
+    r"\[(?P<file>[^\n]*?):(?P<line>\d{1,12})\((?P<function>[^\n]*?)\)\] "
     r"(?:\[topics: (?P<topics>[^\n]*?)\] )?(?P<msg>.*)\Z",
+    re.DOTALL,
+)
+_OLD_RECORD = re.compile(
+    r"\A(?P<sec>\d{1,20})\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) "
+    r"\[(?P<file>[^\n]*?):(?P<line>\d{1,12})\((?P<function>[^\n]*?)\) "
+    r"\[topics: (?P<topics>[^\n]*?)\] (?P<msg>.*)\Z",
     re.DOTALL,
 )
 
@@ -59,7 +72,7 @@ class RosoutLogFormat(TextFormat):
 
 
 def parse_rosout_record(text: str, source: str) -> LogRecord:
-    match = _RECORD.match(text)
+    match = _RECORD.match(text) or _OLD_RECORD.match(text)
     if match is None:
         raise RecordError(f"not a rosout.log record: {text[:60]!r}")
     level_text = match["level"]
@@ -67,10 +80,11 @@ def parse_rosout_record(text: str, source: str) -> LogRecord:
     return LogRecord(
         stamp_ns=int(match["sec"]) * 1_000_000_000 + int(match["nsec"]),
         level=level,
-        node=match["name"],
+        node=match.groupdict().get("name") or "",
         msg=match["msg"],
         file=match["file"],
         function=match["function"],
         line=int(match["line"]),
         source=source,
+        topics=",".join(filter(None, (topic.strip() for topic in (match["topics"] or "").split(",")))),
     )

@@ -31,16 +31,18 @@ from ..record import LogRecord
 from ..timefmt import stamp_text
 from .problems import Problems, RecordError
 from .text_format import TextFormat, TextFormatWriter
-from .textlines import LineKind, TextLines, group_lines, stray_text_problem
+from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
 
 ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
 ROS1_COLUMNS = ("message", "severity", "node", "stamp", "topics", "location")
 _KNOWN_COLUMNS = frozenset(ROS1_COLUMNS)
 _ROS2_LEVELS = frozenset(int(s) for s in MESSAGE_SEVERITIES)
-_STAMP = re.compile(r"(\d+)\.(\d+)\Z")
-_LINE_NUMBER = re.compile(r"\d+\Z")
+_STAMP = re.compile(r"(\d{1,20})\.(\d{1,18})\Z")
+_LINE_NUMBER = re.compile(r"\d{1,12}\Z")
 _WINDOWS_DRIVE = re.compile(r"[A-Za-z]:[\\/]")
 _FLUSH_EVERY = 10_000
+#: How many places a damaged row is tried to end at before it is given up.
+_RECOVERY_ATTEMPTS = 1_000
 
 
 def escape_message(text: str) -> str:
@@ -74,7 +76,7 @@ def _row(record: LogRecord, ros1: bool) -> str:
     severity = to_ros1(record.level) if ros1 else record.level
     fields = [escape_message(record.msg), str(severity), record.node, stamp_text(record.stamp_ns)]
     if ros1:
-        fields.append("")  # topics: records do not keep them
+        fields.append(escape_message(record.topics))
     fields.append(record.location)
     return ";".join(f'"{field}"' for field in fields) + "\n"
 
@@ -142,7 +144,35 @@ class RqtCsvFormat(TextFormat):
             try:
                 yield _parse_row(group.text, columns, ros1, source)
             except RecordError as error:
-                problems.add(str(error), line=group.line)
+                yield from self._row_then_stray_lines(group, columns, ros1, source, problems, error)
+
+    def _row_then_stray_lines(
+        self,
+        group: LineGroup,
+        columns: tuple[str, ...],
+        ros1: bool,
+        source: str,
+        problems: Problems,
+        error: RecordError,
+    ) -> Iterator[LogRecord]:
+        """A group that is no row may be a whole row followed by lines that belong to no
+        row (a damaged file): read the row, and report those lines where they are."""
+        lines = group.lines
+        attempts = 0
+        for end in range(len(lines) - 1):
+            if not lines[end].rstrip("\r").endswith('"'):
+                continue  # a row's last line ends with its closing quote
+            attempts += 1
+            if attempts > _RECOVERY_ATTEMPTS:
+                break
+            try:
+                record = _parse_row("\n".join(lines[: end + 1]), columns, ros1, source)
+            except RecordError:
+                continue
+            yield record
+            stray_text_problem(LineGroup(group.line + end + 1, lines[end + 1 :], False), problems, self.title)
+            return
+        problems.add(str(error), line=group.line)
 
 
 def _classify(line: str) -> LineKind:
@@ -171,6 +201,8 @@ def _parse_row(text: str, columns: tuple[str, ...], ros1: bool, source: str) -> 
         record.stamp_ns = int(match.group(1)) * 1_000_000_000 + int(match.group(2))
     if "location" in fields:
         record.file, record.function, record.line = split_location(fields["location"])
+    if fields.get("topics"):
+        record.topics = unescape_message(fields["topics"])
     return record
 
 

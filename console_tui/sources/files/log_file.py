@@ -16,6 +16,15 @@ from ...model.record import LogRecord
 Cancel = threading.Event
 
 
+def describe_error(error: BaseException) -> str:
+    """An unexpected error of a reading library, for a user: its kind and its text, or
+    what an error without text means (a library's internal check failed on bad data)."""
+    text = str(error)
+    if text:
+        return f"{type(error).__name__}: {text}"
+    return f"{type(error).__name__} (a check of the reading library failed on this data: the file is probably damaged)"
+
+
 class LogFile(ABC):
     """An opened log file or recording, ready to be read once into record batches.
 
@@ -36,10 +45,21 @@ class LogFile(ABC):
         self.problems = Problems(source)
         self.total = 1
         self.done = 0
+        #: Records read, once ``batches`` has run to its end (set by the loader).
+        self.records = 0
 
     @abstractmethod
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         """The records, in batches, in the file's order; stops early once ``cancel`` is set."""
+
+    def notes(self) -> list[str]:
+        """How the file was read, where a person should know it (local times, times filled
+        in): facts, not problems. Complete once ``batches`` has run."""
+        return []
+
+    def empty_reason(self) -> str:
+        """Why reading gave no record, when no problem says it already."""
+        return "no log records in it"
 
     def close(self) -> None:  # noqa: B027 - most files hold nothing to release
         """Release what opening took (file handles); safe to call more than once."""
@@ -63,10 +83,14 @@ class TextLogFile(LogFile):
 
     def __init__(self, path: Path, source: str, text_format: TextFormat) -> None:
         super().__init__(path, source)
-        self.format = text_format
+        info = os.stat(path)
+        self.format = text_format.for_file(path.name, info.st_mtime_ns)
         self.kind = text_format.name
         self.title = text_format.title
-        self.total = max(1, os.path.getsize(path))
+        self.total = max(1, info.st_size)
+
+    def notes(self) -> list[str]:
+        return self.format.notes()
 
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         with open(self.path, "rb") as stream:

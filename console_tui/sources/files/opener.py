@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Sequence
 from pathlib import Path
 
-from ...model.formats import FormatError, detect_text_format, recording_kind, text_formats
+from ...model.formats import FormatError, Ros1ConsoleFormat, detect_text_format, recording_kind, text_formats
 from ...model.formats.detect import HEAD_SIZE
+from ...model.formats.ros1_console import CAPTURE_SUFFIXES
 from .log_file import LogFile, TextLogFile
 
 #: The environment variable rcutils reads its output format from.
@@ -29,9 +31,15 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
     if file_path.name == "metadata.yaml" and file_path.is_file():
         file_path = file_path.parent
     name = source or file_path.name or str(file_path)
-    if not file_path.exists():
-        raise FormatError(f"{name}: no such file or directory")
-    if file_path.is_dir():
+    try:
+        mode = file_path.stat().st_mode
+    except FileNotFoundError:
+        raise FormatError(f"{name}: no such file or directory") from None
+    except OSError as error:
+        raise FormatError(f"{name}: cannot read: {error.strerror or error}") from None
+    if not stat.S_ISDIR(mode) and not stat.S_ISREG(mode):
+        raise FormatError(f"{name}: {_not_regular(mode)}, not a file: only files and folders are read")
+    if stat.S_ISDIR(mode):
         from .recordings import open_recording
 
         return open_recording(file_path, name, "rosbag2")
@@ -49,7 +57,25 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
         raise FormatError(f"{file_path.name}: named like a recording, but it does not start like one (damaged?)")
     env_template = os.environ.get(FORMAT_VARIABLE, "")
     candidates = text_formats(log_format, (env_template,) if env_template else ())
-    return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name))
+    fallback = Ros1ConsoleFormat() if _is_capture(file_path.name) else None
+    return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name, fallback=fallback))
+
+
+def _is_capture(name: str) -> bool:
+    """Whether a file is named as captured output (``talker-2-stdout.log``, rotated too)."""
+    stem = name.rstrip("0123456789").removesuffix(".") if name[-1:].isdigit() else name
+    return stem.endswith(CAPTURE_SUFFIXES)
+
+
+def _not_regular(mode: int) -> str:
+    """What a file that is neither a regular file nor a directory is."""
+    if stat.S_ISFIFO(mode):
+        return "a named pipe (FIFO)"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    return "a special file"
 
 
 def source_names(paths: Sequence[str | os.PathLike[str]]) -> list[str]:
