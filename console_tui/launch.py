@@ -8,7 +8,7 @@ import sys
 
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
-from .sources.ros2.rclpy_loader import RosUnavailable
+from .sources.live import RosUnavailable, open_live
 
 
 def run_app(args: argparse.Namespace) -> int:
@@ -26,13 +26,12 @@ def run_app(args: argparse.Namespace) -> int:
                 from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
 
                 os.environ.update(DEMO_ENVIRONMENT)
-            runtime = _start_ros()
-            cleanups.append(runtime.shutdown)
-            from .sources.ros2.live_source import LiveLogSource
+            live_intake = open_live(queue, topic=args.topic)
+            cleanups.append(live_intake.close)
             from .sources.ros2.logger_control import LoggerControl
 
-            sources.append(LiveLogSource(runtime, queue, topic=args.topic))
-            logger_control = LoggerControl(runtime)  # the app starts it after its first frame
+            sources.append(live_intake.source)
+            logger_control = LoggerControl(live_intake.runtime)  # the app starts it after its first frame
             cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
             if args.demo:
                 sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
@@ -63,14 +62,3 @@ def run_app(args: argparse.Namespace) -> int:
             except Exception:
                 pass
     return app.return_code or 0
-
-
-def _start_ros():
-    from .sources.ros2.runtime import RosRuntime
-
-    try:
-        return RosRuntime()
-    except RosUnavailable:
-        raise
-    except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
-        raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None

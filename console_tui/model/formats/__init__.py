@@ -3,7 +3,8 @@
 - ``rqt_csv``: rqt_console's message files (ROS 2 and ROS 1 variants), read and written;
 - ``jsonl``: JSON Lines, lossless, read and written;
 - ``rcutils_log``: ROS 2 node log files (any ``RCUTILS_CONSOLE_OUTPUT_FORMAT``), read;
-- ``rosout_log``: ROS 1 ``rosout.log``, read.
+- ``rosout_log``: ROS 1 ``rosout.log``, read; console-tui rosout's ROS 2 ``rosout.log``,
+  read and written.
 
 Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS libraries.
 """
@@ -14,7 +15,7 @@ from .detect import detect_text_format, recording_kind
 from .jsonl import JsonLinesFormat
 from .problems import FormatError, Problem, Problems, RecordError
 from .rcutils_log import DEFAULT_TEMPLATE, RcutilsLogFormat
-from .rosout_log import RosoutLogFormat
+from .rosout_log import Ros2RosoutLogFormat, RosoutLogFormat
 from .rqt_csv import RqtCsvFormat
 from .save import SAVE_FORMATS, SaveCancelled, save_format_for, save_records
 from .text_format import TextFormat, read_batches
@@ -30,7 +31,7 @@ def text_formats(log_format: str | None = None, extra_templates: tuple[str, ...]
     formats: list[TextFormat] = []
     if log_format:
         formats.append(RcutilsLogFormat(log_format))
-    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat()]
+    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat(), Ros2RosoutLogFormat()]
     if not log_format:
         formats.append(RcutilsLogFormat())
         formats += [RcutilsLogFormat(t) for t in extra_templates if t and t != DEFAULT_TEMPLATE]
@@ -46,6 +47,7 @@ __all__ = [
     "Problems",
     "RcutilsLogFormat",
     "RecordError",
+    "Ros2RosoutLogFormat",
     "RosoutLogFormat",
     "RqtCsvFormat",
     "SaveCancelled",
