@@ -18,7 +18,7 @@ import signal
 import sys
 import threading
 from collections.abc import Iterable, Sequence
-from typing import BinaryIO
+from typing import BinaryIO, cast
 
 from ..model.formats.console_line import ConsoleLine, TemplateError, json_text
 from ..model.intake_queue import IntakeQueue
@@ -144,7 +144,7 @@ def main(argv: Sequence[str]) -> int:
             line = ConsoleLine(template, utc=args.utc, color=use_color(args.color, sys.stdout, os.environ))
         except TemplateError as error:
             parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
-    stream = getattr(sys.stdout, "buffer", sys.stdout)
+    stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))
     run = _Run(Printer(stream, line), StreamFilter(rules))
     previous = {sig: signal.signal(sig, run.interrupt) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:

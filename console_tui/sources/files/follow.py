@@ -15,6 +15,7 @@ import io
 import os
 import time
 from collections.abc import Iterator
+from typing import BinaryIO, cast
 
 from ...model.formats import Problems, TextFormat, TextLines, read_batches
 from ...model.record import LogRecord
@@ -128,7 +129,7 @@ class FollowedFile:
         if stream is None:
             return
         end = _last_line_end(stream)
-        lines = TextLines(_Bounded(stream, end), self.problems)
+        lines = TextLines(cast(BinaryIO, _Bounded(stream, end)), self.problems)
         yield from read_batches(stream, self.format, self.source, self.problems, lines=lines)
         stream.seek(end)
         self._offset = end
