@@ -28,10 +28,10 @@ def run_app(args: argparse.Namespace) -> int:
                 os.environ.update(DEMO_ENVIRONMENT)
             live_intake = open_live(queue, topic=args.topic)
             cleanups.append(live_intake.close)
-            from .sources.ros2.logger_control import LoggerControl
+            from .sources.ros2.logger_control import Ros2LoggerControl
 
             sources.append(live_intake.source)
-            logger_control = LoggerControl(live_intake.runtime)  # the app starts it after its first frame
+            logger_control = Ros2LoggerControl(live_intake.runtime)  # the app starts it after its first frame
             cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
             if args.demo:
                 sources.append(DemoNodes())  # the app starts it after its first frame, and stops it

@@ -23,7 +23,8 @@ class QueryBar(Vertical):
     DEFAULT_CSS = """
     QueryBar { height: auto; display: none; background: $panel; padding: 0 1; }
     QueryBar.-open { display: block; }
-    QueryBar > Input { border: none; height: 1; padding: 0; background: $panel; }
+    /* One line, no border: the focused Input's built-in tall border must not win either. */
+    QueryBar > Input, QueryBar > Input:focus { border: none; height: 1; padding: 0; background: $panel; }
     QueryBar > #query-problem { color: $text-error; height: auto; }
     QueryBar > #query-problem.-ok { color: $text-muted; }
     """
