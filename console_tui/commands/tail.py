@@ -17,6 +17,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from collections.abc import Iterable, Sequence
 from typing import BinaryIO, cast
 
@@ -38,6 +39,8 @@ EXIT_USAGE = 2
 #: How often followed files and the live queue are looked at.
 POLL_S = 0.1
 FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
+#: Losses are told on stderr at most this often.
+LOSS_REPORT_S = 5.0
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -220,7 +223,7 @@ class _Run:
         return followed
 
     def keep_reading(self, followed: list[FollowedFile], live: LiveIntake | None) -> None:
-        shown_problem = ""
+        shown_problem, shown_lost, lost_told_at = "", 0, 0.0
         try:
             while not self.stop.wait(POLL_S):
                 if followed:
@@ -231,10 +234,13 @@ class _Run:
                 if live is not None:
                     self.print(self.queue.drain())
                     status = live.source.status
-                    problem = status.problem or status.loss_text()
-                    if problem and problem != shown_problem:
-                        _complain(problem)
-                    shown_problem = problem
+                    if status.problem and status.problem != shown_problem:
+                        _complain(status.problem)
+                    shown_problem = status.problem
+                    now = time.monotonic()
+                    if status.lost > shown_lost and now - lost_told_at >= LOSS_REPORT_S:
+                        _complain(status.loss_text())
+                        shown_lost, lost_told_at = status.lost, now
         finally:
             for f in followed:
                 f.close()

@@ -13,6 +13,8 @@ import time
 
 import pytest
 
+from support.rosproc import wait_until
+
 pytestmark = pytest.mark.ros2
 
 HOSTILE = "evil \x1b[2J\x1b]0;title\x07 \u202edesrever\x9b1m end"
@@ -28,7 +30,9 @@ class Tail:
             env=env,
         )
         self.lines: queue.Queue[bytes] = queue.Queue()
+        self.stderr: list[bytes] = []
         threading.Thread(target=self._read, daemon=True).start()
+        threading.Thread(target=lambda: self.stderr.extend(self.process.stderr), daemon=True).start()
 
     def _read(self) -> None:
         for line in self.process.stdout:
@@ -55,7 +59,13 @@ class Tail:
         return self.process.returncode
 
 
-def test_live_formats_json_and_inert_text(nodes, ros_env):
+def subscribed(node, count: int) -> bool:
+    """At least ``count`` tails (hidden console-tui nodes) subscribe to /rosout."""
+    infos = node.get_subscriptions_info_by_topic("/rosout")
+    return sum(info.node_name.startswith("_console_tui_log_") for info in infos) >= count
+
+
+def test_live_formats_json_and_inert_text(nodes, ros_env, ros_runtime):
     talker = nodes.start("talker.py", "--name", "tailed", "--namespace", "/t", "--debug")
     talker.expect("ready")
     variants = {
@@ -72,14 +82,17 @@ def test_live_formats_json_and_inert_text(nodes, ros_env):
     }
     tails = {name: Tail(ros_env, *args) for name, args in variants.items()}
     try:
-        time.sleep(4.0)  # started and subscribed; what is logged now reaches every one of them
+        # Subscribed: what is logged now reaches every one of them (as history if need be).
+        probe = ros_runtime.create_node("probe")
+        assert wait_until(lambda: subscribed(probe, len(tails)), 60)
+        time.sleep(1.0)
         talker.send({"cmd": "log_all", "tag": "live"})
         logged = talker.expect("logged")["messages"]
         talker.send({"cmd": "log", "level": "warn", "msg": HOSTILE})
         talker.expect_next("logged")
-        out = {name: tail.take(6 if name != "errors" else 2) for name, tail in tails.items()}
+        out = {name: tail.take(6 if name != "errors" else 2, timeout=20) for name, tail in tails.items()}
         for name, tail in tails.items():
-            assert tail.stop() == 0, (name, tail.process.stderr.read()[-2000:])
+            assert tail.stop() == 0, (name, b"".join(tail.stderr)[-2000:])
     finally:
         for tail in tails.values():
             tail.stop()

@@ -23,7 +23,7 @@ lost, and reported as such.
 Topic: ``topic=None`` reads ``/rosout_agg`` when something publishes it (a rosout node,
 such as ``console-tui rosout``, keeps a deep history there), else ``/rosout`` (see
 ``_TopicChoice``): nothing arrives twice when it switches, and at start, when discovery
-finds the aggregator within ``AUTO_TOPIC_WAIT_S``, the history comes in time order.
+finds the aggregator while it holds ``/rosout`` back, the history comes in time order.
 
 QoS: the main subscription is RELIABLE + TRANSIENT_LOCAL with a deep queue, so a
 console started late still gets the history each node's rosout publisher keeps. Such a
@@ -53,9 +53,13 @@ QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profil
 WAIT_TIMEOUT_NS = 100_000_000
 GRAPH_PERIOD_S = 1.0
 UNKNOWN_PUBLISHER_REFRESH_S = 0.2
-#: How long ``/rosout`` messages are held back at start while ``/rosout_agg`` may still be
-#: discovered (discovery took 1-2 s on the development machine).
-AUTO_TOPIC_WAIT_S = 2.5
+#: At start, ``/rosout`` messages are held back while ``/rosout_agg`` may still be
+#: discovered: at least ``AUTO_TOPIC_MIN_S``, until the ``/rosout`` publishers found have
+#: not changed for ``AUTO_TOPIC_SETTLED_S``, at most ``AUTO_TOPIC_MAX_S`` (discovery took
+#: 1-2 s on the development machine, longer when it was busy).
+AUTO_TOPIC_MIN_S = 1.0
+AUTO_TOPIC_SETTLED_S = 1.0
+AUTO_TOPIC_MAX_S = 5.0
 #: After a late switch to ``/rosout_agg``: how long its history is checked against what
 #: ``/rosout`` already gave.
 SWITCH_DEDUPE_S = 30.0
@@ -175,9 +179,12 @@ class LiveLogSource:
                 reader = _TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
                 choice.switched(now)
                 next_graph_check = 0.0
-            if now >= next_graph_check or reader.graph_changed:
+            holding = choice is not None and choice.holding(now)
+            if now >= next_graph_check or reader.graph_changed or holding:
                 next_graph_check = now + GRAPH_PERIOD_S
                 reader.refresh_graph()
+                if holding:
+                    choice.publishers(reader.publisher_count, now)
                 self._set_status(topic=reader.topic, publishers=reader.publisher_count)
             subs, events = reader.handles(), reader.event_handlers()
             if wait_set is None or (subs, events) != wait_set_entities:
@@ -220,8 +227,8 @@ class LiveLogSource:
 class _TopicChoice:
     """``/rosout_agg`` when something publishes it, else ``/rosout``, never a message twice.
 
-    - At start, ``/rosout`` messages are held back for up to ``AUTO_TOPIC_WAIT_S`` while
-      discovery may still find a ``/rosout_agg`` publisher. When one shows up, the held
+    - At start, ``/rosout`` messages are held back while discovery may still find a
+      ``/rosout_agg`` publisher (see ``AUTO_TOPIC_MIN_S``). When one shows up, the held
       messages are dropped (its history has them, and older ones) and the stream starts
       from ``/rosout_agg``, in time order. Otherwise they go out when the time is up.
     - When one shows up later, its history is delivered without what ``/rosout`` already
@@ -229,10 +236,20 @@ class _TopicChoice:
     """
 
     def __init__(self, start: float) -> None:
-        self.deadline = start + AUTO_TOPIC_WAIT_S
+        self.start = start
+        self.deadline = start + AUTO_TOPIC_MAX_S
         self.held: list[LogRecord] = []
         self.newest: dict[str, int] = {}
         self.dedupe_until = 0.0
+        self._publishers = 0
+        self._changed_at = start
+
+    def publishers(self, count: int, now: float) -> None:
+        """The number of ``/rosout`` publishers found so far; once it has settled, stop holding."""
+        if count != self._publishers:
+            self._publishers, self._changed_at = count, now
+        elif count and now - self._changed_at >= AUTO_TOPIC_SETTLED_S and now - self.start >= AUTO_TOPIC_MIN_S:
+            self.deadline = min(self.deadline, now)
 
     def holding(self, now: float) -> bool:
         return now < self.deadline
