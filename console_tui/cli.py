@@ -8,7 +8,12 @@ import sys
 from collections.abc import Sequence
 
 from . import __version__
-from .commands.arguments import add_log_format_argument, check_rule_arguments, positive_int
+from .commands.arguments import (
+    add_log_format_argument,
+    add_ros_version_arguments,
+    check_rule_arguments,
+    positive_int,
+)
 from .model.store import DEFAULT_MAX_MESSAGES
 
 #: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
@@ -51,8 +56,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument(
         "--demo",
         action="store_true",
-        help="start demo ROS 2 nodes in child processes and show their messages",
+        help=(
+            "start demo nodes in child processes and show their messages: ROS 2 nodes, or with --ros1 "
+            "rospy nodes on a roscore of their own (needs ROS 1's roscore and rospy)"
+        ),
     )
+    add_ros_version_arguments(parser)
     parser.add_argument(
         "--topic",
         metavar="NAME",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from typing import Any
 
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
@@ -22,19 +23,7 @@ def run_app(args: argparse.Namespace) -> int:
     live = args.demo or getattr(args, "live", False) or not files
     if live:
         try:
-            if args.demo:
-                from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
-
-                os.environ.update(DEMO_ENVIRONMENT)
-            live_intake = open_live(queue, topic=args.topic)
-            cleanups.append(live_intake.close)
-            from .sources.ros2.logger_control import Ros2LoggerControl
-
-            sources.append(live_intake.source)
-            logger_control = Ros2LoggerControl(live_intake.runtime)  # the app starts it after its first frame
-            cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
-            if args.demo:
-                sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+            logger_control = _start_live(args, queue, sources, cleanups)
         except RosUnavailable as error:
             print(f"console-tui: {error}", file=sys.stderr)
             return 2
@@ -62,3 +51,26 @@ def run_app(args: argparse.Namespace) -> int:
             except Exception:
                 pass
     return app.return_code or 0
+
+
+def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    """The live source for ROS 1 or ROS 2 (as ``--ros1``/``--ros2`` or the environment say),
+    the demo nodes when asked; returns the logger control (or None)."""
+    if args.demo:
+        from .demo.launcher import DEMO_ENVIRONMENT
+
+        os.environ.update(DEMO_ENVIRONMENT)
+    live = open_live(queue, topic=args.topic, ros=getattr(args, "ros", None))
+    cleanups.append(live.close)
+    sources.append(live.source)
+    if live.runtime is None:  # ROS 1
+        return None
+    from .sources.ros2.logger_control import Ros2LoggerControl
+
+    logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
+    cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
+    if args.demo:
+        from .demo.launcher import DemoNodes
+
+        sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+    return logger_control

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from ..sources.ros_version import ROS1, ROS2
+
 
 def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
@@ -85,3 +87,16 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
             args.rule_set = load_rules(path)
         except RuleError as error:
             parser.error(f"--rules: {error.message}")
+
+
+def add_ros_version_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--ros1`` / ``--ros2``; the choice lands in ``args.ros`` (None: decide from the environment)."""
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument(
+        "--ros1",
+        dest="ros",
+        action="store_const",
+        const=ROS1,
+        help="ROS 1: talk to the master at ROS_MASTER_URI (default: ROS 1 when ROS_VERSION=1 or a master answers there, else ROS 2)",
+    )
+    group.add_argument("--ros2", dest="ros", action="store_const", const=ROS2, help="ROS 2, through rclpy")

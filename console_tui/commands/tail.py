@@ -30,7 +30,7 @@ from ..model.text import one_line
 from ..sources.files import LogFile, TextLogFile, load_records, merge_by_time, open_files
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_live
-from .arguments import add_log_format_argument, check_rule_arguments
+from .arguments import add_log_format_argument, add_ros_version_arguments, check_rule_arguments
 
 EXIT_OK = 0
 EXIT_FILES = 1
@@ -48,7 +48,8 @@ def build_parser() -> argparse.ArgumentParser:
         prog="console-tui tail",
         description=(
             "Print log messages on standard output, filtered with the app's query language and rule "
-            "files: the live stream (without FILEs: /rosout_agg when something publishes it, else /rosout), "
+            "files: the live stream of ROS 2 or ROS 1 (without FILEs: /rosout_agg when something publishes "
+            "it, else /rosout), "
             "or log files and recordings merged by time, or both (--live). Runs until Ctrl-C when live or "
             "following; a closed pipe (| head) ends it quietly."
         ),
@@ -67,6 +68,7 @@ def build_parser() -> argparse.ArgumentParser:
         "-f", "--follow", action="store_true", help="keep reading text FILEs as they grow (and when rotated)"
     )
     parser.add_argument("--topic", metavar="NAME", help="live: the log topic (default /rosout_agg if published)")
+    add_ros_version_arguments(parser)
     parser.add_argument(
         "--query", metavar="QUERY", help="print only what this query shows, for example 'level>=warn -node:rviz*'"
     )
@@ -180,7 +182,7 @@ class _Run:
         live: LiveIntake | None = None
         if args.live or not args.files:
             try:
-                live = open_live(self.queue, topic=args.topic)
+                live = open_live(self.queue, topic=args.topic, ros=args.ros)
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_USAGE

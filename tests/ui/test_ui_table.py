@@ -8,6 +8,7 @@ import pytest
 from rich.console import Console
 
 from console_tui.ui.app import ConsoleApp
+from console_tui.ui.commands import palette_commands
 from console_tui.ui.screens.columns_dialog import ColumnsScreen
 from console_tui.ui.screens.detail import DetailScreen
 from console_tui.ui.screens.help import HelpScreen
@@ -184,7 +185,7 @@ async def test_narrow_terminals_keep_severity_node_and_message(width):
 async def test_command_palette_offers_the_actions():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
-        titles = [command.title for command in app.get_system_commands(app.screen)]
+        titles = [command.title for command in palette_commands()]
         for title in ("Pause / resume", "Follow tail", "Clear", "Details", "Columns"):
             assert title in titles
         await pilot.press("ctrl+p")

@@ -221,6 +221,8 @@ class RcutilsLogFormat(TextFormat):
         except (ValueError, OverflowError) as error:
             raise RecordError(f"bad time: {error}") from None
         line_text = fields.get("line_number") or ""
+        if len(line_text) > 12:
+            raise RecordError(f"line number of {len(line_text)} digits")
         return LogRecord(
             stamp_ns=stamp_ns,
             level=level,

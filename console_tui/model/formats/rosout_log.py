@@ -51,17 +51,17 @@ from .textlines import LineKind, TextLines, group_lines, stray_text_problem
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
 _LEVEL_NAMES = {number: name for name, number in _LEVELS.items()}
-_START = re.compile(r"\d+\.\d{9} (?:FATAL|ERROR|WARN|INFO|DEBUG|\d+) ")
+_START = re.compile(r"\d+\.\d{9} (?:FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) ")
 _STARTUP = re.compile(r"\d+\.\d{9}  Node Startup\s*\Z")
 _RECORD = re.compile(
-    r"\A(?P<sec>\d+)\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d+) (?P<name>[^ \n]*) "
-    r"\[(?P<file>[^\n]*?):(?P<line>\d+)\((?P<function>[^\n]*?)\)\] "
+    r"\A(?P<sec>\d{1,20})\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) (?P<name>[^ \n]*) "
+    r"\[(?P<file>[^\n]*?):(?P<line>\d{1,12})\((?P<function>[^\n]*?)\)\] "
     r"(?:\[topics: (?P<topics>[^\n]*?)\] )?(?P<msg>.*)\Z",
     re.DOTALL,
 )
 _OLD_RECORD = re.compile(
-    r"\A(?P<sec>\d+)\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d+) "
-    r"\[(?P<file>[^\n]*?):(?P<line>\d+)\((?P<function>[^\n]*?)\) "
+    r"\A(?P<sec>\d{1,20})\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) "
+    r"\[(?P<file>[^\n]*?):(?P<line>\d{1,12})\((?P<function>[^\n]*?)\) "
     r"\[topics: (?P<topics>[^\n]*?)\] (?P<msg>.*)\Z",
     re.DOTALL,
 )
@@ -108,6 +108,7 @@ def parse_rosout_record(text: str, source: str) -> LogRecord:
         function=match["function"],
         line=int(match["line"]),
         source=source,
+        topics=",".join(filter(None, (topic.strip() for topic in (match["topics"] or "").split(",")))),
     )
 
 

@@ -36,6 +36,7 @@ from ...model.logger_levels import (
     format_remaining,
     node_of_logger,
 )
+from ..keys import Hint, hint_line
 from .side_pane import SidePane
 
 if TYPE_CHECKING:
@@ -46,6 +47,16 @@ DEFAULT_TEMPORARY_S = 30.0
 TICK_S = 1.0
 #: What the pane says when this run has no ROS 2 (rclpy missing, or files only).
 NO_ROS_TEXT = "ROS 2 is not running in this console (no rclpy, or files only): logger levels cannot be read or set."
+
+_HINTS: list[Hint] = [
+    (tuple(f"set_level({int(s)})" for s in MESSAGE_SEVERITIES), "level"),
+    ("set_level(0)", "inherit"),
+    ("temporary", "temporary"),
+    ("end_temporary", "end it"),
+    ("add_logger", "add"),
+    ("refresh", "read"),
+    ("leave", "table"),
+]
 
 _LEVEL_STYLE = {10: "dim", 20: "green", 30: "yellow", 40: "red", 50: "bold red"}
 
@@ -135,19 +146,19 @@ class LoggerPane(SidePane):
     """
 
     BINDINGS = [
-        Binding("d,1", "set_level(10)", "Set DEBUG", show=False),
-        Binding("i,2", "set_level(20)", "Set INFO", show=False),
-        Binding("w,3", "set_level(30)", "Set WARN", show=False),
-        Binding("e,4", "set_level(40)", "Set ERROR", show=False),
-        Binding("f,5", "set_level(50)", "Set FATAL", show=False),
-        Binding("u,0", "set_level(0)", "Unset: inherit the level", show=False),
-        Binding("t", "temporary", "Temporary level"),
-        Binding("x", "end_temporary", "End the temporary level now", show=False),
-        Binding("a,plus", "add_logger", "Add a logger by name", show=False),
-        Binding("r", "refresh", "Read the levels again", show=False),
-        Binding("left", "focus_nodes", "To the nodes", show=False),
-        Binding("right", "focus_loggers", "To the loggers", show=False),
-        Binding("escape", "leave", "Back to the table", show=False),
+        Binding("d,1", "set_level(10)", "Set DEBUG", show=False, id="loggers.debug"),
+        Binding("i,2", "set_level(20)", "Set INFO", show=False, id="loggers.info"),
+        Binding("w,3", "set_level(30)", "Set WARN", show=False, id="loggers.warn"),
+        Binding("e,4", "set_level(40)", "Set ERROR", show=False, id="loggers.error"),
+        Binding("f,5", "set_level(50)", "Set FATAL", show=False, id="loggers.fatal"),
+        Binding("u,0", "set_level(0)", "Unset: inherit the level", show=False, id="loggers.unset"),
+        Binding("t", "temporary", "Temporary level", id="loggers.temporary"),
+        Binding("x", "end_temporary", "End the temporary level now", show=False, id="loggers.end_temporary"),
+        Binding("a,plus", "add_logger", "Add a logger by name", show=False, id="loggers.add"),
+        Binding("r", "refresh", "Read the levels again", show=False, id="loggers.read"),
+        Binding("left", "focus_nodes", "To the nodes", show=False, id="loggers.to_nodes"),
+        Binding("right", "focus_loggers", "To the loggers", show=False, id="loggers.to_loggers"),
+        Binding("escape", "leave", "Back to the table", show=False, id="loggers.leave"),
     ]
 
     class ControlEvent(Message):
@@ -206,10 +217,7 @@ class LoggerPane(SidePane):
         yield self.notice_line
         yield LevelBar(id="logger-level-bar")
         yield self.name_input
-        yield Static(
-            "d i w e f: level · u: inherit · t: temporary · x: end it · a: add · r: read · Esc: table",
-            id="logger-keys",
-        )
+        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="logger-keys")
 
     def on_mount(self) -> None:
         control = self.control

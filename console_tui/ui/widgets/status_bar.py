@@ -74,13 +74,14 @@ def render_status(facts: StatusFacts) -> Text:
         if status.topic:
             text.append(f"  {status.topic}", style="bold")
             text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
-        if status.path:
-            text.append(f" {status.path}" if status.topic else f"  {status.path}", style="dim")
         loss = status.loss_text()
         if loss:
             text.append(f"  {loss}", style="bold red")
         if status.problem:
             text.append(f"  {status.problem}", style="bold red")
+        where = " ".join(part for part in (status.path, status.origin) if part)
+        if where:
+            text.append(f" {where}" if status.topic and not loss and not status.problem else f"  {where}", style="dim")
     if facts.note:
         text.append(f"  {facts.note}", style="italic")
     return text
