@@ -130,3 +130,17 @@ def test_head_closing_the_pipe_ends_it_with_status_0(nodes, ros_env):
     assert result.returncode == 0, result.stderr[-2000:]
     assert result.stdout.startswith(b"[INFO] [") and result.stdout.count(b"\n") == 1
     assert result.stderr == b""
+
+
+@pytest.mark.ros1
+def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env):
+    ros1_nodes.rospy("rospy_node.py", "py_tailed", "--period", "0.1").expect("ready")
+    tail = Tail(
+        ros1_env, "--ros1", "--query", "node:*py_tailed level>=warn", "--format", "${severity} ${node} ${message}"
+    )
+    try:
+        lines = [line.decode() for line in tail.take(2, timeout=30)]
+    finally:
+        assert tail.stop() == 0, b"".join(tail.stderr)[-2000:]
+    assert len(lines) == 2 and all(line.split()[1] == "/py_tailed" for line in lines)
+    assert {line.split()[0] for line in lines} <= {"WARN", "ERROR", "FATAL"}
