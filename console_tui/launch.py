@@ -64,7 +64,11 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
     cleanups.append(live.close)
     sources.append(live.source)
     if live.runtime is None:  # ROS 1
-        return None
+        from .sources.ros1.logger_control import Ros1LoggerControl
+
+        ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
+        cleanups.append(ros1_control.close)  # puts temporary levels back
+        return ros1_control
     from .sources.ros2.logger_control import Ros2LoggerControl
 
     logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
