@@ -30,7 +30,7 @@ from ..model.rules.rulesfile import (
     save_rules,
 )
 from ..model.store import LogStore
-from ..model.text import one_line
+from ..model.text import one_line, plural
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
@@ -255,6 +255,8 @@ class ConsoleApp(App[None]):
             files = len(progress.files)
             verb = "Cancelled after" if progress.cancelled else "Loaded"
             text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
+            if load.skipped:
+                text += f" ({plural(len(load.skipped), 'other file')} in the folders passed over: empty, or not logs by name)"
             if problems:
                 listed = "\n".join(one_line(problem, 300) for problem in problems[:3])
                 more = f"\n... {len(problems) - 3} more" if len(problems) > 3 else ""
