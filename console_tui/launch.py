@@ -92,9 +92,12 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
 
 def _start_ros1(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
     from .sources.ros1.live_source import Ros1LiveSource
+    from .sources.ros1.logger_control import Ros1LoggerControl
 
     sources.append(Ros1LiveSource(queue, topic=args.topic))
-    return None
+    logger_control = Ros1LoggerControl()  # the app starts it after its first frame
+    cleanups.append(logger_control.close)  # puts temporary levels back
+    return logger_control
 
 
 def _start_ros():

@@ -55,6 +55,15 @@ def next_domain_id() -> int:
     return low + (number * share + next(_counter) % share) % (high - low + 1)
 
 
+@pytest.fixture(autouse=True)
+def own_config_folder(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Path:
+    """Each test reads and writes settings (keys.toml, the last rules) in a folder of its
+    own, never the developer's."""
+    folder = tmp_path / "config"
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(folder))
+    return folder
+
+
 @pytest.fixture
 def ros_env(monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     """A ROS 2 environment of its own for one test: its own domain, loopback only.

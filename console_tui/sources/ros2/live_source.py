@@ -25,7 +25,8 @@ console started late still gets the history each node's rosout publisher keeps. 
 subscription never matches a publisher whose rosout QoS was made VOLATILE (or
 BEST_EFFORT); when the graph shows one, a second, VOLATILE + BEST_EFFORT subscription is
 added, and from it only messages of the publishers the first one cannot match are kept
-(by publisher GID), so nothing arrives twice. When the main subscription reports an
+(by publisher GID; where rclpy's message info has no GID, as in Jazzy, by the logger name
+of the publisher's node), so nothing arrives twice. When the main subscription reports an
 incompatible publisher, the graph is looked at again at once, so that second
 subscription starts without waiting for the next periodic look.
 """
@@ -38,6 +39,7 @@ from typing import Any
 
 from ...model.formats.ros2_log_msg import CdrError, LogDecoder
 from ...model.intake_queue import IntakeQueue
+from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
 from ..log_message import log_to_record
 from ..log_topics import ROSOUT, ROSOUT_AGG
@@ -261,6 +263,11 @@ class _TopicReader:
         #: GIDs of the publishers only the extra (VOLATILE) subscription matches.
         self._uncovered: set[bytes] = set()
         self._covered: set[bytes] = set()
+        #: The same by their nodes' logger names, for an rclpy whose message info has no
+        #: publisher GID (Jazzy): ``{logger name: covered}``.
+        self._node_covered: dict[str, bool] = {}
+        #: This rclpy's message info has no publisher GID.
+        self._gidless = False
         self._unknown_refreshed_at = 0.0
 
     @property
@@ -333,6 +340,7 @@ class _TopicReader:
         self.graph_changed = False
         covered: set[bytes] = set()
         uncovered: set[bytes] = set()
+        node_covered: dict[str, bool] = {}
         infos = self.node.get_publishers_info_by_topic(self.topic)
         for info in infos:
             qos = info.qos_profile
@@ -340,8 +348,9 @@ class _TopicReader:
                 qos.durability == DurabilityPolicy.TRANSIENT_LOCAL and qos.reliability == ReliabilityPolicy.RELIABLE
             )
             (covered if matches_main else uncovered).add(_gid_bytes(info.endpoint_gid))
+            node_covered[node_logger_name(info.node_namespace, info.node_name)] = matches_main
         self.publisher_count = len(infos)
-        self._covered, self._uncovered = covered, uncovered
+        self._covered, self._uncovered, self._node_covered = covered, uncovered, node_covered
         if uncovered and self.extra is None:
             self.extra = self._subscribe(self._volatile_qos, main=False)
 
@@ -358,21 +367,49 @@ class _TopicReader:
         return record
 
     def _keep_from_extra(self, info: dict) -> bool:
-        """Whether a message the extra subscription took is one only it receives."""
+        """Whether a message the extra subscription took is one only it receives (by its
+        publisher's GID; kept for ``_keep_record_from_extra`` when the info has none)."""
+        if "publisher_gid" not in info:
+            self._gidless = True
+            return True
         gid = _gid_bytes(info.get("publisher_gid") or b"")
         if gid not in self._uncovered and gid not in self._covered:
-            now = time.monotonic()
-            if now - self._unknown_refreshed_at >= UNKNOWN_PUBLISHER_REFRESH_S:
-                self._unknown_refreshed_at = now
-                self.refresh_graph()  # a publisher newer than our last look
+            self._refresh_for_unknown()
         return gid not in self._covered
+
+    def _keep_record_from_extra(self, record: LogRecord) -> bool:
+        """Without publisher GIDs: whether the record's logger belongs to a node only the
+        extra subscription matches (the node whose logger name is the longest prefix of it)."""
+        owner = self._owner(record.node)
+        if owner is None:
+            self._refresh_for_unknown()
+            owner = self._owner(record.node)
+        return owner is None or not self._node_covered[owner]
+
+    def _owner(self, logger: str) -> str | None:
+        while True:
+            if logger in self._node_covered:
+                return logger
+            if "." not in logger:
+                return None
+            logger = logger.rpartition(".")[0]
+
+    def _refresh_for_unknown(self) -> None:
+        now = time.monotonic()
+        if now - self._unknown_refreshed_at >= UNKNOWN_PUBLISHER_REFRESH_S:
+            self._unknown_refreshed_at = now
+            self.refresh_graph()  # a publisher newer than our last look
 
     def take_all(self, limit: int) -> list[LogRecord]:
         """Every message waiting (up to ``limit``), as records, oldest first per subscription."""
         batch: list[LogRecord] = []
         taken = self._take_into(batch, self.main, limit, None)
         if self.extra is not None and taken < limit:
-            self._take_into(batch, self.extra, limit - taken, self._keep_from_extra)
+            extra: list[LogRecord] = []
+            self._take_into(extra, self.extra, limit - taken, self._keep_from_extra)
+            if extra and self._covered and self._gidless:
+                extra = [record for record in extra if self._keep_record_from_extra(record)]
+            batch.extend(extra)
         return batch
 
     def _take_into(self, batch: list[LogRecord], subscription: Any, limit: int, keep: Any) -> int:

@@ -67,11 +67,11 @@ class DetailScreen(ModalScreen[None]):
     """
 
     BINDINGS = [
-        Binding("escape,q", "dismiss_screen", "Close"),
-        Binding("n", "step(1)", "Next row"),
-        Binding("p", "step(-1)", "Previous row"),
-        Binding("w", "toggle_wrap", "Wrap"),
-        Binding("y", "copy", "Copy message"),
+        Binding("escape,q", "dismiss_screen", "Close", id="detail.close"),
+        Binding("n", "step(1)", "Next row", id="detail.next"),
+        Binding("p", "step(-1)", "Previous row", id="detail.previous"),
+        Binding("w", "toggle_wrap", "Wrap", id="detail.wrap"),
+        Binding("y", "copy", "Copy message", id="detail.copy"),
     ]
 
     def __init__(

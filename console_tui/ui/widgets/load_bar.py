@@ -7,6 +7,7 @@ from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
 from ...sources.files import LoadProgress
+from ..keys import hint_line
 
 
 class LoadBar(Horizontal):
@@ -36,6 +37,7 @@ class LoadBar(Horizontal):
             f"{reading.source} ({reading.title})" if reading and reading.title else (reading.source if reading else "")
         )
         self.query_one(Label).update(
-            f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  x cancels"
+            f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  "
+            + hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
         )
         self.query_one(ProgressBar).update(progress=done)
