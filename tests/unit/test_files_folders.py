@@ -14,7 +14,7 @@ import pytest
 from console_tui.cli import main
 from console_tui.model.formats import FormatError
 from console_tui.model.intake_queue import IntakeQueue
-from console_tui.sources.files import FileLoad, latest_run, load_records, log_directory, open_logs
+from console_tui.sources.files import FileLoad, latest_run, load_records, open_logs
 from console_tui.sources.files.merge import merge_by_time
 
 from support.formats import DATA
@@ -163,10 +163,7 @@ def test_a_recording_in_a_folder_is_one_recording(log_dir):
     assert not any(f.source.startswith("bag/") for f in opened.files)
 
 
-def test_the_log_directory_and_its_newest_run(tmp_path, log_dir):
-    assert log_directory({"ROS_LOG_DIR": "/x/logs", "ROS_HOME": "/y"}) == Path("/x/logs")
-    assert log_directory({"ROS_HOME": "/y"}) == Path("/y/log")
-    assert log_directory({}) == Path("~/.ros/log").expanduser()
+def test_the_newest_run_in_the_log_directory(tmp_path, log_dir):
     launch = log_dir / LAUNCH_ID
     os.utime(launch / "launch.log", ns=(1728089183_300_000_000, 1728089183_300_000_000))
     env = {"ROS_LOG_DIR": str(log_dir)}

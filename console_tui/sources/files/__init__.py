@@ -17,7 +17,7 @@ The UI's entry points:
 from __future__ import annotations
 
 from ...model.formats import FormatError, Problem
-from .folders import latest_run, log_directory
+from .folders import latest_run
 from .loader import FileLoad, FileProgress, LoadProgress, OpenedLogs, load_records, open_files, open_logs
 from .log_file import LogFile, TextLogFile
 from .merge import merge_by_time, sorted_by_stamp
@@ -34,7 +34,6 @@ __all__ = [
     "TextLogFile",
     "latest_run",
     "load_records",
-    "log_directory",
     "merge_by_time",
     "open_files",
     "open_log_file",

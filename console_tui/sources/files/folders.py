@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...model.formats import FormatError
+from ..log_dir import ros_log_dir
 
 #: File names read in a folder.
 _LOG_NAME = re.compile(r".+\.(?:log(?:\.\d+)?|csv|jsonl|ndjson|bag|bag\.active|mcap|db3)\Z")
@@ -160,15 +161,6 @@ def _rotations(paths: list[Path]) -> list[tuple[Path, ...]]:
     return sorted(logs, key=lambda parts: (str(parts[-1].parent), _ROTATED.sub(r"\g<base>", parts[-1].name)))
 
 
-def log_directory(environ: Mapping[str, str] | None = None) -> Path:
-    """Where ROS writes its logs: ``$ROS_LOG_DIR``, else ``$ROS_HOME/log``, else ``~/.ros/log``."""
-    env = os.environ if environ is None else environ
-    if env.get("ROS_LOG_DIR"):
-        return Path(env["ROS_LOG_DIR"]).expanduser()
-    home = Path(env["ROS_HOME"]).expanduser() if env.get("ROS_HOME") else Path("~/.ros").expanduser()
-    return home / "log"
-
-
 def latest_run(environ: Mapping[str, str] | None = None) -> list[Path]:
     """The newest run in the log directory, as paths to open.
 
@@ -177,7 +169,7 @@ def latest_run(environ: Mapping[str, str] | None = None) -> list[Path]:
     not in them) whose names say they started during the run come too. Raises
     ``FormatError`` saying where it looked when there is no run.
     """
-    directory = log_directory(environ)
+    directory = ros_log_dir(environ)
     if not directory.is_dir():
         raise FormatError(f"no ROS log directory at {directory} (set by ROS_LOG_DIR, else ROS_HOME/log)")
     latest = directory / "latest"
