@@ -183,3 +183,86 @@ def test_damaged_rqt_csv_keeps_the_row_before_each_bad_line():
         (3, "not a rqt_console CSV record: 'GARBAGE'"),
         (6, "not a rqt_console CSV record: 'more garbage' (and 1 more lines up to line 7)"),
     ]
+
+
+def test_rqt_rows_apart_with_blank_lines_and_crlf_endings():
+    data = (
+        b"message;severity;node;stamp;location\r\n"
+        b'"one";"20";"n";"1.000000000";"f:g:1"\r\n'
+        b"\r\n"
+        b"\n"
+        b'"two";"30";"n";"2.000000005";"f:g:2"\n'
+        b"\n"
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "blank.csv")
+    assert list(problems) == []
+    assert [(r.msg, r.level, r.stamp_ns, r.line) for r in records] == [
+        ("one", 20, 1_000_000_000, 1),
+        ("two", 30, 2_000_000_005, 2),
+    ]
+
+
+def test_rqt_location_may_hold_the_field_separator_and_columns_may_be_missing():
+    data = b'message;severity;node;stamp;location\n"m";"40";"n";"3.000000000";"odd\\";\\"name.py:f:9"\n'
+    records, problems = read_text(data, RqtCsvFormat(), "odd.csv")
+    assert list(problems) == [] and (records[0].file, records[0].function, records[0].line) == (
+        'odd\\";\\"name.py',
+        "f",
+        9,
+    )
+    records, problems = read_text(b'message;severity\n"just this";"30"\n', RqtCsvFormat(), "two.csv")
+    assert list(problems) == []
+    assert [(r.msg, r.level, r.stamp_ns, r.node, r.file, r.line) for r in records] == [("just this", 30, 0, "", "", 0)]
+    records, problems = read_text(b'message\n"only text"\n', RqtCsvFormat(), "one.csv")
+    assert list(problems) == [] and [(r.msg, r.level) for r in records] == [("only text", 20)]
+
+
+def test_rqt_bad_severities_name_the_value_and_the_expected_ones():
+    data = (
+        b"message;severity;node;stamp;topics;location\n"
+        b'"a";"3";"n";"1.000000000";"";"f:g:1"\n'
+        b'"b";"loud";"n";"1.000000000";"";"f:g:1"\n'
+        b'"c";"16";"n";"1.000000000";"";"f:g:1"\n'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "r1.csv")
+    assert [(r.msg, r.level) for r in records] == [("c", 50)]
+    assert [(p.line, p.what) for p in problems] == [
+        (2, "unknown ROS 1 severity 3 (expected 1, 2, 4, 8 or 16)"),
+        (3, "severity is not a number: 'loud'"),
+    ]
+
+
+def test_damaged_ros1_csv_keeps_the_row_and_its_ros1_severity():
+    data = (
+        b"message;severity;node;stamp;topics;location\n"
+        b'"warned";"4";"n";"1.000000000";"/rosout";"f:g:1"\n'
+        b"GARBAGE\n"
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "r1.csv")
+    assert [(r.msg, r.level) for r in records] == [("warned", 30)]
+    assert [(p.line, p.what) for p in problems] == [(3, "not a rqt_console CSV record: 'GARBAGE'")]
+
+
+def test_damaged_csv_tries_each_line_that_could_end_the_row():
+    """The message's first line ends with a quote (escaped, so not the row's end): the row
+    ends further down, and the stray line after it is reported on its own."""
+    data = (
+        b"message;severity;node;stamp;location\n"
+        b'"he said \\"hi\\"\n'
+        b'and left";"20";"n";"1.000000000";"f:g:1"\n'
+        b"GARBAGE\n"
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "quote.csv")
+    assert [r.msg for r in records] == ['he said "hi"\nand left']
+    assert [(p.line, p.what) for p in problems] == [(4, "not a rqt_console CSV record: 'GARBAGE'")]
+
+
+def test_a_damaged_row_is_given_up_after_a_thousand_tries():
+    """Recovery is bounded: a group with more than 1,000 lines that could end a row (none
+    does) is one problem, found quickly, and the row after it still loads."""
+    lines = [b'"start of a row that never ends'] + [b'junk "'] * 1_001 + [b'tail";"20";"n";"1.000000000";"f:g:1"']
+    data = b"message;severity;node;stamp;location\n" + b"\n".join(lines) + b"\nGARBAGE\n"
+    data += b'"after";"30";"n";"2.000000000";"f:g:2"\n'
+    records, problems = read_text(data, RqtCsvFormat(), "long.csv")
+    assert [r.msg for r in records] == ["after"], "the 1,002nd candidate end is never tried"
+    assert [p.line for p in problems] == [2]
