@@ -44,6 +44,7 @@ async def test_open_dialog_loads_and_reports_problems(tmp_path):
     app = ConsoleApp(store=LogStore(), utc=True)
     async with app.run_test(size=(160, 30)) as pilot:
         await pilot.press("o")
+        await until(pilot, lambda: "Open log files" in screen_text(app))
         assert isinstance(app.screen, OpenScreen)
         await type_text(pilot, f"{good} {bad}")
         await pilot.press("enter")
@@ -65,10 +66,11 @@ async def test_open_dialog_refuses_a_missing_file(tmp_path):
     app = ConsoleApp(store=LogStore())
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("o")
+        await until(pilot, lambda: "Open log files" in screen_text(app))
         await type_text(pilot, str(tmp_path / "nope.bag"))
         await pilot.press("enter")
+        await until(pilot, lambda: "No such file: " in screen_text(app), what="the refusal")
         assert isinstance(app.screen, OpenScreen)
-        assert "No such file: " in screen_text(app)
         await pilot.press("escape")
         assert not isinstance(app.screen, OpenScreen)
         assert "No such file" not in screen_text(app)
@@ -112,6 +114,7 @@ async def test_save_what_is_shown_then_load_it_back(tmp_path):
     target = tmp_path / "saved.jsonl"
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("s")
+        await until(pilot, lambda: "Save messages to" in screen_text(app))
         assert isinstance(app.screen, SaveScreen)
         await pilot.press("end", "ctrl+u")
         await type_text(pilot, str(target))
@@ -132,11 +135,12 @@ async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
     app = ConsoleApp(store=store)
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("s")
+        await until(pilot, lambda: "Save messages to" in screen_text(app))
         await pilot.press("end", "ctrl+u")
         await type_text(pilot, str(tmp_path / "no" / "such" / "x.csv"))
         await pilot.press("enter")
+        await until(pilot, lambda: "No such folder: " in screen_text(app), what="the refusal")
         assert isinstance(app.screen, SaveScreen)
-        assert "No such folder: " in screen_text(app)
 
 
 async def test_with_live_records_waiting_the_files_come_first(tmp_path):

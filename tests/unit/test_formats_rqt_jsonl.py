@@ -266,3 +266,37 @@ def test_a_damaged_row_is_given_up_after_a_thousand_tries():
     records, problems = read_text(data, RqtCsvFormat(), "long.csv")
     assert [r.msg for r in records] == ["after"], "the 1,002nd candidate end is never tried"
     assert [p.line for p in problems] == [2]
+
+
+def test_rqt_writer_names_and_writes_in_chunks_with_unencodable_text_replaced():
+    assert (RqtCsvWriter().name, RqtCsvWriter(ros1=True).name) == ("rqt", "rqt1")
+    records = [LogRecord(i, 20, "n", f"m{i}", "f", "g", 1, "") for i in range(10_001)]
+    records[5].msg = "lone \ud800 surrogate"
+    stream = io.BytesIO()
+    counts = list(RqtCsvWriter().write(records, stream))
+    assert counts == [10_000, 10_001]
+    lines = stream.getvalue().decode("utf-8").splitlines()
+    assert len(lines) == 10_002 and lines[0] == ";".join(("message", "severity", "node", "stamp", "location"))
+    assert lines[6].startswith('"lone ? surrogate";"20"') and lines[-1].startswith('"m10000";')
+
+
+def test_rqt_header_forms():
+    from console_tui.model.formats.rqt_csv import parse_header
+
+    assert parse_header("message;severity;node;stamp;location\r") == ("message", "severity", "node", "stamp", "location")
+    assert parse_header("message;severity;message") is None, "a column twice"
+    assert parse_header("message;colour") is None, "a column rqt_console has not"
+    assert parse_header("severity;node") is None, "no message column"
+    data = b"\n  \n" + b"message;severity\n" + b'"after blank lines";"40"\n'
+    records, problems = read_text(data, RqtCsvFormat(), "blank-first.csv")
+    assert list(problems) == [] and [r.msg for r in records] == ["after blank lines"]
+    long_line = "x" * 100
+    records, problems = read_text(long_line.encode() + b"\n", RqtCsvFormat(), "nohead.csv")
+    assert problems.items[0].what == (
+        "no rqt_console header (expected 'message;severity;node;stamp;location'), found " + repr("x" * 60)
+    )
+
+
+def test_split_location_without_a_function():
+    assert split_location("file.py:12") == ("file.py", "", 12)
+    assert split_location("C:\\src\\n.cpp:3") == ("C:\\src\\n.cpp", "", 3)
