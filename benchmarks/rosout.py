@@ -10,8 +10,12 @@ raw counting subscriber (EventsExecutor) takes ``/rosout_agg``. Measured:
 - forwarded/s: records written to rosout.log while the publishers sent, per second;
 - CPU: the aggregator process's user + system time over the run (from /proc), as a share
   of one core and per forwarded message;
-- lost in: sent but never written to rosout.log; lost out: sent but never received on
-  /rosout_agg by the subscriber.
+- lost in: sent but never written to rosout.log (of which "reported": what the aggregator
+  itself counted as lost, from the middleware's message-lost events and its queue);
+  lost out: sent but never received on /rosout_agg by the subscriber.
+
+Once the publishers are done and rosout.log has stopped growing for 2 s, the aggregator is
+stopped (SIGINT) and the counts are taken.
 
 Every ROS process uses ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST and a ROS_DOMAIN_ID of its own.
 
@@ -23,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -77,6 +82,7 @@ class Row:
     written: int
     received: int
     cpu: float
+    lost_reported: int | None
 
     @property
     def forwarded_per_s(self) -> float:
@@ -99,8 +105,10 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], rate: str, workd
         env=env,
         stdin=subprocess.DEVNULL,
         stdout=subprocess.DEVNULL,
-        stderr=None if os.environ.get("BENCH_DEBUG") else subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
     )
+    summary = ""
     publishers = [
         Child(["--role", "publisher", "--index", str(i), "--topic", "/rosout"], env) for i in range(args.publishers)
     ]
@@ -119,19 +127,18 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], rate: str, workd
             child.send(cmd="go", rate=per_publisher, duration=args.duration)
         done = [child.expect("done", args.duration + 120) for child in publishers]
         in_window = records_in(log_dir) - before_written
-        written = settled_records(log_dir) - before_written
+        settled_records(log_dir, quiet=2.0)
         cpu = cpu_seconds(aggregator.pid) - cpu_before
+        summary = _stop(aggregator)
+        written = records_in(log_dir) - before_written
         received = settle(subscriber)["count"] - before_received
     finally:
         subscriber.close()
         for child in publishers:
             child.close()
-        aggregator.send_signal(signal.SIGINT)
-        try:
-            aggregator.wait(15)
-        except subprocess.TimeoutExpired:
-            aggregator.kill()
-            aggregator.wait()
+        if not summary:
+            summary = _stop(aggregator)
+    reported = re.search(r"([\d,]+) lost", summary)
     row = Row(
         rate=rate,
         sent=sum(d["sent"] for d in done),
@@ -140,6 +147,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], rate: str, workd
         written=written,
         received=received,
         cpu=cpu,
+        lost_reported=int(reported.group(1).replace(",", "")) if reported else None,
     )
     print(
         f"  {rate:>6}: sent {row.sent:>9,} written {row.written:>9,} received {row.received:>9,} "
@@ -150,6 +158,20 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], rate: str, workd
     return row
 
 
+def _stop(aggregator: subprocess.Popen) -> str:
+    """SIGINT, and the aggregator's last words (its summary line)."""
+    if aggregator.poll() is None:
+        aggregator.send_signal(signal.SIGINT)
+    try:
+        _, err = aggregator.communicate(timeout=30)
+    except subprocess.TimeoutExpired:
+        aggregator.kill()
+        _, err = aggregator.communicate()
+    if os.environ.get("BENCH_DEBUG"):
+        print(err, file=sys.stderr)
+    return err or ""
+
+
 def report(rows: list[Row]) -> str:
     return table(
         [
@@ -157,7 +179,7 @@ def report(rows: list[Row]) -> str:
             "sent",
             "forwarded msg/s",
             "written",
-            "lost in",
+            "lost in (reported)",
             "received on /rosout_agg",
             "lost out",
             "CPU (share of a core)",
@@ -169,7 +191,7 @@ def report(rows: list[Row]) -> str:
                 f"{row.sent:,}",
                 f"{row.forwarded_per_s:,.0f}",
                 f"{row.written:,}",
-                f"{max(row.sent - row.written, 0):,}",
+                f"{max(row.sent - row.written, 0):,} ({'?' if row.lost_reported is None else f'{row.lost_reported:,}'})",
                 f"{row.received:,}",
                 f"{max(row.sent - row.received, 0):,}",
                 f"{row.cpu_share * 100:.0f}%",
