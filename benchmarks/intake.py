@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _report import machine_line, table, verdict
+from _report import ros_header, table, verdict
 
 TOPIC = "/console_tui_bench_log"
 QUEUE_DEPTH = 10_000
@@ -605,16 +605,12 @@ def main() -> None:
     env.pop("ROS_LOCALHOST_ONLY", None)
     if args.udp:
         env["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
-    from importlib.metadata import version
-
-    header = [
-        "## Intake benchmark (benchmarks/intake.py)",
-        "",
-        machine_line(),
-        f"rclpy {version('rclpy')}, RMW {env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp (default)')}, "
+    header = ros_header(
+        "Intake benchmark (benchmarks/intake.py)",
+        env,
         f"transport {'UDPv4' if args.udp else 'Fast DDS defaults (shared memory)'}; "
         f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized.",
-    ]
+    )
     print("\n".join(header), file=sys.stderr, flush=True)
     started = time.monotonic()
     rows = measure(args, env)

@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _report import machine_line, table
+from _report import ros_header, table
 from intake import Child, message_pool, settle
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -221,16 +221,12 @@ def main() -> None:
         "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
     }
     env.pop("ROS_LOCALHOST_ONLY", None)
-    from importlib.metadata import version
-
-    header = [
-        "## Rosout benchmark (benchmarks/rosout.py)",
-        "",
-        machine_line(),
-        f"rclpy {version('rclpy')}, RMW {env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp (default)')}; "
+    header = ros_header(
+        "Rosout benchmark (benchmarks/rosout.py)",
+        env,
         f"{args.publishers} publisher processes; {args.duration:g} s per measurement, median of {args.repeat}; "
         f"messages {len(message_pool(0)[0])}-ish bytes serialized; rosout.log on {tempfile.gettempdir()}.",
-    ]
+    )
     print("\n".join(header), file=sys.stderr, flush=True)
     started = time.monotonic()
     rows: list[Row] = []
