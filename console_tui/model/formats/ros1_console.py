@@ -24,7 +24,7 @@ from collections.abc import Iterator
 
 from ..record import LogRecord
 from ..text import plural
-from .console_lines import (
+from .mixed_output import (
     FillCounts,
     Plain,
     Start,
