@@ -45,8 +45,8 @@ if TYPE_CHECKING:
 #: How long ``t`` sets a temporary level for unless told otherwise.
 DEFAULT_TEMPORARY_S = 30.0
 TICK_S = 1.0
-#: What the pane says when this run has no ROS 2 (rclpy missing, or files only).
-NO_ROS_TEXT = "ROS 2 is not running in this console (no rclpy, or files only): logger levels cannot be read or set."
+#: What the pane says when this run has no live ROS (files only).
+NO_ROS_TEXT = "No live ROS in this console (files only): logger levels cannot be read or set."
 
 _HINTS: list[Hint] = [
     (tuple(f"set_level({int(s)})" for s in MESSAGE_SEVERITIES), "level"),
@@ -326,16 +326,19 @@ class LoggerPane(SidePane):
             self._say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
             self.node_list.focus()
             return False
-        self.select_node(node.fqn, logger)
+        self.select_node(node.fqn, None if logger == node.fqn else logger)
         self.logger_list.focus()
         return True
 
     # -- service calls ------------------------------------------------------------------------
 
-    def read_levels(self, fqn: str) -> None:
+    def read_levels(self, fqn: str, *, asked: bool = False) -> None:
+        """Read ``fqn``'s levels; with a control that reads only when asked (ROS 1), only when ``asked``."""
         node = self.node(fqn)
         control = self.control
         if control is None or node is None or not node.has_logger_services:
+            return
+        if control.read_when_asked and not asked:
             return
         names = self._loggers_of(node).names_to_read()
         self._call(control.get_levels(fqn, names), fqn, "read the levels", lambda levels: self.show_levels(fqn, levels))
@@ -421,6 +424,7 @@ class LoggerPane(SidePane):
                 )
             else:
                 self._say(f"{_shown(entry.logger)} of {entry.node} is back to {_level_word(entry.previous)}")
+                self.show_levels(entry.node, {entry.logger: entry.previous})
             self.read_levels(entry.node)
 
     # -- keys and clicks -------------------------------------------------------------------------
@@ -440,6 +444,9 @@ class LoggerPane(SidePane):
         logger = self.highlighted_logger
         if logger is None:
             logger = self._loggers_of(node).own
+        if not logger and self._loggers_of(node).listing:
+            self._say("Read the node's loggers first (r), or add one by name (a)", error=True)
+            return None
         return node.fqn, logger
 
     def action_set_level(self, level: int) -> None:
@@ -472,7 +479,7 @@ class LoggerPane(SidePane):
     def action_refresh(self) -> None:
         self._note_seen_loggers(force=True)
         if self.selected is not None:
-            self.read_levels(self.selected)
+            self.read_levels(self.selected, asked=True)
         self._render_all()
 
     def action_focus_nodes(self) -> None:
@@ -498,6 +505,8 @@ class LoggerPane(SidePane):
     @on(OptionList.OptionSelected, "#logger-nodes")
     def _node_chosen(self, message: OptionList.OptionSelected) -> None:
         message.stop()
+        if self.selected is not None and self.control is not None and self.control.read_when_asked:
+            self.read_levels(self.selected, asked=True)  # Enter opens the node: its loggers are read
         self.logger_list.focus()
 
     @on(OptionList.OptionSelected, "#logger-levels")
@@ -604,10 +613,13 @@ class LoggerPane(SidePane):
         if node is None:
             return "Select a node.", False
         if node.has_logger_services:
+            if self.control is not None and self.control.read_when_asked and not self._loggers_of(node).levels:
+                return "Enter or r: read its loggers · a: set one by name", False
             return "", False
         if node.fqn in self.checking:
             return f"Checking whether {node.fqn} offers logger services…", False
-        return f"{node.fqn} has no logger services: {ENABLE_LOGGER_SERVICE_HINT}.", False
+        hint = self.control.no_services_hint if self.control is not None else ENABLE_LOGGER_SERVICE_HINT
+        return f"{node.fqn} has no logger services: {hint}.", False
 
     def _say(self, text: str, error: bool = False) -> None:
         self.notice = text
@@ -619,7 +631,8 @@ class LoggerPane(SidePane):
     def _loggers_of(self, node: GraphNode) -> NodeLoggers:
         loggers = self.loggers.get(node.fqn)
         if loggers is None:
-            loggers = self.loggers[node.fqn] = NodeLoggers(node)
+            listing = self.control is not None and self.control.lists_loggers
+            loggers = self.loggers[node.fqn] = NodeLoggers(node, listing=listing)
         return loggers
 
     def _note_seen_loggers(self, force: bool = False) -> bool:
