@@ -1,5 +1,13 @@
 """Text to look for in messages, file and function names: a substring or a regex, either case.
 
+The one entry point for matching text a user typed against many strings (rules, the query
+line, quick rules, search): ``TextMatch(text, ignore_case, regex)`` refuses a bad regex with
+a ``RuleError`` (reason and position), and ``match.mask(strings)`` answers one byte per string
+within a time limit, raising ``MatchTimeout`` past it: a catastrophic regex cannot freeze the
+caller (``time_limit``: Python's ``re`` abandoned by a timer signal, on the main thread).
+A caller that tests in pieces (the view) holds ``mask_function()`` and runs each piece
+``with time_limit(...)``.
+
 A regex runs only on strings that hold the plain text every match must contain
 (``required_literal``), and only around it where the pattern allows.
 """
@@ -14,6 +22,12 @@ from itertools import chain, compress, repeat
 from operator import add, contains, sub
 
 from .rule import RuleError, mask_and, mask_not, mask_of_rows
+from .time_limit import MatchTimeout, time_limit
+
+__all__ = ["MATCH_LIMIT_S", "MatchTimeout", "RequiredLiteral", "TextMatch", "required_literal", "time_limit"]
+
+#: How long one test of many strings may run before it is abandoned as too slow.
+MATCH_LIMIT_S = 0.25
 
 
 @dataclass(frozen=True)
@@ -61,6 +75,11 @@ class TextMatch:
             return lambda strings: bytes(map(contains, map(str.casefold, strings), repeat(folded)))
         text = self.text
         return lambda strings: bytes(map(contains, strings, repeat(text)))
+
+    def mask(self, strings: list[str], limit_s: float = MATCH_LIMIT_S) -> bytes:
+        """One byte per string, 1 where it matches; ``MatchTimeout`` after ``limit_s``."""
+        with time_limit(limit_s):
+            return self.mask_function()(strings)
 
     def describe(self) -> str:
         options = [name for name, on in (("regex", self.regex), ("ignore case", self.ignore_case)) if on]
