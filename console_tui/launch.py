@@ -29,10 +29,10 @@ def run_app(args: argparse.Namespace) -> int:
             runtime = _start_ros()
             cleanups.append(runtime.shutdown)
             from .sources.ros2.live_source import LiveLogSource
-            from .sources.ros2.logger_control import LoggerControl
+            from .sources.ros2.logger_control import Ros2LoggerControl
 
             sources.append(LiveLogSource(runtime, queue, topic=args.topic))
-            logger_control = LoggerControl(runtime)  # the app starts it after its first frame
+            logger_control = Ros2LoggerControl(runtime)  # the app starts it after its first frame
             cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
             if args.demo:
                 sources.append(DemoNodes())  # the app starts it after its first frame, and stops it

@@ -22,7 +22,7 @@ async def capture(out: Path, seconds: float) -> list[Path]:
     from console_tui.demo.launcher import DemoNodes
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import LoggerControl
+    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
     from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
@@ -30,7 +30,7 @@ async def capture(out: Path, seconds: float) -> list[Path]:
     demo.start()
     runtime = RosRuntime()
     queue = IntakeQueue()
-    control = LoggerControl(runtime)
+    control = Ros2LoggerControl(runtime)
     app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)], logger_control=control)
     saved: list[Path] = []
 

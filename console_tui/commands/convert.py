@@ -1,15 +1,28 @@
-"""``console-tui convert IN... -o OUT``: log files and recordings to one saved file."""
+"""``console-tui convert IN... -o OUT``: log files and recordings to one saved file.
+
+Exit status: 0 when every input was read without a problem; 1 when the output was
+written but something was wrong (an input could not be opened, bad lines, a truncated
+file, an input without log records: each listed on stderr); 2 when nothing was written
+(bad usage, no input gave a single record, or the output cannot be written).
+"""
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 
-from ..model.formats import SAVE_FORMATS, save_records
+from ..model.formats import SAVE_FORMATS, Problem, save_records
 from ..model.formats.save import save_format_for
-from ..sources.files import load_records, open_files
+from ..model.record import LogRecord
+from ..model.text import one_line
+from ..sources.files import LogFile, load_records, open_files
 from .arguments import add_log_format_argument
+
+CLEAN, PROBLEMS, NOTHING_WRITTEN = 0, 1, 2
+#: Longest problem text printed (a file's own text may be quoted in it).
+_PROBLEM_LIMIT = 2_000
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -18,6 +31,10 @@ def build_parser() -> argparse.ArgumentParser:
         description=(
             "Read log files and recordings (any format console-tui opens), merge them by time "
             "and save them as rqt_console CSV or JSON Lines. Problems go to stderr."
+        ),
+        epilog=(
+            "Exit status: 0 every input read cleanly; 1 written, with problems (listed on stderr); "
+            "2 nothing written (bad usage, nothing readable, or the output cannot be written)."
         ),
     )
     parser.add_argument("inputs", nargs="+", metavar="IN", help="log files or recordings")
@@ -32,37 +49,62 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def say(text: str) -> None:
+    """One line to stderr, made inert: names and texts from files never reach the terminal raw."""
+    print(f"console-tui convert: {one_line(text, _PROBLEM_LIMIT)}", file=sys.stderr)
+
+
 def main(argv: Sequence[str]) -> int:
-    """Exit status 0 when every input was read, 1 when one could not be opened at all
-    (the others are still written), 2 when the output cannot be written."""
+    """Convert as the arguments say; returns the exit status (see the module's text)."""
     args = build_parser().parse_args(list(argv))
     files, failures = open_files(args.inputs, log_format=args.log_format)
     save_format = args.format or ("rqt" if args.output == "-" else save_format_for(args.output))
-    records = (record for batch in load_records(files) for record in batch)
     try:
+        records = (record for batch in load_records(files) for record in batch)
+        first = next(records, None)  # nothing is written before there is something to write
+        if first is None:
+            _report(failures, files)
+            say(f"nothing written: no record could be read from {_inputs(args.inputs)}")
+            return NOTHING_WRITTEN
+        everything = itertools.chain((first,), records)
         if args.output == "-":
-            count = _write_stdout(records, save_format)
+            count = _write_stdout(everything, save_format)
         else:
-            count = save_records(records, args.output, save_format)
+            count = save_records(everything, args.output, save_format)
     except OSError as error:
-        print(f"console-tui convert: cannot write {args.output}: {error.strerror or error}", file=sys.stderr)
-        return 2
+        _report(failures, files)
+        say(f"cannot write {args.output}: {error.strerror or error}")
+        return NOTHING_WRITTEN
     finally:
         for file in files:
             file.close()
+    found = _report(failures, files)
+    if args.output != "-":
+        say(f"{count} records from {len(files)} file(s) written to {args.output} ({save_format})")
+    return PROBLEMS if found else CLEAN
+
+
+def _inputs(names: Sequence[str]) -> str:
+    return names[0] if len(names) == 1 else f"any of the {len(names)} inputs"
+
+
+def _report(failures: list[Problem], files: list[LogFile]) -> int:
+    """Every problem on stderr; returns how many there were."""
+    count = 0
     for problem in failures:
-        print(f"console-tui convert: {problem}", file=sys.stderr)
+        say(str(problem))
+        count += 1
     for file in files:
         for problem in file.problems:
-            print(f"console-tui convert: {problem}", file=sys.stderr)
+            say(str(problem))
+            count += 1
         if file.problems.omitted:
-            print(f"console-tui convert: {file.source}: {file.problems.omitted} more problems", file=sys.stderr)
-    if args.output != "-":
-        print(f"{count} records from {len(files)} file(s) written to {args.output} ({save_format})", file=sys.stderr)
-    return 1 if failures else 0
+            say(f"{file.source}: {file.problems.omitted} more problems")
+            count += file.problems.omitted
+    return count
 
 
-def _write_stdout(records, save_format: str) -> int:
+def _write_stdout(records: Iterable[LogRecord], save_format: str) -> int:
     count = 0
     stream = sys.stdout.buffer
     for count in SAVE_FORMATS[save_format]().write(records, stream):  # noqa: B007 - the last count is the total

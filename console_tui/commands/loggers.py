@@ -17,6 +17,8 @@ from typing import Any
 
 from ..model.levels import Severity, parse_severity, severity_name
 from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
+from ..model.text import plural
+from ..sources.logger_control import GRAPH_MIN_S, GRAPH_QUIET_S
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -29,12 +31,12 @@ EXIT_CODES = f"""exit status:
   {EXIT_OK}    done
   {EXIT_ERROR}    ROS 2 (rclpy) is not available, or an unexpected error
   {EXIT_USAGE}    bad command line: unknown level name, a node name that matches several nodes
-  {EXIT_NOT_FOUND}    the node is not in the ROS graph, or it has no logger services
+  {EXIT_NOT_FOUND}    the node is not in the ROS graph, or it has no logger services; list: no node found
   {EXIT_FAILED}    the call failed: no answer in time, node gone, level refused by the node
   {EXIT_INTERRUPTED}  interrupted (a temporary level is put back first)"""
 
 DEFAULT_WAIT_S = 5.0
-DEFAULT_LIST_WAIT_S = 2.0
+DEFAULT_LIST_WAIT_S = 10.0
 DEFAULT_TIMEOUT_S = 2.0
 
 #: How the default logger ``""`` is printed, and also accepted.
@@ -62,7 +64,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="{list,get,set}")
 
-    def add(name: str, help_text: str, wait: float, usage: str | None = None) -> argparse.ArgumentParser:
+    def add(
+        name: str, help_text: str, wait: float, usage: str | None = None, wait_help: str = ""
+    ) -> argparse.ArgumentParser:
         sub = commands.add_parser(
             name,
             help=help_text,
@@ -76,11 +80,19 @@ def build_parser() -> argparse.ArgumentParser:
             type=_seconds,
             default=wait,
             metavar="SECONDS",
-            help=f"how long to wait for nodes to be discovered (default {wait:g})",
+            help=wait_help or f"how long to wait for the node to be discovered (default {wait:g})",
         )
         return sub
 
-    listing = add("list", "list the nodes of the ROS graph and whether they offer logger services", DEFAULT_LIST_WAIT_S)
+    listing = add(
+        "list",
+        "list the nodes of the ROS graph and whether they offer logger services",
+        DEFAULT_LIST_WAIT_S,
+        wait_help=(
+            f"the longest to wait for the graph to settle: it is watched for {GRAPH_MIN_S:g} s at least, "
+            f"then until no node came or went for {GRAPH_QUIET_S:g} s (default {DEFAULT_LIST_WAIT_S:g})"
+        ),
+    )
     listing.add_argument("--all", action="store_true", help="include hidden nodes (names starting with _)")
     listing.add_argument("--json", action="store_true", help="print JSON")
 
@@ -188,7 +200,7 @@ def _level_request(rest: list[str]) -> tuple[str | None, int]:
 
 @contextmanager
 def _ros_control(args: argparse.Namespace, runtime: Any):
-    from ..sources.ros2.logger_control import LoggerControl
+    from ..sources.ros2.logger_control import Ros2LoggerControl
     from ..sources.ros2.rclpy_loader import RosUnavailable
     from ..sources.ros2.runtime import RosRuntime
 
@@ -198,7 +210,7 @@ def _ros_control(args: argparse.Namespace, runtime: Any):
             runtime = RosRuntime()
         except RosUnavailable as error:
             raise CommandError(str(error), EXIT_ERROR) from None
-    control = LoggerControl(
+    control = Ros2LoggerControl(
         runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False)
     )
     control.start()
@@ -240,14 +252,13 @@ def _find_node(control: Any, query: str, wait: float) -> GraphNode:
         raise CommandError(f"{query!r} names several nodes: {names}; give the full name", EXIT_USAGE)
     node = matches[0]
     if not node.has_logger_services:
-        from ..sources.ros2.logger_control import NoLoggerServices
-
-        raise CommandError(str(NoLoggerServices(node.fqn)), EXIT_NOT_FOUND)
+        raise CommandError(str(control.no_services(node.fqn)), EXIT_NOT_FOUND)
     return node
 
 
 def _list(control: Any, args: argparse.Namespace) -> int:
-    nodes = control.wait_for_graph(args.wait)
+    seen = control.wait_for_graph(args.wait)
+    nodes = seen.nodes
     if args.json:
         items = [
             {
@@ -264,8 +275,21 @@ def _list(control: Any, args: argparse.Namespace) -> int:
         for n in nodes:
             services = "logger-services" if n.has_logger_services else "no-logger-services"
             print(f"{n.fqn}\t{n.logger_name}\t{services}")
+    waited = f"{seen.waited_s:.1f} s"
     if not nodes:
-        _say(f"no nodes found (waited {args.wait:g} s; same ROS_DOMAIN_ID and discovery settings as the nodes?)")
+        _say(
+            f"no nodes found in {waited} (same ROS_DOMAIN_ID, RMW and discovery settings as the nodes? "
+            "--wait SECONDS waits longer)"
+        )
+        return EXIT_NOT_FOUND
+    if seen.settled:
+        _say(
+            f"{plural(len(nodes), 'node')} after {waited}, the graph unchanged for the last {control.graph_quiet_s:g} s"
+        )
+    else:
+        _say(
+            f"{plural(len(nodes), 'node')} after {waited}: the graph had not settled yet (--wait SECONDS waits longer)"
+        )
     return EXIT_OK
 
 
@@ -327,7 +351,7 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
 
 def _result(future: Any) -> Any:
     """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
-    from ..sources.ros2.logger_control import LoggerCallError, NodeNotFound, NoLoggerServices
+    from ..sources.logger_control import LoggerCallError, NodeNotFound, NoLoggerServices
 
     try:
         return future.result()

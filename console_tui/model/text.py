@@ -57,3 +57,10 @@ def first_line(text: str, limit: int) -> tuple[str, bool]:
     if newline != -1:
         return head[:newline], True
     return head[:limit], len(text) > limit
+
+
+def plural(count: int, word: str, words: str | None = None) -> str:
+    """``count`` and the noun in agreement, the count with thousands separators:
+    ``plural(1, "line")`` is ``1 line``, ``plural(1200, "line")`` is ``1,200 lines``;
+    ``words`` is the plural when it is not ``word + "s"`` (``plural(2, "entry", "entries")``)."""
+    return f"{count:,} {word if count == 1 else (words or word + 's')}"

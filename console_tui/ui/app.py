@@ -52,7 +52,7 @@ from .widgets.status_bar import StatusBar, StatusFacts
 from .widgets.table_columns import COLUMNS
 
 if TYPE_CHECKING:
-    from ..sources.ros2.logger_control import LoggerControl
+    from ..sources.logger_control import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
 #: Background filtering after a rule change: slices of this long, with the event loop free this long between them.

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 
 import pytest
 
 from console_tui.commands.loggers import EXIT_FAILED, EXIT_NOT_FOUND, EXIT_OK, EXIT_USAGE, main, parse_level
+
+from support.rosproc import BusyProcesses
 
 
 def run(capsys, *argv, runtime=None):
@@ -86,6 +89,34 @@ def test_list_get_set_and_failures(nodes, ros_runtime, capsys):
 
     status, out, err = run(capsys, "get", "gamma", "--wait", "0.5", runtime=ros_runtime)
     assert status == EXIT_NOT_FOUND and "no node 'gamma'" in err
+
+
+@pytest.mark.ros2
+def test_list_waits_for_every_node_under_load_and_says_how_long(nodes, ros_env):
+    names = ["n1", "n2", "n3", "n4"]
+    for process in [nodes.start("talker.py", "--name", name) for name in names]:
+        process.expect("ready")
+    with BusyProcesses(1):
+        for _run in range(2):  # a fresh process each time: discovery from nothing
+            result = subprocess.run(
+                [sys.executable, "-m", "console_tui", "loggers", "list"],
+                env=ros_env,
+                capture_output=True,
+                text=True,
+                timeout=60,
+            )
+            assert result.returncode == EXIT_OK, result.stderr
+            assert [line.split("\t")[0] for line in result.stdout.splitlines()] == [f"/{name}" for name in names]
+            assert re.fullmatch(
+                r"console-tui loggers: 4 nodes after \d+\.\d s, the graph unchanged for the last 2 s\n", result.stderr
+            )
+
+
+@pytest.mark.ros2
+def test_list_finding_no_node_says_so_and_exits_3(ros_runtime, capsys):
+    status, out, err = run(capsys, "list", "--wait", "1", runtime=ros_runtime)
+    assert (status, out) == (EXIT_NOT_FOUND, "")
+    assert err.startswith("console-tui loggers: no nodes found in 1.0 s (same ROS_DOMAIN_ID")
 
 
 @pytest.mark.ros2

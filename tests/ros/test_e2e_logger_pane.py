@@ -27,10 +27,10 @@ TALKER = "/ns/talker"
 def live(ros_runtime):
     """A ConsoleApp reading /rosout with a LoggerControl on the test's runtime; closed after."""
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import LoggerControl
+    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
     queue = IntakeQueue()
-    control = LoggerControl(ros_runtime, call_timeout=2.0)
+    control = Ros2LoggerControl(ros_runtime, call_timeout=2.0)
     app = ConsoleApp(
         queue=queue, sources=[LiveLogSource(ros_runtime, queue, topic="/rosout")], utc=True, logger_control=control
     )

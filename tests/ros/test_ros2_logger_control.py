@@ -15,9 +15,9 @@ ALPHA = "/ns/alpha"
 
 @pytest.fixture
 def control(ros_runtime):
-    from console_tui.sources.ros2.logger_control import LoggerControl
+    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
-    control = LoggerControl(ros_runtime, call_timeout=1.5)
+    control = Ros2LoggerControl(ros_runtime, call_timeout=1.5)
     control.events = []
     control.subscribe(control.events.append)
     control.start()
@@ -75,7 +75,7 @@ def log_all(process, tag, **extra):
 
 
 def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
-    from console_tui.sources.ros2.logger_control import NodesChanged, NoLoggerServices
+    from console_tui.sources.logger_control import NodesChanged, NoLoggerServices
 
     start_alpha(nodes, ["--name", "beta", "--no-logger-service"])
     ready(control)
@@ -91,7 +91,7 @@ def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
 
 
 def test_get_and_set_round_trip_and_a_refused_level(nodes, control):
-    from console_tui.sources.ros2.logger_control import LevelRefused, NodeNotFound
+    from console_tui.sources.logger_control import LevelRefused, NodeNotFound
 
     start_alpha(nodes)
     ready(control)
@@ -137,7 +137,7 @@ def test_debug_level_lets_debug_messages_through_and_info_stops_them(nodes, cont
 
 
 def test_temporary_debug_reverts_on_time(nodes, control, rosout):
-    from console_tui.sources.ros2.logger_control import TemporaryEnded
+    from console_tui.sources.logger_control import TemporaryEnded
 
     alpha = start_alpha(nodes)
     ready(control)
@@ -157,10 +157,10 @@ def test_temporary_debug_reverts_on_time(nodes, control, rosout):
 
 
 def test_close_puts_temporary_levels_back(nodes, ros_runtime):
-    from console_tui.sources.ros2.logger_control import LoggerControl
+    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
     start_alpha(nodes)
-    first = LoggerControl(ros_runtime)
+    first = Ros2LoggerControl(ros_runtime)
     first.start()
     ready(first)
     first.set_level(ALPHA, "ns.alpha", 30).result(timeout=10)
@@ -171,7 +171,7 @@ def test_close_puts_temporary_levels_back(nodes, ros_runtime):
     with pytest.raises(Exception, match="closed"):
         first.get_levels(ALPHA, ["ns.alpha"]).result(timeout=10)
 
-    second = LoggerControl(ros_runtime)
+    second = Ros2LoggerControl(ros_runtime)
     second.start()
     try:
         ready(second)
@@ -181,7 +181,7 @@ def test_close_puts_temporary_levels_back(nodes, ros_runtime):
 
 
 def test_a_node_killed_during_a_call_gives_a_clear_failure(nodes, control):
-    from console_tui.sources.ros2.logger_control import CallTimedOut, NodeGone
+    from console_tui.sources.logger_control import CallTimedOut, NodeGone
 
     alpha = start_alpha(nodes, ["--name", "gamma"])
     ready(control)
@@ -201,7 +201,7 @@ def test_a_node_killed_during_a_call_gives_a_clear_failure(nodes, control):
 
 
 def test_a_node_that_exits_leaves_the_list(nodes, control):
-    from console_tui.sources.ros2.logger_control import NodeNotFound
+    from console_tui.sources.logger_control import NodeNotFound
 
     alpha = start_alpha(nodes)
     ready(control)

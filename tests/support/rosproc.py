@@ -145,3 +145,22 @@ def pid_alive(pid: int) -> bool:
     except OSError:
         return False
     return True
+
+
+class BusyProcesses:
+    """``count`` processes that only spin, to load the machine while a test runs (a context
+    manager: they are killed at the end)."""
+
+    def __init__(self, count: int = 1) -> None:
+        self.count = count
+        self.processes: list[subprocess.Popen] = []
+
+    def __enter__(self) -> BusyProcesses:
+        for _ in range(self.count):
+            self.processes.append(subprocess.Popen([sys.executable, "-c", "while True: pass"]))
+        return self
+
+    def __exit__(self, *_exc: object) -> None:
+        for process in self.processes:
+            process.kill()
+            process.wait(5)

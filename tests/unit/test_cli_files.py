@@ -46,3 +46,30 @@ def test_convert_to_stdout_and_unwritable_output(tmp_path, capsys):
     assert len(capsys.readouterr().out.splitlines()) == 5
     assert main(["convert", str(DATA / "rqt_console_ros1.csv"), "-o", str(tmp_path / "no" / "x.csv")]) == 2
     assert "cannot write" in capsys.readouterr().err
+
+
+def test_convert_exit_status_says_how_it_went(tmp_path, capsys):
+    """0 clean, 1 written with problems, 2 nothing written (issue 11, item 5)."""
+    good = DATA / "rqt_console_ros2.csv"
+    out = tmp_path / "out.csv"
+    assert main(["convert", str(good), "-o", str(out)]) == 0
+    damaged = tmp_path / "damaged.csv"
+    damaged.write_bytes(good.read_bytes() + b"GARBAGE\n")
+    assert main(["convert", str(damaged), "-o", str(out)]) == 1
+    assert "damaged.csv: line 17: not a rqt_console CSV record: 'GARBAGE'" in capsys.readouterr().err
+    assert main(["convert", str(tmp_path / "missing.csv"), "-o", "-"]) == 2
+    captured = capsys.readouterr()
+    assert captured.out == ""  # no CSV header before the failure
+    assert "missing.csv: no such file or directory" in captured.err and "nothing written" in captured.err
+    assert main(["convert", str(tmp_path / "missing.csv"), "-o", str(tmp_path / "new.csv")]) == 2
+    assert not (tmp_path / "new.csv").exists()
+
+
+def test_convert_reads_a_kinetic_rosout_log(tmp_path, capsys):
+    log = tmp_path / "rosout.log"
+    log.write_bytes(b"0.000000000 INFO [/path/main.cpp:167(MapServer) [topics: /rosout] msg [/x\n" * 451)
+    out = tmp_path / "out.jsonl"
+    assert main(["convert", str(log), "-o", str(out)]) == 0
+    lines = out.read_text().splitlines()
+    assert len(lines) == 451 and json.loads(lines[0])["function"] == "MapServer"
+    assert "451 records from 1 file(s)" in capsys.readouterr().err

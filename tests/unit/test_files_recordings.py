@@ -64,6 +64,62 @@ def test_a_recording_without_log_topics_is_empty_not_an_error(tmp_path):
     assert records == [] and log_file.topics == []
 
 
+def _edit_metadata(bag, edit) -> None:
+    from ruamel.yaml import YAML
+
+    path = bag / "metadata.yaml"
+    document = YAML(typ="safe").load(path.read_text())
+    edit(document["rosbag2_bagfile_information"])
+    with open(path, "w") as out:
+        YAML().dump(document, out)
+
+
+def test_sqlite3_directory_and_its_db3_give_the_same_records(tmp_path):
+    """Issue 11, item 8: the directory gave 0 records and no word when its metadata.yaml
+    described the topics otherwise than the .db3 (order, QoS profiles, type hashes)."""
+    bag = write_rosbag2(tmp_path / "bag", hostile_records(), storage="sqlite3")
+    never = "\n    sec: 2147483647\n    nsec: 4294967295"
+    qos = (  # as rosbag2 (Humble) writes a publisher's QoS into metadata.yaml
+        "- history: 3\n  depth: 0\n  reliability: 1\n  durability: 1\n"
+        f"  deadline:{never}\n  lifespan:{never}\n  liveliness: 1\n"
+        f"  liveliness_lease_duration:{never}\n  avoid_ros_namespace_conventions: false\n"
+    )
+
+    def differ(info) -> None:
+        info["topics_with_message_count"].reverse()
+        for topic in info["topics_with_message_count"]:
+            topic["topic_metadata"]["offered_qos_profiles"] = qos
+            topic["topic_metadata"]["type_description_hash"] = "RIHS01_" + "0" * 64
+
+    _edit_metadata(bag, differ)
+    from_directory, directory = _read(bag)
+    from_db3, _ = _read(next(bag.glob("*.db3")))
+    assert len(from_directory) == len(hostile_records()) and list(directory.problems) == []
+    assert [fields(r)[:-1] for r in from_directory] == [fields(r)[:-1] for r in from_db3]
+
+
+def test_an_empty_recording_always_says_why(tmp_path):
+    quiet = write_rosbag2(tmp_path / "quiet", hostile_records(), storage="sqlite3", log_topics=())
+    files = [open_log_file(quiet)]
+    assert [r for batch in load_records(files) for r in batch] == []
+    (problem,) = files[0].problems
+    assert problem.what == (
+        "no log messages: no log topic (rcl_interfaces/msg/Log, rosgraph_msgs/Log) was recorded, only /chatter"
+    )
+
+    def promise(info) -> None:
+        entry = {**info["topics_with_message_count"][0]}
+        entry["topic_metadata"] = {**entry["topic_metadata"], "name": "/rosout", "type": "rcl_interfaces/msg/Log"}
+        info["topics_with_message_count"].append(entry)
+
+    _edit_metadata(quiet, promise)
+    files = [open_log_file(quiet)]
+    assert [r for batch in load_records(files) for r in batch] == []
+    assert [p.what for p in files[0].problems] == [
+        "metadata.yaml lists log messages on /rosout, but the recording's files hold no such topic"
+    ]
+
+
 def test_large_images_are_not_read(tmp_path):
     bag = write_rosbag2(tmp_path / "img", hostile_records() * 4, storage="mcap", image_bytes=400_000, images_per_log=1)
     mcap_file = next(bag.glob("*.mcap"))
@@ -121,10 +177,9 @@ def test_damaged_log_message_in_an_indexed_mcap_is_reported_and_skipped(tmp_path
         ("empty.bag", b"", "the file is empty"),
         ("notes.bag", b"hello\n", "does not start like one"),
         ("garbage.mcap", random.Random(7).randbytes(5000), "does not start like one"),
-        ("half.bag", b"#ROSBAG V2.0\n" + random.Random(8).randbytes(100), "cannot read this ROS 1 bag"),
         ("half.db3", b"SQLite format 3\x00" + bytes(200), "cannot read this rosbag2 recording"),
     ],
-    ids=["empty", "text", "garbage", "half-bag", "half-db3"],
+    ids=["empty", "text", "garbage", "half-db3"],
 )
 def test_broken_recordings_say_what_is_wrong(tmp_path, name, content, message):
     path = tmp_path / name
@@ -134,15 +189,67 @@ def test_broken_recordings_say_what_is_wrong(tmp_path, name, content, message):
     assert message in str(caught.value) and str(caught.value).startswith(name)
 
 
-def test_unindexed_ros1_bag_says_to_reindex(tmp_path):
+def test_unindexed_ros1_bag_is_read_from_the_start_and_says_to_reindex(tmp_path):
     bag = write_ros1_bag(tmp_path / "r.bag", hostile_records())
     data = bytearray(bag.read_bytes())
     index_pos = data.find(b"index_pos=") + len("index_pos=")
     data[index_pos : index_pos + 8] = bytes(8)  # what an interrupted 'rosbag record' leaves
     active = tmp_path / "r.bag.active"
     active.write_bytes(bytes(data))
-    with pytest.raises(FormatError, match="rosbag reindex"):
-        open_log_file(active)
+    records, log_file = _read(active)
+    assert [fields(r) for r in records] == _expected("r.bag.active")
+    (problem,) = log_file.problems
+    assert "no index" in problem.what and "rosbag reindex" in problem.what and log_file.topics == ["/rosout"]
+
+
+@pytest.mark.parametrize("compression", ["", "lz4"])
+def test_ros1_bag_with_a_damaged_index_keeps_what_can_be_read(tmp_path, compression):
+    """Issue 11, item 9: an index the library rejects ended 'convert' with an
+    AssertionError traceback and the app with 'loading stopped: AssertionError:'."""
+    bag = write_ros1_bag(tmp_path / "r.bag", hostile_records() * 50, compression=compression)
+    data = bytearray(bag.read_bytes())
+    index_data = data.find(b"\x04\x00\x00\x00op=\x04") - 4  # the first index record after a chunk
+    assert index_data > 0 and data[index_data : index_data + 4] == (47).to_bytes(4, "little")
+    data[index_data : index_data + 4] = (48).to_bytes(4, "little")
+    damaged = tmp_path / "damaged.bag"
+    damaged.write_bytes(bytes(data))
+    records, log_file = _read(damaged)
+    assert [fields(r) for r in records] == [fields(r) for r in hostile_records("damaged.bag") * 50]
+    first, where = log_file.problems  # why the index went unused, then where the damage is
+    assert first.what.startswith("its index is damaged (AssertionError (a check of the reading library failed")
+    assert "read record by record from the start instead" in first.what
+    assert index_data <= where.offset < index_data + 200 and "what came before it was read" in where.what
+    if compression:
+        return  # one compressed chunk: cut, it holds nothing readable
+    cut = tmp_path / "cut.bag"
+    cut.write_bytes(bytes(data[: len(data) // 2]))
+    records, log_file = _read(cut)
+    assert 0 < len(records) < len(hostile_records()) * 50
+    assert [fields(r) for r in records] == [fields(r) for r in (hostile_records("cut.bag") * 50)[: len(records)]]
+    assert "what came before it was read" in log_file.problems.items[-1].what
+
+
+def test_convert_and_the_loader_name_the_damaged_bag(tmp_path, capsys):
+    from console_tui.cli import main
+
+    bag = write_ros1_bag(tmp_path / "r.bag", hostile_records())
+    data = bytearray(bag.read_bytes())
+    index_data = data.find(b"\x04\x00\x00\x00op=\x04") - 4
+    data[index_data : index_data + 4] = (48).to_bytes(4, "little")
+    (tmp_path / "r.bag").write_bytes(bytes(data))
+    assert main(["convert", str(tmp_path / "r.bag"), "-o", str(tmp_path / "out.jsonl")]) == 1
+    err = capsys.readouterr().err
+    assert "r.bag: its index is damaged (AssertionError" in err and "Traceback" not in err
+    assert len((tmp_path / "out.jsonl").read_text().split("\n")) == len(hostile_records()) + 1
+    garbage = tmp_path / "half.bag"
+    garbage.write_bytes(b"#ROSBAG V2.0\n" + random.Random(8).randbytes(100))
+    queue = IntakeQueue()
+    load = FileLoad([garbage], queue)
+    load.start()
+    assert load.join(30)
+    problems = [str(p) for p in load.problems()]
+    assert problems[0].startswith("half.bag: its index is damaged") and len(problems) == 2
+    assert "what came before it was read" in problems[1] and not load.error
 
 
 def test_several_files_merge_by_time_each_keeping_its_source(tmp_path):

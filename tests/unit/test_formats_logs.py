@@ -197,3 +197,21 @@ def test_atomic_save_keeps_the_old_file_when_interrupted(tmp_path):
 def test_save_to_a_missing_directory_raises_oserror(tmp_path):
     with pytest.raises(OSError):
         save_records(hostile_records(), tmp_path / "no" / "such" / "x.jsonl")
+
+
+def test_kinetic_rosout_log_without_a_node_field():
+    """Issue 11, item 7: the log4cxx rosout node (Kinetic and before) wrote no node name
+    and no ``]`` after the function; such files read as 0 records and a problem a line."""
+    data = (
+        b"\n\n0.000000000  Node Startup\n"
+        b"0.000000000 INFO [/ws/src/map_server/src/main.cpp:167(MapServer) [topics: /rosout] Loading map from image\n"
+        b"1487700000.250000000 WARN [/ws/src/n.cpp:12(operator()) [topics: /rosout, /map] two\nlines [/not markup]\n"
+        b"1487700001.000000000 ERROR [n.py:3(<module>) [topics: ] empty topics\n"
+    )
+    records, problems = read_text(data, RosoutLogFormat(), "rosout.log")
+    assert list(problems) == []
+    assert [(r.stamp_ns, r.level, r.node, r.file, r.function, r.line, r.msg) for r in records] == [
+        (0, 20, "", "/ws/src/map_server/src/main.cpp", "MapServer", 167, "Loading map from image"),
+        (1487700000_250000000, 30, "", "/ws/src/n.cpp", "operator()", 12, "two\nlines [/not markup]"),
+        (1487700001_000000000, 40, "", "n.py", "<module>", 3, "empty topics"),
+    ]

@@ -144,3 +144,23 @@ def test_jsonl_bad_lines_are_reported():
     assert [r.level for r in records] == [30, 30]
     assert [p.line for p in problems] == [2, 3, 4, 7, 7]
     assert "'stamp_ns' is not an integer" in problems.items[1].what
+
+
+def test_damaged_rqt_csv_keeps_the_row_before_each_bad_line():
+    """Issue 11, item 5: a line that is no row used to take the valid row before it down
+    with it, and the problem named that row's line."""
+    data = (
+        b"message;severity;node;stamp;location\n"
+        b'"one";"20";"n";"1.000000000";"f:g:1"\n'
+        b"GARBAGE\n"
+        b'"two\nlines";"30";"n";"2.000000000";"f:g:2"\n'
+        b"more garbage\n"
+        b"and more\n"
+        b'"three";"40";"n";"3.000000000";"f:g:3"\n'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "damaged.csv")
+    assert [(r.msg, r.level) for r in records] == [("one", 20), ("two\nlines", 30), ("three", 40)]
+    assert [(p.line, p.what) for p in problems] == [
+        (3, "not a rqt_console CSV record: 'GARBAGE'"),
+        (6, "not a rqt_console CSV record: 'more garbage' (and 1 more lines up to line 7)"),
+    ]

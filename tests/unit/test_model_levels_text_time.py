@@ -71,3 +71,18 @@ def test_stamp_text_pads_nanoseconds():
 def test_clock_text_utc():
     assert timefmt.clock_text(1_700_000_000_123_456_789, utc=True) == "22:13:20.123"
     assert timefmt.full_text(1_700_000_000_123_456_789, utc=True) == "2023-11-14 22:13:20.123456789 +0000"
+
+
+@pytest.mark.parametrize(
+    ("count", "words", "expected"),
+    [
+        (0, ("line",), "0 lines"),
+        (1, ("line",), "1 line"),
+        (2, ("line",), "2 lines"),
+        (1200, ("record",), "1,200 records"),
+        (1, ("entry", "entries"), "1 entry"),
+        (3, ("entry", "entries"), "3 entries"),
+    ],
+)
+def test_plural_agrees_with_the_count(count, words, expected):
+    assert text.plural(count, *words) == expected

@@ -99,7 +99,7 @@ class JsonLinesFormat(TextFormat):
             return False
         try:
             values = json.loads(first_line)
-        except ValueError:
+        except (ValueError, RecursionError):
             return False
         return isinstance(values, dict) and "stamp_ns" in values and "msg" in values
 
@@ -112,6 +112,9 @@ class JsonLinesFormat(TextFormat):
                 values = decode(text)
             except ValueError as error:
                 problems.add(f"not JSON: {error}", line=number)
+                continue
+            except RecursionError:
+                problems.add("JSON nested too deeply to read (not a record of this format)", line=number)
                 continue
             try:
                 yield record_from_json(values, source)

@@ -8,6 +8,13 @@ LEVEL is FATAL, ERROR, WARN, INFO or DEBUG (an unknown level as its number); the
 ``[topics: ...] `` part is left out when ``/rosout/omit_topics`` is set. Each file
 starts with a blank line, another, and ``<time>  Node Startup``. A message with
 newlines in it continues on the lines after.
+
+Older rosout nodes (the log4cxx one of ROS Kinetic and before) wrote no name, and no
+``]`` after the function::
+
+    <sec>.<nsec> <LEVEL> [<file>:<line>(<function>) [topics: <t1>, <t2>] <msg>
+
+Such records are read with an empty node name.
 """
 
 from __future__ import annotations
@@ -28,6 +35,12 @@ _RECORD = re.compile(
     r"\A(?P<sec>\d+)\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d+) (?P<name>[^ \n]*) "
     r"\[(?P<file>[^\n]*?):(?P<line>\d+)\((?P<function>[^\n]*?)\)\] "
     r"(?:\[topics: (?P<topics>[^\n]*?)\] )?(?P<msg>.*)\Z",
+    re.DOTALL,
+)
+_OLD_RECORD = re.compile(
+    r"\A(?P<sec>\d+)\.(?P<nsec>\d{9}) (?P<level>FATAL|ERROR|WARN|INFO|DEBUG|\d+) "
+    r"\[(?P<file>[^\n]*?):(?P<line>\d+)\((?P<function>[^\n]*?)\) "
+    r"\[topics: (?P<topics>[^\n]*?)\] (?P<msg>.*)\Z",
     re.DOTALL,
 )
 
@@ -59,7 +72,7 @@ class RosoutLogFormat(TextFormat):
 
 
 def parse_rosout_record(text: str, source: str) -> LogRecord:
-    match = _RECORD.match(text)
+    match = _RECORD.match(text) or _OLD_RECORD.match(text)
     if match is None:
         raise RecordError(f"not a rosout.log record: {text[:60]!r}")
     level_text = match["level"]
@@ -67,7 +80,7 @@ def parse_rosout_record(text: str, source: str) -> LogRecord:
     return LogRecord(
         stamp_ns=int(match["sec"]) * 1_000_000_000 + int(match["nsec"]),
         level=level,
-        node=match["name"],
+        node=match.groupdict().get("name") or "",
         msg=match["msg"],
         file=match["file"],
         function=match["function"],

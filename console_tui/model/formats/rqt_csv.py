@@ -31,7 +31,7 @@ from ..record import LogRecord
 from ..timefmt import stamp_text
 from .problems import Problems, RecordError
 from .text_format import TextFormat, TextFormatWriter
-from .textlines import LineKind, TextLines, group_lines, stray_text_problem
+from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
 
 ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
 ROS1_COLUMNS = ("message", "severity", "node", "stamp", "topics", "location")
@@ -41,6 +41,8 @@ _STAMP = re.compile(r"(\d+)\.(\d+)\Z")
 _LINE_NUMBER = re.compile(r"\d+\Z")
 _WINDOWS_DRIVE = re.compile(r"[A-Za-z]:[\\/]")
 _FLUSH_EVERY = 10_000
+#: How many places a damaged row is tried to end at before it is given up.
+_RECOVERY_ATTEMPTS = 1_000
 
 
 def escape_message(text: str) -> str:
@@ -142,7 +144,35 @@ class RqtCsvFormat(TextFormat):
             try:
                 yield _parse_row(group.text, columns, ros1, source)
             except RecordError as error:
-                problems.add(str(error), line=group.line)
+                yield from self._row_then_stray_lines(group, columns, ros1, source, problems, error)
+
+    def _row_then_stray_lines(
+        self,
+        group: LineGroup,
+        columns: tuple[str, ...],
+        ros1: bool,
+        source: str,
+        problems: Problems,
+        error: RecordError,
+    ) -> Iterator[LogRecord]:
+        """A group that is no row may be a whole row followed by lines that belong to no
+        row (a damaged file): read the row, and report those lines where they are."""
+        lines = group.lines
+        attempts = 0
+        for end in range(len(lines) - 1):
+            if not lines[end].rstrip("\r").endswith('"'):
+                continue  # a row's last line ends with its closing quote
+            attempts += 1
+            if attempts > _RECOVERY_ATTEMPTS:
+                break
+            try:
+                record = _parse_row("\n".join(lines[: end + 1]), columns, ros1, source)
+            except RecordError:
+                continue
+            yield record
+            stray_text_problem(LineGroup(group.line + end + 1, lines[end + 1 :], False), problems, self.title)
+            return
+        problems.add(str(error), line=group.line)
 
 
 def _classify(line: str) -> LineKind:

@@ -16,10 +16,13 @@ from typing import BinaryIO
 from .problems import Problems
 
 BLOCK_SIZE = 1 << 20
-#: Longest line kept whole; longer lines are cut here (and reported).
+#: Longest line kept: the rest of a longer line is left out (and reported), so one line
+#: costs at most this much memory however long it is in the file.
 MAX_LINE = 16 << 20
 #: Most lines one record may span before it is cut off (and reported).
 MAX_RECORD_LINES = 100_000
+#: Most characters one record may hold before it is cut off (and reported).
+MAX_RECORD_CHARS = MAX_LINE
 
 
 class TextLines:
@@ -27,7 +30,9 @@ class TextLines:
 
     ``offset`` is how many bytes have been turned into lines so far (for progress and
     for locating problems). Invalid UTF-8 is replaced with U+FFFD and NUL bytes are
-    reported as binary data, each once per file, with line and byte offset.
+    reported as binary data, each once per file, with line and byte offset. A line
+    longer than ``MAX_LINE`` bytes keeps its first ``MAX_LINE`` bytes; the rest of it is
+    read past (not kept) and reported.
     """
 
     def __init__(self, stream: BinaryIO, problems: Problems, *, block_size: int = BLOCK_SIZE) -> None:
@@ -45,19 +50,34 @@ class TextLines:
     def __iter__(self) -> Iterator[tuple[int, str]]:
         line_number = 1
         pending = b""
+        left_out = -1  # >= 0 while reading past the rest of an over-long line
         while True:
             block = self.stream.read(self.block_size)
             if not block:
                 break
+            if left_out >= 0:
+                end = block.find(b"\n")
+                if end < 0:
+                    left_out += len(block)
+                    self.offset += len(block)
+                    continue
+                left_out += end
+                self.offset += end + 1
+                self._report_cut(line_number, left_out)
+                left_out = -1
+                line_number += 1
+                block = block[end + 1 :]
+                if not block:
+                    continue
             data = pending + block if pending else block
             cut = data.rfind(b"\n")
             if cut < 0:
                 pending = data
                 if len(pending) > MAX_LINE:
-                    self.problems.add(f"line longer than {MAX_LINE} bytes: cut", line=line_number)
-                    yield line_number, self._decode(pending, line_number)
+                    kept = _char_boundary(pending, MAX_LINE)
+                    yield line_number, self._decode(pending[:kept], line_number)
+                    left_out = len(pending) - kept
                     self.offset += len(pending)
-                    line_number += 1
                     pending = b""
                 continue
             complete, pending = data[: cut + 1], data[cut + 1 :]
@@ -67,12 +87,23 @@ class TextLines:
                 yield line_number, text
                 line_number += 1
             self.offset += len(complete)
-        if pending:
+        if left_out >= 0:
+            self.ended_with_newline = False
+            self._report_cut(line_number, left_out)
+            line_number += 1
+        elif pending:
             self.ended_with_newline = False
             yield line_number, self._decode(pending, line_number)
             self.offset += len(pending)
             line_number += 1
         self.lines_read = line_number - 1
+
+    def _report_cut(self, line_number: int, left_out: int) -> None:
+        self.problems.add(
+            f"line longer than {MAX_LINE >> 20} MiB: its first {MAX_LINE >> 20} MiB were kept, "
+            f"the {left_out:,} bytes after them left out",
+            line=line_number,
+        )
 
     def _decode(self, data: bytes, first_line: int) -> str:
         if not self._reported_nul:
@@ -94,6 +125,14 @@ class TextLines:
                     line=first_line + data.count(b"\n", 0, error.start),
                 )
             return data.decode("utf-8", errors="replace")
+
+
+def _char_boundary(data: bytes, limit: int) -> int:
+    """The largest cut at or below ``limit`` that does not split a UTF-8 character."""
+    cut = limit
+    while cut > limit - 4 and cut > 0 and data[cut] & 0xC0 == 0x80:
+        cut -= 1
+    return cut if cut > limit - 4 else limit
 
 
 class LineKind(Enum):
@@ -125,15 +164,19 @@ def group_lines(
     """Group numbered lines into records: a START line and the MORE lines after it.
 
     MORE lines before the first START come out as one group with ``is_record=False``
-    (blank ones are dropped), so the format can say what it found there.
+    (blank ones are dropped), so the format can say what it found there. A record is cut
+    (and the cut reported) after ``MAX_RECORD_LINES`` lines or ``MAX_RECORD_CHARS``
+    characters; the lines after the cut come out as a group that is no record.
     """
     group: LineGroup | None = None
+    chars = 0
     for number, text in lines:
         kind = classify(text)
         if kind is LineKind.START:
             if group is not None:
                 yield group
             group = LineGroup(number, [text], True)
+            chars = len(text)
         elif kind is LineKind.SKIP:
             if group is not None and group.is_record:
                 continue
@@ -143,13 +186,19 @@ def group_lines(
         elif group is None:
             if text.strip():
                 group = LineGroup(number, [text], False)
-        elif len(group.lines) >= MAX_RECORD_LINES:
+                chars = len(text)
+        elif len(group.lines) >= MAX_RECORD_LINES or chars + len(text) > MAX_RECORD_CHARS:
             if group.is_record:
-                problems.add(f"record of more than {MAX_RECORD_LINES} lines: cut", line=group.line)
+                problems.add(
+                    f"record of more than {MAX_RECORD_LINES:,} lines or {MAX_RECORD_CHARS:,} characters: cut",
+                    line=group.line,
+                )
             yield group
             group = LineGroup(number, [text], False)
+            chars = len(text)
         else:
             group.lines.append(text)
+            chars += len(text) + 1
     if group is not None:
         yield group
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
-from .log_file import LogFile
+from .log_file import LogFile, describe_error
 from .merge import merge_by_time
 from .opener import open_log_file, source_names
 
@@ -56,20 +56,48 @@ def open_files(
     opened: list[LogFile] = []
     failures: list[Problem] = []
     for path, name in zip(paths, source_names(paths), strict=False):
-        try:
-            opened.append(open_log_file(path, log_format=log_format, source=name))
-        except FormatError as error:
-            failures.append(Problem(name, str(error).removeprefix(f"{name}: ")))
+        result = open_one(path, name, log_format)
+        if isinstance(result, Problem):
+            failures.append(result)
+        else:
+            opened.append(result)
     return opened, failures
+
+
+def open_one(path: str | os.PathLike[str], name: str, log_format: str | None) -> LogFile | Problem:
+    """A file opened, or the problem that says why it cannot be (never an exception)."""
+    try:
+        return open_log_file(path, log_format=log_format, source=name)
+    except FormatError as error:
+        return Problem(name, str(error).removeprefix(f"{name}: "))
+    except Exception as error:  # a reading library's surprise on a damaged file
+        return Problem(name, f"cannot read: {describe_error(error)}")
 
 
 def load_records(
     files: Sequence[LogFile], cancel: threading.Event | None = None, *, batch_size: int = 5_000
 ) -> Iterator[list[LogRecord]]:
-    """Every record of ``files`` merged by stamp, in batches (in the calling thread)."""
+    """Every record of ``files`` merged by stamp, in batches (in the calling thread).
+
+    A file that gives no record at all, and had no problem to explain it, gets one that
+    says so (an empty result always comes with its reason)."""
     if not files:
         return iter(())
-    return merge_by_time([f.batches(cancel) for f in files], batch_size=batch_size)
+    return merge_by_time([_counted(f, cancel) for f in files], batch_size=batch_size)
+
+
+def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[LogRecord]]:
+    """A file's batches, counted; an error a reader did not expect ends that file only."""
+    count = 0
+    try:
+        for batch in file.batches(cancel):
+            count += len(batch)
+            yield batch
+    except Exception as error:
+        file.problems.add(f"reading stopped: {describe_error(error)}; what came before was read")
+    file.records = count
+    if count == 0 and not len(file.problems) and not (cancel is not None and cancel.is_set()):
+        file.problems.add(file.empty_reason())
 
 
 class FileLoad:
@@ -151,17 +179,18 @@ class FileLoad:
             for path, name in zip(self.paths, self._names, strict=False):
                 if self.cancel_event.is_set():
                     break
-                try:
-                    self.files.append(open_log_file(path, log_format=self.log_format, source=name))
-                except FormatError as error:
-                    self.failures.append(Problem(name, str(error).removeprefix(f"{name}: ")))
+                result = open_one(path, name, self.log_format)
+                if isinstance(result, Problem):
+                    self.failures.append(result)
+                else:
+                    self.files.append(result)
                 self._changed()
             for batch in load_records(self.files, self.cancel_event):
                 self._deliver(batch)
                 if self.cancel_event.is_set():
                     break
         except Exception as error:  # the app must learn of it, never die of it
-            self.error = f"loading stopped: {type(error).__name__}: {error}"
+            self.error = f"loading stopped: {describe_error(error)}"
         finally:
             for file in self.files:
                 file.close()

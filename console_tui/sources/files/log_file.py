@@ -16,6 +16,15 @@ from ...model.record import LogRecord
 Cancel = threading.Event
 
 
+def describe_error(error: BaseException) -> str:
+    """An unexpected error of a reading library, for a user: its kind and its text, or
+    what an error without text means (a library's internal check failed on bad data)."""
+    text = str(error)
+    if text:
+        return f"{type(error).__name__}: {text}"
+    return f"{type(error).__name__} (a check of the reading library failed on this data: the file is probably damaged)"
+
+
 class LogFile(ABC):
     """An opened log file or recording, ready to be read once into record batches.
 
@@ -36,10 +45,16 @@ class LogFile(ABC):
         self.problems = Problems(source)
         self.total = 1
         self.done = 0
+        #: Records read, once ``batches`` has run to its end (set by the loader).
+        self.records = 0
 
     @abstractmethod
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         """The records, in batches, in the file's order; stops early once ``cancel`` is set."""
+
+    def empty_reason(self) -> str:
+        """Why reading gave no record, when no problem says it already."""
+        return "no log records in it"
 
     def close(self) -> None:  # noqa: B027 - most files hold nothing to release
         """Release what opening took (file handles); safe to call more than once."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -29,9 +30,15 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
     if file_path.name == "metadata.yaml" and file_path.is_file():
         file_path = file_path.parent
     name = source or file_path.name or str(file_path)
-    if not file_path.exists():
-        raise FormatError(f"{name}: no such file or directory")
-    if file_path.is_dir():
+    try:
+        mode = file_path.stat().st_mode
+    except FileNotFoundError:
+        raise FormatError(f"{name}: no such file or directory") from None
+    except OSError as error:
+        raise FormatError(f"{name}: cannot read: {error.strerror or error}") from None
+    if not stat.S_ISDIR(mode) and not stat.S_ISREG(mode):
+        raise FormatError(f"{name}: {_not_regular(mode)}, not a file: only files and folders are read")
+    if stat.S_ISDIR(mode):
         from .recordings import open_recording
 
         return open_recording(file_path, name, "rosbag2")
@@ -50,6 +57,17 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
     env_template = os.environ.get(FORMAT_VARIABLE, "")
     candidates = text_formats(log_format, (env_template,) if env_template else ())
     return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name))
+
+
+def _not_regular(mode: int) -> str:
+    """What a file that is neither a regular file nor a directory is."""
+    if stat.S_ISFIFO(mode):
+        return "a named pipe (FIFO)"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    return "a special file"
 
 
 def source_names(paths: Sequence[str | os.PathLike[str]]) -> list[str]:

@@ -39,7 +39,7 @@ from ...model.logger_levels import (
 from .side_pane import SidePane
 
 if TYPE_CHECKING:
-    from ...sources.ros2.logger_control import LoggerControl
+    from ...sources.logger_control import LoggerControl
 
 #: How long ``t`` sets a temporary level for unless told otherwise.
 DEFAULT_TEMPORARY_S = 30.0
@@ -398,7 +398,7 @@ class LoggerPane(SidePane):
         self.post_message(self.ControlEvent(event))
 
     def on_logger_pane_control_event(self, message: ControlEvent) -> None:
-        from ...sources.ros2.logger_control import NodesChanged, TemporaryEnded
+        from ...sources.logger_control import NodesChanged, TemporaryEnded
 
         message.stop()
         event = message.event

@@ -1,0 +1,595 @@
+"""Logger levels of a ROS graph's nodes, whatever the ROS: the errors, the events, the common part.
+
+A ``LoggerControl`` runs one background thread (``console-tui-loggers``) that makes every ROS
+call. Its methods may be called from any thread and never block: calls return
+``concurrent.futures.Future`` objects that always complete, within the call timeout, with a
+result or a ``LoggerCallError`` whose text is the message to show. A UI adds a done callback
+that posts the outcome back to its own thread (the callback runs on the loggers thread); a
+command line waits with ``future.result()``.
+
+Levels are numbers on the ROS 2 scale everywhere (``model.levels.Severity``: 10 DEBUG ... 50
+FATAL, 0 = unset, the logger inherits). Temporary levels are restored by the loggers thread
+when their time is up, whatever the UI does. ``close`` restores the ones still running before
+it returns (each restore waits up to the call timeout); a process killed outright leaves them set.
+
+A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``).
+The subclass provides, called on the loggers thread unless said otherwise:
+
+- ``_open()``: set up (a node, a connection to the master). An error ends the control and
+  becomes its ``problem``.
+- ``_look()``: the graph now, as ``(nodes, with_services)``: every node as a ``GraphNode``
+  whose ``has_logger_services`` says whether it offers the logger services, and the fully
+  qualified names of the nodes that show any service at all. Console-tui's own nodes and hidden
+  ones are left out here, not there.
+- ``_call_get(node, names)`` and ``_call_set(node, levels, restore=...)`` (any thread): a future
+  of ``{logger: level}``. Build a request, pass it to ``self._submit(...)``, map its reply with
+  ``futures.then``; raise ``LevelRefused`` for levels the node refused or the ROS cannot express.
+- ``_send(call)``: start a submitted call, returning an object with ``done()``, ``exception()``
+  and ``result()`` (any future), or None while the service cannot take it yet (asked again on
+  the next pass). Never blocks: a ROS whose calls block runs them on a worker thread.
+- ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
+- ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
+
+and may override ``_lost(call)`` (a sent call's service went away: default never),
+``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
+``no_services_hint`` (how a user gives a node the logger services).
+"""
+
+from __future__ import annotations
+
+import functools
+import threading
+import time
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Iterable, Mapping
+from concurrent.futures import Future
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..model.levels import Severity
+from ..model.logger_levels import (
+    DEFAULT_LOGGER,
+    OWN_NODE_PREFIX,
+    GraphNode,
+    TemporaryLevel,
+    TemporaryLevels,
+    match_nodes,
+)
+from .futures import done_future, failed_future, settle, then
+
+CALL_TIMEOUT_S = 2.0
+GRAPH_PERIOD_S = 0.5
+#: Discovery is busiest just after start: look at the graph more often then.
+STARTUP_GRAPH_PERIOD_S = 0.1
+STARTUP_S = 3.0
+#: Services are discovered a little after their node: a node is taken to have no logger
+#: services once it has been seen this long and shows other services (parameters), or
+#: three times as long when it shows none at all.
+NO_SERVICES_GRACE_S = 1.5
+#: A graph is taken as complete once it has been watched this long and no node has come, gone
+#: or changed for the quiet time. Fast DDS repeats its discovery every 3 s: on this project's
+#: shared 2-core machines, under load, a node missed by the first round was seen up to 4.6 s
+#: after start, and up to 2.5 s after the node seen before it.
+GRAPH_MIN_S = 5.0
+GRAPH_QUIET_S = 2.0
+RESTORE_ATTEMPTS = 3
+RESTORE_RETRY_S = 1.0
+MAX_IDLE_S = 0.1
+
+GET = "get"
+SET = "set"
+
+
+# -- failures and events --------------------------------------------------------------------
+
+
+class LoggerCallError(Exception):
+    """A logger-level call that failed; ``str()`` is the message to show."""
+
+    def __init__(self, node: str, message: str) -> None:
+        super().__init__(message)
+        self.node = node
+
+
+class NodeNotFound(LoggerCallError):
+    """No node of that name is in the graph."""
+
+    def __init__(self, node: str) -> None:
+        super().__init__(node, f"{node}: no such node in the ROS graph")
+
+
+class NoLoggerServices(LoggerCallError):
+    """The node is there but offers no logger services; ``hint`` says how to give it them."""
+
+    def __init__(self, node: str, hint: str = "") -> None:
+        super().__init__(node, f"{node} has no logger services" + (f": {hint}" if hint else ""))
+
+
+class CallTimedOut(LoggerCallError):
+    def __init__(self, node: str, seconds: float) -> None:
+        super().__init__(node, f"{node} did not answer within {seconds:g} s (busy, or gone)")
+
+
+class NodeGone(LoggerCallError):
+    def __init__(self, node: str) -> None:
+        super().__init__(node, f"{node} went away during the call")
+
+
+class LevelRefused(LoggerCallError):
+    """The node refused some levels; ``refused`` maps each logger name to the node's reason."""
+
+    def __init__(self, node: str, refused: Mapping[str, str]) -> None:
+        self.refused = dict(refused)
+        details = "; ".join(
+            f"{name or '(default)'}: {reason or 'no reason given'}" for name, reason in self.refused.items()
+        )
+        super().__init__(node, f"{node} refused the level: {details}")
+
+
+class ControlClosed(LoggerCallError):
+    def __init__(self, node: str) -> None:
+        super().__init__(node, "logger control is closed")
+
+
+@dataclass(frozen=True)
+class NodesChanged:
+    """The graph's nodes changed (or their logger services appeared)."""
+
+    nodes: tuple[GraphNode, ...]
+
+
+@dataclass(frozen=True)
+class TemporaryEnded:
+    """A temporary level is over: ``previous`` restored, or ``error`` says why not."""
+
+    entry: TemporaryLevel
+    error: LoggerCallError | None = None
+
+
+LoggerEvent = NodesChanged | TemporaryEnded
+
+
+# -- the control --------------------------------------------------------------------------
+
+
+@dataclass
+class Call:
+    """A call submitted to a node's logger service, as the loggers thread moves it on."""
+
+    node: str
+    #: ``GET`` or ``SET``.
+    service: str
+    request: Any
+    deadline: float
+    future: Future[Any]
+    #: Puts a temporary level back: still sent while closing.
+    restore: bool = False
+    #: The subclass's own state for the call (its client, say).
+    handle: Any = None
+    #: What ``_send`` returned: the reply to come.
+    sent: Any = None
+
+
+@dataclass(frozen=True)
+class GraphWait:
+    """What ``wait_for_graph`` saw: the nodes, how long it waited, and whether the graph had
+    settled (no change for the quiet time, every node's logger services known) or the deadline
+    came first."""
+
+    nodes: tuple[GraphNode, ...]
+    waited_s: float
+    settled: bool
+
+
+@dataclass
+class _Graph:
+    nodes: tuple[GraphNode, ...] = ()
+    by_fqn: dict[str, GraphNode] = field(default_factory=dict)
+    first_seen: dict[str, float] = field(default_factory=dict)
+    #: Nodes that show at least one service of any kind.
+    with_services: frozenset[str] = frozenset()
+    refreshes: int = 0
+    #: When the nodes last changed (the first look counts as a change).
+    changed_at: float = 0.0
+
+    def settled(self, node: GraphNode, now: float) -> bool:
+        """Whether what the graph says of the node's logger services can be believed."""
+        if node.has_logger_services:
+            return True
+        seen_for = now - self.first_seen.get(node.fqn, now)
+        grace = NO_SERVICES_GRACE_S if node.fqn in self.with_services else 3 * NO_SERVICES_GRACE_S
+        return seen_for >= grace
+
+
+class LoggerControl(ABC):
+    """Lists the graph's nodes and gets and sets their logger levels, off the caller's thread.
+
+    ``start`` it, ``subscribe`` to its events, call it from anywhere, ``close`` it at exit.
+    Nodes are named by their fully qualified name (``GraphNode.fqn``) in every call.
+    """
+
+    #: Appended to ``NoLoggerServices``: how a user gives a node the logger services.
+    no_services_hint = ""
+    #: How long the graph must be watched, and then stay unchanged, to be taken as complete
+    #: (``wait_for_graph``); a ROS whose graph comes whole from one place (a ROS 1 master) may
+    #: make them shorter.
+    graph_min_s = GRAPH_MIN_S
+    graph_quiet_s = GRAPH_QUIET_S
+
+    def __init__(
+        self,
+        *,
+        call_timeout: float = CALL_TIMEOUT_S,
+        include_hidden: bool = False,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self.call_timeout = call_timeout
+        self.include_hidden = include_hidden
+        self.clock = clock
+        self._lock = threading.Lock()
+        self._graph_changed = threading.Condition(self._lock)
+        self._graph = _Graph()
+        self._temporaries = TemporaryLevels(clock)
+        self._submitted: list[Call] = []
+        self._listeners: list[Callable[[LoggerEvent], None]] = []
+        self._stop = threading.Event()
+        self._woken = threading.Event()
+        self._closed = False
+        self._thread: threading.Thread | None = None
+        #: A one-line problem for the status bar, or "".
+        self.problem = ""
+
+    # -- control -----------------------------------------------------------------------------
+
+    def start(self) -> None:
+        self._thread = threading.Thread(target=self._run, name="console-tui-loggers", daemon=True)
+        self._thread.start()
+
+    def close(self, timeout: float | None = None) -> None:
+        """Restore running temporary levels, fail calls still waiting, stop the thread."""
+        self._stop.set()
+        self._trigger()
+        if self._thread is not None:
+            self._thread.join(self.call_timeout + 2.0 if timeout is None else timeout)
+
+    def subscribe(self, listener: Callable[[LoggerEvent], None]) -> None:
+        """Call ``listener(event)`` on the loggers thread for every ``LoggerEvent``.
+
+        It must be quick and must not block (post the event to the UI and return).
+        """
+        with self._lock:
+            self._listeners.append(listener)
+
+    def no_services(self, node: str) -> NoLoggerServices:
+        """The error saying that ``node`` has no logger services, with this ROS's hint."""
+        return NoLoggerServices(node, self.no_services_hint)
+
+    # -- the graph -----------------------------------------------------------------------------
+
+    @property
+    def nodes(self) -> tuple[GraphNode, ...]:
+        """The graph's nodes as last seen, sorted by name (console-tui's own never included)."""
+        return self._graph.nodes
+
+    def node(self, fqn: str) -> GraphNode | None:
+        return self._graph.by_fqn.get(fqn)
+
+    def is_settled(self, fqn: str) -> bool:
+        """Whether ``has_logger_services`` of that node can be believed yet.
+
+        Services are discovered a little after their node: show an unsettled node without
+        them as "checking", not as "no logger services".
+        """
+        graph = self._graph
+        node = graph.by_fqn.get(fqn)
+        return node is not None and graph.settled(node, self.clock())
+
+    def find_node(self, query: str, wait: float) -> list[GraphNode]:
+        """Blocking: the nodes ``query`` names (see ``match_nodes``), waiting up to ``wait`` s.
+
+        Returns as soon as a match offers logger services, or has been seen for long enough
+        to be sure it has none; at the deadline returns what matches (maybe nothing).
+        """
+        deadline = self.clock() + wait
+        with self._graph_changed:
+            while True:
+                graph = self._graph
+                matches = match_nodes(query, graph.nodes)
+                now = self.clock()
+                settled = any(graph.settled(node, now) for node in matches)
+                if settled or now >= deadline or self._stop.is_set():
+                    return matches
+                self._graph_changed.wait(min(deadline - now, GRAPH_PERIOD_S))
+
+    def wait_for_graph(self, deadline: float) -> GraphWait:
+        """Blocking: the nodes once the graph has settled, or at the latest after ``deadline`` s.
+
+        Settled: watched for ``graph_min_s`` at least, at least one node, none came, went or
+        changed for ``graph_quiet_s``, and what each says of its logger services can be
+        believed (``is_settled``). At least one look at the graph is always taken, even with a
+        deadline of 0.
+        """
+        started = self.clock()
+        end = started + deadline
+        with self._graph_changed:
+            while True:
+                graph, now = self._graph, self.clock()
+                looked = graph.refreshes > 0
+                quiet_until = max(graph.changed_at + self.graph_quiet_s, started + self.graph_min_s)
+                settled = (
+                    looked
+                    and bool(graph.nodes)
+                    and now >= quiet_until
+                    and all(graph.settled(node, now) for node in graph.nodes)
+                )
+                if settled or (looked and now >= end) or self._stop.is_set():
+                    return GraphWait(graph.nodes, now - started, settled)
+                wake = min(end, quiet_until) if graph.nodes and now < quiet_until else end
+                self._graph_changed.wait(max(0.01, min(wake - now, GRAPH_PERIOD_S)))
+
+    # -- calls ---------------------------------------------------------------------------------
+
+    def get_levels(self, node: str, names: Iterable[str]) -> Future[dict[str, int]]:
+        """The levels of ``names`` on ``node``: 0 for a logger with no level of its own."""
+        return self._call_get(node, list(names))
+
+    def set_levels(self, node: str, levels: Mapping[str, int]) -> Future[dict[str, int]]:
+        """Set levels (0 unsets a logger); the result is ``levels``. Ends their temporary levels."""
+
+        def done(result: dict[str, int]) -> dict[str, int]:
+            with self._lock:
+                for name in result:
+                    self._temporaries.cancel(node, name)
+            return result
+
+        return then(self._set(node, levels), done)
+
+    def set_level(self, node: str, logger: str, level: int) -> Future[dict[str, int]]:
+        return self.set_levels(node, {logger: level})
+
+    def set_temporary(self, node: str, logger: str, level: int, seconds: float) -> Future[TemporaryLevel]:
+        """Set ``level`` now and put the level it replaces back after ``seconds``.
+
+        Setting a temporary level again before the first one ends keeps the original level
+        to come back to. The result is the running ``TemporaryLevel``.
+        """
+        with self._lock:
+            running = self._temporaries.get(node, logger)
+        if running is not None:
+            previous: Future[int] = done_future(running.previous)
+        else:
+            previous = then(self.get_levels(node, [logger]), lambda levels: levels.get(logger, 0))
+
+        def register(before: int) -> TemporaryLevel:
+            with self._lock:
+                return self._temporaries.start(node, logger, level, before, seconds)
+
+        return then(previous, lambda before: then(self._set(node, {logger: level}), lambda _: register(before)))
+
+    def end_temporary(self, node: str, logger: str) -> Future[dict[str, int]]:
+        """End a temporary level now, putting its previous level back (done at once if none runs)."""
+        with self._lock:
+            entry = self._temporaries.cancel(node, logger)
+        if entry is None:
+            return done_future({})
+        return self._restore(entry)
+
+    def temporaries(self) -> tuple[TemporaryLevel, ...]:
+        """The temporary levels running, soonest first. ``entry.remaining(control.clock())``."""
+        with self._lock:
+            return self._temporaries.pending()
+
+    # -- what a ROS provides ---------------------------------------------------------------------
+
+    @abstractmethod
+    def _open(self) -> None: ...
+
+    @abstractmethod
+    def _look(self) -> tuple[Iterable[GraphNode], frozenset[str]]: ...
+
+    @abstractmethod
+    def _call_get(self, node: str, names: list[str]) -> Future[dict[str, int]]: ...
+
+    @abstractmethod
+    def _call_set(self, node: str, levels: dict[str, int], *, restore: bool) -> Future[dict[str, int]]: ...
+
+    @abstractmethod
+    def _send(self, call: Call) -> Any: ...
+
+    @abstractmethod
+    def _drop(self, call: Call) -> None: ...
+
+    @abstractmethod
+    def _shutdown(self) -> None: ...
+
+    def _lost(self, call: Call) -> bool:
+        return False
+
+    def _wait(self, timeout: float) -> None:
+        self._woken.wait(timeout)
+        self._woken.clear()
+
+    def _wake(self) -> None:
+        self._woken.set()
+
+    # -- internals: any thread ----------------------------------------------------------------
+
+    def _submit(self, node: str, service: str, request: Any, restore: bool = False) -> Future[Any]:
+        """Queue a call for the loggers thread: a future of the node's raw reply."""
+        future: Future[Any] = Future()
+        call = Call(node, service, request, self.clock() + self.call_timeout, future, restore)
+        with self._lock:
+            if self._closed:
+                future.set_exception(ControlClosed(node))
+                return future
+            self._submitted.append(call)
+        self._trigger()
+        return future
+
+    def _set(self, node: str, levels: Mapping[str, int], *, restore: bool = False) -> Future[dict[str, int]]:
+        levels = dict(levels)
+        bad = {name: f"not a level: {level!r}" for name, level in levels.items() if not _is_level_number(level)}
+        if levels.get(DEFAULT_LOGGER) == Severity.UNSET:
+            # rcutils takes it, and the whole process then logs everything: never send it.
+            bad[DEFAULT_LOGGER] = "the default logger cannot be unset"
+        if bad:
+            return failed_future(LevelRefused(node, bad))
+        return self._call_set(node, levels, restore=restore)
+
+    def _trigger(self) -> None:
+        try:
+            self._wake()
+        except Exception:
+            pass
+
+    def _restore(self, entry: TemporaryLevel) -> Future[dict[str, int]]:
+        return self._set(entry.node, {entry.logger: entry.previous}, restore=True)
+
+    # -- internals: the loggers thread -------------------------------------------------------
+
+    def _run(self) -> None:
+        calls: list[Call] = []
+        next_graph = started = self.clock()
+        try:
+            self._open()
+            while True:
+                now = self.clock()
+                if now >= next_graph:
+                    next_graph = now + (STARTUP_GRAPH_PERIOD_S if now - started < STARTUP_S else GRAPH_PERIOD_S)
+                    self._refresh_graph(now)
+                with self._lock:
+                    new, self._submitted = self._submitted, []
+                if any(call.node not in self._graph.by_fqn for call in new):
+                    self._refresh_graph(now)
+                calls.extend(new)
+                if self._stop.is_set() and not self._closed:
+                    calls = self._begin_closing(calls)
+                calls = [call for call in calls if not self._advance(call, now)]
+                if self._stop.is_set():
+                    if not calls and not self._submitted:
+                        break
+                else:
+                    self._restore_due()
+                self._wait(self._idle_time(calls, next_graph))
+        except Exception as error:  # the ROS went down under us, or a bug: say so, never hang
+            if not self._stop.is_set():
+                self.problem = f"logger levels stopped: {type(error).__name__}: {error}"
+        finally:
+            with self._lock:
+                self._closed = True
+                leftover, self._submitted = calls + self._submitted, []
+            for call in leftover:
+                settle(call.future, error=ControlClosed(call.node))
+            try:
+                self._shutdown()
+            except Exception:
+                pass
+
+    def _idle_time(self, calls: list[Call], next_graph: float) -> float:
+        with self._lock:
+            due = self._temporaries.next_deadline()
+        wake = min([next_graph, *(call.deadline for call in calls), *([due] if due is not None else [])])
+        return max(0.0, min(MAX_IDLE_S, wake - self.clock()))
+
+    def _refresh_graph(self, now: float) -> None:
+        looked, with_services = self._look()
+        found = {
+            node.fqn: node
+            for node in looked
+            if not node.name.startswith(OWN_NODE_PREFIX) and (self.include_hidden or not node.hidden)
+        }
+        nodes = tuple(sorted(found.values(), key=lambda n: n.fqn))
+        with self._graph_changed:
+            old = self._graph
+            first_seen = {fqn: old.first_seen.get(fqn, now) for fqn in found}
+            changed_at = now if nodes != old.nodes or not old.refreshes else old.changed_at
+            self._graph = _Graph(nodes, found, first_seen, with_services, old.refreshes + 1, changed_at)
+            self._graph_changed.notify_all()
+        if nodes != old.nodes:
+            self._emit(NodesChanged(nodes))
+
+    def _advance(self, call: Call, now: float) -> bool:
+        """Move one call on; True once its future is settled."""
+        if call.future.done():
+            return True
+        graph_node = self._graph.by_fqn.get(call.node)
+        if call.sent is None:
+            if graph_node is None:
+                return settle(call.future, error=NodeNotFound(call.node))
+            if not graph_node.has_logger_services and (self._graph.settled(graph_node, now) or now >= call.deadline):
+                return settle(call.future, error=self.no_services(call.node))
+            if graph_node.has_logger_services:
+                call.sent = self._send(call)
+                if call.sent is not None:
+                    return False
+            if now >= call.deadline:
+                return settle(call.future, error=CallTimedOut(call.node, self.call_timeout))
+            return False
+        if call.sent.done():
+            error = call.sent.exception()
+            if error is not None:
+                return settle(call.future, error=LoggerCallError(call.node, f"{call.node}: {error}"))
+            return settle(call.future, result=call.sent.result())
+        if graph_node is None or self._lost(call):
+            self._drop(call)
+            return settle(call.future, error=NodeGone(call.node))
+        if now >= call.deadline:
+            self._drop(call)
+            return settle(call.future, error=CallTimedOut(call.node, self.call_timeout))
+        return False
+
+    def _restore_due(self) -> None:
+        with self._lock:
+            due = self._temporaries.take_due()
+        for entry in due:
+            self._restore(entry).add_done_callback(functools.partial(self._restored, entry))
+
+    def _restored(self, entry: TemporaryLevel, future: Future[Any]) -> None:
+        error = future.exception()
+        if (
+            isinstance(error, (CallTimedOut, NodeGone))
+            and entry.attempts + 1 < RESTORE_ATTEMPTS
+            and not self._closed
+            and self.node(entry.node) is not None
+        ):
+            with self._lock:
+                self._temporaries.retry_later(entry, RESTORE_RETRY_S)
+            return
+        self._emit(TemporaryEnded(entry, _call_error(entry.node, error)))
+
+    def _restored_closing(self, entry: TemporaryLevel, future: Future[Any]) -> None:
+        self._emit(TemporaryEnded(entry, _call_error(entry.node, future.exception())))
+
+    def _begin_closing(self, calls: list[Call]) -> list[Call]:
+        """Fail the calls under way, and put every temporary level back; returns the calls left."""
+        with self._lock:
+            entries = self._temporaries.take_all()
+        for call in calls:
+            if not call.restore:
+                if call.sent is not None:
+                    self._drop(call)
+                settle(call.future, error=ControlClosed(call.node))
+        for entry in entries:
+            self._restore(entry).add_done_callback(functools.partial(self._restored_closing, entry))
+        with self._lock:
+            self._closed = True
+        return [call for call in calls if call.restore]
+
+    def _emit(self, event: LoggerEvent) -> None:
+        with self._lock:
+            listeners = list(self._listeners)
+        for listener in listeners:
+            try:
+                listener(event)
+            except Exception:
+                pass
+
+
+def _is_level_number(level: Any) -> bool:
+    return isinstance(level, int) and 0 <= level < 2**32
+
+
+def _call_error(node: str, error: BaseException | None) -> LoggerCallError | None:
+    if error is None or isinstance(error, LoggerCallError):
+        return error
+    return LoggerCallError(node, f"{node}: {error}")

@@ -1,0 +1,224 @@
+"""The ROS-neutral part of the logger control, over an in-memory graph of nodes (no ROS).
+
+``MemoryControl`` is the smallest subclass the base accepts: it shows what a ROS provides.
+The ROS 2 control is tested against real nodes in tests/ros/test_ros2_logger_control.py.
+"""
+
+from __future__ import annotations
+
+import threading
+from concurrent.futures import Future
+
+import pytest
+
+from console_tui.model.logger_levels import GraphNode, split_fqn
+from console_tui.sources.futures import done_future, failed_future, then
+from console_tui.sources.logger_control import (
+    GET,
+    SET,
+    CallTimedOut,
+    ControlClosed,
+    LevelRefused,
+    LoggerControl,
+    NodeNotFound,
+    NodesChanged,
+    NoLoggerServices,
+    TemporaryEnded,
+)
+
+from support.rosproc import wait_until
+
+
+class MemoryNode:
+    def __init__(self, fqn: str, services: bool = True) -> None:
+        self.fqn = fqn
+        self.services = services
+        self.levels: dict[str, int] = {"": 20}
+        #: While set, calls wait for it (a busy node).
+        self.busy: threading.Event | None = None
+
+
+class MemoryControl(LoggerControl):
+    no_services_hint = "give it some"
+
+    def __init__(self, nodes: list[MemoryNode], **kwargs) -> None:
+        super().__init__(**kwargs)
+        self.graph = {node.fqn: node for node in nodes}
+        self.dropped: list[str] = []
+        self.shut = False
+
+    def _open(self) -> None:
+        pass
+
+    def _look(self):
+        return [GraphNode(*split_fqn(fqn), node.services) for fqn, node in self.graph.items()], frozenset()
+
+    def _call_get(self, node, names):
+        return then(self._submit(node, GET, names), lambda levels: {name: levels.get(name, 0) for name in names})
+
+    def _call_set(self, node, levels, *, restore):
+        if any(level % 10 for level in levels.values()):
+            return failed_future(LevelRefused(node, {name: "odd level" for name in levels}))
+        return then(self._submit(node, SET, levels, restore), lambda _: levels)
+
+    def _send(self, call):
+        node = self.graph[call.node]
+        if node.busy is not None:
+            return Future()  # never answers
+        if call.service == SET:
+            node.levels.update(call.request)
+        return done_future(dict(node.levels))
+
+    def _drop(self, call):
+        self.dropped.append(call.node)
+
+    def _shutdown(self) -> None:
+        self.shut = True
+
+
+@pytest.fixture
+def control():
+    nodes = [MemoryNode("/ns/alpha"), MemoryNode("/beta", services=False), MemoryNode("/_hidden")]
+    control = MemoryControl(nodes, call_timeout=0.5)
+    control.events = []
+    control.subscribe(control.events.append)
+    control.start()
+    yield control
+    control.close()
+
+
+def test_the_graph_leaves_out_hidden_nodes_and_says_who_has_services(control):
+    assert [(n.fqn, n.has_logger_services) for n in control.wait_for_graph(0.1).nodes] == [
+        ("/beta", False),
+        ("/ns/alpha", True),
+    ]
+    assert any(isinstance(event, NodesChanged) for event in control.events)
+    assert control.is_settled("/ns/alpha") and control.node("/nobody") is None
+
+
+class StepClock:
+    """A clock that moves only when the test says."""
+
+    def __init__(self) -> None:
+        self.now = 0.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def test_waiting_for_the_graph_lasts_until_no_node_came_for_the_quiet_time():
+    # As Fast DDS discovery goes under load: nodes seen at once, one more seconds later.
+    clock = StepClock()
+    control = MemoryControl([MemoryNode("/a")], clock=clock)
+    control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
+    control.start()
+    try:
+        assert wait_until(lambda: control.nodes, 5)
+        seen = []
+        waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(10.0)))
+        waiter.start()
+
+        def at(when: float, arriving: str | None = None) -> None:
+            clock.now = when
+            if arriving:
+                control.graph[arriving] = MemoryNode(arriving)
+                assert wait_until(lambda: control.node(arriving) is not None, 5)
+            else:
+                looks = control._graph.refreshes
+                assert wait_until(lambda: control._graph.refreshes > looks, 5)
+
+        at(1.0, "/b")
+        at(3.5)  # quiet for 2.5 s, but not watched for 5 s yet
+        at(4.6, "/c")
+        at(6.5)
+        waiter.join(0.3)
+        assert waiter.is_alive() and not seen  # /c came 1.9 s ago
+        clock.now = 6.6
+        waiter.join(5)
+        assert [node.fqn for node in seen[0].nodes] == ["/a", "/b", "/c"]
+        assert seen[0].settled and seen[0].waited_s == pytest.approx(6.6)
+    finally:
+        control.close()
+
+
+def test_a_graph_that_came_at_once_is_watched_for_the_minimum_time():
+    clock = StepClock()
+    control = MemoryControl([MemoryNode("/a"), MemoryNode("/b")], clock=clock)
+    control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
+    control.start()
+    try:
+        seen = []
+        waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(10.0)))
+        waiter.start()
+        assert wait_until(lambda: len(control.nodes) == 2, 5)
+        clock.now = 4.9
+        waiter.join(0.3)
+        assert waiter.is_alive()
+        clock.now = 5.0
+        waiter.join(5)
+        assert len(seen[0].nodes) == 2 and seen[0].settled and seen[0].waited_s == pytest.approx(5.0)
+    finally:
+        control.close()
+
+
+def test_waiting_for_an_empty_graph_ends_at_the_deadline_unsettled():
+    clock = StepClock()
+    control = MemoryControl([], clock=clock)
+    control.start()
+    try:
+        seen = []
+        waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(4.0)))
+        waiter.start()
+        assert wait_until(lambda: control._graph.refreshes > 0, 5)
+        clock.now = 3.9
+        waiter.join(0.3)
+        assert waiter.is_alive()
+        clock.now = 4.0
+        waiter.join(5)
+        assert seen[0].nodes == () and not seen[0].settled and seen[0].waited_s == pytest.approx(4.0)
+    finally:
+        control.close()
+
+
+def test_get_set_and_the_failures_each_with_its_own_error(control):
+    assert control.get_levels("/ns/alpha", ["ns.alpha", ""]).result(timeout=5) == {"ns.alpha": 0, "": 20}
+    assert control.set_level("/ns/alpha", "ns.alpha", 10).result(timeout=5) == {"ns.alpha": 10}
+    assert control.get_levels("/ns/alpha", ["ns.alpha"]).result(timeout=5) == {"ns.alpha": 10}
+    with pytest.raises(LevelRefused, match="odd level"):
+        control.set_level("/ns/alpha", "ns.alpha", 15).result(timeout=5)
+    with pytest.raises(LevelRefused, match="cannot be unset"):
+        control.set_level("/ns/alpha", "", 0).result(timeout=5)
+    with pytest.raises(LevelRefused, match="not a level"):
+        control.set_level("/ns/alpha", "ns.alpha", -1).result(timeout=5)
+    with pytest.raises(NodeNotFound):
+        control.get_levels("/nobody", ["x"]).result(timeout=5)
+    with pytest.raises(NoLoggerServices, match="give it some"):
+        control.get_levels("/beta", ["beta"]).result(timeout=5)
+
+
+def test_a_busy_node_times_out_and_its_call_is_dropped(control):
+    control.graph["/ns/alpha"].busy = threading.Event()
+    with pytest.raises(CallTimedOut, match=r"did not answer within 0\.5 s"):
+        control.get_levels("/ns/alpha", ["ns.alpha"]).result(timeout=5)
+    assert control.dropped == ["/ns/alpha"]
+
+
+def test_temporary_levels_end_on_time_and_keep_the_first_previous_level(control):
+    alpha = control.graph["/ns/alpha"]
+    control.set_level("/ns/alpha", "ns.alpha", 30).result(timeout=5)
+    control.set_temporary("/ns/alpha", "ns.alpha", 10, 60).result(timeout=5)
+    entry = control.set_temporary("/ns/alpha", "ns.alpha", 40, 0.2).result(timeout=5)
+    assert (entry.level, entry.previous) == (40, 30) and alpha.levels["ns.alpha"] == 40
+    assert wait_until(lambda: any(isinstance(e, TemporaryEnded) for e in control.events), timeout=5)
+    ended = next(e for e in control.events if isinstance(e, TemporaryEnded))
+    assert ended.entry == entry and ended.error is None
+    assert alpha.levels["ns.alpha"] == 30 and control.temporaries() == ()
+
+
+def test_close_puts_temporary_levels_back_and_refuses_later_calls(control):
+    alpha = control.graph["/ns/alpha"]
+    control.set_temporary("/ns/alpha", "ns.alpha", 10, 60).result(timeout=5)
+    control.close()
+    assert alpha.levels["ns.alpha"] == 0 and control.shut
+    with pytest.raises(ControlClosed):
+        control.get_levels("/ns/alpha", ["ns.alpha"]).result(timeout=5)
