@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from collections.abc import Callable
+from typing import Any
 
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
@@ -16,7 +18,7 @@ def run_app(args: argparse.Namespace) -> int:
     store = LogStore(max_messages=args.max_messages)
     queue = IntakeQueue()
     sources: list = []
-    cleanups: list = []
+    cleanups: list[Callable[[], object]] = []
     logger_control = None
     files = list(getattr(args, "files", None) or [])
     live = args.demo or getattr(args, "live", False) or not files
@@ -53,6 +55,13 @@ def run_app(args: argparse.Namespace) -> int:
         query=getattr(args, "query", None) or "",
         remember_rules=True,
     )
+    return run_then_clean_up(app, cleanups)
+
+
+def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
+    """Run the app; however it ends (``q``, an error in the app, SIGTERM, SIGHUP: see
+    ``ui.exit_signals``) its sources stop and the cleanups run, last first: the logger
+    control's puts temporary levels back. Returns the exit status."""
     try:
         app.run()
     finally:

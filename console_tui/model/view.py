@@ -31,6 +31,7 @@ from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
 from .rules.time_limit import MatchTimeout, time_limit
 from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
+from .text import plural
 
 #: Rows filtered synchronously when the rules change (more than a screen).
 FIRST_SCREEN_ROWS = 200
@@ -107,7 +108,7 @@ class LogView:
 
     def _switch_off(self, slow: _TooSlow) -> RuleSet:
         """The rules in force without the rule that was too slow (noted in ``switched_off``)."""
-        rows = f"{slow.rows:,} message{'s' if slow.rows != 1 else ''}"
+        rows = plural(slow.rows, "message")
         self.switched_off.append((slow.rule, f"too slow: testing {rows} took over {slow.seconds:g} s"))
         self._unfinished.discard(slow.rule)
         return self.rules.without_rules({slow.rule})

@@ -13,6 +13,7 @@ from textual import work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.containers import Horizontal
+from textual.notifications import SeverityLevel
 from textual.screen import Screen
 from textual.widgets import Footer
 
@@ -30,10 +31,12 @@ from ..model.rules.rulesfile import (
     save_rules,
 )
 from ..model.store import LogStore
-from ..model.text import one_line
+from ..model.text import multi_line, one_line
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
+from . import textual_fixes
+from .exit_signals import ExitSignals
 from .gc_policy import CollectionPolicy
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
@@ -53,6 +56,8 @@ from .widgets.table_columns import COLUMNS
 
 if TYPE_CHECKING:
     from ..sources.logger_control import LoggerControl
+
+textual_fixes.apply()
 
 DRAIN_INTERVAL = 1 / 15
 #: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
@@ -157,6 +162,27 @@ class ConsoleApp(App[None]):
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
+        self.exit_signals = ExitSignals(self._exit_on_signal)
+
+    # -- text from outside: never markup, never raw ----------------------------------------------
+
+    def notify(
+        self,
+        message: str,
+        *,
+        title: str = "",
+        severity: SeverityLevel = "information",
+        timeout: float | None = None,
+        markup: bool = False,
+    ) -> None:
+        """Every notification (ours, the screens', Textual's) as plain, inert text: messages
+        name files, nodes and errors from outside, which may hold markup or escapes."""
+        super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
+
+    def copy_to_clipboard(self, text: str) -> None:
+        """Copy with control characters made visible (newlines and tabs kept): pasted into a
+        shell, a copied message can never carry escape sequences or a carriage return."""
+        super().copy_to_clipboard(multi_line(text))
 
     # -- layout -------------------------------------------------------------------------------
 
@@ -171,6 +197,7 @@ class ConsoleApp(App[None]):
         yield Footer()
 
     def on_mount(self) -> None:
+        self.exit_signals.install()
         self.collection_policy.start()
         self.table.focus()
         self.set_interval(self.drain_interval, self.drain_intake)
@@ -193,11 +220,22 @@ class ConsoleApp(App[None]):
                 self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
 
     def on_unmount(self) -> None:
+        self.exit_signals.remove()
         self.stop_sources()
         if self.remember_rules:
             self._remember_rules()
         for load in self.loads:
             load.cancel()
+
+    def _exit_on_signal(self, signum: int) -> None:
+        """SIGTERM or SIGHUP (the SSH session dropped): put temporary logger levels back
+        first, whatever becomes of the terminal, then exit as ``q`` does."""
+        if self.logger_control is not None:
+            try:
+                self.logger_control.close()
+            except Exception:
+                pass
+        self.exit(return_code=128 + signum)
 
     def stop_sources(self) -> None:
         sources, self.sources = self.sources, []

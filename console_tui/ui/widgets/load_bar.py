@@ -7,6 +7,7 @@ from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
 from ...sources.files import LoadProgress
+from ..plain import plain
 
 
 class LoadBar(Horizontal):
@@ -36,6 +37,6 @@ class LoadBar(Horizontal):
             f"{reading.source} ({reading.title})" if reading and reading.title else (reading.source if reading else "")
         )
         self.query_one(Label).update(
-            f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  x cancels"
+            plain(f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  x cancels")
         )
         self.query_one(ProgressBar).update(progress=done)

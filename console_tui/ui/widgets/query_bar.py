@@ -13,6 +13,7 @@ from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
 from ...model.text import one_line
+from ..plain import plain
 
 PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
 
@@ -94,7 +95,7 @@ class QueryBar(Vertical):
         except QueryError as error:
             problem.remove_class("-ok")
             caret = caret_line(one_line(text), error)
-            problem.update(f"{caret}\n(the rules in force stay until the query is fixed)")
+            problem.update(plain(f"{caret}\n(the rules in force stay until the query is fixed)", lines=True))
             return None
         problem.add_class("-ok")
         count = len(entries)

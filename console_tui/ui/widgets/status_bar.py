@@ -8,6 +8,7 @@ from rich.text import Text
 from textual.widget import Widget
 
 from ...model.levels import MESSAGE_SEVERITIES
+from ...model.text import one_line
 from ...sources.status import SourceStatus
 
 _SEVERITY_LETTER = {
@@ -72,15 +73,17 @@ def render_status(facts: StatusFacts) -> Text:
     text.append(f" {facts.rate:,.0f}/s")
     for status in facts.sources:
         if status.topic:
-            text.append(f"  {status.topic}", style="bold")
+            text.append(f"  {one_line(status.topic, 200)}", style="bold")
             text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
         if status.path:
-            text.append(f" {status.path}" if status.topic else f"  {status.path}", style="dim")
+            text.append(
+                f" {one_line(status.path, 200)}" if status.topic else f"  {one_line(status.path, 200)}", style="dim"
+            )
         loss = status.loss_text()
         if loss:
             text.append(f"  {loss}", style="bold red")
         if status.problem:
-            text.append(f"  {status.problem}", style="bold red")
+            text.append(f"  {one_line(status.problem, 300)}", style="bold red")
     if facts.note:
         text.append(f"  {facts.note}", style="italic")
     return text
