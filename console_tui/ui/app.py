@@ -97,7 +97,7 @@ class ConsoleApp(App[None]):
         Binding("o", "open", "Open"),
         Binding("s", "save", "Save"),
         Binding("x", "cancel_load", "Cancel load"),
-        Binding("escape", "stop_filtering", "Stop filtering", show=False),
+        Binding("escape", "stop_filtering", "Stop a long filtering", show=False),
         Binding("exclamation_mark", "problems", "Problems", show=False),
         Binding("slash", "query", "Query"),
         Binding("r", "toggle_rules", "Rules"),
