@@ -10,7 +10,7 @@ from typing import Any
 
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
-from .sources.ros2.rclpy_loader import RosUnavailable
+from .sources.live import RosUnavailable, open_live
 
 
 def run_app(args: argparse.Namespace) -> int:
@@ -18,26 +18,13 @@ def run_app(args: argparse.Namespace) -> int:
     store = LogStore(max_messages=args.max_messages)
     queue = IntakeQueue()
     sources: list = []
-    cleanups: list[Callable[[], object]] = []
+    cleanups: list = []
     logger_control = None
     files = list(getattr(args, "files", None) or [])
     live = args.demo or getattr(args, "live", False) or not files
     if live:
         try:
-            if args.demo:
-                from .demo.launcher import DEMO_ENVIRONMENT, DemoNodes
-
-                os.environ.update(DEMO_ENVIRONMENT)
-            runtime = _start_ros()
-            cleanups.append(runtime.shutdown)
-            from .sources.ros2.live_source import LiveLogSource
-            from .sources.ros2.logger_control import Ros2LoggerControl
-
-            sources.append(LiveLogSource(runtime, queue, topic=args.topic))
-            logger_control = Ros2LoggerControl(runtime)  # the app starts it after its first frame
-            cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
-            if args.demo:
-                sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+            logger_control = _start_live(args, queue, sources, cleanups)
         except RosUnavailable as error:
             print(f"console-tui: {error}", file=sys.stderr)
             return 2
@@ -74,12 +61,28 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
     return app.return_code or 0
 
 
-def _start_ros():
-    from .sources.ros2.runtime import RosRuntime
+def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    """The live source for ROS 1 or ROS 2 (as ``--ros1``/``--ros2`` or the environment say),
+    the demo nodes when asked; returns the logger control (or None)."""
+    if args.demo:
+        from .demo.launcher import DEMO_ENVIRONMENT
 
-    try:
-        return RosRuntime()
-    except RosUnavailable:
-        raise
-    except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
-        raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None
+        os.environ.update(DEMO_ENVIRONMENT)
+    live = open_live(queue, topic=args.topic, ros=getattr(args, "ros", None))
+    cleanups.append(live.close)
+    sources.append(live.source)
+    if live.runtime is None:  # ROS 1
+        from .sources.ros1.logger_control import Ros1LoggerControl
+
+        ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
+        cleanups.append(ros1_control.close)  # puts temporary levels back
+        return ros1_control
+    from .sources.ros2.logger_control import Ros2LoggerControl
+
+    logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
+    cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
+    if args.demo:
+        from .demo.launcher import DemoNodes
+
+        sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+    return logger_control

@@ -55,6 +55,15 @@ def next_domain_id() -> int:
     return low + (number * share + next(_counter) % share) % (high - low + 1)
 
 
+@pytest.fixture(autouse=True)
+def own_config_folder(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Path:
+    """Each test reads and writes settings (keys.toml, the last rules) in a folder of its
+    own, never the developer's."""
+    folder = tmp_path / "config"
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(folder))
+    return folder
+
+
 @pytest.fixture
 def ros_env(monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     """A ROS 2 environment of its own for one test: its own domain, loopback only.
@@ -101,3 +110,71 @@ def ros_runtime(ros_env):
     runtime.create_node("test_keeper")
     yield runtime
     runtime.shutdown()
+
+
+# -- ROS 1 -----------------------------------------------------------------------------------
+
+
+@pytest.fixture
+def ros1_env(tmp_path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
+    """A ROS 1 environment of its own for one test: a free port for its master, loopback,
+    logs under the test's tmp folder. Set in this process too (for sources run in-process)."""
+    from support.ros1 import free_port, ros1_environment, ros1_missing
+
+    reason = ros1_missing()
+    if reason:
+        pytest.skip(reason)
+    env = ros1_environment(tmp_path, free_port())
+    for key in [k for k in os.environ if k.startswith("ROS_")]:
+        monkeypatch.delenv(key)
+    for key, value in env.items():
+        if key.startswith("ROS"):
+            monkeypatch.setenv(key, value)
+    return env
+
+
+def _master(tmp_path, ros1_env, *, bare: bool):
+    from support.ros1 import Ros1Master
+
+    port = int(ros1_env["ROS_MASTER_URI"].rsplit(":", 1)[1])
+    master = Ros1Master(tmp_path, port, ros1_env, bare=bare)
+    master.start()
+    return master
+
+
+@pytest.fixture
+def roscore(tmp_path, ros1_env):
+    """``roscore`` on the test's port (master, rosout node, /rosout_agg), stopped at the end."""
+    master = _master(tmp_path, ros1_env, bare=False)
+    yield master
+    master.stop()
+
+
+@pytest.fixture
+def bare_master(tmp_path, ros1_env):
+    """``rosmaster --core`` alone on the test's port: no rosout node, no /rosout_agg."""
+    master = _master(tmp_path, ros1_env, bare=True)
+    yield master
+    master.stop()
+
+
+@pytest.fixture(scope="session")
+def roscpp_binary(request, tmp_path_factory):
+    """tests/nodes/roscpp_node.cpp, built once (kept in pytest's cache between runs)."""
+    from support.ros1 import build_roscpp_node, ros1_missing, roscpp_missing
+
+    reason = ros1_missing() or roscpp_missing()
+    if reason:
+        pytest.skip(reason)
+    return build_roscpp_node(request.config.cache.mkdir("roscpp_node"))
+
+
+@pytest.fixture
+def ros1_nodes(ros1_env, request):
+    """Start rospy scripts from tests/nodes (system Python) and the roscpp node; all stopped at the end."""
+    from support.ros1 import Ros1Nodes
+
+    binary = request.getfixturevalue("roscpp_binary") if "roscpp_binary" in request.fixturenames else None
+    nodes = Ros1Nodes(ros1_env, binary)
+    yield nodes
+    nodes.stop_all()

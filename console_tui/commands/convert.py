@@ -79,6 +79,9 @@ def main(argv: Sequence[str]) -> int:
         for file in files:
             file.close()
     found = _report(failures, files)
+    for file in files:
+        for note in file.notes():
+            say(f"{file.source}: note: {note}")
     if args.output != "-":
         say(f"{count} records from {len(files)} file(s) written to {args.output} ({save_format})")
     return PROBLEMS if found else CLEAN

@@ -11,7 +11,9 @@ class LogRecord:
 
     ``stamp_ns`` is nanoseconds since the Unix epoch; ``level`` is on the ROS 2 scale
     (DEBUG 10 .. FATAL 50); ``node`` is the logger name (usually the node's).
-    ``source`` names the stream or file the record was read from. ``seq`` is assigned by
+    ``source`` names the stream or file the record was read from. ``topics`` (ROS 1 only)
+    lists the topics the node publishes, joined by ``,``; ``""`` when there are none or
+    the source has no such field. ``seq`` is assigned by
     the store when the record is added, numbering records in arrival order; -1 before.
     """
 
@@ -23,6 +25,7 @@ class LogRecord:
     function: str = ""
     line: int = 0
     source: str = ""
+    topics: str = ""
     seq: int = -1
 
     @property

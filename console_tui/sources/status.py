@@ -11,6 +11,8 @@ class SourceStatus:
 
     topic: str = ""
     publishers: int = 0
+    #: Which ROS and where, for example ``ROS 1 http://robot:11311/`` or ``ROS 2 domain 7``.
+    origin: str = ""
     #: How messages are taken and decoded, for example ``raw+cdr`` or ``typed``.
     path: str = ""
     #: Messages known lost, all causes: the sum of the ``lost_*`` counts below.

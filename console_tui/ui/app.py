@@ -1,15 +1,19 @@
-"""The console-tui Textual app: the log table, the status line and the keys."""
+"""The console-tui Textual app: the wiring of the table, the panes, the status line and the keys.
+
+The app's jobs live beside it, each mixed into ``ConsoleApp``: ``rule_actions`` (rules and
+filtering), ``file_actions`` (opening and saving files), ``pane_actions`` (the side panes),
+``commands`` (the command palette) and ``keys`` (the user's keymap, hints from bindings).
+A feature adds its keys to ``BINDINGS`` below and its work in a module of its own.
+"""
 
 from __future__ import annotations
 
-import asyncio
-import os
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
-from textual import work
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.containers import Horizontal
@@ -17,40 +21,32 @@ from textual.notifications import SeverityLevel
 from textual.screen import Screen
 from textual.widgets import Footer
 
-from ..model.formats.save import save_records
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
 from ..model.rules.history import QueryHistory
-from ..model.rules.query import parse_query
-from ..model.rules.rule import RuleError
-from ..model.rules.ruleset import Entry, Role, RuleSet
-from ..model.rules.rulesfile import (
-    last_rules_path,
-    load_rules,
-    query_history_path,
-    save_rules,
-)
+from ..model.rules.ruleset import RuleSet
+from ..model.rules.rulesfile import query_history_path
 from ..model.store import LogStore
 from ..model.text import multi_line, one_line
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
 from . import textual_fixes
+from .commands import ConsoleCommands
 from .exit_signals import ExitSignals
+from .file_actions import FileActions
 from .gc_policy import CollectionPolicy
+from .keys import binding_ids, keymap_path, load_keymap
+from .pane_actions import PaneActions
+from .rule_actions import RuleActions
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
-from .screens.files import OpenScreen, PathScreen, SaveRequest, SaveScreen
 from .screens.help import HelpScreen
-from .screens.problems import ProblemsScreen
-from .screens.quick_rule import QuickRuleScreen
-from .screens.rule_editor import RuleEditor
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
 from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
-from .widgets.side_pane import SidePane
 from .widgets.status_bar import StatusBar, StatusFacts
 from .widgets.table_columns import COLUMNS
 
@@ -60,16 +56,6 @@ if TYPE_CHECKING:
 textual_fixes.apply()
 
 DRAIN_INTERVAL = 1 / 15
-#: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
-REFILTER_BUDGET_S = 0.015
-REFILTER_PAUSE_S = 0.001
-REFILTER_FIRST_PAUSE_S = 0.02
-#: How often the status line's "filtering N%" moves.
-REFILTER_PROGRESS_PERIOD_S = 0.1
-#: Quick rules look at this many selected rows at most.
-QUICK_RULE_ROWS = 10_000
-#: Records gathered per event-loop turn when saving.
-SAVE_SLICE = 20_000
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
@@ -85,30 +71,38 @@ class Source(Protocol):
     def stop(self) -> None: ...
 
 
-class ConsoleApp(App[None]):
+class ConsoleApp(RuleActions, FileActions, PaneActions):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
     CSS_PATH = "app.tcss"
+    #: Textual's own palette entries (theme, quit, screenshot...) and ours.
+    COMMANDS = App.COMMANDS | {ConsoleCommands}
 
     BINDINGS = [
-        Binding("space", "toggle_pause", "Pause"),
-        Binding("c", "clear", "Clear"),
-        Binding("o", "open", "Open"),
-        Binding("s", "save", "Save"),
-        Binding("x", "cancel_load", "Cancel load"),
-        Binding("escape", "stop_filtering", "Stop a long filtering", show=False),
-        Binding("exclamation_mark", "problems", "Problems", show=False),
-        Binding("slash", "query", "Query"),
-        Binding("r", "toggle_rules", "Rules"),
-        Binding("H", "toggle_highlighted_only", "Highlighted only", show=False),
-        Binding("minus", "quick_rule('exclude')", "Hide like the selected rows", show=False),
-        Binding("plus", "quick_rule('highlight')", "Highlight like the selected rows", show=False),
-        Binding("C", "columns", "Columns"),
-        Binding("l", "toggle_loggers", "Loggers"),
-        Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False),
-        Binding("question_mark,f1", "help", "Help"),
-        Binding("q", "quit", "Quit"),
+        Binding("space", "toggle_pause", "Pause", id="console.pause"),
+        Binding("c", "clear", "Clear", id="console.clear"),
+        Binding("o", "open", "Open", id="console.open"),
+        Binding("s", "save", "Save", id="console.save"),
+        Binding("x", "cancel_load", "Cancel load", id="console.cancel_load"),
+        Binding("escape", "stop_filtering", "Stop a long filtering", show=False, id="console.stop_filtering"),
+        Binding("exclamation_mark", "problems", "Problems", show=False, id="console.problems"),
+        Binding("slash", "query", "Query", id="console.query"),
+        Binding("r", "toggle_rules", "Rules", id="console.rules"),
+        Binding("H", "toggle_highlighted_only", "Highlighted only", show=False, id="console.highlighted_only"),
+        Binding("minus", "quick_rule('exclude')", "Hide like the selected rows", show=False, id="console.hide_like"),
+        Binding(
+            "plus",
+            "quick_rule('highlight')",
+            "Highlight like the selected rows",
+            show=False,
+            id="console.highlight_like",
+        ),
+        Binding("C", "columns", "Columns", id="console.columns"),
+        Binding("l", "toggle_loggers", "Loggers", id="console.loggers"),
+        Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False, id="console.loggers_for_row"),
+        Binding("question_mark,f1", "help", "Help", id="console.help"),
+        Binding("q", "quit", "Quit", id="console.quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
     ]
 
@@ -127,6 +121,7 @@ class ConsoleApp(App[None]):
         rules: RuleSet | None = None,
         query: str = "",
         remember_rules: bool = False,
+        keymap_file: str | None = None,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -142,27 +137,27 @@ class ConsoleApp(App[None]):
         self.collection_policy = CollectionPolicy()
         self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
-        #: The rules in force; a new set replaces it whole (rule sets are values).
-        self.rules = RuleSet()
         self._initial_rules = rules
         self._initial_query = query
         #: Keep the last rule set and the query history in the user's config folder.
-        self.remember_rules = remember_rules
+        self.remember_rules_at_exit = remember_rules
         self.query_history = QueryHistory.load(query_history_path()) if remember_rules else QueryHistory()
         self.query_bar = QueryBar(self.query_history, utc=utc, id="query-bar")
         self.rules_pane = RulesPane(id="rules-pane")
-        self._counts_at = 0.0
         self.load_bar = LoadBar(id="load-bar")
-        #: File loads: their records come through a queue of their own, ahead of live ones.
         self.file_queue = IntakeQueue()
         self.loads: list[FileLoad] = []
         self.problems: list[str] = []
+        self.source_notes: dict[str, list[str]] = {}
         self._initial_files = list(files)
         self.log_format = log_format
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
         self.exit_signals = ExitSignals(self._exit_on_signal)
+        #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
+        self.keymap: dict[str, str] = {}
+        self._keymap_problems = self._load_keymap(keymap_file)
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -199,15 +194,27 @@ class ConsoleApp(App[None]):
     def on_mount(self) -> None:
         self.exit_signals.install()
         self.collection_policy.start()
+        if self._keymap_problems:
+            listed = "\n".join(self._keymap_problems[:5])
+            self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
         self.table.focus()
         self.set_interval(self.drain_interval, self.drain_intake)
-        self._apply_initial_rules()
+        self.apply_initial_rules(self._initial_rules, self._initial_query)
         self.update_status()
         # After the first frame: starting sources (threads, child processes) costs CPU
         # the first frame should not wait for.
         self.call_after_refresh(self.start_sources)
         if self._initial_files:
             self.open_files(self._initial_files, log_format=self.log_format)
+
+    def _load_keymap(self, keymap_file: str | None) -> tuple[str, ...]:
+        """The user's keymap, in force before the widgets compose (their hints name its keys)."""
+        path = keymap_path() if keymap_file is None else Path(keymap_file)
+        loaded = load_keymap(path, binding_ids(self.binding_groups()))
+        if loaded.keys:
+            self.keymap = loaded.keys
+            self.set_keymap(loaded.keys)
+        return loaded.problems
 
     def start_sources(self) -> None:
         starting: list = list(self.sources)
@@ -222,10 +229,9 @@ class ConsoleApp(App[None]):
     def on_unmount(self) -> None:
         self.exit_signals.remove()
         self.stop_sources()
-        if self.remember_rules:
-            self._remember_rules()
-        for load in self.loads:
-            load.cancel()
+        if self.remember_rules_at_exit:
+            self.remember_rules()
+        self.cancel_loads()
 
     def _exit_on_signal(self, signum: int) -> None:
         """SIGTERM or SIGHUP (the SSH session dropped): put temporary logger levels back
@@ -258,99 +264,11 @@ class ConsoleApp(App[None]):
         if records:
             self.add_records(records)
         if self.loads:
-            self._check_loads()
+            self.check_loads()
         if self.rules_pane.is_open:
-            self._show_rules(at_most_every=0.5)
+            self.show_rules(at_most_every=0.5)
         self.update_status()
         self.collection_policy.tick(len(records))
-
-    # -- files --------------------------------------------------------------------------------------
-
-    @property
-    def loading(self) -> bool:
-        return any(not load.finished for load in self.loads) or len(self.file_queue) > 0
-
-    def open_files(self, paths: Sequence[str], *, log_format: str | None = None) -> FileLoad:
-        """Read files in the background into the table, merged by time."""
-        load = FileLoad(paths, self.file_queue, log_format=log_format)
-        self.loads.append(load)
-        load.start()
-        self.table.set_column_shown("source", True)
-        self.load_bar.show_progress([load.progress])
-        return load
-
-    def _check_loads(self) -> None:
-        self.load_bar.show_progress([load.progress for load in self.loads])
-        for load in [load for load in self.loads if load.finished]:
-            if len(self.file_queue):
-                return  # its last records are still on their way into the table
-            self.loads.remove(load)
-            progress = load.progress
-            problems = [str(problem) for problem in load.problems()]
-            self.problems.extend(problems)
-            files = len(progress.files)
-            verb = "Cancelled after" if progress.cancelled else "Loaded"
-            text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
-            if problems:
-                listed = "\n".join(one_line(problem, 300) for problem in problems[:3])
-                more = f"\n... {len(problems) - 3} more" if len(problems) > 3 else ""
-                self.notify(f"{text}, with problems (! lists them):\n{listed}{more}", severity="warning", timeout=15)
-            else:
-                self.notify(text, timeout=5)
-
-    def action_open(self) -> None:
-        def opened(paths: list[str] | None) -> None:
-            if paths:
-                self.open_files(paths, log_format=self.log_format)
-
-        self.push_screen(OpenScreen(), opened)
-
-    def action_cancel_load(self) -> None:
-        for load in self.loads:
-            load.cancel()
-
-    def action_problems(self) -> None:
-        self.push_screen(ProblemsScreen(self.problems))
-
-    def action_save(self) -> None:
-        default = os.path.join(os.getcwd(), time.strftime("console-tui-%Y%m%d-%H%M%S.csv"))
-
-        def chosen(request: SaveRequest | None) -> None:
-            if request is not None:
-                self.save(request)
-
-        self.push_screen(SaveScreen(default, filtered=self.view.filtered), chosen)
-
-    @work(exclusive=True, group="save")
-    async def save(self, request: SaveRequest) -> int:
-        """Collect the rows on the UI thread a slice at a time (the store changes only
-        here), then write them in a thread. Returns how many were written."""
-        if request.shown_only:
-            seqs = [self.view.seq_at(row) for row in range(len(self.view))]
-        else:
-            seqs = range(self.store.first_seq, self.store.end_seq)
-        records = []
-        for start in range(0, len(seqs), SAVE_SLICE):
-            for seq in seqs[start : start + SAVE_SLICE]:
-                if seq in self.store:
-                    records.append(self.store.get(seq))
-            await asyncio.sleep(0)
-        lost = len(seqs) - len(records)
-        try:
-            written = await asyncio.to_thread(save_records, records, request.path, request.save_format)
-        except (OSError, ValueError) as error:
-            self.notify(f"Not saved: {error}", severity="error", timeout=15)
-            return 0
-        note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
-        self.notify(f"Saved {written:,} messages to {request.path}{note}", timeout=8)
-        return written
-
-    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        if action == "cancel_load":
-            return self.loading
-        if action == "stop_filtering":
-            return self.view.refiltering
-        return True
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
         table = self.table
@@ -358,7 +276,7 @@ class ConsoleApp(App[None]):
             added = self.store.extend(records)
             self.view.update()
         if self.view.switched_off:
-            self._rules_changed()
+            self.rules_changed()
         self._arrivals.append((self.clock(), len(added)))
 
     def receive_rate(self) -> float:
@@ -386,215 +304,34 @@ class ConsoleApp(App[None]):
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
-            note=self._rules_note(),
+            note=self.rules_note(),
         )
         self.status_bar.show_facts(facts)
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
 
-    # -- rules ----------------------------------------------------------------------------------------
+    def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action == "cancel_load":
+            return self.loading
+        if action == "stop_filtering":
+            return self.view.refiltering
+        return True
 
-    def apply_rules(self, rules: RuleSet) -> None:
-        """Put ``rules`` in force: the newest screenful at once, the rest in the background."""
-        with self.table.keeping_position():
-            self.view.set_rules(rules)
-        self._rules_changed()
-
-    def _rules_changed(self) -> None:
-        """Show the view's rules as the rules in force (the view switches off a rule too slow
-        to test, and says which)."""
-        table = self.table
-        rules = self.rules = self.view.rules
-        table.decoration_of = self.view.decoration_of if rules.highlighting else None
-        table.restyle()
-        for rule, why in self.view.take_switched_off():
-            self.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
-        if self.view.refiltering:
-            self._filter_in_background()
-        self._show_rules()
-        self.update_status()
-
-    def action_stop_filtering(self) -> None:
-        """Esc while rules are being applied: switch off the rules not applied yet."""
-        with self.table.keeping_position():
-            stopped = self.view.stop_filtering()
-        if stopped:
-            described = "; ".join(rule.describe() for rule in stopped)
-            self.notify(f"Filtering stopped; switched off (r shows the rules): {described}", timeout=8)
-            self._rules_changed()
-
-    @work(exclusive=True, group="refilter")
-    async def _filter_in_background(self) -> None:
-        """Filter the older records in slices, newest first; between slices the event loop
-        draws frames and answers keys."""
-        await asyncio.sleep(REFILTER_FIRST_PAUSE_S)  # the newest screenful is drawn first
-        shown_at = self.clock()
-        while True:
-            with self.table.keeping_position():
-                done = self.view.refilter_step(REFILTER_BUDGET_S)
-            if self.view.switched_off:
-                self._rules_changed()  # filters again under the rules left, in a new worker
-                return
-            if done:
-                break
-            if self.clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
-                shown_at = self.clock()
-                self.update_status()
-            await asyncio.sleep(REFILTER_PAUSE_S)
-        self._show_rules()
-        self.update_status()
-
-    def _rules_note(self) -> str:
-        active = sum(1 for entry in self.rules.entries if entry.active)
-        if not active:
-            return "rules off" if self.rules.entries else ""
-        note = f"{active} rule{'s' if active != 1 else ''}"
-        if self.rules.highlighted_only and self.rules.highlighting:
-            note += ", highlighted only"
-        if self.view.refiltering:
-            note += f", filtering {self._refilter_percent()}%"
-        return note
-
-    def _refilter_percent(self) -> int:
-        total = max(len(self.store), 1)
-        return min(99, int(100 * (1 - self.view.pending / total)))
-
-    def _show_rules(self, at_most_every: float = 0.0) -> None:
-        now = self.clock()
-        if at_most_every and now - self._counts_at < at_most_every:
-            return
-        self._counts_at = now
-        progress = f"filtering {self._refilter_percent()}%" if self.view.refiltering else ""
-        self.rules_pane.show(self.rules, self.view.match_counts(), progress)
-
-    def _apply_initial_rules(self) -> None:
-        rules = self._initial_rules or RuleSet()
-        if self._initial_query:
-            try:
-                rules = rules.with_query(parse_query(self._initial_query, utc=self.utc))
-                self.query_bar.applied_text = self._initial_query
-            except RuleError as error:
-                self.notify(f"--query not applied: {error.message}", severity="error", timeout=10)
-        if rules.entries:
-            self.apply_rules(rules)
-
-    def _remember_rules(self) -> None:
-        try:
-            save_rules(self.rules, last_rules_path())
-            self.query_history.save(query_history_path())
-        except OSError:
-            pass  # nothing to tell anyone at exit; the rules in force were not lost from the session
-
-    def action_query(self) -> None:
-        self.query_bar.open()
-
-    def on_query_bar_applied(self, message: QueryBar.Applied) -> None:
-        self.apply_rules(self.rules.with_query(message.entries))
-
-    def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
-        self.table.focus()
-
-    def action_toggle_rules(self) -> None:
-        self._show_rules()
-        self.rules_pane.toggle()
-
-    def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
-        self.apply_rules(message.rules)
-
-    def action_toggle_highlighted_only(self) -> None:
-        self.apply_rules(self.rules.with_highlighted_only(not self.rules.highlighted_only))
-        state = "on" if self.rules.highlighted_only else "off"
-        note = "" if self.rules.highlighting else " (no highlight rule is active, so it hides nothing)"
-        self.notify(f"Highlighted only: {state}{note}", timeout=4)
-
-    def on_rules_pane_edit_requested(self, message: RulesPane.EditRequested) -> None:
-        index = message.index
-        entry = self.rules.entries[index] if index is not None else None
-
-        def edited(result: Entry | None) -> None:
-            if result is None:
-                return
-            rules = self.rules.add(result) if index is None else self.rules.replace(index, result)
-            self.apply_rules(rules)
-
-        self.push_screen(RuleEditor(entry, utc=self.utc), edited)
-
-    def action_quick_rule(self, role: str) -> None:
-        seqs = self.table.selected_seqs(QUICK_RULE_ROWS)
-        if not seqs:
-            return
-
-        def chosen(entry: Entry | None) -> None:
-            if entry is not None:
-                self.apply_rules(self.rules.add(entry))
-
-        self.push_screen(QuickRuleScreen([self.store.get(seq) for seq in seqs], Role(role)), chosen)
-
-    def on_rules_pane_file_requested(self, message: RulesPane.FileRequested) -> None:
-        if message.save:
-            self.action_save_rules()
-        else:
-            self.action_load_rules()
-
-    def action_save_rules(self) -> None:
-        def chosen(path: str | None) -> None:
-            if not path:
-                return
-            try:
-                save_rules(self.rules, path)
-            except OSError as error:
-                self.notify(f"Rules not saved: {error}", severity="error", timeout=10)
-                return
-            self.notify(f"Saved {len(self.rules.entries)} rules to {path}", timeout=5)
-
-        default = os.path.join(os.getcwd(), "console-tui-rules.toml")
-        self.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
-
-    def action_load_rules(self, path: str | None = None) -> None:
-        def chosen(path: str | None) -> None:
-            if not path:
-                return
-            try:
-                rules = load_rules(path)
-            except RuleError as error:
-                self.notify(f"Rules not loaded, the rules in force stay: {error.message}", severity="error", timeout=15)
-                return
-            self.apply_rules(rules)
-            self.notify(f"Loaded {len(rules.entries)} rules from {path}", timeout=5)
-
-        if path is not None:
-            chosen(path)
-        else:
-            self.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
-
-    def action_restore_rules(self) -> None:
-        path = last_rules_path()
-        if not path.exists():
-            self.notify("No rule set was saved at the end of an earlier run.", timeout=5)
-            return
-        self.action_load_rules(str(path))
-
-    def action_clear_rules(self) -> None:
-        self.query_bar.applied_text = ""
-        self.apply_rules(RuleSet(highlighted_only=self.rules.highlighted_only))
-
-    # -- actions ------------------------------------------------------------------------------------
+    # -- the table --------------------------------------------------------------------------------
 
     def action_toggle_pause(self) -> None:
         table = self.table
         table.set_paused(table.paused_end is None)
+
+    def action_follow(self) -> None:
+        self.table.follow()
 
     def action_clear(self) -> None:
         self.store.clear()
         self.view.rebuild()
         self.table.reset()
         self.update_status()
-
-    def action_help(self) -> None:
-        if isinstance(self.screen, HelpScreen):
-            return
-        self.push_screen(HelpScreen(self.binding_groups()))
 
     def action_columns(self) -> None:
         def apply(shown: frozenset[str] | None) -> None:
@@ -605,13 +342,21 @@ class ConsoleApp(App[None]):
 
         self.push_screen(ColumnsScreen(self.table.shown_columns), apply)
 
+    def action_toggle_column(self, key: str) -> None:
+        self.table.set_column_shown(key, key not in self.table.shown_columns)
+
+    def action_details(self) -> None:
+        self.table.action_activate()
+
     def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
         self.open_detail(message.seq)
 
     def open_detail(self, seq: int) -> None:
         if seq not in self.store:
             return
-        self.push_screen(DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record))
+        self.push_screen(
+            DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record, source_notes=self.source_notes)
+        )
 
     def _step_record(self, seq: int, delta: int) -> LogRecord | None:
         """The record ``delta`` rows away from ``seq`` in the table, moving the cursor too."""
@@ -622,25 +367,15 @@ class ConsoleApp(App[None]):
         table.move_cursor(row)
         return self.store.get(self.view.seq_at(row))
 
-    # -- logger levels pane ------------------------------------------------------------------
+    # -- help and the command palette -------------------------------------------------------------
 
-    def action_toggle_loggers(self) -> None:
-        self.logger_pane.toggle()
-
-    def action_loggers_for_row(self) -> None:
-        """Open the logger levels pane on the node of the table's selected row."""
-        seq = self.table.cursor_seq
-        if seq is None or seq not in self.store:
-            self.logger_pane.open()
-        else:
-            self.logger_pane.open_for_logger(self.store.get(seq).node)
-
-    def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
-        self.table.focus()
-
-    # -- help and command palette ---------------------------------------------------------------
+    def action_help(self) -> None:
+        if isinstance(self.screen, HelpScreen):
+            return
+        self.push_screen(HelpScreen(self.binding_groups()))
 
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
+        """Every key, by where it works: the help screen, the keymap and the palette read these."""
         return [
             ("Table", list(LogTable.BINDINGS)),
             ("Console", list(self.BINDINGS)),
@@ -652,59 +387,5 @@ class ConsoleApp(App[None]):
         ]
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
-        yield from super().get_system_commands(screen)
-        yield SystemCommand("Pause / resume", "Stop the view; messages keep arriving", self.action_toggle_pause)
-        yield SystemCommand("Follow tail", "Jump to the newest message and follow it", self.table.follow)
-        yield SystemCommand("Clear", "Drop every message", self.action_clear)
-        yield SystemCommand("Details", "Every field of the selected message", self.table.action_activate)
-        yield SystemCommand("Columns", "Choose the table's columns", self.action_columns)
-        yield SystemCommand("Open files", "Log files and recordings, merged by time", self.action_open)
-        yield SystemCommand(
-            "Save", "Save the rows shown, or everything (rqt_console CSV or JSON Lines)", self.action_save
-        )
-        yield SystemCommand("Load problems", "What went wrong while loading files, and where", self.action_problems)
-        for column in COLUMNS:
-            if column.key == "message":
-                continue
-            yield SystemCommand(
-                f"Toggle column: {column.title}",
-                f"Show or hide the {column.title} column",
-                lambda key=column.key: self.table.set_column_shown(key, key not in self.table.shown_columns),
-            )
-        yield SystemCommand("Logger levels", "Show or hide the logger levels pane", self.action_toggle_loggers)
-        yield SystemCommand(
-            "Logger levels of this row's node",
-            "Open the logger levels pane on the selected row's node",
-            self.action_loggers_for_row,
-        )
-        yield SystemCommand(
-            "Query", 'Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"', self.action_query
-        )
-        yield SystemCommand(
-            "Rules", "Show or hide the rules pane: every rule, its switches and counts", self.action_toggle_rules
-        )
-        yield SystemCommand(
-            "Add a rule",
-            "A new exclude or highlight rule of any kind",
-            lambda: self.on_rules_pane_edit_requested(RulesPane.EditRequested(None)),
-        )
-        yield SystemCommand(
-            "Hide messages like the selected rows",
-            "Exclude their nodes, severities, messages or location",
-            lambda: self.action_quick_rule("exclude"),
-        )
-        yield SystemCommand(
-            "Highlight messages like the selected rows",
-            "Highlight their nodes, severities, messages or location",
-            lambda: self.action_quick_rule("highlight"),
-        )
-        yield SystemCommand(
-            "Highlighted only", "Show only highlighted messages (or all again)", self.action_toggle_highlighted_only
-        )
-        yield SystemCommand("Save rules", "Save the rule set to a TOML file", self.action_save_rules)
-        yield SystemCommand("Open rules", "Load a rule set from a TOML file", self.action_load_rules)
-        yield SystemCommand(
-            "Restore the last rules", "The rule set in force when console-tui last exited", self.action_restore_rules
-        )
-        yield SystemCommand("Clear rules", "Remove every rule", self.action_clear_rules)
-        yield SystemCommand("Keys", "Every key, on the help screen", self.action_help)
+        # Textual's "Keys" opens its key panel; "Help: every key" (ours) says more.
+        yield from (command for command in super().get_system_commands(screen) if command.title != "Keys")

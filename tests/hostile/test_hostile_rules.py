@@ -14,7 +14,7 @@ from console_tui.model.rules import MessageRule, RuleSet, exclude
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.rulesfile import load_rules
 from console_tui.model.store import LogStore
-from console_tui.ui import app as app_module
+from console_tui.ui import rule_actions
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.help import HelpScreen
 
@@ -63,8 +63,8 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
 
 async def test_esc_stops_a_long_filtering(monkeypatch):
     # Slices so small that filtering 200,000 records takes many seconds, whatever the rule costs.
-    monkeypatch.setattr(app_module, "REFILTER_BUDGET_S", 0.0005)
-    monkeypatch.setattr(app_module, "REFILTER_PAUSE_S", 0.02)
+    monkeypatch.setattr(rule_actions, "REFILTER_BUDGET_S", 0.0005)
+    monkeypatch.setattr(rule_actions, "REFILTER_PAUSE_S", 0.02)
     store = LogStore()
     store.extend(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
     app = ConsoleApp(store=store, utc=True)

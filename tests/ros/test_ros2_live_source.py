@@ -91,7 +91,7 @@ def test_unreadable_messages_are_counted_as_lost_and_others_still_arrive(nodes, 
             assert wait_until(lambda: source.status.lost_undecodable >= 2)
         status = source.status
     assert [r.msg for r in records] == ["plain cdr", "parameter-list encapsulation", "after the bad ones"]
-    assert records[0] == LogRecord(5_000_000_006, 20, "raw.node", "plain cdr", "f.py", "fn", 3, topic, -1)
+    assert records[0] == LogRecord(5_000_000_006, 20, "raw.node", "plain cdr", "f.py", "fn", 3, topic)
     assert (status.lost, status.lost_undecodable, status.lost_queue) == ((2, 2, 0) if raw else (0, 0, 0))
     assert status.decoded_by_rclpy == (1 if raw else 0)
     assert status.running and status.problem == ""

@@ -37,7 +37,9 @@ def test_detail(snap_compare):
     assert snap_compare(feed_app(), terminal_size=(160, 48), press=["up", "up", "enter"])
 
 
-def test_help(snap_compare):
+def test_help(snap_compare, monkeypatch):
+    monkeypatch.setenv("HOME", "/home/robot")  # the keymap file's place, shown as ~/.config/...
+    monkeypatch.delenv("XDG_CONFIG_HOME")
     assert snap_compare(feed_app(), terminal_size=(80, 24), press=["question_mark"])
 
 

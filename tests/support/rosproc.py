@@ -30,9 +30,17 @@ class NodeProcess:
     a full pipe would block the node's logging, and with it the whole node.
     """
 
-    def __init__(self, script: str, *args: str, env: dict[str, str]) -> None:
+    def __init__(
+        self,
+        script: str,
+        *args: str,
+        env: dict[str, str],
+        python: str = sys.executable,
+        command: list[str] | None = None,
+    ) -> None:
+        """Runs ``python -u tests/nodes/SCRIPT ARGS``, or ``command + ARGS`` when given."""
         self.process = subprocess.Popen(
-            [sys.executable, "-u", str(NODES / script), *args],
+            [*(command or [python, "-u", str(NODES / script)]), *args],
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
@@ -68,7 +76,7 @@ class NodeProcess:
         if self.process.poll() is not None:
             self._stderr_reader.join(2.0)
         stderr = "".join(self.stderr_tail)
-        raise TimeoutError(f"{self.process.args[2]} never said {key!r}; stderr: {stderr[-2000:]}")
+        raise TimeoutError(f"{self.process.args[:3]} never said {key!r}; stderr: {stderr[-2000:]}")
 
     def _read_stdout(self) -> None:
         assert self.process.stdout is not None

@@ -79,6 +79,36 @@ def foreign_controls(output: str) -> list[str]:
     return sorted({repr(c) for c in rest if ord(c) < 0x20 or 0x7F <= ord(c) <= 0x9F})
 
 
+def style_at(app, x: int, y: int):
+    """The Rich style of the terminal cell at column ``x``, row ``y`` (colours, reverse...)."""
+    return app.screen.get_style_at(x, y)
+
+
+def steady_cursors(app) -> None:
+    """Stop text cursors blinking, so a screen read at any moment shows them."""
+    from textual.widgets import Input
+
+    for widget in app.screen.query(Input):
+        widget.cursor_blink = False
+
+
+def line_with(app, text: str) -> tuple[int, str]:
+    """The first terminal row showing ``text``, and that row; fails with the screen when none does."""
+    lines = screen_text(app).splitlines()
+    for y, line in enumerate(lines):
+        if text in line:
+            return y, line
+    raise AssertionError(f"{text!r} is not on the screen:\n" + "\n".join(lines))
+
+
+def cursor_after(app, text: str) -> bool:
+    """Whether the cell just after ``text`` on the screen is drawn as a cursor: its
+    background differs from that of the cell after it (the text box's own)."""
+    y, line = line_with(app, text)
+    x = line.index(text) + len(text)
+    return style_at(app, x, y).bgcolor != style_at(app, x + 1, y).bgcolor
+
+
 async def type_text(pilot, text: str) -> None:
     """Type ``text`` one key at a time, as a person does."""
     for char in text:

@@ -12,7 +12,7 @@ from console_tui.ui.screens.files import OpenScreen, SaveScreen
 from console_tui.ui.screens.problems import ProblemsScreen
 
 from support.feed import records
-from support.ui import until
+from support.ui import line_with, screen_text, type_text, until
 
 
 def write_jsonl(path: Path, count: int, start: int = 0) -> list:
@@ -45,14 +45,20 @@ async def test_open_dialog_loads_and_reports_problems(tmp_path):
     async with app.run_test(size=(160, 30)) as pilot:
         await pilot.press("o")
         assert isinstance(app.screen, OpenScreen)
-        app.screen.query_one("#paths").value = f"{good} {bad}"
+        await type_text(pilot, f"{good} {bad}")
         await pilot.press("enter")
-        await until(pilot, lambda: len(app.store) == 10 and not app.loading)
+        await until(pilot, lambda: "10/10 shown" in screen_text(app) and not app.loading)
         await until(pilot, lambda: bool(app.problems))
-        assert any("bad.csv" in problem for problem in app.problems)
         await pilot.press("exclamation_mark")
         assert isinstance(app.screen, ProblemsScreen)
+        await pilot.pause()
+        shown = screen_text(app)
+        assert "1 problem while loading (Escape closes)" in shown
+        problem_row = line_with(app, "bad.csv: binary data, not a log file")[1]
+        assert "(first bytes: 00 01 02 20" in problem_row
+        assert "good.jsonl" not in shown and "\x00" not in shown and "\x00" not in problem_row
         await pilot.press("escape")
+        assert "problem while loading" not in screen_text(app)
 
 
 async def test_open_dialog_refuses_a_missing_file(tmp_path):
@@ -94,7 +100,8 @@ async def test_a_large_load_shows_progress_answers_keys_and_cancels(tmp_path):
         await pilot.press("x")
         await until(pilot, lambda: not app.loading)
         assert 0 < len(app.store) < 300_000
-        assert not app.load_bar.has_class("-loading")
+        # The bar hides on the tick after the load ends.
+        await until(pilot, lambda: not app.load_bar.has_class("-loading"), timeout=2, what="the load bar to hide")
 
 
 async def test_save_what_is_shown_then_load_it_back(tmp_path):
@@ -141,3 +148,29 @@ async def test_with_live_records_waiting_the_files_come_first(tmp_path):
         await until(pilot, lambda: len(app.store) == 505)
         stamps = [r.stamp_ns for r in app.store]
         assert stamps == sorted(stamps)
+
+
+async def test_the_detail_view_says_when_a_file_gave_local_times(monkeypatch):
+    """Issue 19: a ROS 1 Python log's times have no zone; the detail view says they were
+    read as local time, and the other notes of the file's reading."""
+    import time as clock
+
+    from support.formats import DATA
+    from support.ui import screen_text
+
+    monkeypatch.setenv("TZ", "UTC")
+    clock.tzset()
+    master = DATA / "ros_log" / "c0ffee00-d4b2-11eb-9c3e-0242ac110002" / "master.log"
+    app = ConsoleApp(files=[str(master)], utc=True)
+    try:
+        async with app.run_test(size=(160, 40)) as pilot:
+            await until(pilot, lambda: len(app.store) == 3 and not app.loading)
+            await until(pilot, lambda: "master.log" in app.source_notes)
+            await pilot.press("enter")
+            await pilot.pause()
+            text = screen_text(app)
+            assert "2021-06-24 05:23:16.950000000 +0000  (the file's local time: it gives no zone)" in text
+            assert "File notes  its times are local times without a zone: read as this computer's local time" in text
+    finally:
+        monkeypatch.undo()
+        clock.tzset()

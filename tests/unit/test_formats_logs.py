@@ -112,6 +112,7 @@ def test_rosout_log():
         (20, "/odd", "f.py", 1, "f", "unknown level"),
     ]
     assert records[0].stamp_ns == 1795345776_389451742
+    assert [r.topics for r in records] == ["/rosout,/chatter", "/rosout", "", "", "/rosout"]
 
 
 @pytest.mark.parametrize(

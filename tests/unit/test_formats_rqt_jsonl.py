@@ -71,10 +71,20 @@ def test_reads_and_writes_rqt_console_ros1_variant():
     assert records[3].file == "/src/node.cpp"
     assert records[3].function == "void Node::cb(const std_msgs::String_<std::allocator<void> >::ConstPtr&)"
     assert records[3].line == 30
-    # Written back as ROS 1: same bytes except the topics, which records do not keep.
-    written = _write(RqtCsvWriter(ros1=True), records).decode()
-    expected = data.decode().replace('"/chatter,/rosout"', '""').replace('"/rosout"', '""')
-    assert written == expected
+    assert [r.topics for r in records[:3]] == ["/chatter,/rosout", "/rosout", ""]
+    # Written back as ROS 1: the same bytes, topics too.
+    assert _write(RqtCsvWriter(ros1=True), records) == data
+
+
+def test_ros1_csv_writes_levels_between_steps_as_the_step_below(tmp_path):
+    records = [LogRecord(i, level, "n", f"m{level}", "", "", 0, "") for i, level in enumerate((5, 25, 35, 45, 55))]
+    written = _write(RqtCsvWriter(ros1=True), records).decode().splitlines()
+    assert written[0].split(";")[1] == "severity"
+    assert [line.split(";")[1] for line in written[1:]] == ['"1"', '"2"', '"4"', '"8"', '"16"']
+    path = tmp_path / "levels.csv"
+    save_records(records, path, "rqt1")
+    loaded, problems = read_text(path.read_bytes(), RqtCsvFormat(), "levels.csv")
+    assert list(problems) == [] and [r.level for r in loaded] == [10, 20, 30, 40, 50]
 
 
 @pytest.mark.parametrize("save_format", ["rqt", "rqt1", "jsonl"])
@@ -144,6 +154,15 @@ def test_jsonl_bad_lines_are_reported():
     assert [r.level for r in records] == [30, 30]
     assert [p.line for p in problems] == [2, 3, 4, 7, 7]
     assert "'stamp_ns' is not an integer" in problems.items[1].what
+
+
+def test_json_lines_keep_ros1_topics_and_leave_them_out_when_none():
+    plain = LogRecord(1, 20, "n", "m", "", "", 0, "s")
+    ros1 = LogRecord(2, 30, "n", "m", "", "", 0, "s", "/rosout,/chatter")
+    written = _write(JsonLinesWriter(), [plain, ros1]).decode().splitlines()
+    assert "topics" not in written[0] and '"topics": "/rosout,/chatter"' in written[1]
+    records, problems = read_text(("\n".join(written) + "\n").encode(), JsonLinesFormat(), "x")
+    assert list(problems) == [] and [r.topics for r in records] == ["", "/rosout,/chatter"]
 
 
 def test_damaged_rqt_csv_keeps_the_row_before_each_bad_line():

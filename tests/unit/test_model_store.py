@@ -115,3 +115,20 @@ def test_bad_values_in_a_batch_are_clamped_and_the_rest_kept_exactly():
 def test_max_messages_must_be_positive():
     with pytest.raises(ValueError):
         LogStore(max_messages=0)
+
+
+def test_ros1_topics_are_kept_and_cost_nothing_for_records_without():
+    store = LogStore()
+    store.extend(make(i) for i in range(CHUNK_SIZE + 10))  # ROS 2 records: no topics column made
+    assert all(chunk.topics is None for chunk in store._chunks)
+    with_topics = make(99)
+    with_topics.topics = "/rosout,/chatter"
+    store.extend([make(100), with_topics, make(101)])
+    last = store._chunks[-1]
+    assert last.topics is not None and len(last.topics) == len(last)
+    assert [store.get(seq).topics for seq in range(store.end_seq - 4, store.end_seq)] == [
+        "",
+        "",
+        "/rosout,/chatter",
+        "",
+    ]

@@ -3,7 +3,14 @@
 - ``rqt_csv``: rqt_console's message files (ROS 2 and ROS 1 variants), read and written;
 - ``jsonl``: JSON Lines, lossless, read and written;
 - ``rcutils_log``: ROS 2 node log files (any ``RCUTILS_CONSOLE_OUTPUT_FORMAT``), read;
-- ``rosout_log``: ROS 1 ``rosout.log``, read.
+- ``rosout_log``: ROS 1 ``rosout.log``, read;
+- ``python_log``: ROS 1 run logs in Python's layout (``master.log``, ``roslaunch-*.log``,
+  rospy nodes' ``<node>-N.log``), read;
+- ``ros1_console``: roscpp and rospy console output (``<node>-N-stdout.log``, captures), read;
+- ``launch_log``: ROS 2 ``launch.log`` and saved ``ros2 launch`` output, read.
+
+``console_lines`` is what the last three share (plain lines, missing times, names from
+file names); ``detect`` picks a file's format from its first lines.
 
 Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS libraries.
 """
@@ -12,9 +19,12 @@ from __future__ import annotations
 
 from .detect import detect_text_format, recording_kind
 from .jsonl import JsonLinesFormat
+from .launch_log import LaunchLogFormat
 from .problems import FormatError, Problem, Problems, RecordError
+from .python_log import PythonLogFormat
 from .rcutils_log import DEFAULT_TEMPLATE, RcutilsLogFormat
-from .rosout_log import RosoutLogFormat
+from .ros1_console import Ros1ConsoleFormat
+from .rosout_log import Ros2RosoutLogFormat, RosoutLogFormat
 from .rqt_csv import RqtCsvFormat
 from .save import SAVE_FORMATS, SaveCancelled, save_format_for, save_records
 from .text_format import TextFormat, read_batches
@@ -30,10 +40,11 @@ def text_formats(log_format: str | None = None, extra_templates: tuple[str, ...]
     formats: list[TextFormat] = []
     if log_format:
         formats.append(RcutilsLogFormat(log_format))
-    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat()]
+    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat(), Ros2RosoutLogFormat()]
     if not log_format:
         formats.append(RcutilsLogFormat())
         formats += [RcutilsLogFormat(t) for t in extra_templates if t and t != DEFAULT_TEMPLATE]
+    formats += [PythonLogFormat(), Ros1ConsoleFormat(), LaunchLogFormat()]
     return formats
 
 
@@ -42,10 +53,14 @@ __all__ = [
     "SAVE_FORMATS",
     "FormatError",
     "JsonLinesFormat",
+    "LaunchLogFormat",
     "Problem",
     "Problems",
+    "PythonLogFormat",
     "RcutilsLogFormat",
     "RecordError",
+    "Ros1ConsoleFormat",
+    "Ros2RosoutLogFormat",
     "RosoutLogFormat",
     "RqtCsvFormat",
     "SaveCancelled",

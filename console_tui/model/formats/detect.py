@@ -33,11 +33,17 @@ def recording_kind(head: bytes) -> str | None:
     return None
 
 
-def detect_text_format(head: bytes, candidates: Sequence[TextFormat], name: str) -> TextFormat:
-    """The first of ``candidates`` that recognises the first non-blank line of ``head``.
+def detect_text_format(
+    head: bytes, candidates: Sequence[TextFormat], name: str, *, fallback: TextFormat | None = None
+) -> TextFormat:
+    """The format of a file that starts with ``head``: the first of ``candidates`` that
+    recognises a line, trying its first non-blank lines in order (a file may start with
+    lines of no record: a banner, output printed before the first log line, the end of a
+    record cut by a rotation).
 
-    Raises ``FormatError`` saying why none does: empty, binary, an old bag, or text in
-    no known format (quoting its first line).
+    ``fallback``, when given, is the answer for text no candidate recognises (captured
+    output, known by the file's name). Otherwise raises ``FormatError`` saying why none
+    fits: empty, binary, an old bag, or text in no known format (quoting its first line).
     """
     if not head:
         raise FormatError(f"{name}: the file is empty")
@@ -50,12 +56,16 @@ def detect_text_format(head: bytes, candidates: Sequence[TextFormat], name: str)
     lines = text.split("\n")
     if len(head) >= HEAD_SIZE and len(lines) > 1:
         lines.pop()  # probably cut by the head's end
-    first = next((line for line in lines[:_DETECT_LINES] if line.strip()), None)
-    if first is None:
+    tried = [line for line in lines if line.strip()][:_DETECT_LINES]
+    if not tried:
         raise FormatError(f"{name}: no log records (only blank lines)")
-    for candidate in candidates:
-        if candidate.looks_like(first):
-            return candidate
+    for line in tried:
+        for candidate in candidates:
+            if candidate.looks_like(line):
+                return candidate
+    if fallback is not None:
+        return fallback
+    first = tried[0]
     shown = first if len(first) <= 80 else first[:77] + "..."
     known = "; ".join(candidate.title for candidate in candidates)
     raise FormatError(

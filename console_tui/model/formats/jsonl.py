@@ -1,7 +1,8 @@
 """JSON Lines: one JSON object per record with every field, lossless.
 
 A line reads ``{"stamp_ns": 1700000000123456789, "level": 20, "node": "talker", "msg":
-"hello", "file": "/src/talker.py", "function": "tick", "line": 42, "source": "run1.bag"}``.
+"hello", "file": "/src/talker.py", "function": "tick", "line": 42, "source": "run1.bag"}``;
+ROS 1 records add ``"topics": "/rosout,/chatter"`` (left out when there are none).
 Newlines and quotes in text are JSON escapes, so every record is exactly one line. When
 loaded, a record keeps the ``source`` it was saved with (the file's name if it had none).
 """
@@ -20,13 +21,15 @@ from .textlines import TextLines
 
 FIELDS = ("stamp_ns", "level", "node", "msg", "file", "function", "line", "source")
 _INT_FIELDS = ("stamp_ns", "line")
-_TEXT_FIELDS = ("node", "msg", "file", "function", "source")
+_TEXT_FIELDS = ("node", "msg", "file", "function", "source", "topics")
 _FLUSH_EVERY = 10_000
 
 
 def record_to_json(record: LogRecord) -> str:
     """One record as one line of JSON (no newline)."""
     values = {name: getattr(record, name) for name in FIELDS}
+    if record.topics:
+        values["topics"] = record.topics
     try:
         text = json.dumps(values, ensure_ascii=False, separators=(", ", ": "))
         text.encode("utf-8")

@@ -40,6 +40,8 @@ _TOKEN_PATTERNS: dict[str, str] = {
     "time_as_nanoseconds": r"-?\d+",
     "line_number": r"\d*",
 }
+#: The tokens rcutils knows in a format.
+TOKENS: tuple[str, ...] = tuple(_TOKEN_PATTERNS)
 _ESCAPES = {"a": "\a", "b": "\b", "n": "\n", "r": "\r", "t": "\t"}
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 
@@ -219,6 +221,8 @@ class RcutilsLogFormat(TextFormat):
         except (ValueError, OverflowError) as error:
             raise RecordError(f"bad time: {error}") from None
         line_text = fields.get("line_number") or ""
+        if len(line_text) > 12:
+            raise RecordError(f"line number of {len(line_text)} digits")
         return LogRecord(
             stamp_ns=stamp_ns,
             level=level,

@@ -37,8 +37,8 @@ ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
 ROS1_COLUMNS = ("message", "severity", "node", "stamp", "topics", "location")
 _KNOWN_COLUMNS = frozenset(ROS1_COLUMNS)
 _ROS2_LEVELS = frozenset(int(s) for s in MESSAGE_SEVERITIES)
-_STAMP = re.compile(r"(\d+)\.(\d+)\Z")
-_LINE_NUMBER = re.compile(r"\d+\Z")
+_STAMP = re.compile(r"(\d{1,20})\.(\d{1,18})\Z")
+_LINE_NUMBER = re.compile(r"\d{1,12}\Z")
 _WINDOWS_DRIVE = re.compile(r"[A-Za-z]:[\\/]")
 _FLUSH_EVERY = 10_000
 #: How many places a damaged row is tried to end at before it is given up.
@@ -76,7 +76,7 @@ def _row(record: LogRecord, ros1: bool) -> str:
     severity = to_ros1(record.level) if ros1 else record.level
     fields = [escape_message(record.msg), str(severity), record.node, stamp_text(record.stamp_ns)]
     if ros1:
-        fields.append("")  # topics: records do not keep them
+        fields.append(escape_message(record.topics))
     fields.append(record.location)
     return ";".join(f'"{field}"' for field in fields) + "\n"
 
@@ -201,6 +201,8 @@ def _parse_row(text: str, columns: tuple[str, ...], ros1: bool, source: str) -> 
         record.stamp_ns = int(match.group(1)) * 1_000_000_000 + int(match.group(2))
     if "location" in fields:
         record.file, record.function, record.line = split_location(fields["location"])
+    if fields.get("topics"):
+        record.topics = unescape_message(fields["topics"])
     return record
 
 

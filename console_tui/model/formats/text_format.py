@@ -23,11 +23,22 @@ class TextFormat(ABC):
 
     @abstractmethod
     def looks_like(self, first_line: str) -> bool:
-        """Whether a file whose first non-blank line is this is in this format."""
+        """Whether a file whose first recognisable line is this is in this format."""
 
     @abstractmethod
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
         """The records of a file, each with ``source``; bad parts go to ``problems``."""
+
+    def for_file(self, name: str, mtime_ns: int = 0) -> TextFormat:
+        """This format for reading one file (``name``: its file name, ``mtime_ns``: when it
+        last changed); formats that take names or times from the file return a copy that
+        knows them, the others themselves."""
+        return self
+
+    def notes(self) -> list[str]:
+        """How this file was read, where a reader should know it (local times, times filled
+        in): facts, not problems. Complete once the records have been read."""
+        return []
 
 
 class TextFormatWriter(ABC):

@@ -174,6 +174,11 @@ class FileLoad:
             found.append(Problem("", self.error))
         return found
 
+    def notes(self) -> dict[str, list[str]]:
+        """How each file was read, where a person should know it (local times, times filled
+        in), by source; complete once the load has finished."""
+        return {file.source: notes for file in list(self.files) if (notes := file.notes())}
+
     def _run(self) -> None:
         try:
             for path, name in zip(self.paths, self._names, strict=False):

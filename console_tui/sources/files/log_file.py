@@ -52,6 +52,11 @@ class LogFile(ABC):
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         """The records, in batches, in the file's order; stops early once ``cancel`` is set."""
 
+    def notes(self) -> list[str]:
+        """How the file was read, where a person should know it (local times, times filled
+        in): facts, not problems. Complete once ``batches`` has run."""
+        return []
+
     def empty_reason(self) -> str:
         """Why reading gave no record, when no problem says it already."""
         return "no log records in it"
@@ -78,10 +83,14 @@ class TextLogFile(LogFile):
 
     def __init__(self, path: Path, source: str, text_format: TextFormat) -> None:
         super().__init__(path, source)
-        self.format = text_format
+        info = os.stat(path)
+        self.format = text_format.for_file(path.name, info.st_mtime_ns)
         self.kind = text_format.name
         self.title = text_format.title
-        self.total = max(1, os.path.getsize(path))
+        self.total = max(1, info.st_size)
+
+    def notes(self) -> list[str]:
+        return self.format.notes()
 
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         with open(self.path, "rb") as stream:

@@ -7,8 +7,9 @@ import stat
 from collections.abc import Sequence
 from pathlib import Path
 
-from ...model.formats import FormatError, detect_text_format, recording_kind, text_formats
+from ...model.formats import FormatError, Ros1ConsoleFormat, detect_text_format, recording_kind, text_formats
 from ...model.formats.detect import HEAD_SIZE
+from ...model.formats.ros1_console import CAPTURE_SUFFIXES
 from .log_file import LogFile, TextLogFile
 
 #: The environment variable rcutils reads its output format from.
@@ -56,7 +57,14 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
         raise FormatError(f"{file_path.name}: named like a recording, but it does not start like one (damaged?)")
     env_template = os.environ.get(FORMAT_VARIABLE, "")
     candidates = text_formats(log_format, (env_template,) if env_template else ())
-    return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name))
+    fallback = Ros1ConsoleFormat() if _is_capture(file_path.name) else None
+    return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name, fallback=fallback))
+
+
+def _is_capture(name: str) -> bool:
+    """Whether a file is named as captured output (``talker-2-stdout.log``, rotated too)."""
+    stem = name.rstrip("0123456789").removesuffix(".") if name[-1:].isdigit() else name
+    return stem.endswith(CAPTURE_SUFFIXES)
 
 
 def _not_regular(mode: int) -> str:

@@ -2,19 +2,18 @@
 
 Only the log topics are read (``rcl_interfaces/msg/Log``, ``rosgraph_msgs/Log``), found
 through each recording's index; no other topic's messages are decoded. The libraries:
-``rosbags`` (ROS 1 index, rosbag2 directories and sqlite3, message decoding) and ``mcap``
+``rosbags`` (ROS 1 index, rosbag2 directories and sqlite3) and ``mcap``
 (MCAP summary and records) -- the ``files`` extra.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator
-from functools import cache
 from typing import Any
 
+from ...model.formats.ros1_log_msg import Ros1LogDecoder
 from ...model.formats.ros2_log_msg import LogDecoder
 from ...model.record import LogRecord
-from ..log_message import log_to_record
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from .log_file import Cancel, LogFile
 
@@ -40,25 +39,18 @@ def choose_log_topics(topic_types: Iterable[tuple[str, str]]) -> set[str]:
     return topics
 
 
-@cache
-def _typestore(ros1: bool) -> Any:
-    from rosbags.typesys import Stores, get_typestore
-
-    return get_typestore(Stores.ROS1_NOETIC if ros1 else Stores.LATEST)
-
-
 def decoder(msgtype: str, encoding: str, source: str) -> Callable[[bytes], LogRecord]:
-    """A function from a serialized log message (CDR or ROS 1) to a record."""
+    """A function from a serialized log message (CDR or ROS 1) to a record: the live
+    intakes' direct decoders, one reading of each layout."""
     msgtype = normalize_type(msgtype)
     if encoding == "ros1" or (msgtype == ROS1_LOG and encoding != "cdr"):
-        deserialize = _typestore(True).deserialize_ros1
-        type_name = ROS1_LOG
+        decode_ros1 = Ros1LogDecoder().decode
 
-        def decode_ros1(data: bytes) -> LogRecord:
-            return log_to_record(deserialize(data, type_name), source, ros1=True)
+        def decode_ros1_log(data: bytes) -> LogRecord:
+            return decode_ros1(data, source)
 
-        return decode_ros1
-    decode = LogDecoder().decode  # the live intake's decoder: one reading of Log's CDR
+        return decode_ros1_log
+    decode = LogDecoder().decode
 
     def decode_cdr(data: bytes) -> LogRecord:
         return decode(bytes(data), source)

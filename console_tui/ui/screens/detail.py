@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 from rich.table import Table
 from rich.text import Text
@@ -12,6 +12,7 @@ from textual.containers import Vertical
 from textual.screen import ModalScreen
 from textual.widgets import Footer, Static, TextArea
 
+from ...model.formats.console_lines import LOCAL_TIME_NOTE
 from ...model.levels import severity_name
 from ...model.record import LogRecord
 from ...model.text import multi_line, one_line
@@ -26,13 +27,17 @@ def wraps_quickly(text: str) -> bool:
     return max((len(line) for line in text.split("\n")), default=0) <= WRAP_LIMIT
 
 
-def fields_table(record: LogRecord, *, utc: bool = False) -> Table:
+def fields_table(record: LogRecord, *, utc: bool = False, notes: tuple[str, ...] | list[str] = ()) -> Table:
+    """The record's fields; ``notes`` are what the reader of its file said about how it was read."""
     table = Table.grid(padding=(0, 2))
     table.add_column(style="bold", no_wrap=True)
     table.add_column(overflow="fold")
+    time_text = full_text(record.stamp_ns, utc=utc)
+    if any(note.startswith(LOCAL_TIME_NOTE) for note in notes):
+        time_text += "  (the file's local time: it gives no zone)"
     rows = [
         ("#", str(record.seq + 1)),
-        ("Time", full_text(record.stamp_ns, utc=utc)),
+        ("Time", time_text),
         ("Stamp", stamp_text(record.stamp_ns)),
         ("Severity", f"{severity_name(record.level)} ({record.level})"),
         ("Node", record.node),
@@ -40,8 +45,10 @@ def fields_table(record: LogRecord, *, utc: bool = False) -> Table:
         ("Function", record.function),
         ("Line", str(record.line)),
         ("Source", record.source),
+        *([("Topics", record.topics.replace(",", ", "))] if record.topics else []),
         ("Length", f"{len(record.msg):,} characters, {record.msg.count(chr(10)) + 1:,} lines"),
     ]
+    rows += [("File notes" if index == 0 else "", note) for index, note in enumerate(notes)]
     for name, value in rows:
         table.add_row(name, Text(one_line(value, FIELD_LIMIT)))
     return table
@@ -60,24 +67,33 @@ class DetailScreen(ModalScreen[None]):
     """
 
     BINDINGS = [
-        Binding("escape,q", "dismiss_screen", "Close"),
-        Binding("n", "step(1)", "Next row"),
-        Binding("p", "step(-1)", "Previous row"),
-        Binding("w", "toggle_wrap", "Wrap"),
-        Binding("y", "copy", "Copy message"),
+        Binding("escape,q", "dismiss_screen", "Close", id="detail.close"),
+        Binding("n", "step(1)", "Next row", id="detail.next"),
+        Binding("p", "step(-1)", "Previous row", id="detail.previous"),
+        Binding("w", "toggle_wrap", "Wrap", id="detail.wrap"),
+        Binding("y", "copy", "Copy message", id="detail.copy"),
     ]
 
     def __init__(
-        self, record: LogRecord, *, utc: bool = False, step: Callable[[int, int], LogRecord | None] | None = None
+        self,
+        record: LogRecord,
+        *,
+        utc: bool = False,
+        step: Callable[[int, int], LogRecord | None] | None = None,
+        source_notes: Mapping[str, list[str]] | None = None,
     ) -> None:
         super().__init__()
         self.record = record
         self.utc = utc
         self._step = step
+        self._source_notes = source_notes or {}
+
+    def _fields(self, record: LogRecord) -> Table:
+        return fields_table(record, utc=self.utc, notes=self._source_notes.get(record.source, ()))
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Static(fields_table(self.record, utc=self.utc), id="fields")
+            yield Static(self._fields(self.record), id="fields")
             text = multi_line(self.record.msg)
             area = TextArea(text, read_only=True, soft_wrap=wraps_quickly(text), id="message")
             area.show_line_numbers = True
@@ -89,7 +105,7 @@ class DetailScreen(ModalScreen[None]):
 
     def show(self, record: LogRecord) -> None:
         self.record = record
-        self.query_one("#fields", Static).update(fields_table(record, utc=self.utc))
+        self.query_one("#fields", Static).update(self._fields(record))
         text = multi_line(record.msg)
         area = self.query_one(TextArea)
         area.soft_wrap = wraps_quickly(text)

@@ -155,6 +155,8 @@ class SaveScreen(_Dialog):
         name = event.pressed.name or "rqt"
         path_input = self.query_one("#path", Input)
         path = Path(path_input.value)
+        if save_format_for(path) == name:
+            return  # the name as typed asks for this format (it was picked from the name): keep the name
         if path.suffix and path.suffix != SUFFIXES[name]:
             path_input.value = str(path.with_suffix(SUFFIXES[name]))
 

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import os
+from collections.abc import Mapping
+from pathlib import Path
 
 from rich.table import Table
 from rich.text import Text
@@ -12,40 +14,53 @@ from textual.containers import VerticalScroll
 from textual.screen import ModalScreen
 from textual.widgets import Static
 
+from ..keys import KeyDisplay, key_label, keymap_of, keymap_path
+
 INTRO = (
     "console-tui shows every node's log messages in one table. It follows the newest "
     "message until you move up or pause; End follows again. Ctrl+P searches every action."
 )
 
 
-def key_label(binding: Binding, display: Callable[[Binding], str]) -> str:
-    """Every key of a binding as the footer shows keys: ``?, f1``."""
-    keys = [part.strip() for part in binding.key.split(",") if part.strip()]
-    return ", ".join(display(Binding(key, binding.action)) for key in keys)
+def keymap_note() -> str:
+    path = str(keymap_path())
+    home = str(Path.home())
+    if path.startswith(home + os.sep):
+        path = "~" + path[len(home) :]
+    return f'Change keys in {path}, by the names on the right: console.pause = "p"'
 
 
-def bindings_table(groups: list[tuple[str, list[Binding]]], display: Callable[[Binding], str]) -> Table:
+def bindings_table(groups: list[tuple[str, list[Binding]]], app: KeyDisplay, keymap: Mapping[str, str]) -> Table:
     table = Table.grid(padding=(0, 2))
     table.add_column(style="bold cyan", no_wrap=True)
     table.add_column()
+    table.add_column(style="dim", no_wrap=True)
     for title, bindings in groups:
-        table.add_row(Text(title, style="bold underline"), "")
+        table.add_row(Text(title, style="bold underline"), "", "")
         seen: set[str] = set()
         for binding in bindings:
             if binding.description in seen or not binding.description:
                 continue
             seen.add(binding.description)
-            table.add_row(key_label(binding, display), binding.description)
-        table.add_row("", "")
+            table.add_row(key_label(binding, app, keymap), binding.description, binding.id or "")
+        table.add_row("", "", "")
     return table
 
 
 class HelpScreen(ModalScreen[None]):
+    """Every key by where it works, with the name to remap it by.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape, q, ?, f1 | Close. |
+    """
+
     DEFAULT_CSS = """
     HelpScreen { align: center middle; }
     HelpScreen > VerticalScroll {
-        width: 80; max-width: 95%; height: 85%; border: thick $primary; background: $surface; padding: 1 2;
+        width: 96; max-width: 95%; height: 85%; border: thick $primary; background: $surface; padding: 1 2;
     }
+    HelpScreen .keymap-note { color: $text-muted; }
     """
     BINDINGS = [Binding("escape,q,question_mark,f1", "dismiss_screen", "Close")]
 
@@ -56,8 +71,9 @@ class HelpScreen(ModalScreen[None]):
     def compose(self) -> ComposeResult:
         with VerticalScroll():
             yield Static(Text(INTRO), classes="intro")
+            yield Static(Text(keymap_note()), classes="keymap-note")
             yield Static("")
-            yield Static(bindings_table(self.groups, self.app.get_key_display))
+            yield Static(bindings_table(self.groups, self.app, keymap_of(self.app)))
 
     def action_dismiss_screen(self) -> None:
         self.dismiss(None)

@@ -81,16 +81,16 @@ class LogTable(ScrollView, can_focus=True):
     }
 
     BINDINGS = [
-        Binding("up,k", "cursor_up", "Up", show=False),
-        Binding("down,j", "cursor_down", "Down", show=False),
-        Binding("shift+up,K", "select_up", "Select rows upwards", show=False),
-        Binding("shift+down,J", "select_down", "Select rows downwards", show=False),
-        Binding("escape", "clear_selection", "Clear the selection", show=False),
-        Binding("pageup", "page_up", "Page up", show=False),
-        Binding("pagedown", "page_down", "Page down", show=False),
-        Binding("home,g", "first_row", "First", show=False),
-        Binding("end,G", "follow", "Follow tail"),
-        Binding("enter", "activate", "Details"),
+        Binding("up,k", "cursor_up", "Up", show=False, id="table.up"),
+        Binding("down,j", "cursor_down", "Down", show=False, id="table.down"),
+        Binding("shift+up,K", "select_up", "Select rows upwards", show=False, id="table.select_up"),
+        Binding("shift+down,J", "select_down", "Select rows downwards", show=False, id="table.select_down"),
+        Binding("escape", "clear_selection", "Clear the selection", show=False, id="table.clear_selection"),
+        Binding("pageup", "page_up", "Page up", show=False, id="table.page_up"),
+        Binding("pagedown", "page_down", "Page down", show=False, id="table.page_down"),
+        Binding("home,g", "first_row", "First", show=False, id="table.first"),
+        Binding("end,G", "follow", "Follow tail", id="table.follow"),
+        Binding("enter", "activate", "Details", id="table.details"),
     ]
 
     class RowActivated(Message):

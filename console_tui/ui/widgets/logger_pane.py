@@ -36,6 +36,7 @@ from ...model.logger_levels import (
     format_remaining,
     node_of_logger,
 )
+from ..keys import Hint, hint_line
 from ..plain import plain
 from .side_pane import SidePane
 
@@ -45,8 +46,18 @@ if TYPE_CHECKING:
 #: How long ``t`` sets a temporary level for unless told otherwise.
 DEFAULT_TEMPORARY_S = 30.0
 TICK_S = 1.0
-#: What the pane says when this run has no ROS 2 (rclpy missing, or files only).
-NO_ROS_TEXT = "ROS 2 is not running in this console (no rclpy, or files only): logger levels cannot be read or set."
+#: What the pane says when this run has no live ROS (files only).
+NO_ROS_TEXT = "No live ROS in this console (files only): logger levels cannot be read or set."
+
+_HINTS: list[Hint] = [
+    (tuple(f"set_level({int(s)})" for s in MESSAGE_SEVERITIES), "level"),
+    ("set_level(0)", "inherit"),
+    ("temporary", "temporary"),
+    ("end_temporary", "end it"),
+    ("add_logger", "add"),
+    ("refresh", "read"),
+    ("leave", "table"),
+]
 
 _LEVEL_STYLE = {10: "dim", 20: "green", 30: "yellow", 40: "red", 50: "bold red"}
 
@@ -136,19 +147,19 @@ class LoggerPane(SidePane):
     """
 
     BINDINGS = [
-        Binding("d,1", "set_level(10)", "Set DEBUG", show=False),
-        Binding("i,2", "set_level(20)", "Set INFO", show=False),
-        Binding("w,3", "set_level(30)", "Set WARN", show=False),
-        Binding("e,4", "set_level(40)", "Set ERROR", show=False),
-        Binding("f,5", "set_level(50)", "Set FATAL", show=False),
-        Binding("u,0", "set_level(0)", "Unset: inherit the level", show=False),
-        Binding("t", "temporary", "Temporary level"),
-        Binding("x", "end_temporary", "End the temporary level now", show=False),
-        Binding("a,plus", "add_logger", "Add a logger by name", show=False),
-        Binding("r", "refresh", "Read the levels again", show=False),
-        Binding("left", "focus_nodes", "To the nodes", show=False),
-        Binding("right", "focus_loggers", "To the loggers", show=False),
-        Binding("escape", "leave", "Back to the table", show=False),
+        Binding("d,1", "set_level(10)", "Set DEBUG", show=False, id="loggers.debug"),
+        Binding("i,2", "set_level(20)", "Set INFO", show=False, id="loggers.info"),
+        Binding("w,3", "set_level(30)", "Set WARN", show=False, id="loggers.warn"),
+        Binding("e,4", "set_level(40)", "Set ERROR", show=False, id="loggers.error"),
+        Binding("f,5", "set_level(50)", "Set FATAL", show=False, id="loggers.fatal"),
+        Binding("u,0", "set_level(0)", "Unset: inherit the level", show=False, id="loggers.unset"),
+        Binding("t", "temporary", "Temporary level", id="loggers.temporary"),
+        Binding("x", "end_temporary", "End the temporary level now", show=False, id="loggers.end_temporary"),
+        Binding("a,plus", "add_logger", "Add a logger by name", show=False, id="loggers.add"),
+        Binding("r", "refresh", "Read the levels again", show=False, id="loggers.read"),
+        Binding("left", "focus_nodes", "To the nodes", show=False, id="loggers.to_nodes"),
+        Binding("right", "focus_loggers", "To the loggers", show=False, id="loggers.to_loggers"),
+        Binding("escape", "leave", "Back to the table", show=False, id="loggers.leave"),
     ]
 
     class ControlEvent(Message):
@@ -207,10 +218,7 @@ class LoggerPane(SidePane):
         yield self.notice_line
         yield LevelBar(id="logger-level-bar")
         yield self.name_input
-        yield Static(
-            "d i w e f: level · u: inherit · t: temporary · x: end it · a: add · r: read · Esc: table",
-            id="logger-keys",
-        )
+        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="logger-keys")
 
     def on_mount(self) -> None:
         control = self.control
@@ -319,16 +327,19 @@ class LoggerPane(SidePane):
             self._say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
             self.node_list.focus()
             return False
-        self.select_node(node.fqn, logger)
+        self.select_node(node.fqn, None if logger == node.fqn else logger)
         self.logger_list.focus()
         return True
 
     # -- service calls ------------------------------------------------------------------------
 
-    def read_levels(self, fqn: str) -> None:
+    def read_levels(self, fqn: str, *, asked: bool = False) -> None:
+        """Read ``fqn``'s levels; with a control that reads only when asked (ROS 1), only when ``asked``."""
         node = self.node(fqn)
         control = self.control
         if control is None or node is None or not node.has_logger_services:
+            return
+        if control.read_when_asked and not asked:
             return
         names = self._loggers_of(node).names_to_read()
         self._call(control.get_levels(fqn, names), fqn, "read the levels", lambda levels: self.show_levels(fqn, levels))
@@ -414,6 +425,7 @@ class LoggerPane(SidePane):
                 )
             else:
                 self._say(f"{_shown(entry.logger)} of {entry.node} is back to {_level_word(entry.previous)}")
+                self.show_levels(entry.node, {entry.logger: entry.previous})
             self.read_levels(entry.node)
 
     # -- keys and clicks -------------------------------------------------------------------------
@@ -433,6 +445,9 @@ class LoggerPane(SidePane):
         logger = self.highlighted_logger
         if logger is None:
             logger = self._loggers_of(node).own
+        if not logger and self._loggers_of(node).listing:
+            self._say("Read the node's loggers first (r), or add one by name (a)", error=True)
+            return None
         return node.fqn, logger
 
     def action_set_level(self, level: int) -> None:
@@ -465,7 +480,7 @@ class LoggerPane(SidePane):
     def action_refresh(self) -> None:
         self._note_seen_loggers(force=True)
         if self.selected is not None:
-            self.read_levels(self.selected)
+            self.read_levels(self.selected, asked=True)
         self._render_all()
 
     def action_focus_nodes(self) -> None:
@@ -491,6 +506,8 @@ class LoggerPane(SidePane):
     @on(OptionList.OptionSelected, "#logger-nodes")
     def _node_chosen(self, message: OptionList.OptionSelected) -> None:
         message.stop()
+        if self.selected is not None and self.control is not None and self.control.read_when_asked:
+            self.read_levels(self.selected, asked=True)  # Enter opens the node: its loggers are read
         self.logger_list.focus()
 
     @on(OptionList.OptionSelected, "#logger-levels")
@@ -597,10 +614,13 @@ class LoggerPane(SidePane):
         if node is None:
             return "Select a node.", False
         if node.has_logger_services:
+            if self.control is not None and self.control.read_when_asked and not self._loggers_of(node).levels:
+                return "Enter or r: read its loggers · a: set one by name", False
             return "", False
         if node.fqn in self.checking:
             return f"Checking whether {node.fqn} offers logger services…", False
-        return f"{node.fqn} has no logger services: {ENABLE_LOGGER_SERVICE_HINT}.", False
+        hint = self.control.no_services_hint if self.control is not None else ENABLE_LOGGER_SERVICE_HINT
+        return f"{node.fqn} has no logger services: {hint}.", False
 
     def _say(self, text: str, error: bool = False) -> None:
         self.notice = text
@@ -612,7 +632,8 @@ class LoggerPane(SidePane):
     def _loggers_of(self, node: GraphNode) -> NodeLoggers:
         loggers = self.loggers.get(node.fqn)
         if loggers is None:
-            loggers = self.loggers[node.fqn] = NodeLoggers(node)
+            listing = self.control is not None and self.control.lists_loggers
+            loggers = self.loggers[node.fqn] = NodeLoggers(node, listing=listing)
         return loggers
 
     def _note_seen_loggers(self, force: bool = False) -> bool:

@@ -13,8 +13,10 @@ from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
 from ...model.text import one_line
+from ..keys import Hint, hint_line
 from ..plain import plain
 
+_HINTS: list[Hint] = [("submit", "applies"), ("close", "closes"), (("history(-1)", "history(1)"), "history")]
 PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
 
 
@@ -24,15 +26,16 @@ class QueryBar(Vertical):
     DEFAULT_CSS = """
     QueryBar { height: auto; display: none; background: $panel; padding: 0 1; }
     QueryBar.-open { display: block; }
-    QueryBar > Input { border: none; height: 1; padding: 0; background: $panel; }
+    /* One line, no border: the focused Input's built-in tall border must not win either. */
+    QueryBar > Input, QueryBar > Input:focus { border: none; height: 1; padding: 0; background: $panel; }
     QueryBar > #query-problem { color: $text-error; height: auto; }
     QueryBar > #query-problem.-ok { color: $text-muted; }
     """
 
     BINDINGS = [
-        Binding("escape", "close", "Close", show=False),
-        Binding("up", "history(-1)", "Earlier query", show=False),
-        Binding("down", "history(1)", "Later query", show=False),
+        Binding("escape", "close", "Close", show=False, id="query.close"),
+        Binding("up", "history(-1)", "Earlier query", show=False, id="query.earlier"),
+        Binding("down", "history(1)", "Later query", show=False, id="query.later"),
     ]
 
     class Applied(Message):
@@ -54,11 +57,11 @@ class QueryBar(Vertical):
 
     def compose(self) -> ComposeResult:
         yield Input(placeholder=PLACEHOLDER, id="query-input")
-        yield Static(
-            "Enter applies · Esc closes · ↑↓ history · -term excludes, +term highlights",
-            id="query-problem",
-            classes="-ok",
-        )
+        yield Static(f"{self.key_hints()} · -term excludes, +term highlights", id="query-problem", classes="-ok")
+
+    def key_hints(self) -> str:
+        """``Enter applies · Esc closes · ↑/↓ history``, from the bindings."""
+        return hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], _HINTS)
 
     @property
     def input(self) -> Input:
@@ -99,7 +102,7 @@ class QueryBar(Vertical):
             return None
         problem.add_class("-ok")
         count = len(entries)
-        problem.update(f"{count} rule{'s' if count != 1 else ''} · Enter applies · Esc closes · ↑↓ history")
+        problem.update(f"{count} rule{'s' if count != 1 else ''} · {self.key_hints()}")
         return entries
 
     @on(Input.Changed, "#query-input")

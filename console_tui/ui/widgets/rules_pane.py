@@ -12,9 +12,21 @@ from textual.widgets.option_list import Option
 
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.text import one_line
+from ..keys import Hint, hint_line
 from .side_pane import SidePane
 
-HINT = "space on/off · i invert · h exclude⇄highlight · e edit · d delete · a add · H highlighted only · S save · O open · Esc table"
+_HINTS: list[Hint] = [
+    ("toggle_enabled", "on/off"),
+    ("toggle_inverted", "invert"),
+    ("toggle_role", "exclude⇄highlight"),
+    ("edit", "edit"),
+    ("delete", "delete"),
+    ("add", "add"),
+    ("toggle_highlighted_only", "highlighted only"),
+    ("save_rules", "save"),
+    ("load_rules", "open"),
+    ("leave", "table"),
+]
 
 
 def entry_text(entry: Entry, count: int | None) -> Text:
@@ -48,15 +60,15 @@ class RulesPane(SidePane):
     """
 
     BINDINGS = [
-        Binding("space", "toggle_enabled", "On/off", show=False),
-        Binding("i", "toggle_inverted", "Invert", show=False),
-        Binding("h", "toggle_role", "Exclude/highlight", show=False),
-        Binding("e,enter", "edit", "Edit", show=False),
-        Binding("d,delete", "delete", "Delete", show=False),
-        Binding("a", "add", "Add rule", show=False),
-        Binding("S", "save_rules", "Save rule set", show=False),
-        Binding("O", "load_rules", "Open rule set", show=False),
-        Binding("escape", "leave", "Back to the table", show=False),
+        Binding("space", "toggle_enabled", "On/off", show=False, id="rules.on_off"),
+        Binding("i", "toggle_inverted", "Invert", show=False, id="rules.invert"),
+        Binding("h", "toggle_role", "Exclude/highlight", show=False, id="rules.role"),
+        Binding("e,enter", "edit", "Edit", show=False, id="rules.edit"),
+        Binding("d,delete", "delete", "Delete", show=False, id="rules.delete"),
+        Binding("a", "add", "Add rule", show=False, id="rules.add"),
+        Binding("S", "save_rules", "Save rule set", show=False, id="rules.save"),
+        Binding("O", "load_rules", "Open rule set", show=False, id="rules.open"),
+        Binding("escape", "leave", "Back to the table", show=False, id="rules.leave"),
     ]
 
     class Changed(Message):
@@ -90,7 +102,8 @@ class RulesPane(SidePane):
         yield Label("Rules", classes="title")
         yield Static("", id="rules-state")
         yield OptionList(id="rules-list")
-        yield Static(HINT, id="rules-hint")
+        # The app's keys that work here too ("highlighted only") come from the app's bindings.
+        yield Static(hint_line(self.app, [*self.BINDINGS, *self.app.BINDINGS], _HINTS), id="rules-hint")
 
     def focus_target(self) -> Widget:
         return self.query_one(OptionList)

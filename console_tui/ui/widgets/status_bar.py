@@ -75,15 +75,14 @@ def render_status(facts: StatusFacts) -> Text:
         if status.topic:
             text.append(f"  {one_line(status.topic, 200)}", style="bold")
             text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
-        if status.path:
-            text.append(
-                f" {one_line(status.path, 200)}" if status.topic else f"  {one_line(status.path, 200)}", style="dim"
-            )
         loss = status.loss_text()
         if loss:
             text.append(f"  {loss}", style="bold red")
         if status.problem:
             text.append(f"  {one_line(status.problem, 300)}", style="bold red")
+        where = one_line(" ".join(part for part in (status.path, status.origin) if part), 300)
+        if where:
+            text.append(f" {where}" if status.topic and not loss and not status.problem else f"  {where}", style="dim")
     if facts.note:
         text.append(f"  {facts.note}", style="italic")
     return text

@@ -1,0 +1,92 @@
+"""ROS 1 console output, as roscpp and rospy print it and roslaunch saves it
+(``<node>-<N>-stdout.log``) or a person captures it.
+
+roscpp (rosconsole's default ``[${severity}] [${time}]: ${message}``, severity padded to 5)::
+
+    [ INFO] [1579418624.945503644]: message
+    [ WARN] [1579418624.945503644, 0.500000000]: message     (with simulated time: wall, sim)
+
+rospy (the same format, times to the microsecond)::
+
+    [INFO] [1624512197.562810]: message
+
+The stamp is the wall-clock time (it orders a capture with every other log of the run);
+simulated time, when a line carries it, is noted but not kept. The node is the process the
+file is named after (``chat-2-stdout.log``: ``/chat``). Lines between records are the
+output of the same program: they continue the record before them; lines before the first
+record are rows of their own. Terminal colour codes are ignored.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+from ..record import LogRecord
+from .console_lines import (
+    FillCounts,
+    Plain,
+    Start,
+    assemble,
+    decimal_ns,
+    process_of_file,
+    ros1_node_of_process,
+    strip_colour,
+)
+from .problems import Problems
+from .text_format import TextFormat
+from .textlines import TextLines
+
+_LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
+_LINE = re.compile(
+    r"\[ ?(?P<level>DEBUG|INFO|WARN|ERROR|FATAL)\] \[(?P<wall>\d+\.\d+)(?:, (?P<sim>-?\d+\.\d+))?\]: ?(?P<msg>.*)\Z",
+    re.DOTALL,
+)
+#: Files of captured output, by name: read in this format when no line says otherwise.
+CAPTURE_SUFFIXES = ("-stdout.log", "-stderr.log")
+
+
+class Ros1ConsoleFormat(TextFormat):
+    name = "ros1-console"
+    title = "ROS 1 console output"
+
+    def __init__(self, file_name: str = "", mtime_ns: int = 0) -> None:
+        self.file_name = file_name
+        self.mtime_ns = mtime_ns
+        self.counts = FillCounts()
+        self.simulated = 0
+
+    def for_file(self, name: str, mtime_ns: int = 0) -> Ros1ConsoleFormat:
+        return Ros1ConsoleFormat(name, mtime_ns)
+
+    def looks_like(self, first_line: str) -> bool:
+        return _LINE.match(strip_colour(first_line)) is not None
+
+    def notes(self) -> list[str]:
+        notes = self.counts.notes()
+        if self.simulated:
+            notes.insert(0, f"{self.simulated:,} lines carry simulated time too: their stamps are the wall-clock times")
+        return notes
+
+    def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        process = process_of_file(self.file_name)
+        node = ros1_node_of_process(process) or process
+        match = _LINE.match
+
+        def parse(text: str) -> Start | Plain:
+            found = match(text) or ("\x1b" in text and match(strip_colour(text)))
+            if not found:
+                return Plain(text)
+            if found["sim"] is not None:
+                self.simulated += 1
+            return Start(decimal_ns(found["wall"]), _LEVELS[found["level"]], node, found["msg"])
+
+        yield from assemble(
+            lines,
+            parse,
+            source=source,
+            plain_node=node,
+            file_time_ns=self.mtime_ns,
+            counts=self.counts,
+            problems=problems,
+        )

@@ -1,0 +1,122 @@
+"""The command palette's entries (Ctrl+P): every action by name, with its key.
+
+An entry names an app action (run with ``App.run_action``) and, when a key does the same,
+the id of that key's binding: the palette shows the key as the bindings (and the user's
+keymap) say. A new feature adds its entries to ``palette_commands``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from functools import partial
+from typing import TYPE_CHECKING, cast
+
+from textual.command import DiscoveryHit, Hit, Hits, Provider
+
+from .keys import key_label, keymap_of
+from .widgets.table_columns import COLUMNS
+
+if TYPE_CHECKING:
+    from .app import ConsoleApp
+
+
+@dataclass(frozen=True)
+class PaletteCommand:
+    title: str
+    help: str
+    #: An action of the app: ``toggle_pause``, ``quick_rule('exclude')``.
+    action: str
+    #: The id of the binding that does the same, whose key is shown.
+    key: str | None = None
+
+
+def palette_commands() -> list[PaletteCommand]:
+    """Every entry, in the order the palette lists them before anything is typed."""
+    C = PaletteCommand
+    return [
+        C("Pause / resume", "Stop the view; messages keep arriving", "toggle_pause", "console.pause"),
+        C("Follow tail", "Jump to the newest message and follow it", "follow", "table.follow"),
+        C("Clear", "Drop every message", "clear", "console.clear"),
+        C("Details", "Every field of the selected message", "details", "table.details"),
+        C("Columns", "Choose the table's columns", "columns", "console.columns"),
+        C("Open files", "Log files and recordings, merged by time", "open", "console.open"),
+        C("Save", "Save the rows shown, or everything (rqt_console CSV or JSON Lines)", "save", "console.save"),
+        C("Load problems", "What went wrong while loading files, and where", "problems", "console.problems"),
+        *(
+            C(
+                f"Toggle column: {column.title}",
+                f"Show or hide the {column.title} column",
+                f"toggle_column('{column.key}')",
+            )
+            for column in COLUMNS
+            if column.key != "message"
+        ),
+        C("Logger levels", "Show or hide the logger levels pane", "toggle_loggers", "console.loggers"),
+        C(
+            "Logger levels of this row's node",
+            "Open the logger levels pane on the selected row's node",
+            "loggers_for_row",
+            "console.loggers_for_row",
+        ),
+        C("Query", 'Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"', "query", "console.query"),
+        C("Rules", "Show or hide the rules pane: every rule, its switches and counts", "toggle_rules", "console.rules"),
+        C("Add a rule", "A new exclude or highlight rule of any kind", "add_rule"),
+        C(
+            "Hide messages like the selected rows",
+            "Exclude their nodes, severities, messages or location",
+            "quick_rule('exclude')",
+            "console.hide_like",
+        ),
+        C(
+            "Highlight messages like the selected rows",
+            "Highlight their nodes, severities, messages or location",
+            "quick_rule('highlight')",
+            "console.highlight_like",
+        ),
+        C(
+            "Highlighted only",
+            "Show only highlighted messages (or all again)",
+            "toggle_highlighted_only",
+            "console.highlighted_only",
+        ),
+        C("Save rules", "Save the rule set to a TOML file", "save_rules"),
+        C("Open rules", "Load a rule set from a TOML file", "load_rules"),
+        C("Restore the last rules", "The rule set in force when console-tui last exited", "restore_rules"),
+        C("Clear rules", "Remove every rule", "clear_rules"),
+        C("Help: every key", "What console-tui shows, and every key (remap them in keys.toml)", "help", "console.help"),
+    ]
+
+
+class ConsoleCommands(Provider):
+    """The palette entries of ``palette_commands``, each shown with its key."""
+
+    @property
+    def console(self) -> ConsoleApp:
+        return cast("ConsoleApp", self.app)  # only ConsoleApp lists this provider
+
+    def _entries(self) -> Iterable[tuple[PaletteCommand, str]]:
+        app = self.console
+        bindings = {binding.id: binding for _title, group in app.binding_groups() for binding in group if binding.id}
+        keymap = keymap_of(app)
+        for command in palette_commands():
+            binding = bindings.get(command.key) if command.key else None
+            key = key_label(binding, app, keymap) if binding is not None else ""
+            yield command, f"{command.help}  ({key})" if key else command.help
+
+    async def discover(self) -> Hits:
+        for command, help_text in self._entries():
+            yield DiscoveryHit(command.title, partial(self.app.run_action, command.action), help=help_text)
+
+    async def search(self, query: str) -> Hits:
+        matcher = self.matcher(query)
+        for command, help_text in self._entries():
+            score = matcher.match(command.title)
+            if score > 0:
+                yield Hit(
+                    score,
+                    matcher.highlight(command.title),
+                    partial(self.app.run_action, command.action),
+                    text=command.title,
+                    help=help_text,
+                )

@@ -1,0 +1,132 @@
+"""The app's file actions: opening log files and recordings, their progress and problems, saving.
+
+A part of ``ConsoleApp`` (it mixes this in).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import time
+from collections.abc import Sequence
+
+from textual import work
+from textual.app import App
+
+from ..model.formats.save import save_records
+from ..model.intake_queue import IntakeQueue
+from ..model.store import LogStore
+from ..model.text import one_line
+from ..model.view import LogView
+from ..sources.files import FileLoad
+from .screens.files import OpenScreen, SaveRequest, SaveScreen
+from .screens.problems import ProblemsScreen
+from .widgets.load_bar import LoadBar
+from .widgets.log_table import LogTable
+
+#: Records gathered per event-loop turn when saving.
+SAVE_SLICE = 20_000
+
+
+class FileActions(App[None]):
+    """Files read in the background into the table, merged by time; the table saved to a file."""
+
+    # What it uses of the app (``ConsoleApp`` sets them).
+    store: LogStore
+    view: LogView
+    table: LogTable
+    load_bar: LoadBar
+    #: File loads: their records come through a queue of their own, ahead of live ones.
+    file_queue: IntakeQueue
+    loads: list[FileLoad]
+    #: What went wrong while loading, for the problems screen.
+    problems: list[str]
+    #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
+    source_notes: dict[str, list[str]]
+    #: The format to read files in, or None: found from each file.
+    log_format: str | None
+
+    @property
+    def loading(self) -> bool:
+        return any(not load.finished for load in self.loads) or len(self.file_queue) > 0
+
+    def open_files(self, paths: Sequence[str], *, log_format: str | None = None) -> FileLoad:
+        """Read files in the background into the table, merged by time."""
+        load = FileLoad(paths, self.file_queue, log_format=log_format)
+        self.loads.append(load)
+        load.start()
+        self.table.set_column_shown("source", True)
+        self.load_bar.show_progress([load.progress])
+        return load
+
+    def check_loads(self) -> None:
+        """Progress on the load bar; a finished load says what it read, and what went wrong."""
+        self.load_bar.show_progress([load.progress for load in self.loads])
+        for load in [load for load in self.loads if load.finished]:
+            if len(self.file_queue):
+                return  # its last records are still on their way into the table
+            self.loads.remove(load)
+            progress = load.progress
+            problems = [str(problem) for problem in load.problems()]
+            self.problems.extend(problems)
+            self.source_notes.update(load.notes())
+            files = len(progress.files)
+            verb = "Cancelled after" if progress.cancelled else "Loaded"
+            text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
+            if problems:
+                listed = "\n".join(one_line(problem, 300) for problem in problems[:3])
+                more = f"\n... {len(problems) - 3} more" if len(problems) > 3 else ""
+                self.notify(f"{text}, with problems (! lists them):\n{listed}{more}", severity="warning", timeout=15)
+            else:
+                self.notify(text, timeout=5)
+
+    def cancel_loads(self) -> None:
+        for load in self.loads:
+            load.cancel()
+
+    def action_open(self) -> None:
+        def opened(paths: list[str] | None) -> None:
+            if paths:
+                self.open_files(paths, log_format=self.log_format)
+
+        self.push_screen(OpenScreen(), opened)
+
+    def action_cancel_load(self) -> None:
+        self.cancel_loads()
+
+    def action_problems(self) -> None:
+        self.push_screen(ProblemsScreen(self.problems))
+
+    def action_save(self) -> None:
+        default = os.path.join(os.getcwd(), time.strftime("console-tui-%Y%m%d-%H%M%S.csv"))
+
+        def chosen(request: SaveRequest | None) -> None:
+            if request is not None:
+                self.save(request)
+
+        self.push_screen(SaveScreen(default, filtered=self.view.filtered), chosen)
+
+    @work(exclusive=True, group="save")
+    async def save(self, request: SaveRequest) -> int:
+        """Collect the rows on the UI thread a slice at a time (the store changes only
+        here), then write them in a thread. Returns how many were written."""
+        seqs: Sequence[int]
+        if request.shown_only:
+            seqs = [self.view.seq_at(row) for row in range(len(self.view))]
+        else:
+            seqs = range(self.store.first_seq, self.store.end_seq)
+        records = []
+        for start in range(0, len(seqs), SAVE_SLICE):
+            for seq in seqs[start : start + SAVE_SLICE]:
+                if seq in self.store:
+                    records.append(self.store.get(seq))
+            await asyncio.sleep(0)
+        lost = len(seqs) - len(records)
+        try:
+            written = await asyncio.to_thread(save_records, records, request.path, request.save_format)
+        except (OSError, ValueError) as error:
+            self.notify(f"Not saved: {error}", severity="error", timeout=15)
+            return 0
+        note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
+        self.notify(f"Saved {written:,} messages to {request.path}{note}", timeout=8)
+        return written

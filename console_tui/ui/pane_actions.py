@@ -1,0 +1,37 @@
+"""The app's side panes beside the table (the logger levels pane; the rules pane is in
+``rule_actions``): opening them, and what their messages ask of the app.
+
+A part of ``ConsoleApp`` (it mixes this in).
+"""
+
+from __future__ import annotations
+
+from textual.app import App
+
+from ..model.store import LogStore
+from .widgets.log_table import LogTable
+from .widgets.logger_pane import LoggerPane
+from .widgets.side_pane import SidePane
+
+
+class PaneActions(App[None]):
+    """Keys that open the panes, and the table taking focus back from them."""
+
+    # What it uses of the app (``ConsoleApp`` sets them).
+    store: LogStore
+    table: LogTable
+    logger_pane: LoggerPane
+
+    def action_toggle_loggers(self) -> None:
+        self.logger_pane.toggle()
+
+    def action_loggers_for_row(self) -> None:
+        """Open the logger levels pane on the node of the table's selected row."""
+        seq = self.table.cursor_seq
+        if seq is None or seq not in self.store:
+            self.logger_pane.open()
+        else:
+            self.logger_pane.open_for_logger(self.store.get(seq).node)
+
+    def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
+        self.table.focus()

@@ -1,0 +1,254 @@
+"""The app's rule actions: the query line, the rules pane, quick rules, rule files, filtering.
+
+A part of ``ConsoleApp`` (it mixes this in): what rules do to the table, and the keys and
+messages that change them.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+from collections.abc import Callable
+
+from textual import work
+from textual.app import App
+
+from ..model.rules.history import QueryHistory
+from ..model.rules.query import parse_query
+from ..model.rules.rule import RuleError
+from ..model.rules.ruleset import Entry, Role, RuleSet
+from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
+from ..model.store import LogStore
+from ..model.view import LogView
+from .screens.files import PathScreen
+from .screens.quick_rule import QuickRuleScreen
+from .screens.rule_editor import RuleEditor
+from .widgets.log_table import LogTable
+from .widgets.query_bar import QueryBar
+from .widgets.rules_pane import RulesPane
+
+#: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
+REFILTER_BUDGET_S = 0.015
+REFILTER_PAUSE_S = 0.001
+REFILTER_FIRST_PAUSE_S = 0.02
+#: How often the status line's "filtering N%" moves.
+REFILTER_PROGRESS_PERIOD_S = 0.1
+#: Quick rules look at this many selected rows at most.
+QUICK_RULE_ROWS = 10_000
+
+
+class RuleActions(App[None]):
+    """Rules in force, and every way to change them."""
+
+    # What it uses of the app (``ConsoleApp`` sets them).
+    store: LogStore
+    view: LogView
+    table: LogTable
+    query_bar: QueryBar
+    rules_pane: RulesPane
+    query_history: QueryHistory
+    utc: bool
+    clock: Callable[[], float]
+    update_status: Callable[[], None]
+
+    #: The rules in force; a new set replaces it whole (rule sets are values).
+    rules: RuleSet = RuleSet()
+    _counts_at = 0.0
+
+    def apply_rules(self, rules: RuleSet) -> None:
+        """Put ``rules`` in force: the newest screenful at once, the rest in the background."""
+        with self.table.keeping_position():
+            self.view.set_rules(rules)
+        self.rules_changed()
+
+    def rules_changed(self) -> None:
+        """Show the view's rules as the rules in force (the view switches off a rule too slow
+        to test, and says which)."""
+        table = self.table
+        rules = self.rules = self.view.rules
+        table.decoration_of = self.view.decoration_of if rules.highlighting else None
+        table.restyle()
+        for rule, why in self.view.take_switched_off():
+            self.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
+        if self.view.refiltering:
+            self._filter_in_background()
+        self.show_rules()
+        self.update_status()
+
+    def action_stop_filtering(self) -> None:
+        """Esc while rules are being applied: switch off the rules not applied yet."""
+        with self.table.keeping_position():
+            stopped = self.view.stop_filtering()
+        if stopped:
+            described = "; ".join(rule.describe() for rule in stopped)
+            self.notify(f"Filtering stopped; switched off (r shows the rules): {described}", timeout=8)
+            self.rules_changed()
+
+    @work(exclusive=True, group="refilter")
+    async def _filter_in_background(self) -> None:
+        """Filter the older records in slices, newest first; between slices the event loop
+        draws frames and answers keys."""
+        await asyncio.sleep(REFILTER_FIRST_PAUSE_S)  # the newest screenful is drawn first
+        shown_at = self.clock()
+        while True:
+            with self.table.keeping_position():
+                done = self.view.refilter_step(REFILTER_BUDGET_S)
+            if self.view.switched_off:
+                self.rules_changed()  # filters again under the rules left, in a new worker
+                return
+            if done:
+                break
+            if self.clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
+                shown_at = self.clock()
+                self.update_status()
+            await asyncio.sleep(REFILTER_PAUSE_S)
+        self.show_rules()
+        self.update_status()
+
+    def rules_note(self) -> str:
+        """What the status line says of the rules: ``2 rules, filtering 40%``."""
+        active = sum(1 for entry in self.rules.entries if entry.active)
+        if not active:
+            return "rules off" if self.rules.entries else ""
+        note = f"{active} rule{'s' if active != 1 else ''}"
+        if self.rules.highlighted_only and self.rules.highlighting:
+            note += ", highlighted only"
+        if self.view.refiltering:
+            note += f", filtering {self._refilter_percent()}%"
+        return note
+
+    def _refilter_percent(self) -> int:
+        total = max(len(self.store), 1)
+        return min(99, int(100 * (1 - self.view.pending / total)))
+
+    def show_rules(self, at_most_every: float = 0.0) -> None:
+        """The rules and their counts in the rules pane (not more often than ``at_most_every`` s)."""
+        now = self.clock()
+        if at_most_every and now - self._counts_at < at_most_every:
+            return
+        self._counts_at = now
+        progress = f"filtering {self._refilter_percent()}%" if self.view.refiltering else ""
+        self.rules_pane.show(self.rules, self.view.match_counts(), progress)
+
+    def apply_initial_rules(self, rules: RuleSet | None, query: str) -> None:
+        """The rules and ``--query`` given on the command line."""
+        rules = rules or RuleSet()
+        if query:
+            try:
+                rules = rules.with_query(parse_query(query, utc=self.utc))
+                self.query_bar.applied_text = query
+            except RuleError as error:
+                self.notify(f"--query not applied: {error.message}", severity="error", timeout=10)
+        if rules.entries:
+            self.apply_rules(rules)
+
+    def remember_rules(self) -> None:
+        """Save the rules in force and the query history for the next run."""
+        try:
+            save_rules(self.rules, last_rules_path())
+            self.query_history.save(query_history_path())
+        except OSError:
+            pass  # nothing to tell anyone at exit; the rules in force were not lost from the session
+
+    # -- the query line and the rules pane ----------------------------------------------------
+
+    def action_query(self) -> None:
+        self.query_bar.open()
+
+    def on_query_bar_applied(self, message: QueryBar.Applied) -> None:
+        self.apply_rules(self.rules.with_query(message.entries))
+
+    def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
+        self.table.focus()
+
+    def action_toggle_rules(self) -> None:
+        self.show_rules()
+        self.rules_pane.toggle()
+
+    def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
+        self.apply_rules(message.rules)
+
+    def action_toggle_highlighted_only(self) -> None:
+        self.apply_rules(self.rules.with_highlighted_only(not self.rules.highlighted_only))
+        state = "on" if self.rules.highlighted_only else "off"
+        note = "" if self.rules.highlighting else " (no highlight rule is active, so it hides nothing)"
+        self.notify(f"Highlighted only: {state}{note}", timeout=4)
+
+    def on_rules_pane_edit_requested(self, message: RulesPane.EditRequested) -> None:
+        self.edit_rule(message.index)
+
+    def action_add_rule(self) -> None:
+        self.edit_rule(None)
+
+    def edit_rule(self, index: int | None) -> None:
+        """The rule editor on entry ``index``, or on a new rule."""
+        entry = self.rules.entries[index] if index is not None else None
+
+        def edited(result: Entry | None) -> None:
+            if result is None:
+                return
+            rules = self.rules.add(result) if index is None else self.rules.replace(index, result)
+            self.apply_rules(rules)
+
+        self.push_screen(RuleEditor(entry, utc=self.utc), edited)
+
+    def action_quick_rule(self, role: str) -> None:
+        seqs = self.table.selected_seqs(QUICK_RULE_ROWS)
+        if not seqs:
+            return
+
+        def chosen(entry: Entry | None) -> None:
+            if entry is not None:
+                self.apply_rules(self.rules.add(entry))
+
+        self.push_screen(QuickRuleScreen([self.store.get(seq) for seq in seqs], Role(role)), chosen)
+
+    def action_clear_rules(self) -> None:
+        self.query_bar.applied_text = ""
+        self.apply_rules(RuleSet(highlighted_only=self.rules.highlighted_only))
+
+    # -- rule files ------------------------------------------------------------------------------
+
+    def on_rules_pane_file_requested(self, message: RulesPane.FileRequested) -> None:
+        if message.save:
+            self.action_save_rules()
+        else:
+            self.action_load_rules()
+
+    def action_save_rules(self) -> None:
+        def chosen(path: str | None) -> None:
+            if not path:
+                return
+            try:
+                save_rules(self.rules, path)
+            except OSError as error:
+                self.notify(f"Rules not saved: {error}", severity="error", timeout=10)
+                return
+            self.notify(f"Saved {len(self.rules.entries)} rules to {path}", timeout=5)
+
+        default = os.path.join(os.getcwd(), "console-tui-rules.toml")
+        self.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
+
+    def action_load_rules(self, path: str | None = None) -> None:
+        def chosen(path: str | None) -> None:
+            if not path:
+                return
+            try:
+                rules = load_rules(path)
+            except RuleError as error:
+                self.notify(f"Rules not loaded, the rules in force stay: {error.message}", severity="error", timeout=15)
+                return
+            self.apply_rules(rules)
+            self.notify(f"Loaded {len(rules.entries)} rules from {path}", timeout=5)
+
+        if path is not None:
+            chosen(path)
+        else:
+            self.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
+
+    def action_restore_rules(self) -> None:
+        path = last_rules_path()
+        if not path.exists():
+            self.notify("No rule set was saved at the end of an earlier run.", timeout=5)
+            return
+        self.action_load_rules(str(path))

@@ -1,0 +1,76 @@
+"""Keys: a user's keys.toml remaps bindings by id, and every hint and the help follow it."""
+
+from __future__ import annotations
+
+from console_tui.ui.commands import palette_commands
+from console_tui.ui.keys import load_keymap
+
+from support.feed import feed_logger_pane
+from support.ui import make_app, screen_text
+
+
+def write_keys(config, text: str):
+    path = config / "console-tui" / "keys.toml"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def test_the_keymap_file_flattens_tables_and_names_what_is_wrong(tmp_path):
+    path = tmp_path / "keys.toml"
+    path.write_text(
+        'console.pause = "p"\n[loggers]\ndebug = ["D", "ctrl+d"]\ninfo = 3\n[nothing]\nhere = "z"\n',
+    )
+    loaded = load_keymap(path, ["console.pause", "loggers.debug", "loggers.info"])
+    assert loaded.keys == {"console.pause": "p", "loggers.debug": "D,ctrl+d"}
+    assert loaded.problems == (
+        "keys.toml: loggers.info must be a key or a list of keys, not 3",
+        "keys.toml: no key is named 'nothing.here'",
+    )
+    assert load_keymap(tmp_path / "absent.toml", []).keys == {}
+    path.write_text("console.pause = \n")
+    broken = load_keymap(path, ["console.pause"])
+    assert broken.keys == {} and "not TOML" in broken.problems[0]
+
+
+async def test_a_remapped_key_works_and_the_screen_names_it(own_config_folder):
+    write_keys(own_config_folder, 'console.pause = "p"\nloggers.debug = "D"\nconsole.loggers = "ctrl+l"\n')
+    app = make_app(5)
+    async with app.run_test(size=(140, 30)) as pilot:
+        await pilot.press("space")
+        assert app.table.paused_end is None, "space no longer pauses"
+        await pilot.press("p")
+        assert app.table.paused_end is not None
+        assert " p Pause " in screen_text(app).splitlines()[-1], "the footer names the new key"
+        await pilot.press("ctrl+l")
+        feed_logger_pane(app.logger_pane)
+        await pilot.pause()
+        assert app.logger_pane.is_open
+        assert "D/i/w/e/f level" in screen_text(app), "the pane's hint line follows the keymap"
+        await pilot.press("escape", "question_mark")
+        await pilot.pause()
+        help_lines = screen_text(app).splitlines()
+        assert any("p " in line and "Pause" in line and "console.pause" in line for line in help_lines)
+
+
+async def test_a_bad_keymap_is_reported_and_the_default_keys_stay(own_config_folder):
+    write_keys(own_config_folder, 'console.pause = "p"\nconsole.nothing = "n"\n')
+    app = make_app(5)
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.pause()
+        warnings = [str(n.message) for n in app._notifications if n.severity == "warning"]
+        assert warnings and "no key is named 'console.nothing'" in warnings[0]
+        await pilot.press("p")
+        assert app.table.paused_end is not None, "the good entries still apply"
+
+
+async def test_palette_entries_have_distinct_names_and_show_their_keys():
+    titles = [command.title for command in palette_commands()]
+    assert len(titles) == len(set(titles))
+    app = make_app(5)
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("ctrl+p", *"pause")
+        await pilot.pause(0.3)
+        assert "(space)" in screen_text(app)
+        system = [command.title for command in app.get_system_commands(app.screen)]
+        assert "Keys" not in system, "Textual's key panel gives way to the help screen"
