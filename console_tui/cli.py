@@ -9,6 +9,7 @@ from collections.abc import Sequence
 
 from . import __version__
 from .commands.arguments import (
+    add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
     check_rule_arguments,
@@ -43,11 +44,13 @@ def build_parser() -> argparse.ArgumentParser:
         nargs="*",
         metavar="FILE",
         help=(
-            "log files or recordings to open, merged by time: rqt_console .csv, .jsonl, ROS 2 log files "
-            "(~/.ros/log), ROS 1 rosout.log, .bag, .mcap, .db3 or a rosbag2 directory"
+            "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
+            "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
+            "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it"
         ),
     )
     add_log_format_argument(parser)
+    add_last_argument(parser)
     parser.add_argument(
         "--live",
         action="store_true",
@@ -93,6 +96,19 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """``--last``: the newest run's folder (and its ROS 2 nodes' logs) joins ``args.files``;
+    no run found exits 2 saying where it looked."""
+    from .model.formats import FormatError
+    from .model.text import one_line
+    from .sources.files import latest_run
+
+    try:
+        args.files = [*args.files, *(str(path) for path in latest_run())]
+    except FormatError as error:
+        parser.error(f"--last: {one_line(str(error))}")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS:
@@ -101,6 +117,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(args_list)
     check_rule_arguments(parser, args)
+    if args.last:
+        add_latest_run(parser, args)
     from .launch import run_app
 
     return run_app(args)

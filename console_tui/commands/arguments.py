@@ -19,6 +19,18 @@ def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_last_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--last",
+        "--latest",
+        action="store_true",
+        help=(
+            "the newest run in the ROS log directory ($ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log): "
+            "the folder 'latest' points to, every log in it merged"
+        ),
+    )
+
+
 def positive_int(text: str) -> int:
     try:
         value = int(text)
