@@ -36,7 +36,10 @@ class Console(ConsoleApp):
         self.set_timer(0.3, self.set_level)
 
     def set_level(self) -> None:
-        control.set_temporary("/n", "n", 10, 600).result(timeout=5)
+        if control._thread is None:  # the app starts it after its first frame
+            self.set_timer(0.2, self.set_level)
+            return
+        control.set_temporary("/n", "n", 10, 600).result(timeout=20)
         result.write_text("ready\n")
         if mode == "error":
             self.set_timer(0.3, self.fail)
