@@ -42,6 +42,8 @@ class LoadProgress:
     records: int
     finished: bool
     cancelled: bool
+    #: Still looking through the folders given for the logs in them (``files`` are the paths given).
+    searching: bool = False
 
     @property
     def fraction(self) -> float:
@@ -167,6 +169,7 @@ class FileLoad:
         self.failures: list[Problem] = []
         self.error = ""
         self._names = source_names(self.paths)
+        self._expanded = False
         #: Files of opened folders passed over (not logs by their names, or empty).
         self.skipped: list[Path] = []
         self._records = 0
@@ -202,7 +205,7 @@ class FileLoad:
             else FileProgress(name, "", 0.0, 1 if name in failed else 0, failed=name in failed)
             for name in self._names
         )
-        return LoadProgress(files, self._records, self._finished, self.cancel_event.is_set())
+        return LoadProgress(files, self._records, self._finished, self.cancel_event.is_set(), not self._expanded)
 
     def problems(self) -> list[Problem]:
         """Everything that went wrong so far: files that could not be opened, then each
@@ -227,6 +230,7 @@ class FileLoad:
             self.failures += folder_problems(expansion)
             self.skipped = expansion.skipped
             self._names = [log.name for log in expansion.logs]
+            self._expanded = True
             many = len(expansion.logs) > MANY_FILES
             for log in expansion.logs:
                 if self.cancel_event.is_set():
