@@ -13,7 +13,7 @@ from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
 from .folders import Expansion, LogPaths, expand_paths
-from .log_file import LogFile, describe_error
+from .log_file import LogFile, describe_error, reading_stopped
 from .merge import merge_by_time
 from .opener import open_log_paths, source_names
 
@@ -136,7 +136,7 @@ def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[Log
             count += len(batch)
             yield batch
     except Exception as error:
-        file.problems.add(f"reading stopped: {describe_error(error)}; what came before was read")
+        file.problems.add(reading_stopped(error))
     file.records = count
     if count == 0 and not len(file.problems) and not (cancel is not None and cancel.is_set()):
         file.problems.add(file.empty_reason())
