@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-from rich.text import Text
 from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
-from ...model.text import one_line, plural
+from ...model.text import plural
 from ...sources.files import LoadProgress
 from ..keys import hint_line
+from ..plain import plain
 
 
 class LoadBar(Horizontal):
@@ -44,9 +44,8 @@ class LoadBar(Horizontal):
             reading = next(iter(started), None) or next((f for f in files if not f.failed and f.fraction < 1.0), None)
             name = _tail(reading.source.rsplit("/", 1)[-1]) if reading else ""
             what = f"Loading {plural(len(files), 'file')}: {name}"
-        text = Text(one_line(f"{what}  {records:,} records  ", 300))
-        text.append(hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")]))
-        self.query_one(Label).update(text)
+        hint = hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
+        self.query_one(Label).update(plain(f"{what}  {records:,} records  {hint}"))
         self.query_one(ProgressBar).update(progress=done)
 
 
