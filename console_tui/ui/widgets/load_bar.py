@@ -34,7 +34,7 @@ class LoadBar(Horizontal):
         files = [f for p in active for f in p.files]
         done = sum(1.0 if f.failed else f.fraction for f in files) / max(len(files), 1)
         records = sum(p.records for p in active)
-        opened = sum(1 for f in files if f.title or f.failed)
+        opened = sum(1 for f in files if f.title or f.failed or f.fraction > 0)
         if any(p.searching for p in active):
             what = f"Looking for logs in {', '.join(_tail(f.source) for f in files[:3])}"
         elif opened < len(files):  # a folder's logs are being opened
