@@ -42,7 +42,7 @@ class LoadBar(Horizontal):
         else:
             started = [f for f in files if not f.failed and 0.0 < f.fraction < 1.0]
             reading = next(iter(started), None) or next((f for f in files if not f.failed and f.fraction < 1.0), None)
-            name = _tail(reading.source.rsplit("/", 1)[-1]) if reading else ""
+            name = reading.source.rsplit("/", 1)[-1] if reading else ""
             what = f"Loading {plural(len(files), 'file')}: {name}"
         hint = hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
         self.query_one(Label).update(plain(f"{what}  {records:,} records  {hint}"))
