@@ -94,6 +94,14 @@ def _start_ros1(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
     from .sources.ros1.live_source import Ros1LiveSource
     from .sources.ros1.logger_control import Ros1LoggerControl
 
+    if args.demo:
+        from .demo.ros1_launcher import Ros1Demo, Ros1DemoUnavailable
+
+        try:
+            # First: it points this process at its own roscore, and starts before the source.
+            sources.append(Ros1Demo())
+        except Ros1DemoUnavailable as error:
+            raise RosUnavailable(str(error)) from None
     sources.append(Ros1LiveSource(queue, topic=args.topic))
     logger_control = Ros1LoggerControl()  # the app starts it after its first frame
     cleanups.append(logger_control.close)  # puts temporary levels back

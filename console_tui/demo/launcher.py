@@ -7,7 +7,7 @@ import subprocess
 import sys
 
 from ..sources.status import SourceStatus
-from .nodes import DEMO_NODES
+from .behaviours import DEMO_NODES
 
 #: The demo stays on this machine: discovery only over loopback.
 DEMO_ENVIRONMENT = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
