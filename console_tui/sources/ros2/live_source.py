@@ -20,6 +20,11 @@ Fast DDS keeps at most about 6,000 unread messages per subscription, whatever th
 depth asked for: what arrives while this thread cannot run for longer than that is
 lost, and reported as such.
 
+Topic: ``topic=None`` reads ``/rosout_agg`` when something publishes it (a rosout node,
+such as ``console-tui rosout``, keeps a deep history there), else ``/rosout`` (see
+``_TopicChoice``): nothing arrives twice when it switches, and at start, when discovery
+finds the aggregator while it holds ``/rosout`` back, the history comes in time order.
+
 QoS: the main subscription is RELIABLE + TRANSIENT_LOCAL with a deep queue, so a
 console started late still gets the history each node's rosout publisher keeps. Such a
 subscription never matches a publisher whose rosout QoS was made VOLATILE (or
@@ -50,7 +55,16 @@ QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profil
 WAIT_TIMEOUT_NS = 100_000_000
 GRAPH_PERIOD_S = 1.0
 UNKNOWN_PUBLISHER_REFRESH_S = 0.2
-AUTO_TOPIC_WAIT_S = 1.0
+#: At start, ``/rosout`` messages are held back while ``/rosout_agg`` may still be
+#: discovered: at least ``AUTO_TOPIC_MIN_S``, until the ``/rosout`` publishers found have
+#: not changed for ``AUTO_TOPIC_SETTLED_S``, at most ``AUTO_TOPIC_MAX_S`` (discovery took
+#: 1-2 s on the development machine, longer when it was busy).
+AUTO_TOPIC_MIN_S = 1.0
+AUTO_TOPIC_SETTLED_S = 1.0
+AUTO_TOPIC_MAX_S = 5.0
+#: After a late switch to ``/rosout_agg``: how long its history is checked against what
+#: ``/rosout`` already gave.
+SWITCH_DEDUPE_S = 30.0
 MAX_BATCH = 2_000
 COALESCE_BELOW = 64
 COALESCE_S = 0.002
@@ -147,7 +161,8 @@ class LiveLogSource:
 
         node = self.runtime.create_node("log")
         self._guard = node.create_guard_condition(lambda: None)
-        topic = self.requested_topic or self._choose_topic(node)
+        choice = _TopicChoice(time.monotonic()) if self.requested_topic is None else None
+        topic = self.requested_topic or ROSOUT
         reader = _TopicReader(node, Log, topic, self.counts, raw=self.raw)
         self._set_status(topic=topic, running=True, **self._loss_fields(reader))
         next_graph_check = 0.0
@@ -156,12 +171,22 @@ class LiveLogSource:
         shown = None
         while not self._stop.is_set():
             now = time.monotonic()
-            if now >= next_graph_check or reader.graph_changed:
+            if (
+                choice is not None
+                and reader.topic == ROSOUT
+                and (now >= next_graph_check or choice.holding(now))
+                and _has_publishers(node, ROSOUT_AGG)
+            ):
+                reader.close()
+                reader = _TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
+                choice.switched(now)
+                next_graph_check = 0.0
+            holding = choice is not None and choice.holding(now)
+            if now >= next_graph_check or reader.graph_changed or holding:
                 next_graph_check = now + GRAPH_PERIOD_S
-                if self.requested_topic is None and reader.topic == ROSOUT and _has_publishers(node, ROSOUT_AGG):
-                    reader.close()
-                    reader = _TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
                 reader.refresh_graph()
+                if holding:
+                    choice.publishers(reader.publisher_count, now)
                 self._set_status(topic=reader.topic, publishers=reader.publisher_count)
             subs, events = reader.handles(), reader.event_handlers()
             if wait_set is None or (subs, events) != wait_set_entities:
@@ -179,6 +204,8 @@ class LiveLogSource:
             if events:
                 reader.handle_events(wait_set)
             batch = reader.take_all(MAX_BATCH)
+            if choice is not None:
+                batch = choice.filter(batch, reader.topic, time.monotonic())
             if batch:
                 self.queue.put(batch)
             if len(batch) < COALESCE_BELOW:
@@ -198,13 +225,62 @@ class LiveLogSource:
                 self._set_status(**self._loss_fields(reader))
         reader.close()
 
-    def _choose_topic(self, node: Any) -> str:
-        deadline = time.monotonic() + AUTO_TOPIC_WAIT_S
-        while time.monotonic() < deadline and not self._stop.is_set():
-            if _has_publishers(node, ROSOUT_AGG):
-                return ROSOUT_AGG
-            time.sleep(0.05)
-        return ROSOUT
+
+class _TopicChoice:
+    """``/rosout_agg`` when something publishes it, else ``/rosout``, never a message twice.
+
+    - At start, ``/rosout`` messages are held back while discovery may still find a
+      ``/rosout_agg`` publisher (see ``AUTO_TOPIC_MIN_S``). When one shows up, the held
+      messages are dropped (its history has them, and older ones) and the stream starts
+      from ``/rosout_agg``, in time order. Otherwise they go out when the time is up.
+    - When one shows up later, its history is delivered without what ``/rosout`` already
+      gave: for each logger name, only messages newer than the newest one seen from it.
+    """
+
+    def __init__(self, start: float) -> None:
+        self.start = start
+        self.deadline = start + AUTO_TOPIC_MAX_S
+        self.held: list[LogRecord] = []
+        self.newest: dict[str, int] = {}
+        self.dedupe_until = 0.0
+        self._publishers = 0
+        self._changed_at = start
+
+    def publishers(self, count: int, now: float) -> None:
+        """The number of ``/rosout`` publishers found so far; once it has settled, stop holding."""
+        if count != self._publishers:
+            self._publishers, self._changed_at = count, now
+        elif count and now - self._changed_at >= AUTO_TOPIC_SETTLED_S and now - self.start >= AUTO_TOPIC_MIN_S:
+            self.deadline = min(self.deadline, now)
+
+    def holding(self, now: float) -> bool:
+        return now < self.deadline
+
+    def switched(self, now: float) -> None:
+        if self.holding(now):
+            self.held.clear()
+            self.newest.clear()
+        else:
+            self.dedupe_until = now + SWITCH_DEDUPE_S
+        self.deadline = 0.0
+
+    def filter(self, batch: list[LogRecord], topic: str, now: float) -> list[LogRecord]:
+        if topic == ROSOUT:
+            newest = self.newest
+            for record in batch:
+                newest[record.node] = record.stamp_ns
+            if self.holding(now):
+                self.held.extend(batch)
+                return []
+            if self.held:
+                batch, self.held = self.held + batch, []
+            return batch
+        if now < self.dedupe_until:
+            seen = self.newest
+            return [r for r in batch if r.stamp_ns > seen.get(r.node, r.stamp_ns - 1)]
+        if self.newest:
+            self.newest = {}
+        return batch
 
 
 def _has_publishers(node: Any, topic: str) -> bool:
