@@ -24,6 +24,7 @@ from pathlib import Path
 from ..sources.ros1.master import Ros1CallError, probe_master, xmlrpc_call
 from ..sources.status import SourceStatus
 from .behaviours import DEMO_NODES
+from .launcher import close_stdin, stop_children
 
 #: Debian's rospy (and a sourced Noetic's) imports in the system Python.
 SYSTEM_PYTHON = "/usr/bin/python3"
@@ -136,17 +137,10 @@ class Ros1Demo:
         with self._lock:
             self._stopped = True
             processes, self.processes = self.processes, []
-        for process in processes:
-            _close_stdin(process)
-        for process in processes:
-            try:
-                process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait(timeout)
+        stop_children(processes, timeout)
         if self.roscore is not None:
             leftovers = self._master_processes()
-            _close_stdin(self.roscore)
+            close_stdin(self.roscore)
             try:
                 self.roscore.wait(timeout + 5.0)
             except subprocess.TimeoutExpired:
@@ -183,11 +177,3 @@ def _runs(pid: int, text: str) -> bool:
             return text.encode() in cmdline.read()
     except OSError:
         return False
-
-
-def _close_stdin(process: subprocess.Popen) -> None:
-    if process.stdin is not None:
-        try:
-            process.stdin.close()
-        except OSError:
-            pass
