@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import sys
 import threading
+import time
 from functools import partial
 from types import SimpleNamespace
 from typing import Any
@@ -36,6 +37,17 @@ def run(name: str) -> int:
     from console_tui.demo.behaviours import DEMO_NODES
 
     node_name, namespace, set_up = DEMO_NODES[name]
+    done = threading.Event()
+
+    def exit_when_parent_goes() -> None:
+        sys.stdin.read()
+        done.set()
+        # The main thread's clean exit comes first, unless it is stuck: rospy's init_node retries
+        # a master that went away (the console was killed, and its roscore with it) for ever.
+        time.sleep(3.0)
+        os._exit(0)
+
+    threading.Thread(target=exit_when_parent_goes, daemon=True).start()
     if namespace:
         os.environ["ROS_NAMESPACE"] = namespace
     import rospy
@@ -47,13 +59,6 @@ def run(name: str) -> int:
         timers.append(rospy.Timer(rospy.Duration(seconds), lambda _event: callback()))
 
     set_up(_logger(rospy), every)
-    done = threading.Event()
-
-    def exit_when_parent_goes() -> None:
-        sys.stdin.read()
-        done.set()
-
-    threading.Thread(target=exit_when_parent_goes, daemon=True).start()
     while not done.wait(0.2) and not rospy.is_shutdown():
         pass
     for timer in timers:
