@@ -12,7 +12,7 @@ from textual.containers import Vertical
 from textual.screen import ModalScreen
 from textual.widgets import Footer, Static, TextArea
 
-from ...model.formats.console_lines import LOCAL_TIME_NOTE
+from ...model.formats.mixed_output import LOCAL_TIME_NOTE
 from ...model.levels import severity_name
 from ...model.record import LogRecord
 from ...model.text import multi_line, one_line
