@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from console_tui.commands.tail import use_color
-from console_tui.model.formats.console_line import ConsoleLine
+from console_tui.model.formats.print_format import PrintFormat
 from console_tui.model.formats.rosout_log import ROS2_HEADER, rosout_log_text
 from console_tui.model.formats.rotating_file import RotatingFile
 from console_tui.model.record import LogRecord
@@ -301,6 +301,40 @@ def test_stream_filter_agrees_with_the_view():
 
 
 @pytest.mark.parametrize("template", [None, "${message}", "{message}"])
-def test_console_line_keeps_newlines_and_tabs(template):
-    line = ConsoleLine(template).text(LogRecord(0, 20, "n", "a\tb\r\nc"))
+def test_print_format_keeps_newlines_and_tabs(template):
+    line = PrintFormat(template).text(LogRecord(0, 20, "n", "a\tb\r\nc"))
     assert line.endswith("a\tb\nc")
+
+
+def test_a_folder_with_rotated_files_and_last(tmp_path):
+    run = tmp_path / "log" / "rosout-2026-11-22-10-00-00-42"
+    run.mkdir(parents=True)
+    older = [LogRecord(10**18 + n, 20, "n", f"old {n}") for n in range(3)]
+    newer = [LogRecord(10**18 + n, 20, "n", f"new {n}") for n in range(3, 5)]
+    write_log(run / "rosout.log.1", older)
+    write_log(run / "rosout.log", newer)
+    expected = ["old 0", "old 1", "old 2", "new 3", "new 4"]
+    assert tail(str(run), "--format", "{message}").stdout.decode().splitlines() == expected
+    env = {**ENV, "ROS_LOG_DIR": str(tmp_path / "log")}
+    assert tail("--last", "--format", "{message}", env=env).stdout.decode().splitlines() == expected
+    # Followed: the rotated file is read first, then the newest one is followed.
+    process = subprocess.Popen(
+        [sys.executable, "-m", "console_tui", "tail", "-f", str(run), "--format", "{message}"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=ENV,
+    )
+    lines = Lines(process)
+    try:
+        assert lines.take(5) == expected
+        with open(run / "rosout.log", "a") as log:
+            log.write(rosout_log_text(LogRecord(10**18 + 5, 20, "n", "new 5")))
+        assert lines.take(1) == ["new 5"]
+        process.send_signal(signal.SIGINT)
+        assert process.wait(10) == 0
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    missing = tail("--last", env={**ENV, "ROS_LOG_DIR": str(tmp_path / "none")})
+    assert missing.returncode == 2 and b"--last: no ROS log directory" in missing.stderr

@@ -24,6 +24,7 @@ from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.text import one_line
 from ..focus import focus_now
+from ..plain import plain
 
 #: At most this many distinct messages make one "these messages" rule.
 MESSAGES_AT_MOST = 50
@@ -78,7 +79,7 @@ class QuickRuleScreen(ModalScreen[Entry | None]):
         verb = "Hide" if self.role is Role.EXCLUDE else "Highlight"
         with Vertical():
             yield Label(f"{verb} messages with... (Enter picks, Esc cancels)")
-            yield OptionList(*(Option(one_line(label, 200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
+            yield OptionList(*(Option(plain(label, limit=200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
 
     def on_mount(self) -> None:
         focus_now(self.query_one(OptionList))
