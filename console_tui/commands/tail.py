@@ -16,6 +16,7 @@ import argparse
 import os
 import signal
 import sys
+import textwrap
 import threading
 import time
 from collections.abc import Iterable, Sequence
@@ -44,24 +45,30 @@ FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
 LOSS_REPORT_S = 5.0
 
 
+EPILOG = f"""--format tokens, mixed as you like (\\n and \\t are decoded):
+  ROS 2 (RCUTILS_CONSOLE_OUTPUT_FORMAT): {{severity}} {{name}} {{message}} {{time}}
+      {{time_as_nanoseconds}} {{date_time_with_ms}} {{file_name}} {{function_name}} {{line_number}}
+  ROS 1 (ROSCONSOLE_FORMAT): ${{severity}} ${{time}} ${{time:%H:%M:%S}} ${{walltime}} ${{node}}
+      ${{logger}} ${{message}} ${{file}} ${{function}} ${{line}}
+
+exit status:
+  {EXIT_OK}  done, stopped by Ctrl-C, or the pipe closed
+  {EXIT_FILES}  a FILE could not be read
+  {EXIT_USAGE}  bad command line, or no ROS for the live stream"""
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="console-tui tail",
-        description=(
+        description=textwrap.fill(
             "Print log messages on standard output, filtered with the app's query language and rule "
             "files: the live stream of ROS 2 or ROS 1 (without FILEs: /rosout_agg when something publishes "
             "it, else /rosout), "
             "or log files and recordings merged by time, or both (--live). Runs until Ctrl-C when live or "
             "following; a closed pipe (| head) ends it quietly."
         ),
-        epilog=(
-            "--format takes ROS 2's RCUTILS_CONSOLE_OUTPUT_FORMAT tokens {severity} {name} {message} {time} "
-            "{time_as_nanoseconds} {date_time_with_ms} {file_name} {function_name} {line_number} and ROS 1's "
-            "ROSCONSOLE_FORMAT tokens ${severity} ${time} ${time:%%H:%%M:%%S} ${walltime} ${node} ${logger} "
-            "${message} ${file} ${function} ${line}, mixed as you like; \\n and \\t are decoded. "
-            f"exit status: {EXIT_OK} done (or stopped by Ctrl-C, or the pipe closed); {EXIT_FILES} a FILE could "
-            f"not be read; {EXIT_USAGE} bad command line, or ROS is not available for the live stream"
-        ),
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     parser.add_argument(
         "files",

@@ -110,20 +110,32 @@ def test_json_lines_are_the_apps_jsonl(tmp_path):
     }
 
 
-TERMINAL_ACTIVE = re.compile(rb"[\x00-\x08\x0b-\x1f\x7f]|\xc2[\x80-\x9f]|\xe2\x80[\xaa-\xae]|\xe2\x81[\xa6-\xa9]")
+#: Bytes a terminal acts on, or characters that hide: C0 but newline and tab, DEL, C1, bidi,
+#: zero-width space, BOM, tags.
+TERMINAL_ACTIVE = re.compile(
+    rb"[\x00-\x08\x0b-\x1f\x7f]|\xc2[\x80-\x9f]|\xe2\x80[\x8b\xaa-\xae]|\xe2\x81[\xa6-\xa9]|\xef\xbb\xbf|\xf3\xa0"
+)
 
 
 def test_hostile_messages_are_printed_inert(tmp_path):
     records = hostile_records()
     records.append(
-        LogRecord(1_800_000_000_000_000_000, 20, "evil\x1b]0;title\x07", "\x9b31m\u202eevil\x7f", "\x1b[2J", "f", 1)
+        LogRecord(
+            1_800_000_000_000_000_000,
+            20,
+            "evil\x1b]0;title\x07",
+            "\x9b31m\u202eevil\x7f\u200b\ufeff\U000e0041",
+            "\x1b[2J",
+            "f",
+            1,
+        )
     )
     path = str(write_log(tmp_path / "rosout.log", records))
     for args in ((), ("--json",), ("--format", "${node} ${file} ${function}: ${message}")):
         out = tail(path, *args).stdout
         assert TERMINAL_ACTIVE.search(out) is None, (args, TERMINAL_ACTIVE.search(out))
     text = tail(path).stdout.decode()
-    assert "[evil␛]0;title␇]: <U+009B>31m<U+202E>evil␡" in text
+    assert "[evil␛]0;title␇]: <U+009B>31m<U+202E>evil␡<U+200B><U+FEFF><U+E0041>" in text
     assert "␛[31mcolour␛[0m" in text
     back = [json.loads(line) for line in tail(path, "--json").stdout.decode().splitlines()]
     assert [r["msg"] for r in back] == [r.msg for r in records]  # inert and lossless
