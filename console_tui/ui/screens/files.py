@@ -7,7 +7,7 @@ import shlex
 from dataclasses import dataclass
 from pathlib import Path
 
-from textual import on
+from textual import events, on
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
@@ -16,6 +16,8 @@ from textual.suggester import Suggester
 from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
 
 from ...model.formats.save import save_format_for
+from ..keys import hint_line
+from ..plain import plain
 
 SAVE_FORMAT_TITLES = {
     "rqt": "rqt_console (ROS 2) .csv",
@@ -49,14 +51,45 @@ class PathSuggester(Suggester):
         return value + completion if completion else None
 
 
+class PathInput(Input):
+    """A path box: Tab (or →) takes the completion shown after the text; Tab with none shown
+    moves on to the next field."""
+
+    BINDINGS = [Binding("tab", "complete", "Complete the path", show=False, id="path.complete")]
+
+    def action_complete(self) -> None:
+        suggestion = self._suggestion
+        if len(suggestion) > len(self.value) and self.cursor_position >= len(self.value):
+            self.value = suggestion
+            self.cursor_position = len(suggestion)
+        else:
+            self.screen.focus_next()
+
+
 class _Dialog(ModalScreen):
+    """A title, the fields, a line of keys (from the bindings), and a line for what is wrong;
+    long lines wrap, none is cut."""
+
     DEFAULT_CSS = """
     _Dialog { align: center middle; }
-    _Dialog > Vertical { width: 80; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 1 2; }
-    _Dialog Input { margin: 1 0; }
-    _Dialog .error { color: $error; }
+    _Dialog > Vertical { width: 80; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 0 1; }
+    _Dialog Label { width: 100%; }
+    _Dialog .title { text-style: bold; }
+    _Dialog .hint { color: $text-muted; }
+    _Dialog Input { margin: 1 0 0 0; }
+    _Dialog .error { color: $text-error; }
     """
-    BINDINGS = [Binding("escape", "cancel", "Cancel")]
+    BINDINGS = [Binding("escape", "cancel", "Cancel", id="dialog.cancel")]
+    #: What Enter does, for the line of keys.
+    ENTER_WORDS = "opens"
+
+    def key_hints(self) -> str:
+        """``tab completes · ⏎ opens · esc cancels``, from the bindings."""
+        hints = [("complete", "completes"), ("submit", self.ENTER_WORDS), ("cancel", "cancels")]
+        return hint_line(self.app, [*PathInput.BINDINGS, *Input.BINDINGS, *self.BINDINGS], hints)
+
+    def error_line(self) -> Label:
+        return Label("", classes="error", id="error", markup=False)
 
     def action_cancel(self) -> None:
         self.dismiss(None)
@@ -67,20 +100,21 @@ class OpenScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label("Open log files, recordings or folders (several: separate with spaces; Tab completes)")
-            yield Input(placeholder="~/.ros/log/...  run.bag  saved.csv", suggester=PathSuggester(), id="paths")
-            yield Label("", classes="error", id="error")
+            yield Label("Open log files, recordings or folders", classes="title")
+            yield PathInput(placeholder="~/.ros/log/...  run.bag  saved.csv", suggester=PathSuggester(), id="paths")
+            yield Label(f"spaces separate files · {self.key_hints()}", classes="hint")
+            yield self.error_line()
 
     @on(Input.Submitted)
     def submitted(self, event: Input.Submitted) -> None:
         try:
             paths = [os.path.expanduser(p) for p in shlex.split(event.value)]
         except ValueError as error:
-            self.query_one("#error", Label).update(f"Can't read that: {error}")
+            self.query_one("#error", Label).update(plain(f"Can't read that: {error}"))
             return
         missing = [p for p in paths if not os.path.exists(p)]
         if not paths or missing:
-            self.query_one("#error", Label).update(f"No such file: {missing[0]}" if missing else "Type a path")
+            self.query_one("#error", Label).update(plain(f"No such file: {missing[0]}" if missing else "Type a path"))
             return
         self.dismiss(paths)
 
@@ -93,12 +127,14 @@ class PathScreen(_Dialog):
         self.title_text = title
         self.default = default
         self.must_exist = must_exist
+        self.ENTER_WORDS = "opens" if must_exist else "saves"
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(f"{self.title_text} (Tab completes; Enter, Esc cancels)")
-            yield Input(self.default, suggester=PathSuggester(), id="path")
-            yield Label("", classes="error", id="error")
+            yield Label(plain(self.title_text), classes="title")
+            yield PathInput(self.default, suggester=PathSuggester(), id="path")
+            yield Label(self.key_hints(), classes="hint")
+            yield self.error_line()
 
     @on(Input.Submitted)
     def submitted(self, event: Input.Submitted) -> None:
@@ -107,9 +143,9 @@ class PathScreen(_Dialog):
         if not path:
             error.update("Type a path")
         elif self.must_exist and not os.path.isfile(path):
-            error.update(f"No such file: {path}")
+            error.update(plain(f"No such file: {path}"))
         elif not self.must_exist and not os.path.isdir(os.path.dirname(os.path.abspath(path))):
-            error.update(f"No such folder: {os.path.dirname(os.path.abspath(path))}")
+            error.update(plain(f"No such folder: {os.path.dirname(os.path.abspath(path))}"))
         else:
             self.dismiss(path)
 
@@ -124,6 +160,8 @@ class SaveRequest:
 class SaveScreen(_Dialog):
     """Asks where and how to save; returns a ``SaveRequest`` or None."""
 
+    ENTER_WORDS = "saves"
+
     def __init__(self, default_path: str, filtered: bool) -> None:
         super().__init__()
         self.default_path = default_path
@@ -131,14 +169,14 @@ class SaveScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label("Save messages to (the extension picks the format; Tab completes)")
-            yield Input(self.default_path, suggester=PathSuggester(), id="path")
+            yield Label("Save messages to (the extension picks the format)", classes="title")
+            yield PathInput(self.default_path, suggester=PathSuggester(), id="path")
             with RadioSet(id="format"):
                 for key, title in SAVE_FORMAT_TITLES.items():
                     yield RadioButton(title, value=key == save_format_for(self.default_path), name=key)
             yield Checkbox("Only the rows shown (after rules)", value=True, id="shown-only", disabled=not self.filtered)
-            yield Label("Enter saves, Escape cancels", classes="hint")
-            yield Label("", classes="error", id="error")
+            yield Label(self.key_hints(), classes="hint")
+            yield self.error_line()
 
     @on(Input.Changed, "#path")
     def path_changed(self, event: Input.Changed) -> None:
@@ -163,11 +201,11 @@ class SaveScreen(_Dialog):
         pressed = self.query_one(RadioSet).pressed_button
         return (pressed.name if pressed is not None else None) or "rqt"
 
-    @on(Input.Submitted)
-    def submitted(self, event: Input.Submitted) -> None:
-        self.action_save()
-
-    def key_enter(self) -> None:
+    def key_enter(self, event: events.Key) -> None:
+        """Enter saves, wherever the focus is; the key stops here, so after the dialog closes
+        it does not go on to the table (where Enter opens the detail view)."""
+        event.stop()
+        event.prevent_default()
         self.action_save()
 
     def action_save(self) -> None:
@@ -178,10 +216,10 @@ class SaveScreen(_Dialog):
             return
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
-            error.update(f"No such folder: {folder}")
+            error.update(plain(f"No such folder: {folder}"))
             return
         if os.path.isdir(path):
-            error.update(f"{path} is a folder")
+            error.update(plain(f"{path} is a folder"))
             return
         shown_only = self.query_one("#shown-only", Checkbox).value and self.filtered
         self.dismiss(SaveRequest(path, self._format(), shown_only))
