@@ -233,11 +233,7 @@ def test_rqt_bad_severities_name_the_value_and_the_expected_ones():
 
 
 def test_damaged_ros1_csv_keeps_the_row_and_its_ros1_severity():
-    data = (
-        b"message;severity;node;stamp;topics;location\n"
-        b'"warned";"4";"n";"1.000000000";"/rosout";"f:g:1"\n'
-        b"GARBAGE\n"
-    )
+    data = b'message;severity;node;stamp;topics;location\n"warned";"4";"n";"1.000000000";"/rosout";"f:g:1"\nGARBAGE\n'
     records, problems = read_text(data, RqtCsvFormat(), "r1.csv")
     assert [(r.msg, r.level) for r in records] == [("warned", 30)]
     assert [(p.line, p.what) for p in problems] == [(3, "not a rqt_console CSV record: 'GARBAGE'")]
@@ -247,10 +243,7 @@ def test_damaged_csv_tries_each_line_that_could_end_the_row():
     """The message's first line ends with a quote (escaped, so not the row's end): the row
     ends further down, and the stray line after it is reported on its own."""
     data = (
-        b"message;severity;node;stamp;location\n"
-        b'"he said \\"hi\\"\n'
-        b'and left";"20";"n";"1.000000000";"f:g:1"\n'
-        b"GARBAGE\n"
+        b'message;severity;node;stamp;location\n"he said \\"hi\\"\nand left";"20";"n";"1.000000000";"f:g:1"\nGARBAGE\n'
     )
     records, problems = read_text(data, RqtCsvFormat(), "quote.csv")
     assert [r.msg for r in records] == ['he said "hi"\nand left']
@@ -283,7 +276,13 @@ def test_rqt_writer_names_and_writes_in_chunks_with_unencodable_text_replaced():
 def test_rqt_header_forms():
     from console_tui.model.formats.rqt_csv import parse_header
 
-    assert parse_header("message;severity;node;stamp;location\r") == ("message", "severity", "node", "stamp", "location")
+    assert parse_header("message;severity;node;stamp;location\r") == (
+        "message",
+        "severity",
+        "node",
+        "stamp",
+        "location",
+    )
     assert parse_header("message;severity;message") is None, "a column twice"
     assert parse_header("message;colour") is None, "a column rqt_console has not"
     assert parse_header("severity;node") is None, "no message column"
