@@ -269,10 +269,10 @@ def test_a_length_past_the_end_names_the_field_and_what_is_left(field, lengths, 
     assert str(error.value) == expected
 
 
-@pytest.mark.parametrize("field, start", [(0, 20), (1, 32)])
+@pytest.mark.parametrize("field, start", [(0, 20), (1, 32), (2, 44), (3, 56)])
 def test_a_string_up_to_the_last_byte_is_read_and_what_should_follow_is_missing(field, start):
-    """A name or message may reach the very end of the bytes; what must follow it (the
-    other strings, the line) is then missing: the message is truncated, not over-long."""
+    """A string may reach the very end of the bytes; what must follow it (the other
+    strings, the line) is then missing: the message is truncated, not over-long."""
     size = len(encode_log())
     lengths = [None] * 4
     lengths[field] = size - start
@@ -308,6 +308,7 @@ def test_refused_messages_go_to_the_callback_whose_records_take_their_place():
     assert seen[1][1] == "Log message truncated: 9 bytes"
     assert [r.source for r in records if r.node == "n"] == ["/rosout"] * 3
     assert LogDecoder().decode_many([good[0]])[0].source == "", "no source unless given"
+    assert LogDecoder().decode(good[0]).source == ""
 
 
 def test_a_message_with_several_nuls_ends_at_the_first():

@@ -203,13 +203,12 @@ def test_rqt_rows_apart_with_blank_lines_and_crlf_endings():
 
 
 def test_rqt_location_may_hold_the_field_separator_and_columns_may_be_missing():
-    data = b'message;severity;node;stamp;location\n"m";"40";"n";"3.000000000";"odd\\";\\"name.py:f:9"\n'
+    data = b'message;severity;node;stamp;location\n"m";"40";"n";"3.000000000";"odd";"name.py:f:9"\n'
     records, problems = read_text(data, RqtCsvFormat(), "odd.csv")
-    assert list(problems) == [] and (records[0].file, records[0].function, records[0].line) == (
-        'odd\\";\\"name.py',
-        "f",
-        9,
-    )
+    assert list(problems) == [] and (records[0].msg, records[0].node) == ("m", "n")
+    assert (records[0].file, records[0].function, records[0].line) == ('odd";"name.py', "f", 9)
+    records, problems = read_text(b'message\n""\n', RqtCsvFormat(), "empty.csv")
+    assert list(problems) == [] and [r.msg for r in records] == [""], "an empty message is a row"
     records, problems = read_text(b'message;severity\n"just this";"30"\n', RqtCsvFormat(), "two.csv")
     assert list(problems) == []
     assert [(r.msg, r.level, r.stamp_ns, r.node, r.file, r.line) for r in records] == [("just this", 30, 0, "", "", 0)]
@@ -235,7 +234,7 @@ def test_rqt_bad_severities_name_the_value_and_the_expected_ones():
 def test_damaged_ros1_csv_keeps_the_row_and_its_ros1_severity():
     data = b'message;severity;node;stamp;topics;location\n"warned";"4";"n";"1.000000000";"/rosout";"f:g:1"\nGARBAGE\n'
     records, problems = read_text(data, RqtCsvFormat(), "r1.csv")
-    assert [(r.msg, r.level) for r in records] == [("warned", 30)]
+    assert [(r.msg, r.level, r.source) for r in records] == [("warned", 30, "r1.csv")]
     assert [(p.line, p.what) for p in problems] == [(3, "not a rqt_console CSV record: 'GARBAGE'")]
 
 
@@ -250,27 +249,45 @@ def test_damaged_csv_tries_each_line_that_could_end_the_row():
     assert [(p.line, p.what) for p in problems] == [(4, "not a rqt_console CSV record: 'GARBAGE'")]
 
 
-def test_a_damaged_row_is_given_up_after_a_thousand_tries():
-    """Recovery is bounded: a group with more than 1,000 lines that could end a row (none
-    does) is one problem, found quickly, and the row after it still loads."""
-    lines = [b'"start of a row that never ends'] + [b'junk "'] * 1_001 + [b'tail";"20";"n";"1.000000000";"f:g:1"']
-    data = b"message;severity;node;stamp;location\n" + b"\n".join(lines) + b"\nGARBAGE\n"
+@pytest.mark.parametrize("junk, found", [(999, True), (1_000, False)])
+def test_a_damaged_row_is_given_up_after_a_thousand_tries(junk, found):
+    """Recovery is bounded: of the lines that could end a damaged row, the first 1,000 are
+    tried; past them the group is one problem, and the row after it still loads."""
+    lines = [b'"start', *[b'junk "'] * junk, b'tail";"20";"n";"1.000000000";"f:g:1"', b"GARBAGE"]
+    data = b"message;severity;node;stamp;location\n" + b"\n".join(lines) + b"\n"
     data += b'"after";"30";"n";"2.000000000";"f:g:2"\n'
     records, problems = read_text(data, RqtCsvFormat(), "long.csv")
-    assert [r.msg for r in records] == ["after"], "the 1,002nd candidate end is never tried"
-    assert [p.line for p in problems] == [2]
+    if found:  # the 1,000th try ends the row
+        assert [r.msg[-4:] for r in records] == ["tail", "fter"] and records[0].source == "long.csv"
+        assert [p.line for p in problems] == [junk + 4]
+    else:
+        assert [r.msg for r in records] == ["after"], "the 1,001st is never tried"
+        assert [p.line for p in problems] == [2]
+
+
+def test_damaged_csv_with_windows_line_endings_keeps_its_rows():
+    data = (
+        b"message;severity;node;stamp;location\r\n"
+        b'"one";"20";"n";"1.000000000";"f:g:1"\r\n'
+        b"GARBAGE\r\n"
+        b'"two";"30";"n";"2.000000000";"f:g:2"\r\n'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "crlf.csv")
+    assert [r.msg for r in records] == ["one", "two"]
+    assert [(p.line, p.what) for p in problems] == [(3, "not a rqt_console CSV record: 'GARBAGE\\r'")]
 
 
 def test_rqt_writer_names_and_writes_in_chunks_with_unencodable_text_replaced():
     assert (RqtCsvWriter().name, RqtCsvWriter(ros1=True).name) == ("rqt", "rqt1")
     records = [LogRecord(i, 20, "n", f"m{i}", "f", "g", 1, "") for i in range(10_001)]
     records[5].msg = "lone \ud800 surrogate"
+    records[-1].msg = "last \udc80 one"
     stream = io.BytesIO()
     counts = list(RqtCsvWriter().write(records, stream))
     assert counts == [10_000, 10_001]
     lines = stream.getvalue().decode("utf-8").splitlines()
     assert len(lines) == 10_002 and lines[0] == ";".join(("message", "severity", "node", "stamp", "location"))
-    assert lines[6].startswith('"lone ? surrogate";"20"') and lines[-1].startswith('"m10000";')
+    assert lines[6].startswith('"lone ? surrogate";"20"') and lines[-1].startswith('"last ? one";')
 
 
 def test_rqt_header_forms():
