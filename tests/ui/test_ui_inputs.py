@@ -155,6 +155,8 @@ async def test_temporary_level_seconds_box_shows_the_typed_number():
     async with app.run_test(size=(100, 30)) as pilot:
         app.push_screen(TemporaryLevelScreen("/n", "n", 30))
         await until(pilot, lambda: isinstance(app.screen, TemporaryLevelScreen))
+        await on_screen(pilot, "For how many seconds")
+        await until(pilot, lambda: app.focused is not None and app.focused.id == "temporary-seconds")
         await type_into(pilot, "45.25", clear=True)
         y, _ = line_with(app, "45.25")
         assert "seconds" in "\n".join(screen_text(app).splitlines()[y - 3 : y])

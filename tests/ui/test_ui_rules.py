@@ -240,6 +240,7 @@ async def test_quick_rules_from_a_row():
         await pilot.press("minus")
         assert isinstance(app.screen, QuickRuleScreen)
         await pilot.press("enter")  # the first choice: this node
+        await until(pilot, lambda: "240/300 shown" in screen_text(app), what="the rule in force")
         assert all(r.node != row.node for r in shown(app)) and len(app.view) == 240
         await pilot.press("plus", "down", "enter")  # highlight this severity
         assert app.rules.entries[-1].role is Role.HIGHLIGHT
