@@ -111,8 +111,8 @@ def scenarios() -> list[tuple[str, RuleSet]]:
         ("text: only 'Planner failed'", RuleSet((exclude(MessageRule("Planner failed"), inverted=True),))),
         ("text, ignore case: hide 'timeout'", RuleSet((exclude(MessageRule("timeout", ignore_case=True)),))),
         ("regex /time(out|d out)/i, highlight", RuleSet((highlight(MessageRule("time(out|d out)", True, True)),))),
-        ("regex /\\d{3}\\.\\d ms/, exclude", RuleSet((exclude(MessageRule(r"\d{3}\.\d ms", regex=True)),))),
         ("  + highlighted only (masks kept)", RuleSet((highlight(MessageRule("time(out|d out)", True, True)),), True)),
+        ("regex /\\d{3}\\.\\d ms/, exclude", RuleSet((exclude(MessageRule(r"\d{3}\.\d ms", regex=True)),))),
         (
             "custom: warn+ AND nav* AND 'goal'",
             RuleSet((exclude(CustomRule((SeverityRule.at_least(30), NodeRule(("nav*",)), MessageRule("goal")))),)),

@@ -94,7 +94,11 @@ def test_masks_answer_as_re_search_does(seed):
         tried += 1
         wanted = bytes(bool(compiled.search(s)) for s in strings)
         got = TextMatch(pattern, ignore_case, regex=True).mask_function()(strings)
-        assert got == wanted, (pattern, ignore_case, [s for s, a, b in zip(strings, got, wanted, strict=True) if a != b][:5])
+        assert got == wanted, (
+            pattern,
+            ignore_case,
+            [s for s, a, b in zip(strings, got, wanted, strict=True) if a != b][:5],
+        )
 
 
 def test_plain_text_ignoring_case_folds_fully():
