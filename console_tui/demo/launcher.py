@@ -7,7 +7,7 @@ import subprocess
 import sys
 
 from ..sources.status import SourceStatus
-from .nodes import DEMO_NODES
+from .behaviours import DEMO_NODES
 
 #: The demo stays on this machine: discovery only over loopback.
 DEMO_ENVIRONMENT = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
@@ -37,15 +37,25 @@ class DemoNodes:
 
     def stop(self, timeout: float = 3.0) -> None:
         processes, self.processes = self.processes, []
-        for process in processes:
-            if process.stdin is not None:
-                try:
-                    process.stdin.close()
-                except OSError:
-                    pass
-        for process in processes:
-            try:
-                process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait(timeout)
+        stop_children(processes, timeout)
+
+
+def stop_children(processes: list[subprocess.Popen], timeout: float) -> None:
+    """End demo processes that stop when their stdin closes: close every stdin, then wait for
+    each (killing one that takes longer than ``timeout``)."""
+    for process in processes:
+        close_stdin(process)
+    for process in processes:
+        try:
+            process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            process.wait(timeout)
+
+
+def close_stdin(process: subprocess.Popen) -> None:
+    if process.stdin is not None:
+        try:
+            process.stdin.close()
+        except OSError:
+            pass

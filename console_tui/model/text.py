@@ -91,15 +91,24 @@ def multi_line(text: str) -> str:
 
 
 #: What JSON text may hold raw that a terminal acts on or hides (JSON escapes C0 itself).
-_JSON_RAW = re.compile(r"[\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069\u2028\u2029]")
+_JSON_RAW = re.compile(_char_class([0x7F, *_INVISIBLE]))
+
+
+def _json_escape(match: re.Match[str]) -> str:
+    code = ord(match.group())
+    if code <= 0xFFFF:
+        return f"\\u{code:04x}"
+    code -= 0x10000  # a UTF-16 surrogate pair, as JSON writes characters past U+FFFF
+    return f"\\u{0xD800 + (code >> 10):04x}\\u{0xDC00 + (code & 0x3FF):04x}"
 
 
 def inert_json(text: str) -> str:
-    """JSON text with DEL, C1 controls, bidi and line-separator characters written as
-    ``\\uXXXX`` escapes: the same JSON value, nothing a terminal acts on."""
+    """JSON text with DEL and the characters ``one_line`` shows as ``<U+XXXX>`` (C1
+    controls, bidi, zero-width and line-separator characters) written as ``\\u`` escapes:
+    the same JSON value, nothing a terminal acts on or hides."""
     if _JSON_RAW.search(text) is None:
         return text
-    return _JSON_RAW.sub(lambda match: f"\\u{ord(match.group()):04x}", text)
+    return _JSON_RAW.sub(_json_escape, text)
 
 
 def first_line(text: str, limit: int) -> tuple[str, bool]:
