@@ -9,16 +9,27 @@ from textual.screen import ModalScreen
 from textual.widgets import Label, SelectionList
 from textual.widgets.selection_list import Selection
 
+from ..keys import Hint, hint_line
 from ..widgets.table_columns import COLUMNS
+
+_HINTS: list[Hint] = [("select", "toggles"), ("apply", "applies"), ("cancel", "cancels")]
 
 
 class ColumnsScreen(ModalScreen[frozenset[str] | None]):
-    """Space toggles a column, Enter applies, Escape cancels."""
+    """Which table columns are shown: space toggles one.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    | enter | Apply. |
+    """
 
     DEFAULT_CSS = """
     ColumnsScreen { align: center middle; }
-    ColumnsScreen > Vertical { width: 40; height: auto; border: thick $primary; background: $surface; padding: 0 1; }
+    ColumnsScreen > Vertical { width: 48; height: auto; border: thick $primary; background: $surface; padding: 0 1; }
     ColumnsScreen SelectionList { height: auto; }
+    ColumnsScreen .title { text-style: bold; }
+    ColumnsScreen .hint { color: $text-muted; }
     """
     BINDINGS = [Binding("escape", "cancel", "Cancel"), Binding("enter", "apply", "Apply")]
 
@@ -28,7 +39,7 @@ class ColumnsScreen(ModalScreen[frozenset[str] | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label("Columns (space toggles, enter applies)")
+            yield Label("Columns", classes="title")
             yield SelectionList[str](
                 *(
                     Selection(
@@ -40,6 +51,7 @@ class ColumnsScreen(ModalScreen[frozenset[str] | None]):
                     for column in COLUMNS
                 )
             )
+            yield Label(hint_line(self.app, [*SelectionList.BINDINGS, *self.BINDINGS], _HINTS), classes="hint")
 
     def action_apply(self) -> None:
         selected = frozenset(self.query_one(SelectionList).selected) | {"message"}

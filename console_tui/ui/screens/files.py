@@ -16,6 +16,7 @@ from textual.suggester import Suggester
 from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
 
 from ...model.formats.save import save_format_for
+from ..keys import Hint, hint_line
 
 SAVE_FORMAT_TITLES = {
     "rqt": "rqt_console (ROS 2) .csv",
@@ -50,6 +51,13 @@ class PathSuggester(Suggester):
 
 
 class _Dialog(ModalScreen):
+    """What the file dialogs share: a box in the middle, Escape cancels.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    """
+
     DEFAULT_CSS = """
     _Dialog { align: center middle; }
     _Dialog > Vertical { width: 80; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 1 2; }
@@ -96,7 +104,10 @@ class PathScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(f"{self.title_text} (Tab completes; Enter, Esc cancels)")
+            hints: list[Hint] = [("submit", "accepts"), ("cancel", "cancels")]
+            yield Label(
+                f"{self.title_text} (Tab completes; {hint_line(self.app, [*Input.BINDINGS, *self.BINDINGS], hints)})"
+            )
             yield Input(self.default, suggester=PathSuggester(), id="path")
             yield Label("", classes="error", id="error")
 
@@ -137,7 +148,8 @@ class SaveScreen(_Dialog):
                 for key, title in SAVE_FORMAT_TITLES.items():
                     yield RadioButton(title, value=key == save_format_for(self.default_path), name=key)
             yield Checkbox("Only the rows shown (after rules)", value=True, id="shown-only", disabled=not self.filtered)
-            yield Label("Enter saves, Escape cancels", classes="hint")
+            hints: list[Hint] = [("submit", "saves"), ("cancel", "cancels")]
+            yield Label(hint_line(self.app, [*Input.BINDINGS, *self.BINDINGS], hints), classes="hint")
             yield Label("", classes="error", id="error")
 
     @on(Input.Changed, "#path")
