@@ -3,12 +3,28 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from collections.abc import Sequence
 
 from . import __version__
-from .commands.arguments import add_log_format_argument, add_ros_version_arguments, positive_int
+from .commands.arguments import (
+    add_last_argument,
+    add_log_format_argument,
+    add_ros_version_arguments,
+    check_rule_arguments,
+    positive_int,
+)
 from .model.store import DEFAULT_MAX_MESSAGES
+
+#: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
+SUBCOMMANDS: dict[str, str] = {
+    "loggers": "lists and sets logger levels without the TUI",
+    "convert": "converts log files and recordings",
+    "tail": "prints the live log stream or log files, filtered, on standard output",
+    "rosout": "runs the rosout node for ROS 2: /rosout_agg and rosout.log",
+    "clean": "checks and purges the ROS log directory (rosclean)",
+}
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -18,10 +34,9 @@ def build_parser() -> argparse.ArgumentParser:
             "A terminal log console for ROS: every node's log messages in one fast table, "
             "with filters, highlights and logger levels."
         ),
-        epilog=(
-            "Subcommands: 'console-tui loggers --help' lists and sets logger levels without the TUI; "
-            "'console-tui convert --help' converts log files and recordings."
-        ),
+        epilog="Subcommands (each has --help): "
+        + "; ".join(f"'console-tui {name}' {what}" for name, what in SUBCOMMANDS.items())
+        + ".",
     )
     parser.add_argument("--version", action="version", version=f"console-tui {__version__}")
     parser.add_argument(
@@ -29,11 +44,13 @@ def build_parser() -> argparse.ArgumentParser:
         nargs="*",
         metavar="FILE",
         help=(
-            "log files or recordings to open, merged by time: rqt_console .csv, .jsonl, ROS 2 log files "
-            "(~/.ros/log), ROS 1 rosout.log, .bag, .mcap, .db3 or a rosbag2 directory"
+            "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
+            "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
+            "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it"
         ),
     )
     add_log_format_argument(parser)
+    add_last_argument(parser)
     parser.add_argument(
         "--live",
         action="store_true",
@@ -79,48 +96,29 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
-    """Compile ``--query`` and read ``--rules`` before the app starts; a problem exits 2.
+def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """``--last``: the newest run's folder (and its ROS 2 nodes' logs) joins ``args.files``;
+    no run found exits 2 saying where it looked."""
+    from .model.formats import FormatError
+    from .model.text import one_line
+    from .sources.files import latest_run
 
-    Sets ``args.query_entries`` (the query's rule entries, or ``()``) and ``args.rule_set``
-    (the file's ``RuleSet``, or None).
-    """
-    from .model.rules.query import QueryError, caret_line, parse_query
-    from .model.rules.rule import RuleError
-    from .model.rules.rulesfile import last_rules_path, load_rules
-
-    args.query_entries = ()
-    args.rule_set = None
-    if args.query:
-        try:
-            args.query_entries = parse_query(args.query, utc=args.utc)
-        except QueryError as error:
-            parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(args.query, error)}")
-    if args.rules:
-        path = args.rules
-        if path == "last":
-            path = last_rules_path()
-            if not path.exists():
-                parser.error(f"--rules last: no rule set was saved by an earlier run ({path})")
-        try:
-            args.rule_set = load_rules(path)
-        except RuleError as error:
-            parser.error(f"--rules: {error.message}")
+    try:
+        args.files = [*args.files, *(str(path) for path in latest_run())]
+    except FormatError as error:
+        parser.error(f"--last: {one_line(str(error))}")
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
-    if args_list[:1] == ["loggers"]:
-        from .commands.loggers import main as loggers_main
-
-        return loggers_main(args_list[1:])
-    if args_list[:1] == ["convert"]:
-        from .commands.convert import main as convert_main
-
-        return convert_main(args_list[1:])
+    if args_list and args_list[0] in SUBCOMMANDS:
+        module = importlib.import_module(f"{__package__}.commands.{args_list[0]}")
+        return module.main(args_list[1:])
     parser = build_parser()
     args = parser.parse_args(args_list)
     check_rule_arguments(parser, args)
+    if args.last:
+        add_latest_run(parser, args)
     from .launch import run_app
 
     return run_app(args)

@@ -5,18 +5,11 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from dataclasses import replace
 from typing import Any
 
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
-from .sources.ros2.rclpy_loader import RosUnavailable
-from .sources.ros_version import ROS1, choose_ros
-
-HOW_TO_USE_ROS1 = (
-    "  - For ROS 1: set ROS_MASTER_URI to the master (and ROS_IP to this machine's address) and run\n"
-    "      console-tui --ros1"
-)
+from .sources.live import RosUnavailable, open_live
 
 
 def run_app(args: argparse.Namespace) -> int:
@@ -63,46 +56,25 @@ def run_app(args: argparse.Namespace) -> int:
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
     """The live source for ROS 1 or ROS 2 (as ``--ros1``/``--ros2`` or the environment say),
     the demo nodes when asked; returns the logger control (or None)."""
-    choice = choose_ros(getattr(args, "ros", None))
-    if choice.version == ROS1:
-        return _start_ros1(args, queue, sources, cleanups)
     if args.demo:
         from .demo.launcher import DEMO_ENVIRONMENT
 
         os.environ.update(DEMO_ENVIRONMENT)
-    try:
-        runtime = _start_ros()
-    except RosUnavailable as error:
-        raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
-    cleanups.append(runtime.shutdown)
-    from .sources.ros2.live_source import LiveLogSource
+    live = open_live(queue, topic=args.topic, ros=getattr(args, "ros", None))
+    cleanups.append(live.close)
+    sources.append(live.source)
+    if live.runtime is None:  # ROS 1
+        from .sources.ros1.logger_control import Ros1LoggerControl
+
+        ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
+        cleanups.append(ros1_control.close)  # puts temporary levels back
+        return ros1_control
     from .sources.ros2.logger_control import Ros2LoggerControl
 
-    source = LiveLogSource(runtime, queue, topic=args.topic)
-    source.status = replace(source.status, origin=f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}")
-    sources.append(source)
-    logger_control = Ros2LoggerControl(runtime)  # the app starts it after its first frame
+    logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
     cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back
     if args.demo:
         from .demo.launcher import DemoNodes
 
         sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
     return logger_control
-
-
-def _start_ros1(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
-    from .sources.ros1.live_source import Ros1LiveSource
-
-    sources.append(Ros1LiveSource(queue, topic=args.topic))
-    return None
-
-
-def _start_ros():
-    from .sources.ros2.runtime import RosRuntime
-
-    try:
-        return RosRuntime()
-    except RosUnavailable:
-        raise
-    except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
-        raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None

@@ -71,15 +71,44 @@ async def capture(out: Path, seconds: float) -> list[Path]:
     return saved
 
 
+async def capture_folder(out: Path) -> list[Path]:
+    """A ROS 1 run folder (the test fixture) opened whole: every log merged, the file a column.
+    Needs no ROS: times are shown in UTC, the folder's plain-output file dated as in the run."""
+    import shutil
+    import tempfile
+    import time
+
+    from console_tui.ui.app import ConsoleApp
+
+    os.environ["TZ"] = "UTC"  # the run's Python logs give local times: read them as the run wrote them
+    time.tzset()
+    with tempfile.TemporaryDirectory() as scratch:
+        run = Path(scratch) / "c0ffee00-d4b2-11eb-9c3e-0242ac110002"
+        shutil.copytree(ROOT / "tests" / "data" / "ros_log" / run.name, run)
+        os.utime(run / "rosout-1-stdout.log", ns=(1624512195_200_000_000,) * 2)
+        app = ConsoleApp(files=[str(run)], utc=True)
+        async with app.run_test(size=(160, 30)) as pilot:
+            while app.loading or len(app.store) < 22:
+                await pilot.pause(0.1)
+            await pilot.press("home")
+            await pilot.pause(0.5)
+            path = out / "merged-folder.svg"
+            app.save_screenshot(filename=path.name, path=str(path.parent))
+    return [path]
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "screenshots")
     parser.add_argument("--seconds", type=float, default=8.0, help="how long the demo runs before the first shot")
+    parser.add_argument("--folder-only", action="store_true", help="only the merged run folder (no ROS needed)")
     args = parser.parse_args()
     os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
     os.environ.setdefault("ROS_DOMAIN_ID", "87")
     args.out.mkdir(parents=True, exist_ok=True)
-    for path in asyncio.run(capture(args.out, args.seconds)):
+    saved = [] if args.folder_only else asyncio.run(capture(args.out, args.seconds))
+    saved += asyncio.run(capture_folder(args.out))
+    for path in saved:
         print(path.relative_to(ROOT) if path.is_relative_to(ROOT) else path)
     return 0
 

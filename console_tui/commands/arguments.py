@@ -19,6 +19,18 @@ def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_last_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--last",
+        "--latest",
+        action="store_true",
+        help=(
+            "the newest run in the ROS log directory ($ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log): "
+            "the folder 'latest' points to, every log in it merged"
+        ),
+    )
+
+
 def positive_int(text: str) -> int:
     try:
         value = int(text)
@@ -27,6 +39,66 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError("must be at least 1")
     return value
+
+
+_SIZE_UNITS = {"": 1, "b": 1, "k": 1 << 10, "m": 1 << 20, "g": 1 << 30, "t": 1 << 40}
+
+
+def parse_size(text: str) -> int:
+    """A size in bytes from ``500``, ``10K``, ``100M``, ``1.5G`` (powers of 1024; ``KiB``/``KB`` alike)."""
+    cleaned = text.strip().lower().replace(" ", "")
+    for suffix in ("ib", "b"):
+        if cleaned.endswith(suffix) and cleaned[: -len(suffix)][-1:] in ("k", "m", "g", "t"):
+            cleaned = cleaned[: -len(suffix)]
+    number, unit = cleaned.rstrip("kmgtb"), cleaned[len(cleaned.rstrip("kmgtb")) :]
+    try:
+        value = float(number)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a size: {text!r} (for example 500M, 1G, 1.5G)") from None
+    if unit not in _SIZE_UNITS or value < 0:
+        raise argparse.ArgumentTypeError(f"not a size: {text!r} (for example 500M, 1G, 1.5G)")
+    return int(value * _SIZE_UNITS[unit])
+
+
+def size_text(size: int) -> str:
+    """A size as ``du -h`` prints it: ``512``, ``10K``, ``1.5M``, ``12G`` (powers of 1024)."""
+    value = float(size)
+    for unit in ("", "K", "M", "G", "T"):
+        if value < 1024 or unit == "T":
+            if not unit:
+                return f"{int(value)}"
+            return f"{value:.1f}{unit}" if value < 10 else f"{value:.0f}{unit}"
+        value /= 1024
+    raise AssertionError("unreachable")
+
+
+def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Compile ``--query`` and read ``--rules`` before anything starts; a problem exits 2.
+
+    Sets ``args.query_entries`` (the query's rule entries, or ``()``) and ``args.rule_set``
+    (the file's ``RuleSet``, or None).
+    """
+    from ..model.rules.query import QueryError, caret_line, parse_query
+    from ..model.rules.rule import RuleError
+    from ..model.rules.rulesfile import last_rules_path, load_rules
+
+    args.query_entries = ()
+    args.rule_set = None
+    if args.query:
+        try:
+            args.query_entries = parse_query(args.query, utc=args.utc)
+        except QueryError as error:
+            parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(args.query, error)}")
+    if args.rules:
+        path = args.rules
+        if path == "last":
+            path = last_rules_path()
+            if not path.exists():
+                parser.error(f"--rules last: no rule set was saved by an earlier run ({path})")
+        try:
+            args.rule_set = load_rules(path)
+        except RuleError as error:
+            parser.error(f"--rules: {error.message}")
 
 
 def add_ros_version_arguments(parser: argparse.ArgumentParser) -> None:

@@ -13,12 +13,12 @@ import itertools
 import sys
 from collections.abc import Iterable, Sequence
 
-from ..model.formats import SAVE_FORMATS, Problem, save_records
+from ..model.formats import SAVE_FORMATS, FormatError, Problem, save_records
 from ..model.formats.save import save_format_for
 from ..model.record import LogRecord
 from ..model.text import one_line
-from ..sources.files import LogFile, load_records, open_files
-from .arguments import add_log_format_argument
+from ..sources.files import LogFile, latest_run, load_records, open_logs
+from .arguments import add_last_argument, add_log_format_argument
 
 CLEAN, PROBLEMS, NOTHING_WRITTEN = 0, 1, 2
 #: Longest problem text printed (a file's own text may be quoted in it).
@@ -37,7 +37,13 @@ def build_parser() -> argparse.ArgumentParser:
             "2 nothing written (bad usage, nothing readable, or the output cannot be written)."
         ),
     )
-    parser.add_argument("inputs", nargs="+", metavar="IN", help="log files or recordings")
+    parser.add_argument(
+        "inputs",
+        nargs="*",
+        metavar="IN",
+        help="log files, recordings, or folders of them (a ROS run folder, the whole log directory)",
+    )
+    add_last_argument(parser)
     parser.add_argument("-o", "--output", required=True, metavar="OUT", help="file to write ('-': standard output)")
     parser.add_argument(
         "--format",
@@ -56,15 +62,26 @@ def say(text: str) -> None:
 
 def main(argv: Sequence[str]) -> int:
     """Convert as the arguments say; returns the exit status (see the module's text)."""
-    args = build_parser().parse_args(list(argv))
-    files, failures = open_files(args.inputs, log_format=args.log_format)
+    parser = build_parser()
+    args = parser.parse_args(list(argv))
+    inputs = list(args.inputs)
+    if args.last:
+        try:
+            inputs += [str(path) for path in latest_run()]
+        except FormatError as error:
+            say(str(error))
+            return NOTHING_WRITTEN
+    if not inputs:
+        parser.error("give the files to convert, or --last")
+    opened = open_logs(inputs, log_format=args.log_format)
+    files, failures = opened.files, opened.failures
     save_format = args.format or ("rqt" if args.output == "-" else save_format_for(args.output))
     try:
         records = (record for batch in load_records(files) for record in batch)
         first = next(records, None)  # nothing is written before there is something to write
         if first is None:
             _report(failures, files)
-            say(f"nothing written: no record could be read from {_inputs(args.inputs)}")
+            say(f"nothing written: no record could be read from {_inputs(inputs)}")
             return NOTHING_WRITTEN
         everything = itertools.chain((first,), records)
         if args.output == "-":
@@ -82,6 +99,9 @@ def main(argv: Sequence[str]) -> int:
     for file in files:
         for note in file.notes():
             say(f"{file.source}: note: {note}")
+    if opened.skipped:
+        shown = ", ".join(path.name for path in opened.skipped[:5]) + (", ..." if len(opened.skipped) > 5 else "")
+        say(f"note: {len(opened.skipped)} files in the folders were not read (empty, or not logs by name): {shown}")
     if args.output != "-":
         say(f"{count} records from {len(files)} file(s) written to {args.output} ({save_format})")
     return PROBLEMS if found else CLEAN

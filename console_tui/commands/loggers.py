@@ -19,6 +19,7 @@ from ..model.levels import Severity, parse_severity, severity_name
 from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from ..model.text import plural
 from ..sources.logger_control import GRAPH_MIN_S, GRAPH_QUIET_S
+from .arguments import add_ros_version_arguments
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -29,7 +30,7 @@ EXIT_INTERRUPTED = 130
 
 EXIT_CODES = f"""exit status:
   {EXIT_OK}    done
-  {EXIT_ERROR}    ROS 2 (rclpy) is not available, or an unexpected error
+  {EXIT_ERROR}    ROS 2 (rclpy) is not available, no ROS 1 master answers, or an unexpected error
   {EXIT_USAGE}    bad command line: unknown level name, a node name that matches several nodes
   {EXIT_NOT_FOUND}    the node is not in the ROS graph, or it has no logger services; list: no node found
   {EXIT_FAILED}    the call failed: no answer in time, node gone, level refused by the node
@@ -56,8 +57,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="console-tui loggers",
         description=(
-            "List ROS 2 nodes and get or set their logger levels through the nodes' "
-            "get_logger_levels and set_logger_levels services (ROS 2 Iron or later, enabled in the node)."
+            "List ROS nodes and get or set their logger levels: in ROS 2 through the nodes' "
+            "get_logger_levels and set_logger_levels services (ROS 2 Iron or later, enabled in the node), "
+            "in ROS 1 through ~get_loggers and ~set_logger_level (every roscpp and rospy node). "
+            "ROS 1 when ROS_VERSION=1 or a master answers at ROS_MASTER_URI, else ROS 2 (or say --ros1, --ros2)."
         ),
         epilog=EXIT_CODES,
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -82,6 +85,7 @@ def build_parser() -> argparse.ArgumentParser:
             metavar="SECONDS",
             help=wait_help or f"how long to wait for the node to be discovered (default {wait:g})",
         )
+        add_ros_version_arguments(sub)
         return sub
 
     listing = add(
@@ -102,7 +106,10 @@ def build_parser() -> argparse.ArgumentParser:
         "loggers",
         nargs="*",
         metavar="LOGGER",
-        help=f"logger names (default: the node's own logger and the process default {DEFAULT_LOGGER_SHOWN})",
+        help=(
+            f"logger names (default: the node's own logger and the process default {DEFAULT_LOGGER_SHOWN}; "
+            "ROS 1: every logger the node lists)"
+        ),
     )
     getting.add_argument(
         "--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
@@ -111,7 +118,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     setting = add(
         "set",
-        "set a logger's level (LOGGER defaults to the node's own logger)",
+        "set a logger's level (LOGGER defaults to the node's own logger; ROS 1 needs it named)",
         DEFAULT_WAIT_S,
         usage="%(prog)s [-h] [--wait SECONDS] [--timeout SECONDS] [--for SECONDS] NODE [LOGGER] LEVEL",
     )
@@ -120,7 +127,7 @@ def build_parser() -> argparse.ArgumentParser:
         "rest",
         nargs="+",
         metavar="[LOGGER] LEVEL",
-        help="debug, info, warn, error, fatal (any case), or unset to inherit again",
+        help="debug, info, warn, error, fatal (any case), or unset to inherit again (ROS 2 only)",
     )
     setting.add_argument(
         "--timeout", type=_seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
@@ -200,6 +207,26 @@ def _level_request(rest: list[str]) -> tuple[str | None, int]:
 
 @contextmanager
 def _ros_control(args: argparse.Namespace, runtime: Any):
+    from ..sources.ros_version import ROS1, choose_ros
+
+    if runtime is None and choose_ros(getattr(args, "ros", None)).version == ROS1:
+        from ..sources.ros1.logger_control import Ros1LoggerControl
+
+        control = Ros1LoggerControl(
+            call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False)
+        )
+        control.start()
+        try:
+            yield control
+        finally:
+            control.close()
+        return
+    with _ros2_control(args, runtime) as ros2:
+        yield ros2
+
+
+@contextmanager
+def _ros2_control(args: argparse.Namespace, runtime: Any):
     from ..sources.ros2.logger_control import Ros2LoggerControl
     from ..sources.ros2.rclpy_loader import RosUnavailable
     from ..sources.ros2.runtime import RosRuntime
@@ -242,6 +269,8 @@ def _interruptible():
 
 def _find_node(control: Any, query: str, wait: float) -> GraphNode:
     matches = control.find_node(query, wait)
+    if not matches and control.problem:
+        raise CommandError(control.problem, EXIT_ERROR)
     if not matches:
         raise CommandError(
             f"no node {query!r} in the ROS graph (waited {wait:g} s); 'console-tui loggers list' shows the nodes",
@@ -259,13 +288,15 @@ def _find_node(control: Any, query: str, wait: float) -> GraphNode:
 def _list(control: Any, args: argparse.Namespace) -> int:
     seen = control.wait_for_graph(args.wait)
     nodes = seen.nodes
+    # ROS 1 nodes have no logger named after them: their loggers are listed by get.
+    logger_of = (lambda _node: None) if control.lists_loggers else (lambda node: node.logger_name)
     if args.json:
         items = [
             {
                 "node": n.fqn,
                 "namespace": n.namespace,
                 "name": n.name,
-                "logger": n.logger_name,
+                "logger": logger_of(n),
                 "logger_services": n.has_logger_services,
             }
             for n in nodes
@@ -274,15 +305,22 @@ def _list(control: Any, args: argparse.Namespace) -> int:
     else:
         for n in nodes:
             services = "logger-services" if n.has_logger_services else "no-logger-services"
-            print(f"{n.fqn}\t{n.logger_name}\t{services}")
+            print(f"{n.fqn}\t{logger_of(n) or '-'}\t{services}")
     waited = f"{seen.waited_s:.1f} s"
+    if not nodes and control.problem:
+        raise CommandError(control.problem, EXIT_ERROR)
+    if not nodes and control.lists_loggers:
+        _say("no nodes are registered with the master")
+        return EXIT_NOT_FOUND
     if not nodes:
         _say(
             f"no nodes found in {waited} (same ROS_DOMAIN_ID, RMW and discovery settings as the nodes? "
             "--wait SECONDS waits longer)"
         )
         return EXIT_NOT_FOUND
-    if seen.settled:
+    if control.lists_loggers:
+        _say(f"{plural(len(nodes), 'node')} registered with the master")
+    elif seen.settled:
         _say(
             f"{plural(len(nodes), 'node')} after {waited}, the graph unchanged for the last {control.graph_quiet_s:g} s"
         )
@@ -294,13 +332,15 @@ def _list(control: Any, args: argparse.Namespace) -> int:
 
 
 def _get(control: Any, node: GraphNode, args: argparse.Namespace) -> int:
-    loggers = NodeLoggers(node)
-    wanted = [logger_argument(name) for name in args.loggers] or [node.logger_name, DEFAULT_LOGGER]
+    loggers = NodeLoggers(node, listing=control.lists_loggers)
+    wanted = [logger_argument(name) for name in args.loggers]
+    if not wanted and not loggers.listing:
+        wanted = [node.logger_name, DEFAULT_LOGGER]
     for name in wanted:
         loggers.add_typed(name)
     loggers.update_levels(_result(control.get_levels(node.fqn, loggers.names_to_read())))
     rows = {row.name: row for row in loggers.rows()}
-    chosen = [rows[name.strip()] for name in dict.fromkeys(wanted)]
+    chosen = [rows[name.strip()] for name in dict.fromkeys(wanted)] if wanted else list(rows.values())
     if args.json:
         items = [
             {"name": r.name, "level": r.level, "level_name": level_text(r.level), "effective": r.effective}
@@ -315,6 +355,15 @@ def _get(control: Any, node: GraphNode, args: argparse.Namespace) -> int:
 
 
 def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration: float | None) -> int:
+    if control.lists_loggers:  # ROS 1
+        if logger is None:
+            raise CommandError(
+                f"ROS 1: name the logger ('console-tui loggers get {node.fqn}' lists them; rospy nodes "
+                "log through 'rosout', roscpp nodes through 'ros.<package>')",
+                EXIT_USAGE,
+            )
+        if level == Severity.UNSET:
+            raise CommandError("ROS 1 loggers cannot be unset: give a level", EXIT_USAGE)
     logger = node.logger_name if logger is None else logger
     if duration is None:
         _result(control.set_level(node.fqn, logger, level))

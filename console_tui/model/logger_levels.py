@@ -129,7 +129,11 @@ def node_loggers(nodes: Iterable[GraphNode]) -> dict[str, GraphNode]:
 
 
 def node_of_logger(logger: str, nodes: Iterable[GraphNode]) -> GraphNode | None:
-    """The node whose messages a record with this logger name is: for "open the pane on this row"."""
+    """The node whose messages a record with this logger name is: for "open the pane on this row".
+
+    ROS 1 records carry their node's full name (``/ns/talker``) rather than a logger name."""
+    if logger.startswith("/"):
+        return next((node for node in nodes if node.fqn == logger), None)
     by_logger = node_loggers(nodes)
     owner = owner_of(logger, by_logger)
     return None if owner is None else by_logger[owner]
@@ -166,6 +170,8 @@ class LoggerSource(str, Enum):
     CHILD = "child"
     TYPED = "typed"
     DEFAULT = "default"
+    #: Listed by the node itself (ROS 1's ``get_loggers``).
+    LISTED = "listed"
 
 
 @dataclass(frozen=True)
@@ -210,11 +216,16 @@ class NodeLoggers:
     Offered, in this order: the node's own logger, child loggers seen in records, names the
     user typed, and the process default ``""``. ``names_to_read`` adds their ancestors, so
     that inherited levels can be worked out.
+
+    With ``listing`` (ROS 1, whose nodes list their loggers) the loggers offered are those
+    the node reported (every name with a level) and the names typed: no own logger, no
+    default, and a level read is a level in force (ROS 1 loggers cannot be unset).
     """
 
-    def __init__(self, node: GraphNode) -> None:
+    def __init__(self, node: GraphNode, *, listing: bool = False) -> None:
         self.node = node
-        self.own = node.logger_name
+        self.listing = listing
+        self.own = "" if listing else node.logger_name
         self._children: set[str] = set()
         self._typed: list[str] = []
         self.levels: dict[str, int] = {}
@@ -225,6 +236,8 @@ class NodeLoggers:
         ``all_node_loggers`` are the logger names of every node of the graph, so that a
         child of a deeper node is not taken. Returns whether a new child was found.
         """
+        if self.listing:
+            return False
         own = self.own
         prefix = own + "."
         before = len(self._children)
@@ -242,10 +255,14 @@ class NodeLoggers:
 
     def names(self) -> list[str]:
         """The offered names, each once, in display order."""
+        if self.listing:
+            return list(dict.fromkeys([*sorted(self.levels), *self._typed]))
         ordered = [self.own, *sorted(self._children), *self._typed, DEFAULT_LOGGER]
         return list(dict.fromkeys(ordered))
 
     def source_of(self, name: str) -> LoggerSource:
+        if self.listing:
+            return LoggerSource.TYPED if name in self._typed and name not in self.levels else LoggerSource.LISTED
         if name == self.own:
             return LoggerSource.OWN
         if name == DEFAULT_LOGGER:

@@ -13,8 +13,8 @@ from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from .levels import Severity, severity_name
 from .logger_levels import DEFAULT_LOGGER, GraphNode, LoggerRow, NodeLoggers, TemporaryLevel
 
-#: What the pane says when this run has no ROS (rclpy missing, or files only).
-NO_ROS_TEXT = "ROS 2 is not running in this console (no rclpy, or files only): logger levels cannot be read or set."
+#: What the pane says when this run has no live ROS (files only).
+NO_ROS_TEXT = "No live ROS in this console (files only): logger levels cannot be read or set."
 
 
 def shown_logger(logger: str) -> str:
@@ -29,11 +29,22 @@ def level_word(level: int) -> str:
 class LoggerView:
     """The nodes, the selected node's loggers and levels, calls under way, and the notice."""
 
-    def __init__(self, *, has_ros: bool = True, no_services_hint: str = "") -> None:
+    def __init__(
+        self,
+        *,
+        has_ros: bool = True,
+        no_services_hint: str = "",
+        lists_loggers: bool = False,
+        read_when_asked: bool = False,
+    ) -> None:
         #: False when there is no logger control: nothing can be read or set.
         self.has_ros = has_ros
         #: How a node gets the logger services (said of a node without them).
         self.no_services_hint = no_services_hint
+        #: A read lists every logger of the node (ROS 1): the loggers offered are those.
+        self.lists_loggers = lists_loggers
+        #: Levels are read only when the user asks (ROS 1), never on highlighting a node.
+        self.read_when_asked = read_when_asked
         self.nodes: tuple[GraphNode, ...] = ()
         #: Nodes whose logger services may yet appear (seen too recently to tell).
         self.checking: frozenset[str] = frozenset()
@@ -87,7 +98,7 @@ class LoggerView:
     def loggers_of(self, node: GraphNode) -> NodeLoggers:
         loggers = self._loggers.get(node.fqn)
         if loggers is None:
-            loggers = self._loggers[node.fqn] = NodeLoggers(node)
+            loggers = self._loggers[node.fqn] = NodeLoggers(node, listing=self.lists_loggers)
         return loggers
 
     def rows(self) -> list[LoggerRow]:
@@ -132,7 +143,12 @@ class LoggerView:
             return None
         if not node.has_logger_services:
             return None
-        return node.fqn, highlighted if highlighted is not None else self.loggers_of(node).own
+        loggers = self.loggers_of(node)
+        logger = highlighted if highlighted is not None else loggers.own
+        if not logger and loggers.listing:
+            self.say("Read the node's loggers first (r), or add one by name (a)", error=True)
+            return None
+        return node.fqn, logger
 
     def add_logger(self, name: str) -> str | None:
         """Offer a typed logger name on the selected node; returns the name as kept."""
@@ -173,6 +189,7 @@ class LoggerView:
         what = f"{shown_logger(entry.logger)} of {entry.node}"
         if error is not None:
             return f"Could not put {what} back to {level_word(entry.previous)}: {error}"
+        self.set_levels(entry.node, {entry.logger: entry.previous})
         self.say(f"{what} is back to {level_word(entry.previous)}")
         return None
 
@@ -188,9 +205,10 @@ class LoggerView:
         busy = " …" if self.pending.get(self.selected) else ""
         return f"Loggers of {self.selected}{busy}"
 
-    def notice_text(self, problem: str = "") -> tuple[str, bool]:
+    def notice_text(self, problem: str = "", read_hint: str = "") -> tuple[str, bool]:
         """The notice line and whether it is an error: the control's ``problem`` first, then
-        what was last said, then what the selection calls for."""
+        what was last said, then what the selection calls for (``read_hint`` says how to read
+        a node's loggers where they are read only when asked)."""
         if problem:
             return problem, True
         if self.notice:
@@ -201,6 +219,8 @@ class LoggerView:
         if node is None:
             return "Select a node.", False
         if node.has_logger_services:
+            if self.read_when_asked and not self.loggers_of(node).levels:
+                return read_hint, False
             return "", False
         if node.fqn in self.checking:
             return f"Checking whether {node.fqn} offers logger services…", False

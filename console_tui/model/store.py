@@ -3,9 +3,12 @@
 Records are kept column by column in fixed-size chunks: numbers in ``array``s, the
 repeated strings (node, file, function, source) as ids into string tables, messages as
 ``str``; ROS 1's ``topics`` as ids too, in an array made only for chunks that have some
-(4 bytes a record there, nothing for ROS 2). A million realistic records cost about 190 MB, 60% of what a million record
-objects would (benchmarks/store.py), and dropping the oldest chunk when the bound is
-passed costs O(1). ``extend`` works column by column, about 1 us a record.
+(nothing for ROS 2). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
+when one does not); a full chunk keeps its messages joined in one string
+(``PackedTexts``), so a message costs its text and 4 bytes. Dropping the oldest chunk
+when the bound is passed costs O(1). ``extend`` works column by column, about 1 us a
+record, and takes ``RecordColumns`` (a batch already in columns, as a live intake in a
+child process hands them over) without a Python step per record.
 
 Every record gets a sequence number (``seq``) in arrival order; a seq never changes and
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record
@@ -16,11 +19,13 @@ from __future__ import annotations
 
 from array import array
 from collections import Counter, deque
-from collections.abc import Iterable, Iterator
-from typing import NamedTuple
+from collections.abc import Iterable, Iterator, Sequence
+from typing import Any, NamedTuple
 
 from .levels import MESSAGE_SEVERITIES, severity_bucket
+from .packed_texts import PackedTexts, pack
 from .record import LogRecord
+from .record_batch import RecordColumns
 
 CHUNK_SIZE = 4096
 DEFAULT_MAX_MESSAGES = 1_000_000
@@ -42,13 +47,13 @@ class StringTable:
             self._strings.append(text)
         return found
 
-    def ids_of(self, texts: list[str]) -> list[int]:
+    def ids_of(self, texts: Sequence[str]) -> list[int]:
         """``id_of`` for many strings at once (the common case, all known, at C speed)."""
-        ids = list(map(self._ids.get, texts))
-        if None in ids:
+        found = list(map(self._ids.get, texts))
+        if None in found:
             id_of = self.id_of
-            ids = [ident if ident is not None else id_of(text) for ident, text in zip(ids, texts, strict=False)]
-        return ids
+            return [ident if ident is not None else id_of(text) for ident, text in zip(found, texts, strict=False)]
+        return found  # type: ignore[return-value]  # no None in it
 
     def __getitem__(self, ident: int) -> str:
         return self._strings[ident]
@@ -61,24 +66,34 @@ class StringTable:
 
 
 class Chunk:
-    """Up to ``CHUNK_SIZE`` consecutive records, one array or list per field."""
+    """Up to ``CHUNK_SIZE`` consecutive records, one array or sequence per field.
+
+    ``lines`` and the id columns are arrays of 2-byte items ("H") or, once a value did
+    not fit, 4-byte ones ("I"). ``msgs`` is a list while the chunk fills, then (sealed)
+    usually a ``PackedTexts``: read it as a sequence of ``str`` (a slice is a list).
+    """
 
     __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "sources", "stamps", "topics")
 
     def __init__(self) -> None:
         self.stamps = array("q")
         self.levels = array("B")
-        self.lines = array("I")
-        self.nodes = array("I")
-        self.files = array("I")
-        self.functions = array("I")
-        self.sources = array("I")
-        self.msgs: list[str] = []
+        self.lines = array("H")
+        self.nodes = array("H")
+        self.files = array("H")
+        self.functions = array("H")
+        self.sources = array("H")
+        self.msgs: list[str] | PackedTexts = []
         #: Ids of ROS 1 ``topics``; made only once a record of the chunk has some (ROS 2 never does).
         self.topics: array | None = None
 
     def __len__(self) -> int:
         return len(self.msgs)
+
+    def seal(self) -> None:
+        """The chunk is full: keep its messages packed."""
+        if isinstance(self.msgs, list):
+            self.msgs = pack(self.msgs)
 
 
 class ChunkSpan(NamedTuple):
@@ -95,8 +110,29 @@ _INT64_MAX = (1 << 63) - 1
 _UINT32_MAX = 0xFFFFFFFF
 
 
-def _clamp(value: object, low: int, high: int) -> int:
+def _clamp(value: Any, low: int, high: int) -> int:
     return min(max(int(value), low), high)
+
+
+def _extended(column: array, values: Iterable[int]) -> array:
+    """``column`` with ``values`` appended, widened from 2-byte to 4-byte items if one needs it.
+
+    ``OverflowError`` or ``TypeError`` (and ``column`` unchanged) for a value it cannot hold."""
+    if isinstance(values, array) and values.typecode == column.typecode:
+        column.extend(values)
+        return column
+    if isinstance(values, bytes) and column.typecode == "B":
+        column.frombytes(values)
+        return column
+    items = values.tolist() if isinstance(values, array) else values if isinstance(values, list) else list(values)
+    try:
+        column.fromlist(items)  # all or nothing
+    except OverflowError:
+        if column.typecode != "H":
+            raise
+        column = array("I", column)
+        column.fromlist(items)
+    return column
 
 
 class LogStore:
@@ -127,54 +163,64 @@ class LogStore:
     def __contains__(self, seq: int) -> bool:
         return self.first_seq <= seq < self.end_seq
 
-    def extend(self, records: Iterable[LogRecord]) -> range:
-        """Append records (assigning their ``seq``); returns the range of new seqs."""
-        records = records if isinstance(records, list) else list(records)
+    def extend(self, records: Iterable[LogRecord] | RecordColumns) -> range:
+        """Append records (assigning the ``seq`` of ``LogRecord``s); returns the range of new seqs."""
+        if isinstance(records, RecordColumns):
+            columns, objects = records, None
+        else:
+            objects = records if isinstance(records, list) else list(records)
+            columns = RecordColumns.from_records(objects)
+        count = len(columns)
         start = self.end_seq
         chunks = self._chunks
         done = 0
-        while done < len(records):
+        while done < count:
             if not chunks or len(chunks[-1]) >= CHUNK_SIZE:
                 chunks.append(Chunk())
             chunk = chunks[-1]
-            piece = records[done : done + CHUNK_SIZE - len(chunk)]
+            room = CHUNK_SIZE - len(chunk)
+            piece = columns if done == 0 and count <= room else columns.slice(done, done + room)
             self._append_columns(chunk, piece)
             done += len(piece)
-        for seq, record in enumerate(records, start):
-            record.seq = seq
-        self.end_seq = start + len(records)
+            if len(chunk) >= CHUNK_SIZE:
+                chunk.seal()
+        if objects is not None:
+            for seq, record in enumerate(objects, start):
+                record.seq = seq
+        self.end_seq = start + count
         if len(self) > self.max_messages:
             self._evict_to(self.end_seq - self.max_messages)
         return range(max(start, self.first_seq), self.end_seq)
 
-    def _append_columns(self, chunk: Chunk, piece: list[LogRecord]) -> None:
+    def _append_columns(self, chunk: Chunk, piece: RecordColumns) -> None:
         """Add ``piece`` (which fits in ``chunk``) column by column."""
-        stamps = [r.stamp_ns for r in piece]
-        levels = [r.level for r in piece]
-        lines = [r.line for r in piece]
-        try:  # fromlist adds all or nothing: out-of-range values leave the arrays as they were
-            chunk.stamps.fromlist(stamps)
-        except (OverflowError, TypeError):
-            chunk.stamps.fromlist([_clamp(v, -_INT64_MAX, _INT64_MAX) for v in stamps])
+        levels = piece.levels
         try:
-            chunk.levels.fromlist(levels)
+            chunk.stamps = _extended(chunk.stamps, piece.stamps)
+        except (OverflowError, TypeError):
+            chunk.stamps.fromlist([_clamp(v, -_INT64_MAX, _INT64_MAX) for v in piece.stamps])
+        try:
+            chunk.levels = _extended(chunk.levels, levels)
         except (OverflowError, TypeError):
             levels = [_clamp(v, 0, 255) for v in levels]
             chunk.levels.fromlist(levels)
         try:
-            chunk.lines.fromlist(lines)
+            chunk.lines = _extended(chunk.lines, piece.lines)
         except (OverflowError, TypeError):
-            chunk.lines.fromlist([_clamp(v, 0, _UINT32_MAX) for v in lines])
-        chunk.nodes.fromlist(self.nodes.ids_of([r.node for r in piece]))
-        chunk.files.fromlist(self.files.ids_of([r.file for r in piece]))
-        chunk.functions.fromlist(self.functions.ids_of([r.function for r in piece]))
-        chunk.sources.fromlist(self.sources.ids_of([r.source for r in piece]))
-        topics = [r.topics for r in piece]
-        if chunk.topics is not None or any(topics):
+            chunk.lines = _extended(chunk.lines, [_clamp(v, 0, _UINT32_MAX) for v in piece.lines])
+        chunk.nodes = _extended(chunk.nodes, self.nodes.ids_of(piece.nodes))
+        chunk.files = _extended(chunk.files, self.files.ids_of(piece.files))
+        chunk.functions = _extended(chunk.functions, self.functions.ids_of(piece.functions))
+        chunk.sources = _extended(chunk.sources, self.sources.ids_of(piece.sources))
+        if piece.topics is not None:
             if chunk.topics is None:
-                chunk.topics = array("I", bytes(4 * len(chunk.msgs)))  # the records before: none
-            chunk.topics.fromlist(self.topics.ids_of(topics))
-        chunk.msgs.extend([r.msg for r in piece])
+                chunk.topics = array("H", bytes(2 * len(chunk.msgs)))  # the records before: none
+            chunk.topics = _extended(chunk.topics, self.topics.ids_of(piece.topics))
+        elif chunk.topics is not None:
+            chunk.topics = _extended(chunk.topics, [0] * len(piece))
+        msgs = chunk.msgs
+        assert isinstance(msgs, list), "only the newest chunk grows, and it is never sealed"
+        msgs.extend(piece.msgs)
         counts = self.counts
         for level, number in Counter(levels).items():
             counts[_BUCKET[level]] += number

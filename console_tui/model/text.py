@@ -50,6 +50,18 @@ def multi_line(text: str) -> str:
     return _replace_surrogates(text)
 
 
+#: What JSON text may hold raw that a terminal acts on or hides (JSON escapes C0 itself).
+_JSON_RAW = re.compile(r"[\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069\u2028\u2029]")
+
+
+def inert_json(text: str) -> str:
+    """JSON text with DEL, C1 controls, bidi and line-separator characters written as
+    ``\\uXXXX`` escapes: the same JSON value, nothing a terminal acts on."""
+    if _JSON_RAW.search(text) is None:
+        return text
+    return _JSON_RAW.sub(lambda match: f"\\u{ord(match.group()):04x}", text)
+
+
 def first_line(text: str, limit: int) -> tuple[str, bool]:
     """The first line of ``text`` (at most ``limit`` characters) and whether more follows."""
     head = text[: limit + 1]

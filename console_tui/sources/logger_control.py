@@ -30,7 +30,7 @@ The subclass provides, called on the loggers thread unless said otherwise:
 - ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
 - ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
 
-and may override ``_lost(call)`` (a sent call's service went away: default never),
+and may set ``lists_loggers`` and ``read_when_asked`` (see them), and may override ``_lost(call)`` (a sent call's service went away: default never),
 ``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
 ``no_services_hint`` (how a user gives a node the logger services).
 """
@@ -215,6 +215,11 @@ class LoggerControl(ABC):
     #: make them shorter.
     graph_min_s = GRAPH_MIN_S
     graph_quiet_s = GRAPH_QUIET_S
+    #: A read answers with every logger the node has, not only the names asked for (ROS 1).
+    lists_loggers = False
+    #: Read a node's levels only when the user asks, never because a node is highlighted
+    #: (ROS 1: ``get_loggers`` can crash roscpp nodes, so nothing sweeps it).
+    read_when_asked = False
 
     def __init__(
         self,
@@ -297,7 +302,7 @@ class LoggerControl(ABC):
                 matches = match_nodes(query, graph.nodes)
                 now = self.clock()
                 settled = any(graph.settled(node, now) for node in matches)
-                if settled or now >= deadline or self._stop.is_set():
+                if settled or now >= deadline or self._stop.is_set() or (graph.refreshes and self.problem):
                     return matches
                 self._graph_changed.wait(min(deadline - now, GRAPH_PERIOD_S))
 
@@ -322,7 +327,8 @@ class LoggerControl(ABC):
                     and now >= quiet_until
                     and all(graph.settled(node, now) for node in graph.nodes)
                 )
-                if settled or (looked and now >= end) or self._stop.is_set():
+                # A problem (the ROS 1 master does not answer, the control stopped): say it now.
+                if settled or (looked and (now >= end or self.problem)) or self._stop.is_set():
                     return GraphWait(graph.nodes, now - started, settled)
                 wake = min(end, quiet_until) if graph.nodes and now < quiet_until else end
                 self._graph_changed.wait(max(0.01, min(wake - now, GRAPH_PERIOD_S)))
@@ -528,7 +534,7 @@ class LoggerControl(ABC):
         if call.sent.done():
             error = call.sent.exception()
             if error is not None:
-                return settle(call.future, error=LoggerCallError(call.node, f"{call.node}: {error}"))
+                return settle(call.future, error=_call_error(call.node, error))
             return settle(call.future, result=call.sent.result())
         if graph_node is None or self._lost(call):
             self._drop(call)

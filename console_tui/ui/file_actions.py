@@ -16,7 +16,7 @@ from textual.app import App
 from ..model.formats.save import save_records
 from ..model.intake_queue import IntakeQueue
 from ..model.store import LogStore
-from ..model.text import one_line
+from ..model.text import one_line, plural
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from .screens.files import OpenScreen, SaveRequest, SaveScreen
@@ -72,7 +72,9 @@ class FileActions(App[None]):
             self.source_notes.update(load.notes())
             files = len(progress.files)
             verb = "Cancelled after" if progress.cancelled else "Loaded"
-            text = f"{verb} {progress.records:,} records from {files} file{'s' if files != 1 else ''}"
+            text = f"{verb} {progress.records:,} records from {plural(files, 'file')}"
+            if load.skipped:
+                text += f" ({plural(len(load.skipped), 'other file')} in the folders passed over: empty, or not logs by name)"
             if problems:
                 listed = "\n".join(one_line(problem, 300) for problem in problems[:3])
                 more = f"\n... {len(problems) - 3} more" if len(problems) > 3 else ""

@@ -1,12 +1,20 @@
-"""When Python's cyclic garbage collector may run, so that it never stalls the screen.
+"""When Python's cyclic garbage collector runs, so that it stays short and memory stays flat.
 
-Measured with 10k messages/s arriving (benchmarks/screen.py): with Python's default
-thresholds, full (oldest-generation) collections ran twice a second and took 75-130 ms
-each, because records waiting a tick in the intake queue and Textual's per-frame objects
-survive long enough to be promoted. Here the objects made at start-up are frozen out of
-collections, young collections stay as they are (a few ms), and full collections are run
-by the app itself: when nothing has arrived for a while, or at the latest every
-``FULL_COLLECTION_MAX_INTERVAL_S``.
+What it has to collect: Textual makes reference cycles as it draws (a ``Strip`` that
+caches itself, in the compositor and scrollbars): about 700 objects a second with a few
+messages a second arriving, several thousand at 10k messages a second, each freed only
+by a full (oldest-generation) collection. What a full collection costs: every tracked
+object is visited; the objects made at start-up are frozen out of collections
+(``gc.freeze``), and the store is no container of Python objects once its chunks are
+full (messages packed), so what is left is the garbage itself and a few ten thousand
+live objects.
+
+Measured here (benchmarks and a headless demo): with full collections only every 10
+minutes (the policy before this one), the demo grew from 106 MB to 166 MB in five
+minutes and would pause for the whole pile at once; with one every
+``FULL_COLLECTION_PERIOD_S`` it stays flat, each collection a few milliseconds on a
+quiet machine. Young collections stay automatic; the oldest generation is collected
+only here, on the app's timer, between frames.
 """
 
 from __future__ import annotations
@@ -15,32 +23,32 @@ import gc
 import time
 
 NO_AUTOMATIC_FULL_COLLECTIONS = 1_000_000_000
-QUIET_BEFORE_COLLECTING_S = 2.0
-FULL_COLLECTION_MIN_INTERVAL_S = 30.0
-FULL_COLLECTION_MAX_INTERVAL_S = 600.0
+FULL_COLLECTION_PERIOD_S = 2.0
 
 
 class CollectionPolicy:
     """Call ``start`` once the app is up and ``tick`` on every drain of the intake."""
 
-    def __init__(self, clock=time.monotonic) -> None:
+    def __init__(self, clock=time.monotonic, period: float = FULL_COLLECTION_PERIOD_S) -> None:
         self.clock = clock
+        self.period = period
         self.last_full = clock()
-        self.last_arrival = clock()
         self.full_collections = 0
+        #: The longest full collection so far, in seconds (for benchmarks).
+        self.longest = 0.0
 
     def start(self) -> None:
+        gc.collect()
         gc.freeze()
         young, middle, _ = gc.get_threshold()
         gc.set_threshold(young, middle, NO_AUTOMATIC_FULL_COLLECTIONS)
+        self.last_full = self.clock()
 
-    def tick(self, arrived: int) -> None:
-        now = self.clock()
-        if arrived:
-            self.last_arrival = now
-        since_full = now - self.last_full
-        quiet = now - self.last_arrival >= QUIET_BEFORE_COLLECTING_S
-        if (quiet and since_full >= FULL_COLLECTION_MIN_INTERVAL_S) or since_full >= FULL_COLLECTION_MAX_INTERVAL_S:
-            gc.collect()
-            self.last_full = self.clock()
-            self.full_collections += 1
+    def tick(self, arrived: int = 0) -> None:
+        if self.clock() - self.last_full < self.period:
+            return
+        began = time.perf_counter()
+        gc.collect()
+        self.longest = max(self.longest, time.perf_counter() - began)
+        self.last_full = self.clock()
+        self.full_collections += 1

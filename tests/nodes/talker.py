@@ -2,6 +2,11 @@
 
     talker.py --name NAME [--namespace NS] [--volatile] [--no-logger-service] [--debug]
 
+``--volatile`` makes the node's ``/rosout`` publisher VOLATILE: through ``rosout_qos_profile``
+where rclpy has it (Kilted), else (Jazzy) the node's logger does not publish and the node
+publishes each message on ``/rosout`` itself with the same fields, through a VOLATILE publisher
+of its own.
+
 Prints ``{"event": "ready", "logger": ..., "pid": ...}`` once up. Commands (one JSON object a
 line): ``{"cmd": "log_all", "tag": T}`` logs one message at each severity, from a function
 of its own each, and prints ``{"event": "logged", "messages": [...]}`` with every field;
@@ -41,34 +46,50 @@ def _record(level: int, msg: str, back: int = 1) -> dict:
     return {"level": level, "msg": msg, "file": FILE, "function": frame.f_code.co_name, "line": frame.f_lineno + back}
 
 
+#: Set when the node publishes its own /rosout messages (``--volatile`` without rclpy's
+#: ``rosout_qos_profile``): ``(node, publisher)``.
+OWN_ROSOUT: list = []
+
+
+def _logged(logger, record: dict) -> dict:
+    if OWN_ROSOUT:
+        from rcl_interfaces.msg import Log
+
+        node, publisher = OWN_ROSOUT
+        if logger.get_effective_level() <= record["level"]:
+            fields = {key: record[key] for key in ("level", "msg", "file", "function", "line")}
+            publisher.publish(Log(stamp=node.get_clock().now().to_msg(), name=logger.name, **fields))
+    return record
+
+
 def log_debug(logger, msg: str) -> dict:
     record = _record(10, msg)
     logger.debug(msg)
-    return record
+    return _logged(logger, record)
 
 
 def log_info(logger, msg: str) -> dict:
     record = _record(20, msg)
     logger.info(msg)
-    return record
+    return _logged(logger, record)
 
 
 def log_warning(logger, msg: str) -> dict:
     record = _record(30, msg)
     logger.warning(msg)
-    return record
+    return _logged(logger, record)
 
 
 def log_error(logger, msg: str) -> dict:
     record = _record(40, msg)
     logger.error(msg)
-    return record
+    return _logged(logger, record)
 
 
 def log_fatal(logger, msg: str) -> dict:
     record = _record(50, msg)
     logger.fatal(msg)
-    return record
+    return _logged(logger, record)
 
 
 BY_LEVEL = {"debug": log_debug, "info": log_info, "warn": log_warning, "error": log_error, "fatal": log_fatal}
@@ -85,12 +106,18 @@ def main() -> None:
 
     rclpy.init()
     options = {"enable_logger_service": not args.no_logger_service}
-    if args.volatile:
-        options["rosout_qos_profile"] = QoSProfile(
-            depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE
-        )
+    volatile = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
+    own_rosout = args.volatile and "rosout_qos_profile" not in inspect.signature(Node.__init__).parameters
+    if own_rosout:
+        options["enable_rosout"] = False
+    elif args.volatile:
+        options["rosout_qos_profile"] = volatile
     node = Node(args.name, namespace=args.namespace, **options)
     logger = node.get_logger()
+    if own_rosout:
+        from rcl_interfaces.msg import Log
+
+        OWN_ROSOUT[:] = [node, node.create_publisher(Log, "/rosout", volatile)]
     if args.debug:
         logger.set_level(LoggingSeverity.DEBUG)
     executor = SingleThreadedExecutor()

@@ -14,6 +14,7 @@ from console_tui.model.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 
 from support.rosproc import pid_alive, wait_until
+from support.ui import screen_text
 
 pytestmark = pytest.mark.ros2
 
@@ -30,12 +31,31 @@ async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
     app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)])
     try:
         async with app.run_test(size=(160, 40)) as pilot:
-            expected = {"count_and_log", "navigation.planner", "sensors.lidar_driver", "power.battery_monitor"}
+            expected = {
+                "count_and_log",
+                "navigation.planner",
+                "navigation.planner.costmap",  # the planner's child logger, every 2.5 s
+                "sensors.lidar_driver",
+                "power.battery_monitor",
+            }
             await until(pilot, lambda: expected <= {r.node for r in app.store}, timeout=30)
-            nodes = {r.node for r in app.store}
-            assert "navigation.planner.costmap" in nodes or len(app.store) > 0
-            levels = {r.level for r in app.store if r.node == "count_and_log"}
-            assert 20 in levels  # INFO on every third count
+            assert {r.node for r in app.store} == expected
+
+            # The counter: INFO on 3, WARN on 5, ERROR on 10, FATAL on 20; its DEBUG lines stay
+            # in the node, whose logger is at INFO.
+            def counter_levels() -> set[int]:
+                return {r.level for r in app.store if r.node == "count_and_log"}
+
+            await until(pilot, lambda: counter_levels() == {20, 30, 40, 50}, timeout=30, what="a FATAL count")
+            fatal = next(r for r in app.store if r.node == "count_and_log" and r.level == 50)
+            assert fatal.msg.endswith("is divisible by 20") and fatal.source in ("/rosout", "/rosout_agg")
+            assert all(r.file.endswith("nodes.py") and r.line > 0 for r in app.store)
+
+            await pilot.press("G")
+            await pilot.pause(0.3)
+            shown = screen_text(app)
+            assert "FOLLOW" in shown and f"{fatal.source} 4 pubs" in shown, shown.splitlines()[-2]
+            assert "count_and_log" in shown and "is divisible by" in shown
     finally:
         runtime.shutdown()
         pids = [p.pid for p in demo.processes]

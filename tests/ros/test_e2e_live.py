@@ -108,12 +108,33 @@ async def test_reads_rosout_agg_when_something_publishes_it(nodes):
 
 
 async def test_topic_flag_picks_the_topic(nodes):
+    """``--topic /rosout`` reads /rosout even while /rosout_agg has a publisher.
+
+    Deterministic: the talkers start only once this process sees the aggregator, so the
+    graph check that first counts both talkers comes after /rosout_agg was visible: a source
+    that ignored the flag would be on /rosout_agg (one publisher) by then.
+    """
     aggregator = nodes.start("aggregator.py")
     await asyncio.to_thread(aggregator.expect, "ready")
     app, runtime = live_app(topic="/rosout")
     try:
         async with app.run_test(size=(160, 30)) as pilot:
             await until(pilot, lambda: app.sources[0].status.running)
+            probe = runtime.create_node("probe")
+            await until(pilot, lambda: probe.count_publishers("/rosout_agg") == 1, what="the aggregator in the graph")
+            talkers = [nodes.start("talker.py", "--name", f"flag_talker_{n}") for n in range(2)]
+            for talker in talkers:
+                await asyncio.to_thread(talker.expect, "ready")
+
+            def settled() -> bool:
+                status = app.sources[0].status
+                return status.topic != "/rosout" or status.publishers == 2
+
+            await until(pilot, settled, what="the source to count both talkers")
+            assert app.sources[0].status.topic == "/rosout"
+            talkers[0].send({"cmd": "log", "level": "warn", "msg": "straight on /rosout"})
+            await until(pilot, lambda: any(r.msg == "straight on /rosout" for r in app.store))
+            assert [r.source for r in app.store if r.msg == "straight on /rosout"] == ["/rosout"]
             assert app.sources[0].status.topic == "/rosout"
     finally:
         runtime.shutdown()

@@ -18,6 +18,10 @@ from support.rosproc import NODES, NodeProcess, wait_until
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 ROSCPP_SOURCE = NODES / "roscpp_node.cpp"
+#: The roscpp node logs through the logger ``ros.<this>`` (rosconsole's default name).
+ROSCPP_PACKAGE = "console_tui_test"
+ROSCPP_LOGGER = f"ros.{ROSCPP_PACKAGE}"
+_ROSCPP_DEFINES = [f'-DROS_PACKAGE_NAME="{ROSCPP_PACKAGE}"']
 
 
 def ros1_missing() -> str:
@@ -181,14 +185,24 @@ class Ros1Nodes:
 def build_roscpp_node(cache: Path) -> Path:
     """tests/nodes/roscpp_node.cpp built with g++ (once per version of the source)."""
     source = ROSCPP_SOURCE.read_bytes()
-    digest = hashlib.sha256(source).hexdigest()[:16]
+    digest = hashlib.sha256(source + " ".join(_ROSCPP_DEFINES).encode()).hexdigest()[:16]
     binary = cache / f"roscpp_node-{digest}"
     if binary.exists():
         return binary
     cache.mkdir(parents=True, exist_ok=True)
     partial = cache / f".roscpp_node-{digest}-{os.getpid()}"
     flags = _pkg_config("roscpp rosconsole roscpp_serialization rostime")
-    command = ["g++", "-O2", "-std=c++17", "-o", str(partial), str(ROSCPP_SOURCE), *flags, "-lpthread"]
+    command = [
+        "g++",
+        "-O2",
+        "-std=c++17",
+        *_ROSCPP_DEFINES,
+        "-o",
+        str(partial),
+        str(ROSCPP_SOURCE),
+        *flags,
+        "-lpthread",
+    ]
     result = subprocess.run(command, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, f"{' '.join(command)}\n{result.stderr[-4000:]}"
     os.replace(partial, binary)

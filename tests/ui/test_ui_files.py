@@ -12,7 +12,7 @@ from console_tui.ui.screens.files import OpenScreen, SaveScreen
 from console_tui.ui.screens.problems import ProblemsScreen
 
 from support.feed import records
-from support.ui import until
+from support.ui import line_with, screen_text, type_text, until
 
 
 def write_jsonl(path: Path, count: int, start: int = 0) -> list:
@@ -45,14 +45,20 @@ async def test_open_dialog_loads_and_reports_problems(tmp_path):
     async with app.run_test(size=(160, 30)) as pilot:
         await pilot.press("o")
         assert isinstance(app.screen, OpenScreen)
-        app.screen.query_one("#paths").value = f"{good} {bad}"
+        await type_text(pilot, f"{good} {bad}")
         await pilot.press("enter")
-        await until(pilot, lambda: len(app.store) == 10 and not app.loading)
+        await until(pilot, lambda: "10/10 shown" in screen_text(app) and not app.loading)
         await until(pilot, lambda: bool(app.problems))
-        assert any("bad.csv" in problem for problem in app.problems)
         await pilot.press("exclamation_mark")
         assert isinstance(app.screen, ProblemsScreen)
+        await pilot.pause()
+        shown = screen_text(app)
+        assert "1 problem while loading (Escape closes)" in shown
+        problem_row = line_with(app, "bad.csv: binary data, not a log file")[1]
+        assert "(first bytes: 00 01 02 20" in problem_row
+        assert "good.jsonl" not in shown and "\x00" not in shown and "\x00" not in problem_row
         await pilot.press("escape")
+        assert "problem while loading" not in screen_text(app)
 
 
 async def test_open_dialog_refuses_a_missing_file(tmp_path):
@@ -165,6 +171,45 @@ async def test_the_detail_view_says_when_a_file_gave_local_times(monkeypatch):
             text = screen_text(app)
             assert "2021-06-24 05:23:16.950000000 +0000  (the file's local time: it gives no zone)" in text
             assert "File notes  its times are local times without a zone: read as this computer's local time" in text
+    finally:
+        monkeypatch.undo()
+        clock.tzset()
+
+
+async def test_a_run_folder_opens_merged_with_each_file_a_source(tmp_path, monkeypatch):
+    """Issue 19: a ROS 1 run folder opens as every log in it, in time order, the file a column."""
+    import os
+    import shutil
+    import time as clock
+
+    from support.formats import DATA
+    from support.ui import screen_text
+
+    run = tmp_path / "run"
+    shutil.copytree(DATA / "ros_log" / "c0ffee00-d4b2-11eb-9c3e-0242ac110002", run)
+    os.utime(run / "rosout-1-stdout.log", ns=(1624512195_200_000_000,) * 2)
+    (run / "params.yaml").write_text("a: 1\n")
+    monkeypatch.setenv("TZ", "UTC")
+    clock.tzset()
+    app = ConsoleApp(files=[str(run)], utc=True)
+    try:
+        async with app.run_test(size=(200, 40)) as pilot:
+            await until(pilot, lambda: len(app.store) == 22 and not app.loading)
+            await pilot.pause(0.2)
+            text = screen_text(app)
+            lines = text.splitlines()
+            first = next(i for i, line in enumerate(lines) if "Checking log directory" in line)
+            last = next(i for i, line in enumerate(lines) if "required process died" in line)
+            assert first < last
+            assert "roslaunch-robot-424" in lines[first] and "05:23:14.584" in lines[first]
+            hello = [line for line in lines if "hello 1" in line]
+            assert [s for s in ("talker-2.log", "rosout.log", "talker-2-stdout.log") if any(s in h for h in hello)] == [
+                "talker-2.log",
+                "rosout.log",
+                "talker-2-stdout.log",
+            ]
+            skipped = "Loaded 22 records from 6 files (1 other file in the folders passed over"
+            await until(pilot, lambda: any(str(n.message).startswith(skipped) for n in app._notifications))
     finally:
         monkeypatch.undo()
         clock.tzset()

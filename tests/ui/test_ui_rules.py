@@ -17,7 +17,7 @@ from console_tui.ui.screens.rule_editor import RuleEditor
 
 from support import ui
 from support.feed import NODES, records
-from support.ui import until
+from support.ui import line_with, screen_text, steady_cursors, style_at, type_text, until
 
 make_app = partial(ui.make_app, count=300)
 
@@ -33,9 +33,32 @@ def shown(app: ConsoleApp) -> list:
 
 
 async def type_query(pilot, app: ConsoleApp, text: str) -> None:
+    """Open the query line, empty it (it opens with the query in force), type ``text`` key
+    by key, and see it on the screen."""
     await pilot.press("slash")
-    app.query_bar.input.value = text
+    steady_cursors(app)
+    await pilot.press("end", "ctrl+u")
+    await type_text(pilot, text)
     await pilot.pause()
+    line_with(app, text)
+
+
+def table_rows(app: ConsoleApp) -> dict[str, int]:
+    """The table's rows on the screen: the number each starts with, to its terminal row."""
+    rows = {}
+    for y, line in enumerate(screen_text(app).splitlines()):
+        first = line.split(maxsplit=1)[0] if line.strip() else ""
+        if first.isdigit() and len(line.split()) > 3:
+            rows[first] = y
+    return rows
+
+
+def looks(app: ConsoleApp, column: int = 60) -> dict[str, tuple]:
+    """How each table row on the screen is painted: the colours of a cell in its message."""
+    return {
+        number: (style_at(app, column, y).color, style_at(app, column, y).bgcolor)
+        for number, y in table_rows(app).items()
+    }
 
 
 async def test_query_line_applies_and_replaces_its_rules():
@@ -59,8 +82,11 @@ async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
         await pilot.press("enter")
         before = len(app.view)
         await type_query(pilot, app, "level>=loud /time(out/")
-        problem = str(app.query_bar.query_one("#query-problem").render())
-        assert "^" in problem and "loud" in problem
+        y, line = line_with(app, "level>=loud /time(out/")
+        caret_row = next(row for row in screen_text(app).splitlines()[y + 1 :] if "^ " in row)
+        column = caret_row.index("^")
+        assert line[column : column + 4] == "loud", "the caret under the unknown level"
+        assert "loud" in caret_row and "the rules in force stay" in screen_text(app)
         await pilot.press("enter")
         assert app.query_bar.is_open  # not applied
         assert len(app.view) == before and app.query_bar.applied_text == "level>=warn"
@@ -74,23 +100,44 @@ async def test_query_history_walks_back_and_is_kept_between_runs():
         for text in ("level:error", "node:count*", "-msg:scan"):
             await type_query(pilot, app, text)
             await pilot.press("enter")
-        await pilot.press("slash", "up")
-        assert app.query_bar.input.value == "node:count*"  # the current one is shown first: up goes back
+        await pilot.press("slash")
+        steady_cursors(app)
         await pilot.press("up")
-        assert app.query_bar.input.value == "level:error"
+        assert line_with(app, "node:count*") and "-msg:scan" not in screen_text(app)  # the current one was shown
+        await pilot.press("up")
+        assert line_with(app, "level:error") and "node:count*" not in screen_text(app)
         await pilot.press("down", "down")
-        assert app.query_bar.input.value == "-msg:scan"
+        assert line_with(app, "-msg:scan") and "level:error" not in screen_text(app)
         await pilot.press("escape")
+        assert "-msg:scan" not in screen_text(app), "the query line is closed"
     assert query_history_path().read_text().split("\n")[:3] == ["level:error", "node:count*", "-msg:scan"]
     assert 'kind = "message"' in last_rules_path().read_text() and "scan" in last_rules_path().read_text()
 
 
 async def test_query_given_at_start():
+    plain = make_app()
+    async with plain.run_test(size=(160, 40)) as pilot:
+        await pilot.pause()
+        before = looks(plain)
     app = make_app(query="+level:fatal")
     async with app.run_test(size=(160, 40)) as pilot:
         await pilot.pause()
-        assert app.rules.highlighting and len(app.view) == 300
-        assert app.query_bar.applied_text == "+level:fatal"
+        after = looks(app)
+        rows = table_rows(app)
+        assert "300/300 shown" in screen_text(app) and rows.keys() == before.keys()
+        cursor = max(rows, key=int)  # following: the newest row has the cursor
+        fatal = {n for n, y in rows.items() if screen_text(app).splitlines()[y].split()[2] == "FATAL"}
+        assert fatal and cursor in fatal
+        for number in rows:
+            if number == cursor:
+                continue
+            color, background = after[number]
+            if number in fatal:  # highlighted: a background of its own, text as bright as before
+                assert background != before[number][1] and color == before[number][0], number
+            else:  # dimmed: the same background, fainter text
+                assert background == before[number][1] and color != before[number][0], number
+        await pilot.press("slash")
+        assert line_with(app, "+level:fatal"), "the query line opens with the query in force"
 
 
 async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], role: str = "exclude") -> None:

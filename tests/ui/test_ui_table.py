@@ -15,7 +15,7 @@ from console_tui.ui.screens.help import HelpScreen
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records
-from support.ui import make_app
+from support.ui import make_app, screen_text
 
 
 def line_text(table: LogTable, y: int) -> str:
@@ -148,13 +148,35 @@ async def test_double_click_opens_details():
         assert app.screen.record.seq == 2
 
 
+def words_on_screen(app: ConsoleApp) -> list[str]:
+    """The screen's rows with each run of spaces (and the dialog's border) made one space."""
+    return [" ".join(line.replace("█", " ").split()) for line in screen_text(app).splitlines()]
+
+
 async def test_help_lists_keys_and_closes():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.press("question_mark")
         assert isinstance(app.screen, HelpScreen)
+        await pilot.pause()
+        first_page = words_on_screen(app)
+        pages = [first_page]
+        for _ in range(10):  # page down to the end, as a person reads it
+            await pilot.press("pagedown")
+            await pilot.pause()
+            if words_on_screen(app) == pages[-1]:
+                break
+            pages.append(words_on_screen(app))
+        assert len(pages) > 1, "more keys than one screen: the help scrolls"
+        seen = [line for page in pages for line in page]
+        for row in ("↑, k Up", "end, G Follow tail", "space Pause", "c Clear", "/ Query", "?, f1 Help"):
+            assert any(line.endswith(row) or f" {row} " in f" {line} " for line in seen), row
+        for row in ("a Add rule", "y Copy message", "^p Command palette"):
+            assert any(row in line for line in seen), row
+        assert any("space Pause" in line for line in first_page[:-1]), "the table's keys come first"
         await pilot.press("escape")
         assert not isinstance(app.screen, HelpScreen)
+        assert not any("space Pause" in line for line in words_on_screen(app)[:-1]), "only the footer names keys"
 
 
 async def test_columns_can_be_hidden_and_shown():

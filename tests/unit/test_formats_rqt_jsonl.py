@@ -76,6 +76,17 @@ def test_reads_and_writes_rqt_console_ros1_variant():
     assert _write(RqtCsvWriter(ros1=True), records) == data
 
 
+def test_ros1_csv_writes_levels_between_steps_as_the_step_below(tmp_path):
+    records = [LogRecord(i, level, "n", f"m{level}", "", "", 0, "") for i, level in enumerate((5, 25, 35, 45, 55))]
+    written = _write(RqtCsvWriter(ros1=True), records).decode().splitlines()
+    assert written[0].split(";")[1] == "severity"
+    assert [line.split(";")[1] for line in written[1:]] == ['"1"', '"2"', '"4"', '"8"', '"16"']
+    path = tmp_path / "levels.csv"
+    save_records(records, path, "rqt1")
+    loaded, problems = read_text(path.read_bytes(), RqtCsvFormat(), "levels.csv")
+    assert list(problems) == [] and [r.level for r in loaded] == [10, 20, 30, 40, 50]
+
+
 @pytest.mark.parametrize("save_format", ["rqt", "rqt1", "jsonl"])
 def test_round_trip_keeps_every_field(tmp_path, save_format):
     records = hostile_records(source="robot.bag")

@@ -109,8 +109,8 @@ def test_a_file_starting_inside_a_record_keeps_those_lines_as_a_row(zone):
         (T0 + 6_990_000_000, 20, "rospy.core", "signal_shutdown [atexit]"),
     ]
     assert fmt.notes()[1:] == [
-        "2 plain lines (no log record) are rows of their own, at INFO",
-        "2 records before the file's first time have that time",
+        "2 plain lines (no log record) became rows of their own, at INFO",
+        "2 records before the file's first time: that time",
     ]
 
 
@@ -142,7 +142,7 @@ def test_roscpp_console_capture_with_wall_and_sim_time_and_colour():
         (1579418625_500000000, 40, "/ns1/cam_driver", "multi\nline"),
         (1579418626_000000000, 10, "/ns1/cam_driver", "\x1b]0;PWNED\x07 and \x1b[2J kept as they are"),
     ]
-    assert fmt.notes() == ["2 lines carry simulated time too: their stamps are the wall-clock times"]
+    assert fmt.notes() == ["2 lines carry simulated time too: the stamps are wall-clock times"]
 
 
 def test_launch_log():
@@ -215,9 +215,9 @@ def test_saved_ros2_launch_output():
         (warned, 40, "talker-1", "process has died [pid 1509, exit code -6, cmd 'talker'].\nTraceback from nowhere"),
     ]
     assert fmt.notes() == [
-        "3 plain lines (no log record) are rows of their own, at INFO",
-        "4 records without a time of their own have the time of the record before",
-        "4 records before the file's first time have that time",
+        "3 plain lines (no log record) became rows of their own, at INFO",
+        "4 records without a time of their own: the time of the record before",
+        "4 records before the file's first time: that time",
     ]
 
 
@@ -225,7 +225,7 @@ def test_a_capture_without_any_time_takes_the_file_time():
     fmt = Ros1ConsoleFormat().for_file("rosout-1-stdout.log", 1624512195_000_000_000)
     records, _ = read_text((RUN / "rosout-1-stdout.log").read_bytes(), fmt, "x")
     assert [(r.stamp_ns, r.node) for r in records] == [(1624512195_000_000_000, "/rosout")] * 3
-    assert fmt.notes()[-1] == "3 records have the file's modification time: the file gives no time"
+    assert fmt.notes()[-1] == "3 records with the file's modification time: the file gives no time"
 
 
 @pytest.mark.parametrize(

@@ -30,6 +30,18 @@ def test_ros1_mapping_both_ways():
     assert levels.from_ros1(0) == 10 and levels.from_ros1(12) == 40
 
 
+@pytest.mark.parametrize(
+    "level, ros1",
+    [
+        *[(0, 1), (5, 1), (10, 1), (15, 1), (19, 1), (20, 2), (25, 2), (29, 2), (30, 4)],
+        *[(35, 4), (39, 4), (40, 8), (45, 8), (49, 8), (50, 16), (55, 16), (255, 16)],
+    ],
+)
+def test_to_ros1_rounds_levels_between_steps_down(level, ros1):
+    assert levels.to_ros1(level) == ros1
+    assert levels.from_ros1(ros1) == levels.severity_bucket(level), "the step below, as severity rules count it"
+
+
 def test_severity_names():
     assert levels.severity_name(30) == "WARN"
     assert levels.severity_name(33) == "33"

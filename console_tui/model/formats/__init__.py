@@ -24,7 +24,7 @@ from .problems import FormatError, Problem, Problems, RecordError
 from .python_log import PythonLogFormat
 from .rcutils_log import DEFAULT_TEMPLATE, RcutilsLogFormat
 from .ros1_console import Ros1ConsoleFormat
-from .rosout_log import RosoutLogFormat
+from .rosout_log import Ros2RosoutLogFormat, RosoutLogFormat
 from .rqt_csv import RqtCsvFormat
 from .save import SAVE_FORMATS, SaveCancelled, save_format_for, save_records
 from .text_format import TextFormat, read_batches
@@ -40,7 +40,7 @@ def text_formats(log_format: str | None = None, extra_templates: tuple[str, ...]
     formats: list[TextFormat] = []
     if log_format:
         formats.append(RcutilsLogFormat(log_format))
-    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat()]
+    formats += [RqtCsvFormat(), JsonLinesFormat(), RosoutLogFormat(), Ros2RosoutLogFormat()]
     if not log_format:
         formats.append(RcutilsLogFormat())
         formats += [RcutilsLogFormat(t) for t in extra_templates if t and t != DEFAULT_TEMPLATE]
@@ -60,6 +60,7 @@ __all__ = [
     "RcutilsLogFormat",
     "RecordError",
     "Ros1ConsoleFormat",
+    "Ros2RosoutLogFormat",
     "RosoutLogFormat",
     "RqtCsvFormat",
     "SaveCancelled",

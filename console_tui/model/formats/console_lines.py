@@ -28,6 +28,7 @@ from functools import lru_cache
 
 from ..levels import Severity
 from ..record import LogRecord
+from ..text import plural
 from . import textlines
 from .problems import Problems
 
@@ -78,13 +79,17 @@ class FillCounts:
     def notes(self) -> list[str]:
         notes = []
         if self.plain_rows:
-            notes.append(f"{self.plain_rows:,} plain lines (no log record) are rows of their own, at INFO")
+            notes.append(f"{plural(self.plain_rows, 'plain line')} (no log record) became rows of their own, at INFO")
         if self.from_before:
-            notes.append(f"{self.from_before:,} records without a time of their own have the time of the record before")
+            notes.append(
+                f"{plural(self.from_before, 'record')} without a time of their own: the time of the record before"
+            )
         if self.from_after:
-            notes.append(f"{self.from_after:,} records before the file's first time have that time")
+            notes.append(f"{plural(self.from_after, 'record')} before the file's first time: that time")
         if self.from_file:
-            notes.append(f"{self.from_file:,} records have the file's modification time: the file gives no time")
+            notes.append(
+                f"{plural(self.from_file, 'record')} with the file's modification time: the file gives no time"
+            )
         return notes
 
 

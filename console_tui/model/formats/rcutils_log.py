@@ -40,6 +40,8 @@ _TOKEN_PATTERNS: dict[str, str] = {
     "time_as_nanoseconds": r"-?\d+",
     "line_number": r"\d*",
 }
+#: The tokens rcutils knows in a format.
+TOKENS: tuple[str, ...] = tuple(_TOKEN_PATTERNS)
 _ESCAPES = {"a": "\a", "b": "\b", "n": "\n", "r": "\r", "t": "\t"}
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 

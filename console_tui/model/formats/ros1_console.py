@@ -23,6 +23,7 @@ import re
 from collections.abc import Iterator
 
 from ..record import LogRecord
+from ..text import plural
 from .console_lines import (
     FillCounts,
     Plain,
@@ -65,7 +66,10 @@ class Ros1ConsoleFormat(TextFormat):
     def notes(self) -> list[str]:
         notes = self.counts.notes()
         if self.simulated:
-            notes.insert(0, f"{self.simulated:,} lines carry simulated time too: their stamps are the wall-clock times")
+            carry = "carries" if self.simulated == 1 else "carry"
+            notes.insert(
+                0, f"{plural(self.simulated, 'line')} {carry} simulated time too: the stamps are wall-clock times"
+            )
         return notes
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:

@@ -165,3 +165,58 @@ class LogDecoder:
 
 def _past_end(field: str, length: int, left: int) -> str:
     return f"Log message field '{field}' claims {length} bytes, only {max(left, 0)} left"
+
+
+#: Little-endian CDR; stamp.sec, stamp.nanosec, level and 3 bytes of padding.
+_ENCAPSULATION_LE = b"\x00\x01\x00\x00"
+_HEAD_PACK = struct.Struct("<iIBxxx").pack
+_U32_PACK = struct.Struct("<I").pack
+_PADDING = (b"", b"\0\0\0", b"\0\0", b"\0")
+
+
+class LogEncoder:
+    """Turns records back into serialized Log messages (little-endian CDR), as rclpy
+    would serialize them, so that they can be published as bytes.
+
+    Names, files and functions repeat: their encoded form is cached (bounded, like the
+    decoder's cache). A text with a NUL in it ends there for every reader, as in rclpy.
+    """
+
+    __slots__ = ("_cache", "intern_limit")
+
+    def __init__(self, intern_limit: int = INTERN_LIMIT) -> None:
+        self._cache: dict[str, bytes] = {}
+        self.intern_limit = intern_limit
+
+    def _string(self, text: str) -> bytes:
+        """A CDR string (length, bytes, NUL) padded so that what follows is 4-aligned.
+
+        Every string starts 4-aligned here, so its padding depends only on its length."""
+        raw = text.encode("utf-8", "replace") + b"\0"
+        return _U32_PACK(len(raw)) + raw + _PADDING[len(raw) & 3]
+
+    def _cached(self, text: str) -> bytes:
+        found = self._cache.get(text)
+        if found is None:
+            found = self._string(text)
+            if len(text) <= INTERN_MAX_BYTES:
+                if len(self._cache) >= self.intern_limit:
+                    self._cache.clear()
+                self._cache[text] = found
+        return found
+
+    def encode(self, record: LogRecord) -> bytes:
+        """One record as a serialized ``rcl_interfaces/msg/Log``."""
+        sec, nanosec = divmod(record.stamp_ns, 1_000_000_000)
+        cached = self._cached
+        return b"".join(
+            (
+                _ENCAPSULATION_LE,
+                _HEAD_PACK(sec, nanosec, record.level & 0xFF),
+                cached(record.node),
+                self._string(record.msg),
+                cached(record.file),
+                cached(record.function),
+                _U32_PACK(record.line & 0xFFFFFFFF),
+            )
+        )

@@ -5,16 +5,20 @@ the ``files`` extra (rosbags, mcap).
 The UI's entry points:
 
 - ``FileLoad(paths, queue, log_format=..., on_change=...)``: ``start()``, ``cancel()``,
-  ``progress`` (``LoadProgress``), ``problems()``;
-- ``open_log_file(path)`` -> ``LogFile`` (``batches(cancel)``, ``done``/``total``,
-  ``problems``), and ``load_records(files, cancel)`` to merge in the caller's thread;
+  ``progress`` (``LoadProgress``), ``problems()``, ``notes()``; a path may be a folder
+  (every log in it, ``folders``);
+- ``open_logs(paths)`` -> ``OpenedLogs`` (files, failures, skipped), ``open_log_file(path)``
+  -> ``LogFile`` (``batches(cancel)``, ``done``/``total``, ``problems``, ``notes()``), and
+  ``load_records(files, cancel)`` to merge in the caller's thread;
+- ``latest_run()``: the paths of the newest run in the ROS log directory;
 - saving: ``console_tui.model.formats.save_records(records, path, format)``.
 """
 
 from __future__ import annotations
 
 from ...model.formats import FormatError, Problem
-from .loader import FileLoad, FileProgress, LoadProgress, load_records, open_files
+from .folders import latest_run
+from .loader import FileLoad, FileProgress, LoadProgress, OpenedLogs, load_records, open_files, open_logs
 from .log_file import LogFile, TextLogFile
 from .merge import merge_by_time, sorted_by_stamp
 from .opener import open_log_file, source_names
@@ -25,12 +29,15 @@ __all__ = [
     "FormatError",
     "LoadProgress",
     "LogFile",
+    "OpenedLogs",
     "Problem",
     "TextLogFile",
+    "latest_run",
     "load_records",
     "merge_by_time",
     "open_files",
     "open_log_file",
+    "open_logs",
     "sorted_by_stamp",
     "source_names",
 ]

@@ -6,17 +6,21 @@ import os
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from pathlib import Path
 
 from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from .folders import Expansion, LogPaths, expand_paths
 from .log_file import LogFile, describe_error
 from .merge import merge_by_time
-from .opener import open_log_file, source_names
+from .opener import open_log_paths, source_names
 
 #: The loader waits while this many records wait in the queue (the UI is behind).
 QUEUE_HIGH_WATER = 200_000
+#: With more logs than this, each is opened only when the merge reaches its time.
+MANY_FILES = 16
 
 
 @dataclass(frozen=True)
@@ -49,29 +53,61 @@ class LoadProgress:
         return sum(1.0 if f.failed else f.fraction for f in self.files) / len(self.files)
 
 
+@dataclass
+class OpenedLogs:
+    """What opening paths gave: the logs opened, the problems of those that could not be,
+    and the files of folders passed over (not logs by their names, or empty)."""
+
+    files: list[LogFile] = field(default_factory=list)
+    failures: list[Problem] = field(default_factory=list)
+    skipped: list[Path] = field(default_factory=list)
+
+
+def open_logs(paths: Sequence[str | os.PathLike[str]], *, log_format: str | None = None) -> OpenedLogs:
+    """Open every path (a folder: every log in it); what cannot be read becomes a problem."""
+    expansion = expand_paths(paths)
+    opened = OpenedLogs(failures=folder_problems(expansion), skipped=expansion.skipped)
+    many = len(expansion.logs) > MANY_FILES
+    for log in expansion.logs:
+        result = open_one(log, log_format, peek=many)
+        if isinstance(result, Problem):
+            opened.failures.append(result)
+        else:
+            opened.files.append(result)
+    return opened
+
+
 def open_files(
     paths: Sequence[str | os.PathLike[str]], *, log_format: str | None = None
 ) -> tuple[list[LogFile], list[Problem]]:
     """Open every path; the ones that cannot be read become problems, not exceptions."""
-    opened: list[LogFile] = []
-    failures: list[Problem] = []
-    for path, name in zip(paths, source_names(paths), strict=False):
-        result = open_one(path, name, log_format)
-        if isinstance(result, Problem):
-            failures.append(result)
-        else:
-            opened.append(result)
-    return opened, failures
+    opened = open_logs(paths, log_format=log_format)
+    return opened.files, opened.failures
 
 
-def open_one(path: str | os.PathLike[str], name: str, log_format: str | None) -> LogFile | Problem:
-    """A file opened, or the problem that says why it cannot be (never an exception)."""
+def folder_problems(expansion: Expansion) -> list[Problem]:
+    """What went wrong with the folders opened: unreadable, or without a single log."""
+    problems = [Problem(str(path), f"cannot list this folder: {reason}") for path, reason in expansion.unreadable]
+    for folder in expansion.empty:
+        inside = [p for p in expansion.skipped if folder in p.parents]
+        what = f"no log files in this folder ({len(inside)} other files)" if inside else "no log files in this folder"
+        problems.append(Problem(str(folder), what))
+    return problems
+
+
+def open_one(log: LogPaths, log_format: str | None, *, peek: bool = False) -> LogFile | Problem:
+    """A log opened, or the problem that says why it cannot be (never an exception).
+    ``peek``: also look at when its records begin (``LogFile.start_hint``)."""
+    name = log.name
     try:
-        return open_log_file(path, log_format=log_format, source=name)
+        opened = open_log_paths(log, log_format=log_format)
     except FormatError as error:
         return Problem(name, str(error).removeprefix(f"{name}: "))
     except Exception as error:  # a reading library's surprise on a damaged file
         return Problem(name, f"cannot read: {describe_error(error)}")
+    if peek:
+        opened.start_hint = opened.first_stamp()
+    return opened
 
 
 def load_records(
@@ -80,10 +116,14 @@ def load_records(
     """Every record of ``files`` merged by stamp, in batches (in the calling thread).
 
     A file that gives no record at all, and had no problem to explain it, gets one that
-    says so (an empty result always comes with its reason)."""
+    says so (an empty result always comes with its reason). Files whose ``start_hint`` is
+    known are opened only when the merge reaches that time, so a folder of thousands of
+    logs holds only the files of one time open at once."""
     if not files:
         return iter(())
-    return merge_by_time([_counted(f, cancel) for f in files], batch_size=batch_size)
+    hints = [file.start_hint for file in files]
+    starts = hints if any(hint is not None for hint in hints) else None
+    return merge_by_time([_counted(f, cancel) for f in files], batch_size=batch_size, starts=starts)
 
 
 def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[LogRecord]]:
@@ -127,6 +167,8 @@ class FileLoad:
         self.failures: list[Problem] = []
         self.error = ""
         self._names = source_names(self.paths)
+        #: Files of opened folders passed over (not logs by their names, or empty).
+        self.skipped: list[Path] = []
         self._records = 0
         self._finished = False
         self._thread: threading.Thread | None = None
@@ -181,10 +223,15 @@ class FileLoad:
 
     def _run(self) -> None:
         try:
-            for path, name in zip(self.paths, self._names, strict=False):
+            expansion = expand_paths(self.paths)  # a large folder takes a while: here, not in the UI
+            self.failures += folder_problems(expansion)
+            self.skipped = expansion.skipped
+            self._names = [log.name for log in expansion.logs]
+            many = len(expansion.logs) > MANY_FILES
+            for log in expansion.logs:
                 if self.cancel_event.is_set():
                     break
-                result = open_one(path, name, self.log_format)
+                result = open_one(log, self.log_format, peek=many)
                 if isinstance(result, Problem):
                     self.failures.append(result)
                 else:

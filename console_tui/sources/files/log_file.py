@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import io
 import os
 import threading
 from abc import ABC, abstractmethod
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import BinaryIO
+from typing import BinaryIO, cast
 
 from ...model.formats import Problems, TextFormat, TextLines, read_batches
 from ...model.record import LogRecord
+from .rotated import PartsProblems, PartsStream
+
+#: How much of a text log's start is read to learn when its records begin.
+PEEK_BYTES = 64 * 1024
 
 #: Anything with ``is_set()``: a ``threading.Event`` is what callers pass.
 Cancel = threading.Event
@@ -47,6 +52,8 @@ class LogFile(ABC):
         self.done = 0
         #: Records read, once ``batches`` has run to its end (set by the loader).
         self.records = 0
+        #: About when its records begin, when the loader looked (``first_stamp``).
+        self.start_hint: int | None = None
 
     @abstractmethod
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
@@ -56,6 +63,12 @@ class LogFile(ABC):
         """How the file was read, where a person should know it (local times, times filled
         in): facts, not problems. Complete once ``batches`` has run."""
         return []
+
+    def first_stamp(self) -> int | None:
+        """About when its records begin (a look at its start, not a promise), or None when
+        that is not cheap to know; lets a merge of many files open each file only when
+        the merge reaches its time."""
+        return None
 
     def empty_reason(self) -> str:
         """Why reading gave no record, when no problem says it already."""
@@ -79,27 +92,54 @@ class LogFile(ABC):
 
 
 class TextLogFile(LogFile):
-    """A text log file in one of ``console_tui.model.formats``' formats."""
+    """A text log file in one of ``console_tui.model.formats``' formats; with ``parts``, a
+    log and its rotated files (oldest first, ``path`` the newest) read as one."""
 
-    def __init__(self, path: Path, source: str, text_format: TextFormat) -> None:
+    def __init__(self, path: Path, source: str, text_format: TextFormat, parts: Sequence[Path] = ()) -> None:
         super().__init__(path, source)
-        info = os.stat(path)
-        self.format = text_format.for_file(path.name, info.st_mtime_ns)
+        self.parts = list(parts) or [path]
+        infos = [os.stat(part) for part in self.parts]
+        self._mtime_ns = max(info.st_mtime_ns for info in infos)
+        self.format = text_format.for_file(path.name, self._mtime_ns)
         self.kind = text_format.name
-        self.title = text_format.title
-        self.total = max(1, info.st_size)
+        self.title = text_format.title if len(self.parts) == 1 else f"{text_format.title}, {len(self.parts)} files"
+        self.total = max(1, sum(info.st_size for info in infos))
+        if len(self.parts) > 1:
+            self.problems = PartsProblems(source, self.parts)
 
     def notes(self) -> list[str]:
         return self.format.notes()
 
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
-        with open(self.path, "rb") as stream:
-            lines = _ProgressLines(stream, self)
-            for batch in read_batches(stream, self.format, self.source, self.problems, lines=lines):
+        stream: BinaryIO | PartsStream
+        if len(self.parts) == 1:
+            stream = open(self.path, "rb")
+        else:
+            stream = PartsStream(self.parts)
+            if isinstance(self.problems, PartsProblems):
+                self.problems.stream = stream
+        with stream:
+            readable = cast(BinaryIO, stream)  # the parts read like one binary file
+            lines = _ProgressLines(readable, self)
+            for batch in read_batches(readable, self.format, self.source, self.problems, lines=lines):
                 yield batch
                 if cancel is not None and cancel.is_set():
                     return
         self.done = self.total
+
+    def first_stamp(self) -> int | None:
+        try:
+            with open(self.parts[0], "rb") as stream:
+                head = stream.read(PEEK_BYTES)
+            text_format = self.format.for_file(self.path.name, self._mtime_ns)
+            stamps: list[int] = []
+            for batch in read_batches(io.BytesIO(head), text_format, self.source, Problems(self.source), batch_size=64):
+                stamps += [record.stamp_ns for record in batch]
+                if len(stamps) >= 64:
+                    break
+        except Exception:  # a look only: reading proper will say what is wrong
+            return None
+        return min(stamps) if stamps else None
 
 
 class _ProgressLines(TextLines):

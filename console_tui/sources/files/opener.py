@@ -10,6 +10,7 @@ from pathlib import Path
 from ...model.formats import FormatError, Ros1ConsoleFormat, detect_text_format, recording_kind, text_formats
 from ...model.formats.detect import HEAD_SIZE
 from ...model.formats.ros1_console import CAPTURE_SUFFIXES
+from .folders import LogPaths
 from .log_file import LogFile, TextLogFile
 
 #: The environment variable rcutils reads its output format from.
@@ -59,6 +60,30 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
     candidates = text_formats(log_format, (env_template,) if env_template else ())
     fallback = Ros1ConsoleFormat() if _is_capture(file_path.name) else None
     return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name, fallback=fallback))
+
+
+def open_log_paths(log: LogPaths, *, log_format: str | None = None) -> LogFile:
+    """Open one log of a folder: a file, a recording, or a log and its rotated files
+    (read as one, in the format of the first part whose start says it)."""
+    if len(log.parts) == 1:
+        return open_log_file(log.path, log_format=log_format, source=log.name)
+    env_template = os.environ.get(FORMAT_VARIABLE, "")
+    candidates = text_formats(log_format, (env_template,) if env_template else ())
+    fallback = Ros1ConsoleFormat() if _is_capture(log.path.name) else None
+    error: FormatError | None = None
+    for part in log.parts:
+        try:
+            with open(part, "rb") as stream:
+                head = stream.read(HEAD_SIZE)
+            return TextLogFile(
+                log.path, log.name, detect_text_format(head, candidates, part.name, fallback=fallback), log.parts
+            )
+        except FormatError as failure:
+            error = error or failure
+        except OSError as failure:
+            error = error or FormatError(f"{part.name}: cannot read: {failure.strerror or failure}")
+    assert error is not None
+    raise FormatError(f"{log.name}: {error!s}") from None
 
 
 def _is_capture(name: str) -> bool:

@@ -20,12 +20,18 @@ Fast DDS keeps at most about 6,000 unread messages per subscription, whatever th
 depth asked for: what arrives while this thread cannot run for longer than that is
 lost, and reported as such.
 
+Topic: ``topic=None`` reads ``/rosout_agg`` when something publishes it (a rosout node,
+such as ``console-tui rosout``, keeps a deep history there), else ``/rosout`` (see
+``_TopicChoice``): nothing arrives twice when it switches, and at start, when discovery
+finds the aggregator while it holds ``/rosout`` back, the history comes in time order.
+
 QoS: the main subscription is RELIABLE + TRANSIENT_LOCAL with a deep queue, so a
 console started late still gets the history each node's rosout publisher keeps. Such a
 subscription never matches a publisher whose rosout QoS was made VOLATILE (or
 BEST_EFFORT); when the graph shows one, a second, VOLATILE + BEST_EFFORT subscription is
 added, and from it only messages of the publishers the first one cannot match are kept
-(by publisher GID), so nothing arrives twice. When the main subscription reports an
+(by publisher GID; where rclpy's message info has no GID, as in Jazzy, by the logger name
+of the publisher's node), so nothing arrives twice. When the main subscription reports an
 incompatible publisher, the graph is looked at again at once, so that second
 subscription starts without waiting for the next periodic look.
 """
@@ -38,6 +44,7 @@ from typing import Any
 
 from ...model.formats.ros2_log_msg import CdrError, LogDecoder
 from ...model.intake_queue import IntakeQueue
+from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
 from ..log_message import log_to_record
 from ..log_topics import ROSOUT, ROSOUT_AGG
@@ -48,7 +55,16 @@ QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profil
 WAIT_TIMEOUT_NS = 100_000_000
 GRAPH_PERIOD_S = 1.0
 UNKNOWN_PUBLISHER_REFRESH_S = 0.2
-AUTO_TOPIC_WAIT_S = 1.0
+#: At start, ``/rosout`` messages are held back while ``/rosout_agg`` may still be
+#: discovered: at least ``AUTO_TOPIC_MIN_S``, until the ``/rosout`` publishers found have
+#: not changed for ``AUTO_TOPIC_SETTLED_S``, at most ``AUTO_TOPIC_MAX_S`` (discovery took
+#: 1-2 s on the development machine, longer when it was busy).
+AUTO_TOPIC_MIN_S = 1.0
+AUTO_TOPIC_SETTLED_S = 1.0
+AUTO_TOPIC_MAX_S = 5.0
+#: After a late switch to ``/rosout_agg``: how long its history is checked against what
+#: ``/rosout`` already gave.
+SWITCH_DEDUPE_S = 30.0
 MAX_BATCH = 2_000
 COALESCE_BELOW = 64
 COALESCE_S = 0.002
@@ -145,7 +161,8 @@ class LiveLogSource:
 
         node = self.runtime.create_node("log")
         self._guard = node.create_guard_condition(lambda: None)
-        topic = self.requested_topic or self._choose_topic(node)
+        choice = _TopicChoice(time.monotonic()) if self.requested_topic is None else None
+        topic = self.requested_topic or ROSOUT
         reader = _TopicReader(node, Log, topic, self.counts, raw=self.raw)
         self._set_status(topic=topic, running=True, **self._loss_fields(reader))
         next_graph_check = 0.0
@@ -154,12 +171,22 @@ class LiveLogSource:
         shown = None
         while not self._stop.is_set():
             now = time.monotonic()
-            if now >= next_graph_check or reader.graph_changed:
+            if (
+                choice is not None
+                and reader.topic == ROSOUT
+                and (now >= next_graph_check or choice.holding(now))
+                and _has_publishers(node, ROSOUT_AGG)
+            ):
+                reader.close()
+                reader = _TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
+                choice.switched(now)
+                next_graph_check = 0.0
+            holding = choice is not None and choice.holding(now)
+            if now >= next_graph_check or reader.graph_changed or holding:
                 next_graph_check = now + GRAPH_PERIOD_S
-                if self.requested_topic is None and reader.topic == ROSOUT and _has_publishers(node, ROSOUT_AGG):
-                    reader.close()
-                    reader = _TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
                 reader.refresh_graph()
+                if holding:
+                    choice.publishers(reader.publisher_count, now)
                 self._set_status(topic=reader.topic, publishers=reader.publisher_count)
             subs, events = reader.handles(), reader.event_handlers()
             if wait_set is None or (subs, events) != wait_set_entities:
@@ -177,6 +204,8 @@ class LiveLogSource:
             if events:
                 reader.handle_events(wait_set)
             batch = reader.take_all(MAX_BATCH)
+            if choice is not None:
+                batch = choice.filter(batch, reader.topic, time.monotonic())
             if batch:
                 self.queue.put(batch)
             if len(batch) < COALESCE_BELOW:
@@ -196,13 +225,62 @@ class LiveLogSource:
                 self._set_status(**self._loss_fields(reader))
         reader.close()
 
-    def _choose_topic(self, node: Any) -> str:
-        deadline = time.monotonic() + AUTO_TOPIC_WAIT_S
-        while time.monotonic() < deadline and not self._stop.is_set():
-            if _has_publishers(node, ROSOUT_AGG):
-                return ROSOUT_AGG
-            time.sleep(0.05)
-        return ROSOUT
+
+class _TopicChoice:
+    """``/rosout_agg`` when something publishes it, else ``/rosout``, never a message twice.
+
+    - At start, ``/rosout`` messages are held back while discovery may still find a
+      ``/rosout_agg`` publisher (see ``AUTO_TOPIC_MIN_S``). When one shows up, the held
+      messages are dropped (its history has them, and older ones) and the stream starts
+      from ``/rosout_agg``, in time order. Otherwise they go out when the time is up.
+    - When one shows up later, its history is delivered without what ``/rosout`` already
+      gave: for each logger name, only messages newer than the newest one seen from it.
+    """
+
+    def __init__(self, start: float) -> None:
+        self.start = start
+        self.deadline = start + AUTO_TOPIC_MAX_S
+        self.held: list[LogRecord] = []
+        self.newest: dict[str, int] = {}
+        self.dedupe_until = 0.0
+        self._publishers = 0
+        self._changed_at = start
+
+    def publishers(self, count: int, now: float) -> None:
+        """The number of ``/rosout`` publishers found so far; once it has settled, stop holding."""
+        if count != self._publishers:
+            self._publishers, self._changed_at = count, now
+        elif count and now - self._changed_at >= AUTO_TOPIC_SETTLED_S and now - self.start >= AUTO_TOPIC_MIN_S:
+            self.deadline = min(self.deadline, now)
+
+    def holding(self, now: float) -> bool:
+        return now < self.deadline
+
+    def switched(self, now: float) -> None:
+        if self.holding(now):
+            self.held.clear()
+            self.newest.clear()
+        else:
+            self.dedupe_until = now + SWITCH_DEDUPE_S
+        self.deadline = 0.0
+
+    def filter(self, batch: list[LogRecord], topic: str, now: float) -> list[LogRecord]:
+        if topic == ROSOUT:
+            newest = self.newest
+            for record in batch:
+                newest[record.node] = record.stamp_ns
+            if self.holding(now):
+                self.held.extend(batch)
+                return []
+            if self.held:
+                batch, self.held = self.held + batch, []
+            return batch
+        if now < self.dedupe_until:
+            seen = self.newest
+            return [r for r in batch if r.stamp_ns > seen.get(r.node, r.stamp_ns - 1)]
+        if self.newest:
+            self.newest = {}
+        return batch
 
 
 def _has_publishers(node: Any, topic: str) -> bool:
@@ -261,6 +339,11 @@ class _TopicReader:
         #: GIDs of the publishers only the extra (VOLATILE) subscription matches.
         self._uncovered: set[bytes] = set()
         self._covered: set[bytes] = set()
+        #: The same by their nodes' logger names, for an rclpy whose message info has no
+        #: publisher GID (Jazzy): ``{logger name: covered}``.
+        self._node_covered: dict[str, bool] = {}
+        #: This rclpy's message info has no publisher GID.
+        self._gidless = False
         self._unknown_refreshed_at = 0.0
 
     @property
@@ -333,6 +416,7 @@ class _TopicReader:
         self.graph_changed = False
         covered: set[bytes] = set()
         uncovered: set[bytes] = set()
+        node_covered: dict[str, bool] = {}
         infos = self.node.get_publishers_info_by_topic(self.topic)
         for info in infos:
             qos = info.qos_profile
@@ -340,8 +424,9 @@ class _TopicReader:
                 qos.durability == DurabilityPolicy.TRANSIENT_LOCAL and qos.reliability == ReliabilityPolicy.RELIABLE
             )
             (covered if matches_main else uncovered).add(_gid_bytes(info.endpoint_gid))
+            node_covered[node_logger_name(info.node_namespace, info.node_name)] = matches_main
         self.publisher_count = len(infos)
-        self._covered, self._uncovered = covered, uncovered
+        self._covered, self._uncovered, self._node_covered = covered, uncovered, node_covered
         if uncovered and self.extra is None:
             self.extra = self._subscribe(self._volatile_qos, main=False)
 
@@ -358,21 +443,49 @@ class _TopicReader:
         return record
 
     def _keep_from_extra(self, info: dict) -> bool:
-        """Whether a message the extra subscription took is one only it receives."""
+        """Whether a message the extra subscription took is one only it receives (by its
+        publisher's GID; kept for ``_keep_record_from_extra`` when the info has none)."""
+        if "publisher_gid" not in info:
+            self._gidless = True
+            return True
         gid = _gid_bytes(info.get("publisher_gid") or b"")
         if gid not in self._uncovered and gid not in self._covered:
-            now = time.monotonic()
-            if now - self._unknown_refreshed_at >= UNKNOWN_PUBLISHER_REFRESH_S:
-                self._unknown_refreshed_at = now
-                self.refresh_graph()  # a publisher newer than our last look
+            self._refresh_for_unknown()
         return gid not in self._covered
+
+    def _keep_record_from_extra(self, record: LogRecord) -> bool:
+        """Without publisher GIDs: whether the record's logger belongs to a node only the
+        extra subscription matches (the node whose logger name is the longest prefix of it)."""
+        owner = self._owner(record.node)
+        if owner is None:
+            self._refresh_for_unknown()
+            owner = self._owner(record.node)
+        return owner is None or not self._node_covered[owner]
+
+    def _owner(self, logger: str) -> str | None:
+        while True:
+            if logger in self._node_covered:
+                return logger
+            if "." not in logger:
+                return None
+            logger = logger.rpartition(".")[0]
+
+    def _refresh_for_unknown(self) -> None:
+        now = time.monotonic()
+        if now - self._unknown_refreshed_at >= UNKNOWN_PUBLISHER_REFRESH_S:
+            self._unknown_refreshed_at = now
+            self.refresh_graph()  # a publisher newer than our last look
 
     def take_all(self, limit: int) -> list[LogRecord]:
         """Every message waiting (up to ``limit``), as records, oldest first per subscription."""
         batch: list[LogRecord] = []
         taken = self._take_into(batch, self.main, limit, None)
         if self.extra is not None and taken < limit:
-            self._take_into(batch, self.extra, limit - taken, self._keep_from_extra)
+            extra: list[LogRecord] = []
+            self._take_into(extra, self.extra, limit - taken, self._keep_from_extra)
+            if extra and self._covered and self._gidless:
+                extra = [record for record in extra if self._keep_record_from_extra(record)]
+            batch.extend(extra)
         return batch
 
     def _take_into(self, batch: list[LogRecord], subscription: Any, limit: int, keep: Any) -> int:

@@ -50,12 +50,13 @@ class RosRuntime:
         self._lock = threading.Lock()
         self._closed = False
 
-    def create_node(self, role: str, **options: Any) -> Any:
-        """A hidden node (its name starts with ``_``) unique to this process."""
+    def create_node(self, role: str, *, name: str | None = None, enable_rosout: bool = False, **options: Any) -> Any:
+        """A hidden node (its name starts with ``_``) unique to this process, or, given
+        ``name``, a node of that name (``console-tui rosout`` is a node people see)."""
         from rclpy.node import Node
 
-        name = f"_console_tui_{role}_{os.getpid()}"
-        node = Node(name, context=self.context, enable_rosout=False, **options)
+        node_name = name or f"_console_tui_{role}_{os.getpid()}"
+        node = Node(node_name, context=self.context, enable_rosout=enable_rosout, **options)
         with self._lock:
             self._nodes.append(node)
         return node

@@ -75,7 +75,7 @@ class OpenScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label("Open log files or recordings (several: separate with spaces; Tab completes)")
+            yield Label("Open log files, recordings or folders (several: separate with spaces; Tab completes)")
             yield Input(placeholder="~/.ros/log/...  run.bag  saved.csv", suggester=PathSuggester(), id="paths")
             yield Label("", classes="error", id="error")
 

@@ -49,6 +49,10 @@ _HINTS: list[Hint] = [
 ]
 
 
+#: Where levels are read only when asked (ROS 1): how to ask.
+_READ_HINTS: list[Hint] = [(("select", "refresh"), "read its loggers"), ("add_logger", "set one by name")]
+
+
 class LoggerPane(SidePane):
     """Nodes, then the selected node's loggers; keys set the highlighted logger's level.
 
@@ -152,8 +156,12 @@ class LoggerPane(SidePane):
         self.seen_loggers = seen_loggers
         self.clock = control.clock if control is not None else clock
         # Without a control (files only, or a test feeding the pane) nodes are ROS 2's.
-        hint = control.no_services_hint if control is not None else ENABLE_LOGGER_SERVICE_HINT
-        self.view = LoggerView(has_ros=control is not None, no_services_hint=hint)
+        self.view = LoggerView(
+            has_ros=control is not None,
+            no_services_hint=control.no_services_hint if control is not None else ENABLE_LOGGER_SERVICE_HINT,
+            lists_loggers=control is not None and control.lists_loggers,
+            read_when_asked=control is not None and control.read_when_asked,
+        )
         self._ticker: Timer | None = None
         self.node_list = NodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
@@ -269,15 +277,16 @@ class LoggerPane(SidePane):
             self._say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
             self.node_list.focus()
             return False
-        self.select_node(node.fqn, logger)
+        self.select_node(node.fqn, None if logger == node.fqn else logger)
         self.logger_list.focus()
         return True
 
     # -- service calls ------------------------------------------------------------------------
 
-    def read_levels(self, fqn: str) -> None:
+    def read_levels(self, fqn: str, *, asked: bool = False) -> None:
+        """Read ``fqn``'s levels; where they are read only when asked (ROS 1), only when ``asked``."""
         names = self.view.names_to_read(fqn)
-        if self.control is None or names is None:
+        if self.control is None or names is None or (self.view.read_when_asked and not asked):
             return
         self._call(
             self.control.get_levels(fqn, names), fqn, "read the levels", lambda levels: self.show_levels(fqn, levels)
@@ -387,7 +396,7 @@ class LoggerPane(SidePane):
     def action_refresh(self) -> None:
         self.view.note_seen(self.seen_loggers, force=True)
         if self.selected is not None:
-            self.read_levels(self.selected)
+            self.read_levels(self.selected, asked=True)
         self._render_all()
 
     def action_focus_nodes(self) -> None:
@@ -413,6 +422,8 @@ class LoggerPane(SidePane):
     @on(OptionList.OptionSelected, "#logger-nodes")
     def _node_chosen(self, message: OptionList.OptionSelected) -> None:
         message.stop()
+        if self.selected is not None and self.view.read_when_asked:
+            self.read_levels(self.selected, asked=True)  # Enter opens the node: its loggers are read
         self.logger_list.focus()
 
     @on(OptionList.OptionSelected, "#logger-levels")
@@ -461,7 +472,10 @@ class LoggerPane(SidePane):
         self.heading.update(Text(self.view.heading(), no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
-        text, error = self.view.notice_text(self.control.problem if self.control is not None else "")
+        problem = self.control.problem if self.control is not None else ""
+        text, error = self.view.notice_text(
+            problem, hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS)
+        )
         self.notice_line.update(Text(text))
         self.notice_line.set_class(error, "-error")
 

@@ -27,7 +27,7 @@ COLUMNS: tuple[Column, ...] = (
     Column("file", "File", 16, drop_order=2),
     Column("function", "Function", 14, drop_order=1),
     Column("line", "Line", 5, align="right", drop_order=3),
-    Column("source", "Source", 14, drop_order=4, shown_by_default=False),
+    Column("source", "Source", 20, drop_order=4, shown_by_default=False),
 )
 COLUMN_KEYS = tuple(column.key for column in COLUMNS)
 BY_KEY = {column.key: column for column in COLUMNS}

@@ -1,0 +1,274 @@
+"""``console-tui tail``: log messages on standard output, filtered with the app's rules.
+
+Live (the app's live stream: ``/rosout_agg`` when something publishes it, else
+``/rosout``) or from files (any format the app opens, merged by time), or both; with
+``--follow``, text files are followed as they grow (and when they are rotated). Lines
+are printed as ROS prints them (``--format``), or as JSON (``--json``). Message text never
+reaches the terminal raw: control characters, escape sequences and bidi overrides are
+printed as visible stand-ins, and in JSON as ``\\u`` escapes.
+
+A closed pipe (``console-tui tail | head -1``) ends it quietly with status 0.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+import threading
+import time
+from collections.abc import Iterable, Sequence
+from typing import BinaryIO, cast
+
+from ..model.formats.console_line import ConsoleLine, TemplateError, json_text
+from ..model.intake_queue import IntakeQueue
+from ..model.record import LogRecord
+from ..model.rules.ruleset import Decoration, RuleSet
+from ..model.rules.stream import StreamFilter
+from ..model.text import one_line
+from ..sources.files import LogFile, TextLogFile, load_records, merge_by_time, open_files
+from ..sources.files.follow import FollowedFile
+from ..sources.live import LiveIntake, RosUnavailable, open_live
+from .arguments import add_log_format_argument, add_ros_version_arguments, check_rule_arguments
+
+EXIT_OK = 0
+EXIT_FILES = 1
+EXIT_USAGE = 2
+
+#: How often followed files and the live queue are looked at.
+POLL_S = 0.1
+FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
+#: Losses are told on stderr at most this often.
+LOSS_REPORT_S = 5.0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="console-tui tail",
+        description=(
+            "Print log messages on standard output, filtered with the app's query language and rule "
+            "files: the live stream of ROS 2 or ROS 1 (without FILEs: /rosout_agg when something publishes "
+            "it, else /rosout), "
+            "or log files and recordings merged by time, or both (--live). Runs until Ctrl-C when live or "
+            "following; a closed pipe (| head) ends it quietly."
+        ),
+        epilog=(
+            "--format takes ROS 2's RCUTILS_CONSOLE_OUTPUT_FORMAT tokens {severity} {name} {message} {time} "
+            "{time_as_nanoseconds} {date_time_with_ms} {file_name} {function_name} {line_number} and ROS 1's "
+            "ROSCONSOLE_FORMAT tokens ${severity} ${time} ${time:%%H:%%M:%%S} ${walltime} ${node} ${logger} "
+            "${message} ${file} ${function} ${line}, mixed as you like; \\n and \\t are decoded. "
+            f"exit status: {EXIT_OK} done (or stopped by Ctrl-C, or the pipe closed); {EXIT_FILES} a FILE could "
+            f"not be read; {EXIT_USAGE} bad command line, or ROS is not available for the live stream"
+        ),
+    )
+    parser.add_argument("files", nargs="*", metavar="FILE", help="log files or recordings (any format the app opens)")
+    parser.add_argument("--live", action="store_true", help="with FILEs: the live stream too, after them")
+    parser.add_argument(
+        "-f", "--follow", action="store_true", help="keep reading text FILEs as they grow (and when rotated)"
+    )
+    parser.add_argument("--topic", metavar="NAME", help="live: the log topic (default /rosout_agg if published)")
+    add_ros_version_arguments(parser)
+    parser.add_argument(
+        "--query", metavar="QUERY", help="print only what this query shows, for example 'level>=warn -node:rviz*'"
+    )
+    parser.add_argument(
+        "--rules", metavar="FILE", help="apply the rules saved in this TOML file ('last': those the app last had)"
+    )
+    output = parser.add_mutually_exclusive_group()
+    output.add_argument(
+        "--format",
+        metavar="FMT",
+        help="how to print each message (default: $RCUTILS_CONSOLE_OUTPUT_FORMAT, else "
+        "'[{severity}] [{time}] [{name}]: {message}'); tokens below",
+    )
+    output.add_argument(
+        "--json", action="store_true", help="one JSON object a line: stamp_ns, level, node, msg, file, function, line"
+    )
+    parser.add_argument(
+        "--color",
+        choices=("auto", "always", "never"),
+        default="auto",
+        help="colour by severity: auto (on a terminal) by default; never when NO_COLOR is set",
+    )
+    parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
+    add_log_format_argument(parser)
+    return parser
+
+
+class PipeClosed(Exception):
+    """Standard output's reader went away."""
+
+
+class Printer:
+    """Writes filtered records to a binary stream, one batch at a time, flushed."""
+
+    def __init__(self, stream: BinaryIO, line: ConsoleLine | None) -> None:
+        self.stream = stream
+        self.line = line
+        self.printed = 0
+
+    def write(self, items: Iterable[tuple[LogRecord, Decoration]]) -> None:
+        line = self.line
+        if line is None:
+            texts = [json_text(record) for record, _ in items]
+        else:
+            texts = [line.text(record, decoration) for record, decoration in items]
+        if not texts:
+            return
+        try:
+            self.stream.write(("\n".join(texts) + "\n").encode("utf-8", "replace"))
+            self.stream.flush()
+        except (BrokenPipeError, ConnectionResetError):
+            raise PipeClosed from None
+        self.printed += len(texts)
+
+
+def use_color(choice: str, stream: object, environ: dict[str, str] | os._Environ[str]) -> bool:
+    """Colour for ``--color choice``: never with NO_COLOR set (to anything but ""), else
+    always, never, or (auto) when the stream is a terminal that is not 'dumb'."""
+    if environ.get("NO_COLOR"):
+        return False
+    if choice != "auto":
+        return choice == "always"
+    isatty = getattr(stream, "isatty", None)
+    return bool(isatty and isatty()) and environ.get("TERM", "") != "dumb"
+
+
+def main(argv: Sequence[str]) -> int:
+    parser = build_parser()
+    args = parser.parse_args(list(argv))
+    check_rule_arguments(parser, args)
+    if args.follow and not args.files:
+        parser.error("--follow needs FILEs to follow (the live stream is followed anyway)")
+    rules = (args.rule_set or RuleSet()).with_query(args.query_entries)
+    line: ConsoleLine | None = None
+    if not args.json:
+        template = args.format if args.format is not None else (os.environ.get(FORMAT_VARIABLE) or None)
+        try:
+            line = ConsoleLine(template, utc=args.utc, color=use_color(args.color, sys.stdout, os.environ))
+        except TemplateError as error:
+            parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
+    stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))
+    run = _Run(Printer(stream, line), StreamFilter(rules))
+    previous = {sig: signal.signal(sig, run.interrupt) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        return run.main(args)
+    except PipeClosed:
+        _quiet_stdout()
+        return EXIT_OK
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+class _Run:
+    def __init__(self, printer: Printer, stream_filter: StreamFilter) -> None:
+        self.printer = printer
+        self.filter = stream_filter
+        self.stop = threading.Event()
+        self.status = EXIT_OK
+        self.queue = IntakeQueue()
+        #: Problems already printed, per file (by id).
+        self._told: dict[int, int] = {}
+
+    def interrupt(self, *_: object) -> None:
+        self.stop.set()
+
+    def print(self, batch: list[LogRecord]) -> None:
+        self.printer.write(self.filter.filter(batch))
+
+    def main(self, args: argparse.Namespace) -> int:
+        live: LiveIntake | None = None
+        if args.live or not args.files:
+            try:
+                live = open_live(self.queue, topic=args.topic, ros=args.ros)
+            except RosUnavailable as error:
+                print(f"console-tui tail: {error}", file=sys.stderr)
+                return EXIT_USAGE
+        try:
+            followed: list[FollowedFile] = []
+            if args.files:
+                followed = self.files(args)
+            if live is not None:
+                live.source.start()
+            if live is not None or followed:
+                self.keep_reading(followed, live)
+        finally:
+            if live is not None:
+                live.close()
+        return self.status
+
+    def files(self, args: argparse.Namespace) -> list[FollowedFile]:
+        """Print the files merged by time; the text files to go on following, if asked."""
+        files, failures = open_files(args.files, log_format=args.log_format)
+        for problem in failures:
+            _complain(str(problem))
+            self.status = EXIT_FILES
+        followed: list[FollowedFile] = []
+        try:
+            if args.follow:
+                followed = [FollowedFile(f) for f in files if isinstance(f, TextLogFile)]
+                once: list[LogFile] = [f for f in files if not isinstance(f, TextLogFile)]
+                streams = [f.records_so_far() for f in followed] + [f.batches(self.stop) for f in once]
+                batches = merge_by_time(streams) if streams else iter(())
+            else:
+                batches = load_records(files, self.stop)
+            for batch in batches:
+                self.print(batch)
+                if self.stop.is_set():
+                    break
+        finally:
+            for file in files:
+                file.close()
+        self._problems(files)
+        return followed
+
+    def keep_reading(self, followed: list[FollowedFile], live: LiveIntake | None) -> None:
+        shown_problem, shown_lost, lost_told_at = "", 0, 0.0
+        try:
+            while not self.stop.wait(POLL_S):
+                if followed:
+                    batch = [record for f in followed for record in f.read()]
+                    batch.sort(key=_stamp)
+                    self.print(batch)
+                    self._problems(followed)
+                if live is not None:
+                    self.print(self.queue.drain())
+                    status = live.source.status
+                    if status.problem and status.problem != shown_problem:
+                        _complain(status.problem)
+                    shown_problem = status.problem
+                    now = time.monotonic()
+                    if status.lost > shown_lost and now - lost_told_at >= LOSS_REPORT_S:
+                        _complain(status.loss_text())
+                        shown_lost, lost_told_at = status.lost, now
+        finally:
+            for f in followed:
+                f.close()
+
+    def _problems(self, files: Sequence[LogFile | FollowedFile]) -> None:
+        for file in files:
+            items = file.problems.items
+            for problem in items[self._told.get(id(file), 0) :]:
+                _complain(str(problem))
+            self._told[id(file)] = len(items)
+
+
+def _stamp(record: LogRecord) -> int:
+    return record.stamp_ns
+
+
+def _complain(text: str) -> None:
+    print(f"console-tui tail: {one_line(text, 500)}", file=sys.stderr, flush=True)
+
+
+def _quiet_stdout() -> None:
+    """After a closed pipe: point stdout at /dev/null, so that Python's last flush at exit
+    does not complain."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass

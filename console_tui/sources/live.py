@@ -1,0 +1,90 @@
+"""The live log stream, chosen and started in one place for every user of it: the app
+and ``console-tui tail`` (``console-tui rosout`` is ROS 2's and uses ``start_ros2``).
+
+``open_live(queue, topic=..., ros=...)`` picks ROS 1 or ROS 2 (``--ros1``/``--ros2``, else
+the environment: ``sources.ros_version``), starts what the stream runs on (for ROS 2 an
+rclpy context of the process's own) and returns a ``LiveIntake`` whose ``source`` has the
+sources' shape: ``start()``, ``stop()``, ``status`` (a ``SourceStatus``), feeding
+``queue``. ``close()`` stops the source and shuts its ROS down.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from ..model.intake_queue import IntakeQueue
+from .ros2.rclpy_loader import RosUnavailable
+from .ros_version import ROS1, choose_ros
+
+HOW_TO_USE_ROS1 = (
+    "  - For ROS 1: set ROS_MASTER_URI to the master (and ROS_IP to this machine's address) and run\n"
+    "      console-tui --ros1"
+)
+
+__all__ = ["LiveIntake", "RosUnavailable", "open_live", "start_ros2"]
+
+
+@dataclass
+class LiveIntake:
+    """A live source and what it runs on."""
+
+    source: Any
+    #: The ROS 2 runtime (``RosRuntime``) when the stream is ROS 2's, for other parts of
+    #: the app that need ROS (logger levels); None for ROS 1.
+    runtime: Any = None
+    _cleanups: list[Callable[[], None]] = field(default_factory=list)
+
+    def close(self) -> None:
+        """Stop the source and shut down what it runs on; safe to call more than once."""
+        try:
+            self.source.stop()
+        except Exception:
+            pass
+        cleanups, self._cleanups = self._cleanups, []
+        for cleanup in reversed(cleanups):
+            try:
+                cleanup()
+            except Exception:
+                pass
+
+
+def start_ros2() -> Any:
+    """An rclpy context of our own (``RosRuntime``); ``RosUnavailable`` with advice if ROS 2
+    cannot start."""
+    from .ros2.runtime import RosRuntime
+
+    try:
+        return RosRuntime()
+    except RosUnavailable:
+        raise
+    except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
+        raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None
+
+
+def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None) -> LiveIntake:
+    """The live log stream into ``queue`` (not started yet: call ``source.start()``).
+
+    ``ros`` is 1 or 2 (``--ros1``/``--ros2``), or None to decide from the environment.
+    ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``.
+    Raises ``RosUnavailable`` (with what to do) when there is no ROS to read from.
+    """
+    if choose_ros(ros).version == ROS1:
+        from .ros1.live_source import Ros1LiveSource
+
+        return LiveIntake(Ros1LiveSource(queue, topic=topic))
+    try:
+        runtime = start_ros2()
+    except RosUnavailable as error:
+        raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
+    from .ros2.live_source import LiveLogSource
+
+    try:
+        source = LiveLogSource(runtime, queue, topic=topic)
+    except Exception:
+        runtime.shutdown()
+        raise
+    source.status = replace(source.status, origin=f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}")
+    return LiveIntake(source, runtime, [runtime.shutdown])

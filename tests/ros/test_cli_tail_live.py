@@ -1,0 +1,146 @@
+"""``console-tui tail`` on the live stream, with real ROS 2 nodes: both format syntaxes,
+JSON, hostile text printed inert, and ``| head -1`` exiting 0."""
+
+from __future__ import annotations
+
+import json
+import queue
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import pytest
+
+from support.rosproc import wait_until
+
+pytestmark = pytest.mark.ros2
+
+HOSTILE = "evil \x1b[2J\x1b]0;title\x07 \u202edesrever\x9b1m end"
+
+
+class Tail:
+    def __init__(self, env: dict[str, str], *args: str) -> None:
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "console_tui", "tail", *args],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            env=env,
+        )
+        self.lines: queue.Queue[bytes] = queue.Queue()
+        self.stderr: list[bytes] = []
+        threading.Thread(target=self._read, daemon=True).start()
+        threading.Thread(target=lambda: self.stderr.extend(self.process.stderr), daemon=True).start()
+
+    def _read(self) -> None:
+        for line in self.process.stdout:
+            self.lines.put(line)
+
+    def take(self, count: int, timeout: float = 30) -> list[bytes]:
+        got: list[bytes] = []
+        deadline = time.monotonic() + timeout
+        while len(got) < count and (left := deadline - time.monotonic()) > 0:
+            try:
+                got.append(self.lines.get(timeout=left))
+            except queue.Empty:
+                break
+        return got
+
+    def stop(self) -> int:
+        if self.process.poll() is None:
+            self.process.send_signal(signal.SIGINT)
+            try:
+                self.process.wait(15)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+        return self.process.returncode
+
+
+def subscribed(node, count: int) -> bool:
+    """At least ``count`` tails (hidden console-tui nodes) subscribe to /rosout."""
+    infos = node.get_subscriptions_info_by_topic("/rosout")
+    return sum(info.node_name.startswith("_console_tui_log_") for info in infos) >= count
+
+
+def test_live_formats_json_and_inert_text(nodes, ros_env, ros_runtime):
+    talker = nodes.start("talker.py", "--name", "tailed", "--namespace", "/t", "--debug")
+    talker.expect("ready")
+    variants = {
+        "default": (),
+        "ros1": ("--topic", "/rosout", "--format", "${severity}|${node}|${message}|${file}:${line}|${function}"),
+        "rcutils": (
+            "--topic",
+            "/rosout",
+            "--format",
+            "{severity}|{name}|{message}|{file_name}:{line_number}|{function_name}",
+        ),
+        "json": ("--topic", "/rosout", "--json"),
+        "errors": ("--topic", "/rosout", "--query", "level>=error node:t.*", "--format", "{severity} {message}"),
+    }
+    tails = {name: Tail(ros_env, *args) for name, args in variants.items()}
+    try:
+        # Subscribed: what is logged now reaches every one of them (as history if need be).
+        probe = ros_runtime.create_node("probe")
+        assert wait_until(lambda: subscribed(probe, len(tails)), 60)
+        time.sleep(1.0)
+        talker.send({"cmd": "log_all", "tag": "live"})
+        logged = talker.expect("logged")["messages"]
+        talker.send({"cmd": "log", "level": "warn", "msg": HOSTILE})
+        talker.expect_next("logged")
+        out = {name: tail.take(6 if name != "errors" else 2, timeout=20) for name, tail in tails.items()}
+        for name, tail in tails.items():
+            assert tail.stop() == 0, (name, b"".join(tail.stderr)[-2000:])
+    finally:
+        for tail in tails.values():
+            tail.stop()
+
+    names = ["DEBUG", "INFO", "WARN", "ERROR", "FATAL"]
+    default = [line.decode() for line in out["default"]]
+    for line, message, name in zip(default, logged, names, strict=False):
+        assert line.startswith(f"[{name}] [") and line.endswith(f"] [t.tailed]: {message['msg']}\n")
+    assert default[5] == default[5].replace("\x1b", "")  # nothing raw
+    assert "␛[2J␛]0;title␇ <U+202E>desrever<U+009B>1m end" in default[5]
+    for name, separator_line in (("ros1", out["ros1"]), ("rcutils", out["rcutils"])):
+        first = separator_line[0].decode().rstrip("\n").split("|")
+        assert first == [
+            "DEBUG",
+            "t.tailed",
+            logged[0]["msg"],
+            f"{logged[0]['file']}:{logged[0]['line']}",
+            logged[0]["function"],
+        ], name
+    records = [json.loads(line) for line in out["json"]]
+    assert [(r["level"], r["node"], r["msg"], r["file"], r["function"], r["line"]) for r in records[:5]] == [
+        (m["level"], "t.tailed", m["msg"], m["file"], m["function"], m["line"]) for m in logged
+    ]
+    assert records[5]["msg"] == HOSTILE and b"\x1b" not in out["json"][5] and "\u202e".encode() not in out["json"][5]
+    assert [line.decode() for line in out["errors"]] == ["ERROR live error message\n", "FATAL live fatal message\n"]
+
+
+def test_head_closing_the_pipe_ends_it_with_status_0(nodes, ros_env):
+    talker = nodes.start("talker.py", "--name", "piped")
+    talker.expect("ready")
+    talker.send({"cmd": "periodic", "period": 0.05})
+    talker.expect("periodic")
+    command = f"set -o pipefail; {sys.executable} -m console_tui tail --topic /rosout | head -1"
+    result = subprocess.run(["bash", "-c", command], capture_output=True, env=ros_env, timeout=60)
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert result.stdout.startswith(b"[INFO] [") and result.stdout.count(b"\n") == 1
+    assert result.stderr == b""
+
+
+@pytest.mark.ros1
+def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env):
+    ros1_nodes.rospy("rospy_node.py", "py_tailed", "--period", "0.1").expect("ready")
+    tail = Tail(
+        ros1_env, "--ros1", "--query", "node:*py_tailed level>=warn", "--format", "${severity} ${node} ${message}"
+    )
+    try:
+        lines = [line.decode() for line in tail.take(2, timeout=30)]
+    finally:
+        assert tail.stop() == 0, b"".join(tail.stderr)[-2000:]
+    assert len(lines) == 2 and all(line.split()[1] == "/py_tailed" for line in lines)
+    assert {line.split()[0] for line in lines} <= {"WARN", "ERROR", "FATAL"}

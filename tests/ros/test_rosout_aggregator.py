@@ -1,0 +1,242 @@
+"""``console-tui rosout`` with real ROS 2 processes: a console started late sees the whole
+run, rosout.log reads back with identical fields, two aggregators do not echo each other,
+SIGKILL leaves a readable file, rotation keeps its count, SIGTERM exits cleanly."""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from console_tui.model.formats.rosout_log import ROS2_HEADER
+from console_tui.sources.files import load_records, open_files
+
+from support.rosproc import wait_until
+
+pytestmark = pytest.mark.ros2
+
+#: How long the count program runs before a console starts. The issue's run is 60 s
+#: (CONSOLE_TUI_E2E_SPAN_S=60); the default is shorter but still past /rosout's 10 s lifespan.
+SPAN_S = float(os.environ.get("CONSOLE_TUI_E2E_SPAN_S", "15"))
+
+
+class Aggregator:
+    """``console-tui rosout`` in a process of its own, writing into ``log_dir``."""
+
+    def __init__(self, env: dict[str, str], log_dir: Path, *args: str) -> None:
+        self.log_dir = log_dir
+        self.path = log_dir / "rosout.log"
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "console_tui", "rosout", "--log-dir", str(log_dir), *args],
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            env=env,
+        )
+
+    def records(self, *paths: Path) -> list:
+        files, failures = open_files([str(p) for p in (paths or (self.path,))])
+        assert failures == []
+        try:
+            records = [r for batch in load_records(files) for r in batch]
+            assert [str(p) for f in files for p in f.problems] == []
+        finally:
+            for f in files:
+                f.close()
+        return records
+
+    def wait_running(self, timeout: float = 30) -> None:
+        """Until its own start-up message came back through /rosout into rosout.log."""
+        assert wait_until(lambda: self.path.exists() and b"republishing /rosout" in self.path.read_bytes(), timeout), (
+            self.stop_and_read()
+        )
+
+    def stop(self, sig: int = signal.SIGINT, timeout: float = 15) -> int:
+        if self.process.poll() is None:
+            self.process.send_signal(sig)
+            try:
+                self.process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+        return self.process.returncode
+
+    def stop_and_read(self) -> str:
+        self.stop()
+        return self.process.stderr.read().decode(errors="replace")[-3000:]
+
+
+@pytest.fixture
+def aggregators(ros_env, tmp_path):
+    started: list[Aggregator] = []
+
+    def start(name: str = "agg", *args: str) -> Aggregator:
+        aggregator = Aggregator(ros_env, tmp_path / name, *args)
+        started.append(aggregator)
+        return aggregator
+
+    yield start
+    for aggregator in started:
+        aggregator.stop(signal.SIGKILL)
+
+
+def fields(record) -> tuple:
+    return (record.stamp_ns, record.level, record.node, record.msg, record.file, record.function, record.line)
+
+
+def counted(ticks: range) -> list[tuple[int, str]]:
+    """What count_and_log logs (at INFO) for these ticks, in order."""
+    out = []
+    for count in ticks:
+        for divisor, level in ((3, 20), (5, 30), (10, 40), (20, 50)):
+            if count % divisor == 0:
+                out.append((level, f"{count} is divisible by {divisor}"))
+    return out
+
+
+async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches(aggregators, ros_env, tmp_path):
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.live import open_live
+    from console_tui.ui.app import ConsoleApp
+
+    from support.ui import until
+
+    aggregator = aggregators()
+    await asyncio.to_thread(aggregator.wait_running)
+    counter = subprocess.Popen(
+        [sys.executable, "-m", "console_tui.demo.nodes", "count_and_log"],
+        stdin=subprocess.PIPE,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        env=ros_env,
+    )
+    try:
+        await asyncio.sleep(SPAN_S)
+        started_ns = time.time_ns()
+        queue = IntakeQueue()
+        live = open_live(queue)  # as `console-tui` does: /rosout_agg when something publishes it
+        app = ConsoleApp(queue=queue, sources=[live.source], utc=True)
+        try:
+            async with app.run_test(size=(160, 40)) as pilot:
+                await until(pilot, lambda: any(r.msg == "3 is divisible by 3" for r in app.store), timeout=30)
+                await pilot.pause(1.0)
+                shown = [r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
+                assert live.source.status.topic == "/rosout_agg"
+        finally:
+            live.close()
+    finally:
+        counter.stdin.close()
+        counter.wait(10)
+    # The console shows everything from the first tick on, once each: not only the last 10 s.
+    last = int(shown[-1].msg.split()[0])
+    assert [(r.level, r.msg) for r in shown] == counted(range(1, last + 1))
+    # (The count program takes a second or two to start, and logs first at its third tick.)
+    assert (started_ns - shown[0].stamp_ns) / 1e9 > max(SPAN_S - 5, 10.5)
+    # rosout.log has the same messages, with every field identical.
+    assert aggregator.stop() == 0
+    from_file = [r for r in aggregator.records() if r.node == "count_and_log"]
+    assert [fields(r) for r in from_file[: len(shown)]] == [fields(r) for r in shown]
+    assert [(r.level, r.msg) for r in from_file] == counted(range(1, int(from_file[-1].msg.split()[0]) + 1))
+
+
+async def test_the_rosout_log_opens_in_the_app(aggregators, nodes):
+    from console_tui.ui.app import ConsoleApp
+
+    from support.ui import screen_text, until
+
+    aggregator = aggregators()
+    await asyncio.to_thread(aggregator.wait_running)
+    talker = nodes.start("talker.py", "--name", "filed", "--debug")
+    await asyncio.to_thread(talker.expect, "ready")
+    talker.send({"cmd": "log_all", "tag": "multi\nline"})
+    logged = (await asyncio.to_thread(talker.expect, "logged"))["messages"]
+    assert wait_until(lambda: b"multi\n\tline fatal" in aggregator.path.read_bytes(), 20)
+    assert aggregator.stop(signal.SIGTERM) == 0
+    app = ConsoleApp(files=[str(aggregator.path)], utc=True)
+    async with app.run_test(size=(160, 30)) as pilot:
+        await until(pilot, lambda: sum(r.node == "filed" for r in app.store) == 5)
+        got = [r for r in app.store if r.node == "filed"]
+        assert [(r.level, r.msg, r.file, r.function, r.line) for r in got] == [
+            (m["level"], m["msg"], m["file"], m["function"], m["line"]) for m in logged
+        ]
+        await pilot.pause(0.3)
+        assert "multi↵line fatal" in screen_text(app)
+
+
+def test_two_aggregators_do_not_echo_each_other(aggregators, nodes, ros_env, tmp_path):
+    first, second = aggregators("a"), aggregators("b", "--name", "rosout_b")
+    first.wait_running()
+    second.wait_running()
+    talker = nodes.start("talker.py", "--name", "twice")
+    talker.expect("ready")
+    for number in range(20):
+        talker.send({"cmd": "log", "level": "info", "msg": f"once {number}"})
+        talker.expect_next("logged")
+    wanted = [f"once {n}" for n in range(20)]
+    for aggregator in (first, second):
+        assert wait_until(lambda a=aggregator: b"once 19" in a.path.read_bytes(), 20)
+    # A late subscriber of /rosout_agg hears each message once from each aggregator, no more.
+    agg = subprocess.run(
+        [sys.executable, "-m", "console_tui", "tail", "--topic", "/rosout_agg", "--json"],
+        env=ros_env,
+        capture_output=True,
+        timeout=60,
+        stdin=subprocess.DEVNULL,
+        preexec_fn=lambda: signal.alarm(6),  # tail runs until a signal; SIGALRM ends this one
+    )
+    assert b"once 19" in agg.stdout, agg.stderr[-2000:]
+    heard = [line for line in agg.stdout.decode().splitlines() if '"node": "twice"' in line]
+    assert len(heard) == 40
+    time.sleep(2.0)
+    for aggregator in (first, second):
+        records = aggregator.records()
+        assert [r.msg for r in records if r.node == "twice"] == wanted  # each exactly once
+        aggregator.stop()
+        warnings = [r.msg for r in aggregator.records() if r.node in ("rosout", "rosout_b") and r.level == 30]
+        assert any("2 nodes publish /rosout_agg" in text for text in warnings), warnings
+
+
+def test_sigkill_leaves_a_readable_rosout_log(aggregators, nodes):
+    aggregator = aggregators()
+    aggregator.wait_running()
+    talker = nodes.start("talker.py", "--name", "killed")
+    talker.expect("ready")
+    talker.send({"cmd": "burst", "count": 500})
+    talker.expect("burst")
+    assert wait_until(lambda: b"burst 499" in aggregator.path.read_bytes(), 20)
+    time.sleep(1.0)  # flushed at least every 0.2 s: a second is more than enough
+    assert aggregator.stop(signal.SIGKILL) == -signal.SIGKILL
+    records = aggregator.records()
+    assert [r.msg for r in records if r.node == "killed"] == [f"burst {n}" for n in range(500)]
+
+
+def test_rotation_at_a_small_size_keeps_the_count(aggregators, nodes):
+    aggregator = aggregators("agg", "--max-size", "4K", "--keep", "2")
+    aggregator.wait_running()
+    talker = nodes.start("talker.py", "--name", "rotated")
+    talker.expect("ready")
+    talker.send({"cmd": "burst", "count": 400})
+    talker.expect("burst")
+    assert wait_until(lambda: b"burst 399" in aggregator.path.read_bytes(), 20)
+    assert aggregator.stop() == 0
+    names = sorted(p.name for p in aggregator.log_dir.iterdir())
+    assert names == ["rosout.log", "rosout.log.1", "rosout.log.2"]
+    paths = [aggregator.log_dir / name for name in ("rosout.log.2", "rosout.log.1", "rosout.log")]
+    for path in paths:
+        assert path.read_bytes().startswith(ROS2_HEADER.encode()) and path.stat().st_size <= 4096
+    kept = [int(r.msg.split()[1]) for r in aggregator.records(*paths) if r.node == "rotated"]
+    assert kept == list(range(kept[0], 400)) and kept[0] > 0  # the newest, none missing in between
+
+
+def test_sigterm_exits_cleanly_with_a_summary(aggregators):
+    aggregator = aggregators()
+    aggregator.wait_running()
+    assert aggregator.stop(signal.SIGTERM) == 0
+    err = aggregator.process.stderr.read().decode()
+    assert "messages republished" in err and "Traceback" not in err

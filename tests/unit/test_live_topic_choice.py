@@ -1,0 +1,57 @@
+"""How the live source picks /rosout_agg over /rosout without showing a message twice."""
+
+from __future__ import annotations
+
+from console_tui.model.record import LogRecord
+from console_tui.sources.ros2.live_source import AUTO_TOPIC_MAX_S, SWITCH_DEDUPE_S, _TopicChoice
+
+
+def records(node: str, *stamps: int) -> list[LogRecord]:
+    return [LogRecord(stamp, 20, node, f"{node} {stamp}", source="") for stamp in stamps]
+
+
+def test_held_at_start_then_released_in_order_without_an_aggregator():
+    choice = _TopicChoice(0.0)
+    assert choice.filter(records("a", 1, 2), "/rosout", 0.1) == []
+    assert choice.filter(records("a", 3), "/rosout", 1.0) == []
+    released = choice.filter([], "/rosout", AUTO_TOPIC_MAX_S + 0.1)
+    assert [r.stamp_ns for r in released] == [1, 2, 3]
+    assert [r.stamp_ns for r in choice.filter(records("a", 4), "/rosout", 9.0)] == [4]
+
+
+def test_aggregator_found_at_start_drops_what_was_held():
+    choice = _TopicChoice(0.0)
+    choice.filter(records("a", 5, 6), "/rosout", 0.5)
+    choice.switched(1.0)
+    history = records("a", 1, 2, 3, 4, 5, 6)
+    assert choice.filter(history, "/rosout_agg", 1.1) == history
+
+
+def test_aggregator_found_later_gives_only_what_was_not_seen():
+    choice = _TopicChoice(0.0)
+    choice.filter(records("a", 1), "/rosout", 0.1)
+    assert [r.stamp_ns for r in choice.filter(records("a", 2) + records("b", 7), "/rosout", 5.0)] == [1, 2, 7]
+    choice.switched(10.0)
+    history = records("a", 1, 2, 3) + records("b", 6, 7, 8) + records("c", 1)
+    got = choice.filter(history, "/rosout_agg", 10.1)
+    assert [(r.node, r.stamp_ns) for r in got] == [("a", 3), ("b", 8), ("c", 1)]
+    later = records("a", 1)  # long after the switch, nothing is held against anything
+    assert choice.filter(later, "/rosout_agg", 10.0 + SWITCH_DEDUPE_S + 1) == later
+
+
+def test_holding_ends_once_the_publishers_found_have_settled():
+    choice = _TopicChoice(0.0)
+    choice.publishers(0, 0.2)
+    assert choice.holding(0.9)
+    choice.publishers(2, 0.9)  # found two
+    choice.publishers(2, 1.5)
+    assert choice.holding(1.6)
+    choice.publishers(3, 1.7)  # another one: wait again
+    choice.publishers(3, 2.5)
+    assert choice.holding(2.6)
+    choice.publishers(3, 2.8)  # unchanged for a second
+    assert not choice.holding(2.8)
+    nothing = _TopicChoice(0.0)
+    for step in range(50):
+        nothing.publishers(0, step * 0.1)
+    assert nothing.holding(4.9) and not nothing.holding(AUTO_TOPIC_MAX_S)
