@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
+from textual import events
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.containers import Horizontal
@@ -31,6 +32,7 @@ from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
 from .commands import ConsoleCommands
 from .file_actions import FileActions
+from .focus import focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .keys import binding_ids, keymap_path, load_keymap
 from .pane_actions import PaneActions
@@ -168,7 +170,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         if self._keymap_problems:
             listed = "\n".join(self._keymap_problems[:5])
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
-        self.table.focus()
+        focus_now(self.table)
         self.set_interval(self.drain_interval, self.drain_intake)
         self.apply_initial_rules(self._initial_rules, self._initial_query)
         self.update_status()
@@ -268,6 +270,18 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
+
+    async def on_event(self, event: events.Event) -> None:
+        # While the table has the focus, a key's binding runs at once, so that the keys typed
+        # behind it find the focus where it put it (see focus.py).
+        if (
+            isinstance(event, events.Key)
+            and not event.is_forwarded
+            and self.focused is self.table
+            and await run_bindings_now(self, event)
+        ):
+            return
+        await super().on_event(event)
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         if action == "cancel_load":

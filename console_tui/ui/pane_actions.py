@@ -10,6 +10,7 @@ from textual.app import App
 
 from ..model.logger_view import shown_logger
 from ..model.store import LogStore
+from .focus import focus_now
 from .screens.temporary_level import TemporaryLevelScreen
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
@@ -49,4 +50,4 @@ class PaneActions(App[None]):
         self.push_screen(TemporaryLevelScreen(fqn, shown_logger(logger), DEFAULT_TEMPORARY_S), chosen)
 
     def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
-        self.table.focus()
+        focus_now(self.table)

@@ -20,6 +20,7 @@ from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
 from ..model.store import LogStore
 from ..model.view import LogView
+from .focus import focus_now
 from .screens.files import PathScreen
 from .screens.quick_rule import QuickRuleScreen
 from .screens.rule_editor import RuleEditor
@@ -140,7 +141,7 @@ class RuleActions(App[None]):
         self.apply_rules(self.rules.with_query(message.entries))
 
     def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
-        self.table.focus()
+        focus_now(self.table)
 
     def action_toggle_rules(self) -> None:
         self.show_rules()

@@ -88,3 +88,14 @@ async def type_text(pilot, text: str) -> None:
 
 def _key_name(char: str) -> str:
     return _character_to_key(char)
+
+
+def type_ahead(app, text: str = "", keys: tuple[str, ...] = ()) -> None:
+    """Queue ``keys`` (names) and then ``text`` all at once, as the terminal driver does when
+    keys arrive while the app is busy: none is handled before the next is queued."""
+    from textual import events
+
+    for key in keys:
+        app.post_message(events.Key(key, None))
+    for char in text:
+        app.post_message(events.Key(_key_name(char), char))

@@ -13,6 +13,7 @@ from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
 from ...model.text import one_line
+from ..focus import focus_now
 from ..keys import Hint, hint_line
 
 _HINTS: list[Hint] = [("submit", "applies"), ("close", "closes"), (("history(-1)", "history(1)"), "history")]
@@ -80,7 +81,7 @@ class QueryBar(Vertical):
         self.add_class("-open")
         self.input.value = self.applied_text
         self.input.cursor_position = len(self.applied_text)
-        self.input.focus()
+        focus_now(self.input)
 
     def action_close(self) -> None:
         self.remove_class("-open")
