@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from collections.abc import Callable
 from typing import Any
 
 from .model.intake_queue import IntakeQueue
@@ -41,6 +42,13 @@ def run_app(args: argparse.Namespace) -> int:
         query=getattr(args, "query", None) or "",
         remember_rules=True,
     )
+    return run_then_clean_up(app, cleanups)
+
+
+def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
+    """Run the app; however it ends (``q``, an error in the app, SIGTERM, SIGHUP: see
+    ``ui.exit_signals``) its sources stop and the cleanups run, last first: the logger
+    control's puts temporary levels back. Returns the exit status."""
     try:
         app.run()
     finally:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import re
 import time
 from collections.abc import Callable
 
@@ -48,6 +49,34 @@ def screen_text(app) -> str:
     update = app.screen._compositor.render_update(full=True, screen_stack=app._background_screens)
     console.print(update)
     return console.export_text(styles=False)
+
+
+def terminal_output(app) -> str:
+    """What the app would write to the terminal to draw the screen now (escape sequences for
+    colours and cursor moves included): the headless driver writes nothing, so this renders
+    the same update the real driver is given."""
+    width, height = app.size
+    console = Console(
+        width=width,
+        height=height,
+        file=io.StringIO(),
+        force_terminal=True,
+        color_system="truecolor",
+        legacy_windows=False,
+    )
+    update = app.screen._compositor.render_update(full=True, screen_stack=app._background_screens)
+    return update.render_segments(console)
+
+
+#: The sequences Textual itself writes: CSI (colours, cursor moves) and nothing else.
+_OWN_SEQUENCES = re.compile(r"\x1b\[[0-?]*[ -/]*[@-~]")
+
+
+def foreign_controls(output: str) -> list[str]:
+    """Control characters in ``output`` that are not part of Textual's own CSI sequences
+    (line ends aside): an OSC, a bell, any ESC from the content."""
+    rest = _OWN_SEQUENCES.sub("", output).replace("\r", "").replace("\n", "")
+    return sorted({repr(c) for c in rest if ord(c) < 0x20 or 0x7F <= ord(c) <= 0x9F})
 
 
 def style_at(app, x: int, y: int):

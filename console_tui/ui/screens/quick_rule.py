@@ -25,6 +25,7 @@ from ...model.rules.severity import SeverityRule
 from ...model.text import one_line
 from ..focus import focus_now
 from ..keys import Hint, hint_line
+from ..plain import plain
 
 #: At most this many distinct messages make one "these messages" rule.
 MESSAGES_AT_MOST = 50
@@ -87,7 +88,7 @@ class QuickRuleScreen(ModalScreen[Entry | None]):
             yield Label(
                 f"{verb} messages with... ({hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], hints)})"
             )
-            yield OptionList(*(Option(one_line(label, 200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
+            yield OptionList(*(Option(plain(label, limit=200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
 
     def on_mount(self) -> None:
         focus_now(self.query_one(OptionList))

@@ -9,6 +9,7 @@ from textual.widgets.option_list import Option
 
 from ...model.levels import Severity, severity_name
 from ...model.logger_levels import GraphNode, LoggerRow, LoggerSource, format_remaining
+from ..plain import plain
 
 _LEVEL_STYLE = {10: "dim", 20: "green", 30: "yellow", 40: "red", 50: "bold red"}
 _OPTION_PREFIX = "logger:"
@@ -38,7 +39,7 @@ class LoggerList(OptionList):
         if highlight is None:
             highlight = self.highlighted_logger
         options = [
-            Option(_two_columns(Text(logger_label(row, own)), level_cell(row, now)), id=option_id(row.name))
+            Option(_two_columns(plain(logger_label(row, own)), level_cell(row, now)), id=option_id(row.name))
             for row in rows
         ]
         names = [row.name for row in rows]
@@ -61,7 +62,7 @@ def node_prompt(node: GraphNode, checking: bool) -> Table:
         marker = Text("checking…", style="dim italic")
     else:
         marker = Text("no logger services", style="yellow")
-    return _two_columns(Text(node.fqn), marker)
+    return _two_columns(plain(node.fqn), marker)
 
 
 def logger_label(row: LoggerRow, own: str) -> str:

@@ -14,7 +14,6 @@ from collections.abc import Callable, Collection, Mapping, Sequence
 from concurrent.futures import Future
 from typing import TYPE_CHECKING, Any
 
-from rich.text import Text
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -27,6 +26,7 @@ from ...model.levels import MESSAGE_SEVERITIES
 from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, LoggerRow, TemporaryLevel, node_of_logger
 from ...model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
 from ..keys import Hint, hint_line
+from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
 from .logger_lists import LoggerList, NodeList
 from .side_pane import SidePane
@@ -469,14 +469,14 @@ class LoggerPane(SidePane):
         self._render_notice()
 
     def _render_heading(self) -> None:
-        self.heading.update(Text(self.view.heading(), no_wrap=True, overflow="ellipsis"))
+        self.heading.update(plain(self.view.heading(), no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
         problem = self.control.problem if self.control is not None else ""
         text, error = self.view.notice_text(
             problem, hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS)
         )
-        self.notice_line.update(Text(text))
+        self.notice_line.update(plain(text, lines=True))
         self.notice_line.set_class(error, "-error")
 
     def _say(self, text: str, error: bool = False) -> None:

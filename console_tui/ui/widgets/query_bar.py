@@ -15,6 +15,7 @@ from ...model.rules.ruleset import Entry
 from ...model.text import one_line
 from ..focus import focus_now
 from ..keys import Hint, hint_line
+from ..plain import plain
 
 _HINTS: list[Hint] = [("submit", "applies"), ("close", "closes"), (("history(-1)", "history(1)"), "history")]
 PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
@@ -104,7 +105,7 @@ class QueryBar(Vertical):
         except QueryError as error:
             problem.remove_class("-ok")
             caret = caret_line(one_line(text), error)
-            problem.update(f"{caret}\n(the rules in force stay until the query is fixed)")
+            problem.update(plain(f"{caret}\n(the rules in force stay until the query is fixed)", lines=True))
             return None
         problem.add_class("-ok")
         count = len(entries)
