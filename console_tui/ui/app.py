@@ -22,6 +22,7 @@ from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
+from ..model.record_batch import RecordColumns
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
@@ -218,24 +219,31 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
 
         Records from files come first; live records wait while files load, so that a
         view of files plus the live stream stays in time order."""
-        records = self.file_queue.drain(MAX_RECORDS_PER_TICK)
+        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self.loading:
-            records += self.queue.drain(MAX_RECORDS_PER_TICK - len(records))
-        if records:
-            self.add_records(records)
+            room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
+            batches += self.queue.drain_batches(room)
+        arrived = self.add_batches(batches) if batches else 0
         if self.loads:
             self.check_loads()
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
-        self.collection_policy.tick(len(records))
+        self.collection_policy.tick(arrived)
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
+        self.add_batches([records if isinstance(records, list) else list(records)])
+
+    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
+        """Put batches (records, or records in columns) into the store and the view; how many."""
         table = self.table
+        added = 0
         with table.keeping_position():
-            added = self.store.extend(records)
+            for batch in batches:
+                added += len(self.store.extend(batch))
             self.view.update()
-        self._arrivals.append((self.clock(), len(added)))
+        self._arrivals.append((self.clock(), added))
+        return added
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
