@@ -50,7 +50,22 @@ def run_app(args: argparse.Namespace) -> int:
                 cleanup()
             except Exception:
                 pass
-    return app.return_code or 0
+    code = app.return_code or 0
+    if live:
+        end_now(code)
+    return code
+
+
+def end_now(code: int) -> None:
+    """End the process at once: the app has stopped everything it started (the intake
+    process, demo nodes, ROS), and the interpreter's own teardown (rclpy's and Fast DDS's
+    static destructors) took another 1-3 s here, while the person who pressed ``q`` waits."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
 
 
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:

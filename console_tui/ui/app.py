@@ -8,6 +8,7 @@ A feature adds its keys to ``BINDINGS`` below and its work in a module of its ow
 
 from __future__ import annotations
 
+import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
@@ -54,6 +55,15 @@ DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
+#: How long quitting waits for the sources to stop, at most.
+SOURCE_STOP_TIMEOUT_S = 2.0
+
+
+def _stop_quietly(source: Source) -> None:
+    try:
+        source.stop()
+    except Exception:
+        pass
 
 
 class Source(Protocol):
@@ -205,12 +215,14 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self.cancel_loads()
 
     def stop_sources(self) -> None:
+        """Stop every source, all at once: each may wait a moment for a process of its own
+        (the intake process, demo nodes) to end, and the app should be gone within a second."""
         sources, self.sources = self.sources, []
-        for source in sources:
-            try:
-                source.stop()
-            except Exception:
-                pass
+        stopping = [threading.Thread(target=_stop_quietly, args=(source,), daemon=True) for source in sources]
+        for thread in stopping:
+            thread.start()
+        for thread in stopping:
+            thread.join(SOURCE_STOP_TIMEOUT_S)
 
     # -- records ----------------------------------------------------------------------------------
 

@@ -25,6 +25,7 @@ async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
 
     demo = DemoNodes()
     demo.start()
+    demo.wait_started()
     queue = IntakeQueue()
     live = open_live(queue, ros=2)
     app = ConsoleApp(queue=queue, sources=[live.source])
@@ -69,6 +70,7 @@ def test_demo_nodes_end_when_the_console_dies(ros_env):
         from console_tui.demo.launcher import DemoNodes
         demo = DemoNodes(["battery_monitor", "planner"])
         demo.start()
+        demo.wait_started()
         print(" ".join(str(p.pid) for p in demo.processes), flush=True)
         time.sleep(60)
         """

@@ -90,9 +90,10 @@ def _intake_children(pid: int) -> set[int]:
     }
 
 
-def _run_and_quit(ros_env: dict[str, str], *args: str) -> tuple[set[int], set[int], int]:
-    """``console-tui ARGS`` in a terminal; once it shows rows, ``q``. Returns the intake
-    process(es) and other children seen while it ran, and its exit status."""
+def _run_and_quit(ros_env: dict[str, str], *args: str, others_expected: int = 0) -> tuple[set[int], set[int], int]:
+    """``console-tui ARGS`` in a terminal; once it shows its table and has started its intake
+    process (and ``others_expected`` other processes), ``q``. Returns the intake process(es)
+    and the other children seen while it ran, and its exit status."""
     command = [str(Path(sys.executable).parent / "console-tui"), *args]
     pid, fd = pty.fork()
     if pid == 0:  # the child: becomes console-tui
@@ -103,12 +104,12 @@ def _run_and_quit(ros_env: dict[str, str], *args: str) -> tuple[set[int], set[in
     seen = b""
     try:
         deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and not (intake and b"Message" in seen):
+        while time.monotonic() < deadline and not (intake and b"Message" in seen and len(others) >= others_expected):
             if select.select([fd], [], [], 0.1)[0]:
                 seen += os.read(fd, 65536)
             intake = _intake_children(pid)
+            others = _children(pid) - intake
         assert intake, "no intake process seen"
-        others = _children(pid) - intake
         time.sleep(1.0)
         os.write(fd, b"q")
         deadline = time.monotonic() + 20
@@ -135,7 +136,7 @@ def _run_and_quit(ros_env: dict[str, str], *args: str) -> tuple[set[int], set[in
 
 @pytest.mark.parametrize("args", [(), ("--demo",)], ids=["live", "demo"])
 def test_q_ends_console_tui_and_its_intake_process(ros_env, args):
-    intake, others, code = _run_and_quit(ros_env, *args)
+    intake, others, code = _run_and_quit(ros_env, *args, others_expected=4 if args else 0)
     assert code == 0
     assert not any(pid_alive(pid) for pid in intake | others), "a child of console-tui outlived it"
     if args:

@@ -108,6 +108,8 @@ def test_the_process_ends_when_the_app_ends_however_it_ends(how):
         from console_tui.sources.intake_process.parent import ProcessSource
         source = ProcessSource(IntakeQueue(), "synthetic", args=["--rate", "1000"])
         source.start()
+        while source.pid is None:
+            time.sleep(0.01)
         print(source.pid, flush=True)
         sys.stdin.readline()
         if {how!r} == "exit":

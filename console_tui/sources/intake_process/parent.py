@@ -56,6 +56,7 @@ class ProcessSource:
         self.status = SourceStatus(topic=topic or "", origin=origin, path="starting")
         self.process: subprocess.Popen | None = None
         self._child_status = self.status
+        self._lock = threading.Lock()
         self._stopping = False
         self._reader: threading.Thread | None = None
         self._stderr_tail: deque[str] = deque(maxlen=20)
@@ -66,30 +67,28 @@ class ProcessSource:
         return self.process.pid if self.process is not None else None
 
     def start(self) -> None:
-        command = [sys.executable, "-m", MODULE, self.kind, *self.args]
-        if self.topic:
-            command += ["--topic", self.topic]
-        if threading.current_thread() is threading.main_thread():
-            # PR_SET_PDEATHSIG fires when the starting *thread* ends: only the main thread
-            # lives as long as the app. (The closed stdin ends the child in any case.)
-            command += ["--parent", str(os.getpid())]
-        self.process = subprocess.Popen(
-            command,
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            env=self.env,
-        )
-        self._reader = threading.Thread(target=self._read, name="console-tui-intake-pipe", daemon=True)
+        """Start the intake process, from a thread of its own: starting a process stalls the
+        caller until the new process runs (a second and more on a busy machine), and the
+        caller is the app's event loop."""
+        self._reader = threading.Thread(target=self._run, name="console-tui-intake-pipe", daemon=True)
         self._reader.start()
-        self._stderr_reader = threading.Thread(target=self._read_stderr, name="console-tui-intake-err", daemon=True)
-        self._stderr_reader.start()
 
     def stop(self, timeout: float = STOP_TIMEOUT_S) -> None:
-        process = self.process
-        if process is None or self._stopping:
-            return
-        self._stopping = True
+        with self._lock:
+            if self._stopping:
+                return
+            self._stopping = True
+            process = self.process
+        if process is not None:
+            self._end(process, timeout)
+        if self._reader is not None:
+            self._reader.join(timeout + 1.0)
+        if self._stderr_reader is not None:
+            self._stderr_reader.join(1.0)
+
+    @staticmethod
+    def _end(process: subprocess.Popen, timeout: float) -> None:
+        """Close the process's stdin (it ends cleanly on that), and kill it after ``timeout``."""
         try:
             if process.stdin is not None:
                 process.stdin.close()
@@ -100,15 +99,34 @@ class ProcessSource:
         except subprocess.TimeoutExpired:
             process.kill()
             process.wait()
-        for thread in (self._reader, self._stderr_reader):
-            if thread is not None:
-                thread.join(1.0)
 
     # -- the reading thread ------------------------------------------------------------------
 
-    def _read(self) -> None:
-        process = self.process
-        assert process is not None and process.stdout is not None
+    def _run(self) -> None:
+        command = [sys.executable, "-m", MODULE, self.kind, *self.args]
+        if self.topic:
+            command += ["--topic", self.topic]
+        # PR_SET_PDEATHSIG fires when the thread that started the process ends: this one,
+        # which reads the process until it ends. (A closed stdin ends it in any case.)
+        command += ["--parent", str(os.getpid())]
+        try:
+            process = subprocess.Popen(
+                command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=self.env
+            )
+        except OSError as error:
+            self.status = replace(self.status, problem=f"the intake process could not start: {error}", running=False)
+            return
+        with self._lock:
+            self.process = process
+            stopping = self._stopping
+        self._stderr_reader = threading.Thread(target=self._read_stderr, name="console-tui-intake-err", daemon=True)
+        self._stderr_reader.start()
+        if stopping:  # stop() came while the process was starting
+            self._end(process, STOP_TIMEOUT_S)
+        self._read(process)
+
+    def _read(self, process: subprocess.Popen) -> None:
+        assert process.stdout is not None
         unpacker = BatchUnpacker()
         problem = ""
         try:
