@@ -34,6 +34,18 @@ def machine_line() -> str:
     )
 
 
+def ros_line(env: dict[str, str]) -> str:
+    """Which rclpy and RMW a ROS benchmark ran with: ``rclpy 9.1.2, RMW rmw_fastrtps_cpp (default)``."""
+    from importlib.metadata import version
+
+    return f"rclpy {version('rclpy')}, RMW {env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp (default)')}"
+
+
+def ros_header(title: str, env: dict[str, str], details: str) -> list[str]:
+    """The lines a ROS benchmark's report starts with: its title, the machine, rclpy and RMW, and ``details``."""
+    return [f"## {title}", "", machine_line(), f"{ros_line(env)}; {details}"]
+
+
 def table(headers: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
     """A Markdown table; numbers right-aligned."""
     cells = [[str(cell) for cell in row] for row in rows]

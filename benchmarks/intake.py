@@ -53,7 +53,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
 from _probe import process_cpu
-from _report import machine_line, table, verdict
+from _report import ros_header, table, verdict
 
 TOPIC = "/console_tui_bench_log"
 QUEUE_DEPTH = 10_000
@@ -153,7 +153,7 @@ def subscriber_qos():
     )
 
 
-def run_publisher(index: int) -> None:
+def run_publisher(index: int, topic: str = TOPIC) -> None:
     import rclpy
     from rcl_interfaces.msg import Log
     from rclpy.node import Node
@@ -161,7 +161,7 @@ def run_publisher(index: int) -> None:
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node(f"bench_publisher_{index}")
-    publisher = node.create_publisher(Log, TOPIC, rosout_qos())
+    publisher = node.create_publisher(Log, topic, rosout_qos())
     pool = message_pool(index)
     mask = len(pool) - 1
     publish = publisher.publish
@@ -433,7 +433,7 @@ def run_intake_events_executor() -> None:
     say(event="stopped", seconds=time.monotonic() - began)
 
 
-def run_reference_subscriber(kind: str) -> None:
+def run_reference_subscriber(kind: str, topic: str = TOPIC) -> None:
     import rclpy
     from rcl_interfaces.msg import Log
     from rclpy.node import Node
@@ -442,7 +442,7 @@ def run_reference_subscriber(kind: str) -> None:
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node(f"bench_{kind.replace('-', '_')}")
     counter = Counter()
-    subscription = node.create_subscription(Log, TOPIC, counter, subscriber_qos(), raw=kind == "raw-ee")
+    subscription = node.create_subscription(Log, topic, counter, subscriber_qos(), raw=kind == "raw-ee")
     say(event="ready")
     if kind == "typed-spin":
         spinner = threading.Thread(target=_spin_until_shutdown, args=(node,), daemon=True)
@@ -791,10 +791,11 @@ def main() -> None:
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
+    parser.add_argument("--topic", default=TOPIC, help=argparse.SUPPRESS)  # for benchmarks/rosout.py
     args = parser.parse_args()
 
     if args.role == "publisher":
-        return run_publisher(args.index)
+        return run_publisher(args.index, args.topic)
     if args.role == "subscriber":
         if args.kind in APP_KINDS:
             return run_app_subscriber(args.kind)
@@ -802,7 +803,7 @@ def main() -> None:
             return run_intake_subscriber(args.kind)
         if args.kind == "intake-ee":
             return run_intake_events_executor()
-        return run_reference_subscriber(args.kind)
+        return run_reference_subscriber(args.kind, args.topic)
 
     sustained = args.sustained is not None
     args.publishers = args.publishers or ([1] if sustained else [1, 4])
@@ -813,16 +814,12 @@ def main() -> None:
     env.pop("ROS_LOCALHOST_ONLY", None)
     if args.udp:
         env["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
-    from importlib.metadata import version
-
-    header = [
-        "## Intake benchmark (benchmarks/intake.py)",
-        "",
-        machine_line(),
-        f"rclpy {version('rclpy')}, RMW {env.get('RMW_IMPLEMENTATION', 'rmw_fastrtps_cpp (default)')}, "
+    header = ros_header(
+        "Intake benchmark (benchmarks/intake.py)",
+        env,
         f"transport {'UDPv4' if args.udp else 'Fast DDS defaults (shared memory)'}; "
         f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized.",
-    ]
+    )
     print("\n".join(header), file=sys.stderr, flush=True)
     started = time.monotonic()
     rows = measure(args, env)

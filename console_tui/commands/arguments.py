@@ -81,6 +81,7 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
     from ..model.rules.query import QueryError, caret_line, parse_query
     from ..model.rules.rule import RuleError
     from ..model.rules.rulesfile import last_rules_path, load_rules
+    from ..model.text import one_line
 
     args.query_entries = ()
     args.rule_set = None
@@ -88,7 +89,7 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
         try:
             args.query_entries = parse_query(args.query, utc=args.utc)
         except QueryError as error:
-            parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(args.query, error)}")
+            parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(one_line(args.query), error)}")
     if args.rules:
         path = args.rules
         if path == "last":
@@ -98,7 +99,7 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
         try:
             args.rule_set = load_rules(path)
         except RuleError as error:
-            parser.error(f"--rules: {error.message}")
+            parser.error(f"--rules: {one_line(error.message)}")
 
 
 def add_ros_version_arguments(parser: argparse.ArgumentParser) -> None:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import textwrap
 import time
 from collections.abc import Sequence
 from datetime import datetime
@@ -36,7 +37,7 @@ DEFAULT_TOP = 10
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="console-tui clean",
-        description=(
+        description=textwrap.fill(
             "rosclean for ROS 2 and ROS 1: check the size of the ROS log directory "
             "($ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log) and purge old runs. A run is one "
             "entry of the directory: a ROS 1 run, a ros2 launch directory, a console-tui rosout "
@@ -57,7 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
     purge = commands.add_parser(
         "purge",
         help="remove runs: all, --older-than AGE, or the oldest down to --keep-size SIZE",
-        description=(
+        description=textwrap.fill(
             "Remove runs from the ROS log directory: all of them, or those last written before "
             "--older-than, and/or the oldest ones until what is left fits in --keep-size. Lists what "
             "it will remove and asks first, unless --yes."

@@ -142,6 +142,11 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: The longest wait, timeout or temporary level: about 11 days (``inf`` and the like overflow
+#: the system's timers, and a waiter that never gives up is no timeout).
+MAX_SECONDS = 1_000_000
+
+
 def _seconds(text: str) -> float:
     try:
         value = float(text)
@@ -149,6 +154,8 @@ def _seconds(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
     if not value >= 0:
         raise argparse.ArgumentTypeError(f"must be 0 or more: {text!r}")
+    if not value <= MAX_SECONDS:  # inf too
+        raise argparse.ArgumentTypeError(f"must be at most {MAX_SECONDS:,} seconds: {text!r}")
     return value
 
 

@@ -16,21 +16,23 @@ import argparse
 import os
 import signal
 import sys
+import textwrap
 import threading
 import time
 from collections.abc import Iterable, Sequence
 from typing import BinaryIO, cast
 
-from ..model.formats.console_line import ConsoleLine, TemplateError, json_text
+from ..model.formats import FormatError
+from ..model.formats.print_format import PrintFormat, TemplateError, json_text
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
 from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
 from ..model.text import one_line
-from ..sources.files import LogFile, TextLogFile, load_records, merge_by_time, open_files
+from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_live
-from .arguments import add_log_format_argument, add_ros_version_arguments, check_rule_arguments
+from .arguments import add_last_argument, add_log_format_argument, add_ros_version_arguments, check_rule_arguments
 
 EXIT_OK = 0
 EXIT_FILES = 1
@@ -43,26 +45,38 @@ FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
 LOSS_REPORT_S = 5.0
 
 
+EPILOG = f"""--format tokens, mixed as you like (\\n and \\t are decoded):
+  ROS 2 (RCUTILS_CONSOLE_OUTPUT_FORMAT): {{severity}} {{name}} {{message}} {{time}}
+      {{time_as_nanoseconds}} {{date_time_with_ms}} {{file_name}} {{function_name}} {{line_number}}
+  ROS 1 (ROSCONSOLE_FORMAT): ${{severity}} ${{time}} ${{time:%H:%M:%S}} ${{walltime}} ${{node}}
+      ${{logger}} ${{message}} ${{file}} ${{function}} ${{line}}
+
+exit status:
+  {EXIT_OK}  done, stopped by Ctrl-C, or the pipe closed
+  {EXIT_FILES}  a FILE could not be read
+  {EXIT_USAGE}  bad command line, or no ROS for the live stream"""
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="console-tui tail",
-        description=(
+        description=textwrap.fill(
             "Print log messages on standard output, filtered with the app's query language and rule "
             "files: the live stream of ROS 2 or ROS 1 (without FILEs: /rosout_agg when something publishes "
             "it, else /rosout), "
             "or log files and recordings merged by time, or both (--live). Runs until Ctrl-C when live or "
             "following; a closed pipe (| head) ends it quietly."
         ),
-        epilog=(
-            "--format takes ROS 2's RCUTILS_CONSOLE_OUTPUT_FORMAT tokens {severity} {name} {message} {time} "
-            "{time_as_nanoseconds} {date_time_with_ms} {file_name} {function_name} {line_number} and ROS 1's "
-            "ROSCONSOLE_FORMAT tokens ${severity} ${time} ${time:%%H:%%M:%%S} ${walltime} ${node} ${logger} "
-            "${message} ${file} ${function} ${line}, mixed as you like; \\n and \\t are decoded. "
-            f"exit status: {EXIT_OK} done (or stopped by Ctrl-C, or the pipe closed); {EXIT_FILES} a FILE could "
-            f"not be read; {EXIT_USAGE} bad command line, or ROS is not available for the live stream"
-        ),
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("files", nargs="*", metavar="FILE", help="log files or recordings (any format the app opens)")
+    parser.add_argument(
+        "files",
+        nargs="*",
+        metavar="FILE",
+        help="log files, recordings, or folders of them (any format the app opens; a folder: every log in it)",
+    )
+    add_last_argument(parser)
     parser.add_argument("--live", action="store_true", help="with FILEs: the live stream too, after them")
     parser.add_argument(
         "-f", "--follow", action="store_true", help="keep reading text FILEs as they grow (and when rotated)"
@@ -103,7 +117,7 @@ class PipeClosed(Exception):
 class Printer:
     """Writes filtered records to a binary stream, one batch at a time, flushed."""
 
-    def __init__(self, stream: BinaryIO, line: ConsoleLine | None) -> None:
+    def __init__(self, stream: BinaryIO, line: PrintFormat | None) -> None:
         self.stream = stream
         self.line = line
         self.printed = 0
@@ -139,14 +153,19 @@ def main(argv: Sequence[str]) -> int:
     parser = build_parser()
     args = parser.parse_args(list(argv))
     check_rule_arguments(parser, args)
+    if args.last:
+        try:
+            args.files = [*args.files, *(str(path) for path in latest_run())]
+        except FormatError as error:
+            parser.error(f"--last: {one_line(str(error))}")
     if args.follow and not args.files:
         parser.error("--follow needs FILEs to follow (the live stream is followed anyway)")
     rules = (args.rule_set or RuleSet()).with_query(args.query_entries)
-    line: ConsoleLine | None = None
+    line: PrintFormat | None = None
     if not args.json:
         template = args.format if args.format is not None else (os.environ.get(FORMAT_VARIABLE) or None)
         try:
-            line = ConsoleLine(template, utc=args.utc, color=use_color(args.color, sys.stdout, os.environ))
+            line = PrintFormat(template, utc=args.utc, color=use_color(args.color, sys.stdout, os.environ))
         except TemplateError as error:
             parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
     stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))
@@ -201,8 +220,9 @@ class _Run:
 
     def files(self, args: argparse.Namespace) -> list[FollowedFile]:
         """Print the files merged by time; the text files to go on following, if asked."""
-        files, failures = open_files(args.files, log_format=args.log_format)
-        for problem in failures:
+        opened = open_logs(args.files, log_format=args.log_format)
+        files = opened.files
+        for problem in opened.failures:
             _complain(str(problem))
             self.status = EXIT_FILES
         followed: list[FollowedFile] = []

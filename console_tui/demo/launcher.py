@@ -9,7 +9,7 @@ import threading
 import time
 
 from ..sources.status import SourceStatus
-from .nodes import DEMO_NODES
+from .behaviours import DEMO_NODES
 
 #: The demo stays on this machine: discovery only over loopback.
 DEMO_ENVIRONMENT = {"ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
@@ -61,17 +61,27 @@ class DemoNodes:
         with self._lock:
             self._stopping = True
             processes, self.processes = self.processes, []
-        for process in processes:
-            if process.stdin is not None:
-                try:
-                    process.stdin.close()
-                except OSError:
-                    pass
-        deadline = time.monotonic() + timeout
-        for process in processes:
-            try:
-                process.wait(max(deadline - time.monotonic(), 0.0))
-            except subprocess.TimeoutExpired:
-                process.kill()
-        for process in processes:
-            process.wait()
+        stop_children(processes, timeout)
+
+
+def stop_children(processes: list[subprocess.Popen], timeout: float) -> None:
+    """End demo processes that stop when their stdin closes: close every stdin, then wait
+    for them, ``timeout`` seconds in all, and kill those still running."""
+    for process in processes:
+        close_stdin(process)
+    deadline = time.monotonic() + timeout
+    for process in processes:
+        try:
+            process.wait(max(deadline - time.monotonic(), 0.0))
+        except subprocess.TimeoutExpired:
+            process.kill()
+    for process in processes:
+        process.wait()
+
+
+def close_stdin(process: subprocess.Popen) -> None:
+    if process.stdin is not None:
+        try:
+            process.stdin.close()
+        except OSError:
+            pass

@@ -12,6 +12,11 @@ kept record is a row (no index is built). Otherwise an index of the seqs that pa
 Each rule's match mask is kept per store chunk, so counts per rule are cheap, a rule is never
 tested twice on a record, and switching entries on and off, inverting them or moving them
 between exclude and highlight only recombines masks.
+
+No rule can freeze the caller: each test of a span runs under a time limit (``time_limit``),
+and a rule that runs past it (a catastrophic regex) is switched off, not applied: the view
+goes on under the rules without it and lists it in ``switched_off`` for the caller to tell.
+``stop_filtering()`` switches off the rules still being applied (Esc in the app).
 """
 
 from __future__ import annotations
@@ -24,21 +29,36 @@ from time import perf_counter
 
 from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
+from .rules.time_limit import MatchTimeout, time_limit
 from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
+from .text import plural
 
 #: Rows filtered synchronously when the rules change (more than a screen).
 FIRST_SCREEN_ROWS = 200
 #: Longest the synchronous part of ``set_rules`` keeps looking for the first screen.
 FIRST_SCREEN_BUDGET_S = 0.03
-_MIN_PIECE, _START_PIECE = 256, 1024
+_MIN_PIECE, _START_PIECE = 32, 1024
+#: Longest one test of a rule over a span of records may take before the rule counts as too slow.
+RULE_LIMIT_S = 0.25
+
+
+class _TooSlow(Exception):
+    def __init__(self, rule: Rule, rows: int, seconds: float) -> None:
+        super().__init__(rule)
+        self.rule, self.rows, self.seconds = rule, rows, seconds
 
 
 class LogView:
     """Rows of the table over a ``LogStore`` under a ``RuleSet``."""
 
-    def __init__(self, store: LogStore, rules: RuleSet | None = None) -> None:
+    def __init__(self, store: LogStore, rules: RuleSet | None = None, *, rule_limit_s: float = RULE_LIMIT_S) -> None:
         self.store = store
         self.rules = RuleSet()
+        self.rule_limit_s = rule_limit_s
+        #: Rules switched off because they were too slow, with why (taken by ``take_switched_off``).
+        self.switched_off: list[tuple[Rule, str]] = []
+        #: Active rules whose answers over the kept records are not complete yet.
+        self._unfinished: set[Rule] = set()
         self._tests: dict[Rule, SpanTest] = {}
         #: chunk base seq -> rule -> [first offset covered, mask bytes from there]
         self._masks: dict[int, dict[Rule, list]] = {}
@@ -78,10 +98,42 @@ class LogView:
         budget_s: float = FIRST_SCREEN_BUDGET_S,
     ) -> None:
         """Use new rules: the newest ``first_screen`` rows at once (within ``budget_s``),
-        the rest by ``refilter_step``."""
+        the rest by ``refilter_step``. A rule too slow to test is switched off (``switched_off``)."""
+        while True:
+            try:
+                self._set_rules(rules, first_screen, budget_s)
+                return
+            except _TooSlow as slow:
+                rules = self._switch_off(slow)
+
+    def _switch_off(self, slow: _TooSlow) -> RuleSet:
+        """The rules in force without the rule that was too slow (noted in ``switched_off``)."""
+        rows = plural(slow.rows, "message")
+        self.switched_off.append((slow.rule, f"too slow: testing {rows} took over {slow.seconds:g} s"))
+        self._unfinished.discard(slow.rule)
+        return self.rules.without_rules({slow.rule})
+
+    def take_switched_off(self) -> list[tuple[Rule, str]]:
+        """Rules switched off since the last call, with why."""
+        taken, self.switched_off = self.switched_off, []
+        return taken
+
+    def stop_filtering(self) -> list[Rule]:
+        """Switch off the rules still being applied (the rules before them stay); returns them."""
+        unfinished = [rule for rule in self.rules.active_rules() if rule in self._unfinished]
+        if unfinished and self.refiltering:
+            self.set_rules(self.rules.without_rules(set(unfinished)))
+            return unfinished
+        return []
+
+    def _set_rules(self, rules: RuleSet, first_screen: int, budget_s: float) -> None:
         store = self.store
         self.rules = rules
         active = rules.active_rules()
+        fresh = [rule for rule in active if rule not in self._tests]
+        if fresh:
+            self._piece = min(self._piece, _START_PIECE)  # a new rule's cost is not known yet
+        self._unfinished = {rule for rule in active if rule in self._unfinished} | set(fresh)
         self._tests = {rule: self._tests.get(rule) or rule.compile(store) for rule in active}
         known = {entry.rule for entry in rules.entries}
         for per_chunk in self._masks.values():
@@ -94,6 +146,8 @@ class LogView:
             deadline = perf_counter() + budget_s
             while self.refiltering and len(self._front) < first_screen and perf_counter() < deadline:
                 self._refilter_piece(self._piece)
+        if not self.refiltering:
+            self._unfinished.clear()
 
     def rebuild(self) -> None:
         """Re-index from scratch (after the store was cleared)."""
@@ -112,6 +166,16 @@ class LogView:
 
     def refilter_step(self, budget_s: float = 0.008) -> bool:
         """Filter older records, newest first, for about ``budget_s``; True when all are done."""
+        try:
+            done = self._refilter_step(budget_s)
+        except _TooSlow as slow:
+            self.set_rules(self._switch_off(slow))
+            done = not self.refiltering
+        if done:
+            self._unfinished.clear()
+        return done
+
+    def _refilter_step(self, budget_s: float) -> bool:
         if not self.refiltering:
             return True
         self._trim()
@@ -142,6 +206,12 @@ class LogView:
 
     def update(self) -> None:
         """Take in records appended (and forget those evicted) since the last call."""
+        try:
+            self._update()
+        except _TooSlow as slow:
+            self.set_rules(self._switch_off(slow))
+
+    def _update(self) -> None:
         if not self._indexed:
             return
         store = self.store
@@ -167,19 +237,26 @@ class LogView:
         """The rule's matches over ``chunk[lo:hi]``, testing only records not tested before."""
         per_chunk = self._masks.setdefault(base, {})
         cached = per_chunk.get(rule)
-        test = self._tests[rule]
         if cached is None:
-            mask = test(chunk, lo, hi)
+            mask = self._test(rule, chunk, lo, hi)
             per_chunk[rule] = [lo, bytearray(mask)]
             return mask
         start, mask = cached
         if lo < start:
-            mask[0:0] = test(chunk, lo, start)
+            mask[0:0] = self._test(rule, chunk, lo, start)
             cached[0] = start = lo
         end = start + len(mask)
         if hi > end:
-            mask.extend(test(chunk, end, hi))
+            mask.extend(self._test(rule, chunk, end, hi))
         return bytes(mask[lo - start : hi - start])
+
+    def _test(self, rule: Rule, chunk: Chunk, lo: int, hi: int) -> bytes:
+        """The rule's test of ``chunk[lo:hi]``, abandoned past ``rule_limit_s``."""
+        try:
+            with time_limit(self.rule_limit_s):
+                return self._tests[rule](chunk, lo, hi)
+        except MatchTimeout:
+            raise _TooSlow(rule, hi - lo, self.rule_limit_s) from None
 
     def match_counts(self) -> list[int | None]:
         """For each entry of the rules: kept records its rule matches (inverted: does not

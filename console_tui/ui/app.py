@@ -15,9 +15,11 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
+from textual import events
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding
 from textual.containers import Horizontal
+from textual.notifications import SeverityLevel
 from textual.screen import Screen
 from textual.widgets import Footer
 
@@ -28,11 +30,15 @@ from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
 from ..model.store import LogStore
+from ..model.text import multi_line, one_line
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.status import SourceStatus
+from . import textual_fixes
 from .commands import ConsoleCommands
+from .exit_signals import ExitSignals
 from .file_actions import FileActions
+from .focus import focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .keys import binding_ids, keymap_path, load_keymap
 from .pane_actions import PaneActions
@@ -50,6 +56,8 @@ from .widgets.table_columns import COLUMNS
 
 if TYPE_CHECKING:
     from ..sources.logger_control import LoggerControl
+
+textual_fixes.apply()
 
 DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -90,6 +98,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         Binding("o", "open", "Open", id="console.open"),
         Binding("s", "save", "Save", id="console.save"),
         Binding("x", "cancel_load", "Cancel load", id="console.cancel_load"),
+        Binding("escape", "stop_filtering", "Stop a long filtering", show=False, id="console.stop_filtering"),
         Binding("exclamation_mark", "problems", "Problems", show=False, id="console.problems"),
         Binding("slash", "query", "Query", id="console.query"),
         Binding("r", "toggle_rules", "Rules", id="console.rules"),
@@ -158,9 +167,30 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
+        self.exit_signals = ExitSignals(self._exit_on_signal)
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
+
+    # -- text from outside: never markup, never raw ----------------------------------------------
+
+    def notify(
+        self,
+        message: str,
+        *,
+        title: str = "",
+        severity: SeverityLevel = "information",
+        timeout: float | None = None,
+        markup: bool = False,
+    ) -> None:
+        """Every notification (ours, the screens', Textual's) as plain, inert text: messages
+        name files, nodes and errors from outside, which may hold markup or escapes."""
+        super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
+
+    def copy_to_clipboard(self, text: str) -> None:
+        """Copy with control characters made visible (newlines and tabs kept): pasted into a
+        shell, a copied message can never carry escape sequences or a carriage return."""
+        super().copy_to_clipboard(multi_line(text))
 
     # -- layout -------------------------------------------------------------------------------
 
@@ -175,11 +205,12 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         yield Footer()
 
     def on_mount(self) -> None:
+        self.exit_signals.install()
         self.collection_policy.start()
         if self._keymap_problems:
             listed = "\n".join(self._keymap_problems[:5])
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
-        self.table.focus()
+        focus_now(self.table)
         self.set_interval(self.drain_interval, self.drain_intake)
         self.apply_initial_rules(self._initial_rules, self._initial_query)
         self.update_status()
@@ -209,10 +240,21 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
                 self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
 
     def on_unmount(self) -> None:
+        self.exit_signals.remove()
         self.stop_sources()
         if self.remember_rules_at_exit:
             self.remember_rules()
         self.cancel_loads()
+
+    def _exit_on_signal(self, signum: int) -> None:
+        """SIGTERM or SIGHUP (the SSH session dropped): put temporary logger levels back
+        first, whatever becomes of the terminal, then exit as ``q`` does."""
+        if self.logger_control is not None:
+            try:
+                self.logger_control.close()
+            except Exception:
+                pass
+        self.exit(return_code=128 + signum)
 
     def stop_sources(self) -> None:
         """Stop every source, all at once: each may wait a moment for a process of its own
@@ -254,6 +296,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
             for batch in batches:
                 added += len(self.store.extend(batch))
             self.view.update()
+        if self.view.switched_off:
+            self.rules_changed()
         self._arrivals.append((self.clock(), added))
         return added
 
@@ -289,9 +333,23 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
 
+    async def on_event(self, event: events.Event) -> None:
+        # While the table has the focus, a key's binding runs at once, so that the keys typed
+        # behind it find the focus where it put it (see focus.py).
+        if (
+            isinstance(event, events.Key)
+            and not event.is_forwarded
+            and self.focused is self.table
+            and await run_bindings_now(self, event)
+        ):
+            return
+        await super().on_event(event)
+
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         if action == "cancel_load":
             return self.loading
+        if action == "stop_filtering":
+            return self.view.refiltering
         return True
 
     # -- the table --------------------------------------------------------------------------------

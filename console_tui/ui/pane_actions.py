@@ -9,6 +9,7 @@ from __future__ import annotations
 from textual.app import App
 
 from ..model.store import LogStore
+from .focus import focus_now
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
 from .widgets.side_pane import SidePane
@@ -34,4 +35,4 @@ class PaneActions(App[None]):
             self.logger_pane.open_for_logger(self.store.get(seq).node)
 
     def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
-        self.table.focus()
+        focus_now(self.table)

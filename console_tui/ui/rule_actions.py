@@ -20,6 +20,7 @@ from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
 from ..model.store import LogStore
 from ..model.view import LogView
+from .focus import focus_now
 from .screens.files import PathScreen
 from .screens.quick_rule import QuickRuleScreen
 from .screens.rule_editor import RuleEditor
@@ -57,16 +58,32 @@ class RuleActions(App[None]):
 
     def apply_rules(self, rules: RuleSet) -> None:
         """Put ``rules`` in force: the newest screenful at once, the rest in the background."""
-        table = self.table
-        with table.keeping_position():
+        with self.table.keeping_position():
             self.view.set_rules(rules)
-        self.rules = rules
+        self.rules_changed()
+
+    def rules_changed(self) -> None:
+        """Show the view's rules as the rules in force (the view switches off a rule too slow
+        to test, and says which)."""
+        table = self.table
+        rules = self.rules = self.view.rules
         table.decoration_of = self.view.decoration_of if rules.highlighting else None
         table.restyle()
+        for rule, why in self.view.take_switched_off():
+            self.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
         if self.view.refiltering:
             self._filter_in_background()
         self.show_rules()
         self.update_status()
+
+    def action_stop_filtering(self) -> None:
+        """Esc while rules are being applied: switch off the rules not applied yet."""
+        with self.table.keeping_position():
+            stopped = self.view.stop_filtering()
+        if stopped:
+            described = "; ".join(rule.describe() for rule in stopped)
+            self.notify(f"Filtering stopped; switched off (r shows the rules): {described}", timeout=8)
+            self.rules_changed()
 
     @work(exclusive=True, group="refilter")
     async def _filter_in_background(self) -> None:
@@ -77,6 +94,9 @@ class RuleActions(App[None]):
         while True:
             with self.table.keeping_position():
                 done = self.view.refilter_step(REFILTER_BUDGET_S)
+            if self.view.switched_off:
+                self.rules_changed()  # filters again under the rules left, in a new worker
+                return
             if done:
                 break
             if self.clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
@@ -140,7 +160,7 @@ class RuleActions(App[None]):
         self.apply_rules(self.rules.with_query(message.entries))
 
     def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
-        self.table.focus()
+        focus_now(self.table)
 
     def action_toggle_rules(self) -> None:
         self.show_rules()

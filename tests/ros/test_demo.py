@@ -49,7 +49,7 @@ async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
             await until(pilot, lambda: counter_levels() == {20, 30, 40, 50}, timeout=30, what="a FATAL count")
             fatal = next(r for r in app.store if r.node == "count_and_log" and r.level == 50)
             assert fatal.msg.endswith("is divisible by 20") and fatal.source in ("/rosout", "/rosout_agg")
-            assert all(r.file.endswith("nodes.py") and r.line > 0 for r in app.store)
+            assert all(r.file.endswith("behaviours.py") and r.line > 0 for r in app.store)
 
             await pilot.press("G")
             await pilot.pause(0.3)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import re
 import time
 from collections.abc import Callable
 
@@ -50,6 +51,34 @@ def screen_text(app) -> str:
     return console.export_text(styles=False)
 
 
+def terminal_output(app) -> str:
+    """What the app would write to the terminal to draw the screen now (escape sequences for
+    colours and cursor moves included): the headless driver writes nothing, so this renders
+    the same update the real driver is given."""
+    width, height = app.size
+    console = Console(
+        width=width,
+        height=height,
+        file=io.StringIO(),
+        force_terminal=True,
+        color_system="truecolor",
+        legacy_windows=False,
+    )
+    update = app.screen._compositor.render_update(full=True, screen_stack=app._background_screens)
+    return update.render_segments(console)
+
+
+#: The sequences Textual itself writes: CSI (colours, cursor moves) and nothing else.
+_OWN_SEQUENCES = re.compile(r"\x1b\[[0-?]*[ -/]*[@-~]")
+
+
+def foreign_controls(output: str) -> list[str]:
+    """Control characters in ``output`` that are not part of Textual's own CSI sequences
+    (line ends aside): an OSC, a bell, any ESC from the content."""
+    rest = _OWN_SEQUENCES.sub("", output).replace("\r", "").replace("\n", "")
+    return sorted({repr(c) for c in rest if ord(c) < 0x20 or 0x7F <= ord(c) <= 0x9F})
+
+
 def style_at(app, x: int, y: int):
     """The Rich style of the terminal cell at column ``x``, row ``y`` (colours, reverse...)."""
     return app.screen.get_style_at(x, y)
@@ -88,3 +117,14 @@ async def type_text(pilot, text: str) -> None:
 
 def _key_name(char: str) -> str:
     return _character_to_key(char)
+
+
+def type_ahead(app, text: str = "", keys: tuple[str, ...] = ()) -> None:
+    """Queue ``keys`` (names) and then ``text`` all at once, as the terminal driver does when
+    keys arrive while the app is busy: none is handled before the next is queued."""
+    from textual import events
+
+    for key in keys:
+        app.post_message(events.Key(key, None))
+    for char in text:
+        app.post_message(events.Key(_key_name(char), char))

@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from console_tui.commands.tail import use_color
-from console_tui.model.formats.console_line import ConsoleLine
+from console_tui.model.formats.print_format import PrintFormat
 from console_tui.model.formats.rosout_log import ROS2_HEADER, rosout_log_text
 from console_tui.model.formats.rotating_file import RotatingFile
 from console_tui.model.record import LogRecord
@@ -110,20 +110,32 @@ def test_json_lines_are_the_apps_jsonl(tmp_path):
     }
 
 
-TERMINAL_ACTIVE = re.compile(rb"[\x00-\x08\x0b-\x1f\x7f]|\xc2[\x80-\x9f]|\xe2\x80[\xaa-\xae]|\xe2\x81[\xa6-\xa9]")
+#: Bytes a terminal acts on, or characters that hide: C0 but newline and tab, DEL, C1, bidi,
+#: zero-width space, BOM, tags.
+TERMINAL_ACTIVE = re.compile(
+    rb"[\x00-\x08\x0b-\x1f\x7f]|\xc2[\x80-\x9f]|\xe2\x80[\x8b\xaa-\xae]|\xe2\x81[\xa6-\xa9]|\xef\xbb\xbf|\xf3\xa0"
+)
 
 
 def test_hostile_messages_are_printed_inert(tmp_path):
     records = hostile_records()
     records.append(
-        LogRecord(1_800_000_000_000_000_000, 20, "evil\x1b]0;title\x07", "\x9b31m\u202eevil\x7f", "\x1b[2J", "f", 1)
+        LogRecord(
+            1_800_000_000_000_000_000,
+            20,
+            "evil\x1b]0;title\x07",
+            "\x9b31m\u202eevil\x7f\u200b\ufeff\U000e0041",
+            "\x1b[2J",
+            "f",
+            1,
+        )
     )
     path = str(write_log(tmp_path / "rosout.log", records))
     for args in ((), ("--json",), ("--format", "${node} ${file} ${function}: ${message}")):
         out = tail(path, *args).stdout
         assert TERMINAL_ACTIVE.search(out) is None, (args, TERMINAL_ACTIVE.search(out))
     text = tail(path).stdout.decode()
-    assert "[evil␛]0;title␇]: <U+009B>31m<U+202E>evil␡" in text
+    assert "[evil␛]0;title␇]: <U+009B>31m<U+202E>evil␡<U+200B><U+FEFF><U+E0041>" in text
     assert "␛[31mcolour␛[0m" in text
     back = [json.loads(line) for line in tail(path, "--json").stdout.decode().splitlines()]
     assert [r["msg"] for r in back] == [r.msg for r in records]  # inert and lossless
@@ -301,6 +313,40 @@ def test_stream_filter_agrees_with_the_view():
 
 
 @pytest.mark.parametrize("template", [None, "${message}", "{message}"])
-def test_console_line_keeps_newlines_and_tabs(template):
-    line = ConsoleLine(template).text(LogRecord(0, 20, "n", "a\tb\r\nc"))
+def test_print_format_keeps_newlines_and_tabs(template):
+    line = PrintFormat(template).text(LogRecord(0, 20, "n", "a\tb\r\nc"))
     assert line.endswith("a\tb\nc")
+
+
+def test_a_folder_with_rotated_files_and_last(tmp_path):
+    run = tmp_path / "log" / "rosout-2026-11-22-10-00-00-42"
+    run.mkdir(parents=True)
+    older = [LogRecord(10**18 + n, 20, "n", f"old {n}") for n in range(3)]
+    newer = [LogRecord(10**18 + n, 20, "n", f"new {n}") for n in range(3, 5)]
+    write_log(run / "rosout.log.1", older)
+    write_log(run / "rosout.log", newer)
+    expected = ["old 0", "old 1", "old 2", "new 3", "new 4"]
+    assert tail(str(run), "--format", "{message}").stdout.decode().splitlines() == expected
+    env = {**ENV, "ROS_LOG_DIR": str(tmp_path / "log")}
+    assert tail("--last", "--format", "{message}", env=env).stdout.decode().splitlines() == expected
+    # Followed: the rotated file is read first, then the newest one is followed.
+    process = subprocess.Popen(
+        [sys.executable, "-m", "console_tui", "tail", "-f", str(run), "--format", "{message}"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        env=ENV,
+    )
+    lines = Lines(process)
+    try:
+        assert lines.take(5) == expected
+        with open(run / "rosout.log", "a") as log:
+            log.write(rosout_log_text(LogRecord(10**18 + 5, 20, "n", "new 5")))
+        assert lines.take(1) == ["new 5"]
+        process.send_signal(signal.SIGINT)
+        assert process.wait(10) == 0
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+    missing = tail("--last", env={**ENV, "ROS_LOG_DIR": str(tmp_path / "none")})
+    assert missing.returncode == 2 and b"--last: no ROS log directory" in missing.stderr

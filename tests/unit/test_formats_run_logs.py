@@ -18,7 +18,7 @@ from console_tui.model.formats import (
     detect_text_format,
     text_formats,
 )
-from console_tui.model.formats.console_lines import process_of_file, ros1_node_of_process
+from console_tui.model.formats.mixed_output import process_of_file, ros1_node_of_process
 from console_tui.sources.files import open_log_file
 
 from support.formats import DATA, read_text

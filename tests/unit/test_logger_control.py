@@ -7,73 +7,21 @@ The ROS 2 control is tested against real nodes in tests/ros/test_ros2_logger_con
 from __future__ import annotations
 
 import threading
-from concurrent.futures import Future
 
 import pytest
 
-from console_tui.model.logger_levels import GraphNode, split_fqn
-from console_tui.sources.futures import done_future, failed_future, then
 from console_tui.sources.logger_control import (
-    GET,
-    SET,
     CallTimedOut,
     ControlClosed,
     LevelRefused,
-    LoggerControl,
     NodeNotFound,
     NodesChanged,
     NoLoggerServices,
     TemporaryEnded,
 )
 
+from support.memory_control import MemoryControl, MemoryNode
 from support.rosproc import wait_until
-
-
-class MemoryNode:
-    def __init__(self, fqn: str, services: bool = True) -> None:
-        self.fqn = fqn
-        self.services = services
-        self.levels: dict[str, int] = {"": 20}
-        #: While set, calls wait for it (a busy node).
-        self.busy: threading.Event | None = None
-
-
-class MemoryControl(LoggerControl):
-    no_services_hint = "give it some"
-
-    def __init__(self, nodes: list[MemoryNode], **kwargs) -> None:
-        super().__init__(**kwargs)
-        self.graph = {node.fqn: node for node in nodes}
-        self.dropped: list[str] = []
-        self.shut = False
-
-    def _open(self) -> None:
-        pass
-
-    def _look(self):
-        return [GraphNode(*split_fqn(fqn), node.services) for fqn, node in self.graph.items()], frozenset()
-
-    def _call_get(self, node, names):
-        return then(self._submit(node, GET, names), lambda levels: {name: levels.get(name, 0) for name in names})
-
-    def _call_set(self, node, levels, *, restore):
-        if any(level % 10 for level in levels.values()):
-            return failed_future(LevelRefused(node, {name: "odd level" for name in levels}))
-        return then(self._submit(node, SET, levels, restore), lambda _: levels)
-
-    def _send(self, call):
-        node = self.graph[call.node]
-        if node.busy is not None:
-            return Future()  # never answers
-        if call.service == SET:
-            node.levels.update(call.request)
-        return done_future(dict(node.levels))
-
-    def _drop(self, call):
-        self.dropped.append(call.node)
-
-    def _shutdown(self) -> None:
-        self.shut = True
 
 
 @pytest.fixture

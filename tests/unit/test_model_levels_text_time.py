@@ -57,6 +57,20 @@ def test_one_line_makes_controls_visible():
     assert "<U+202E>" in out
 
 
+@pytest.mark.parametrize(
+    "char", ["\u200b", "\u2028", "\u2029", "\u2060", "\ufeff", "\u00ad", "\u180e", "\U000e0041", "\u3164"]
+)
+def test_invisible_and_line_breaking_characters_show_as_stand_ins(char):
+    for render in (text.one_line, text.multi_line):
+        out = render(f"a{char}b")
+        assert out == f"a<U+{ord(char):04X}>b" and char not in out
+
+
+def test_joiners_that_text_needs_are_kept():
+    family = "\U0001f469\u200d\U0001f469\u200d\U0001f467 \u0645\u200c\u06cc \u2764\ufe0f"
+    assert text.one_line(family) == family
+
+
 def test_one_line_cuts_before_work():
     assert len(text.one_line("x" * 1_000_000, limit=50)) == 50
 

@@ -9,7 +9,7 @@
 - ``ros1_console``: roscpp and rospy console output (``<node>-N-stdout.log``, captures), read;
 - ``launch_log``: ROS 2 ``launch.log`` and saved ``ros2 launch`` output, read.
 
-``console_lines`` is what the last three share (plain lines, missing times, names from
+``mixed_output`` is what the last three share (plain lines, missing times, names from
 file names); ``detect`` picks a file's format from its first lines.
 
 Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS libraries.

@@ -27,7 +27,7 @@ import re
 from collections.abc import Iterator
 
 from ..record import LogRecord
-from .console_lines import FillCounts, Plain, Start, assemble, decimal_ns, process_of_file, strip_colour
+from .mixed_output import FillCounts, Plain, Start, assemble, decimal_ns, process_of_file, strip_colour
 from .problems import Problems
 from .text_format import TextFormat
 from .textlines import TextLines

@@ -19,7 +19,7 @@ import re
 from collections.abc import Iterator
 
 from ..record import LogRecord
-from .console_lines import (
+from .mixed_output import (
     FillCounts,
     Plain,
     Start,

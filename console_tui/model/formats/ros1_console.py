@@ -24,7 +24,7 @@ from collections.abc import Iterator
 
 from ..record import LogRecord
 from ..text import plural
-from .console_lines import (
+from .mixed_output import (
     FillCounts,
     Plain,
     Start,
@@ -40,7 +40,7 @@ from .textlines import TextLines
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
 _LINE = re.compile(
-    r"\[ ?(?P<level>DEBUG|INFO|WARN|ERROR|FATAL)\] \[(?P<wall>\d+\.\d+)(?:, (?P<sim>-?\d+\.\d+))?\]: ?(?P<msg>.*)\Z",
+    r"\[ ?(?P<level>DEBUG|INFO|WARN|ERROR|FATAL)\] \[(?P<wall>\d{1,20}\.\d{1,9})(?:, (?P<sim>-?\d{1,20}\.\d{1,9}))?\]: ?(?P<msg>.*)\Z",
     re.DOTALL,
 )
 #: Files of captured output, by name: read in this format when no line says otherwise.

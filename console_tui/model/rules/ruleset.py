@@ -96,6 +96,13 @@ class RuleSet:
     def with_highlighted_only(self, highlighted_only: bool) -> RuleSet:
         return replace(self, highlighted_only=highlighted_only)
 
+    def without_rules(self, rules: set[Rule]) -> RuleSet:
+        """The active entries testing any of ``rules`` switched off."""
+        return replace(
+            self,
+            entries=tuple(replace(e, enabled=False) if e.active and e.rule in rules else e for e in self.entries),
+        )
+
     def with_query(self, entries: tuple[Entry, ...]) -> RuleSet:
         """The entries of the previous query replaced by ``entries`` (the query line's)."""
         kept = tuple(entry for entry in self.entries if not entry.from_query)

@@ -64,10 +64,14 @@ def loads_rules(text: str, name: str = "rules") -> RuleSet:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise RulesFileError(f"{name}: not valid TOML: {error}") from None
+    except RecursionError:  # tomllib reads nested arrays and tables recursively
+        raise RulesFileError(f"{name}: not a rules file: arrays or tables nested too deeply") from None
     try:
         return RuleSet.from_dict(data)
     except RuleError as error:
         raise RulesFileError(f"{name}: {error.message}", error.position) from None
+    except RecursionError:
+        raise RulesFileError(f"{name}: not a rules file: values nested too deeply") from None
 
 
 def load_rules(path: str | os.PathLike[str]) -> RuleSet:

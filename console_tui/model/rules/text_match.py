@@ -1,5 +1,13 @@
 """Text to look for in messages, file and function names: a substring or a regex, either case.
 
+The one entry point for matching text a user typed against many strings (rules, the query
+line, quick rules, search): ``TextMatch(text, ignore_case, regex)`` refuses a bad regex with
+a ``RuleError`` (reason and position), and ``match.mask(strings)`` answers one byte per string
+within a time limit, raising ``MatchTimeout`` past it: a catastrophic regex cannot freeze the
+caller (``time_limit``: Python's ``re`` abandoned by a timer signal, on the main thread).
+A caller that tests in pieces (the view) holds ``mask_function()`` and runs each piece
+``with time_limit(...)``.
+
 A regex runs only on strings that hold the plain text every match must contain
 (``required_literal``), and only around it where the pattern allows.
 """
@@ -14,6 +22,12 @@ from itertools import chain, compress, repeat
 from operator import add, contains, sub
 
 from .rule import RuleError, mask_and, mask_not, mask_of_rows
+from .time_limit import MatchTimeout, time_limit
+
+__all__ = ["MATCH_LIMIT_S", "MatchTimeout", "RequiredLiteral", "TextMatch", "required_literal", "time_limit"]
+
+#: How long one test of many strings may run before it is abandoned as too slow.
+MATCH_LIMIT_S = 0.25
 
 
 @dataclass(frozen=True)
@@ -37,9 +51,15 @@ class TextMatch:
             return re.compile(self.text, re.IGNORECASE if self.ignore_case else 0)
         except re.error as error:
             where = f" at position {error.pos}" if error.pos is not None else ""
-            raise RuleError(f"invalid regular expression {self.text!r}: {error.msg}{where}", error.pos) from None
-        except (OverflowError, RecursionError) as error:
-            raise RuleError(f"invalid regular expression {self.text!r}: {error}", None) from None
+            raise RuleError(f"invalid regular expression {self._shown()}: {error.msg}{where}", error.pos) from None
+        except RecursionError:
+            raise RuleError(f"invalid regular expression {self._shown()}: nested too deeply", None) from None
+        except OverflowError as error:
+            raise RuleError(f"invalid regular expression {self._shown()}: {error}", None) from None
+
+    def _shown(self, limit: int = 80) -> str:
+        """The text for a message: quoted, escapes visible (``repr``), cut to ``limit``."""
+        return repr(self.text) if len(self.text) <= limit else repr(self.text[:limit]) + "…"
 
     def predicate(self) -> Callable[[str], bool]:
         """``str -> bool`` (for per-id lookups)."""
@@ -61,6 +81,11 @@ class TextMatch:
             return lambda strings: bytes(map(contains, map(str.casefold, strings), repeat(folded)))
         text = self.text
         return lambda strings: bytes(map(contains, strings, repeat(text)))
+
+    def mask(self, strings: list[str], limit_s: float = MATCH_LIMIT_S) -> bytes:
+        """One byte per string, 1 where it matches; ``MatchTimeout`` after ``limit_s``."""
+        with time_limit(limit_s):
+            return self.mask_function()(strings)
 
     def describe(self) -> str:
         options = [name for name, on in (("regex", self.regex), ("ignore case", self.ignore_case)) if on]
@@ -108,23 +133,31 @@ def required_literal(pattern: re.Pattern[str]) -> RequiredLiteral:
             run = []
         _, lead = parser.SubPattern(parsed.state, items[:best_start]).getwidth()
         _, tail = parser.SubPattern(parsed.state, items[best_start + len(best) :]).getwidth()
-    except Exception:
+        context = _uses_context(items)
+    except Exception:  # a parser internal changed, a pattern nested too deep: no literal
         return RequiredLiteral()
     return RequiredLiteral(
         best,
         lead if lead < _MAX_WIDTH else None,
-        tail if tail < _MAX_WIDTH and not _uses_context(items) else None,
+        tail if tail < _MAX_WIDTH and not context else None,
     )
 
 
-def _uses_context(node: object) -> bool:
-    """Whether a parsed regex holds an op that looks outside the matched text."""
-    if isinstance(node, tuple) and len(node) == 2 and str(node[0]) in _CONTEXT_OPS:
-        return True
-    if isinstance(node, (list, tuple)):
-        return any(map(_uses_context, node))
-    data = getattr(node, "data", None)  # a SubPattern
-    return isinstance(data, list) and _uses_context(data)
+def _uses_context(items: list) -> bool:
+    """Whether a parsed regex holds an op that looks outside the matched text (iterative:
+    a pattern may nest deeper than Python's recursion limit allows)."""
+    stack: list[object] = [items]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, tuple) and len(node) == 2 and str(node[0]) in _CONTEXT_OPS:
+            return True
+        if isinstance(node, (list, tuple)):
+            stack.extend(node)
+            continue
+        data = getattr(node, "data", None)  # a SubPattern
+        if isinstance(data, list):
+            stack.append(data)
+    return False
 
 
 class _RegexMasker:

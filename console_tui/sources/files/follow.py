@@ -2,7 +2,8 @@
 and the new file when one is rotated (renamed and started again) or truncated.
 
 What the file holds when following starts is read in one go by the format's reader, up
-to its last whole line. After that only whole lines are read. A record can span lines
+to its last whole line (after its rotated files, when it was opened with them: only the
+newest file is followed). After that only whole lines are read. A record can span lines
 (multi-line messages), so new lines are read into records when the file has been quiet
 for one look, or when ``HOLD_S`` has passed or ``HOLD_BYTES`` have gathered: a writer
 that writes each record at once (as ``console-tui rosout`` and rcl's log files do) does
@@ -20,6 +21,7 @@ from typing import BinaryIO, cast
 from ...model.formats import Problems, TextFormat, TextLines, read_batches
 from ...model.record import LogRecord
 from .log_file import TextLogFile
+from .rotated import PartsStream
 
 #: Most bytes read in one look at a file.
 READ_BYTES = 1 << 20
@@ -38,6 +40,8 @@ class FollowedFile:
 
     def __init__(self, log_file: TextLogFile) -> None:
         self.path = log_file.path
+        #: Rotated files opened with it (oldest first): read once, before it.
+        self.older = [part for part in log_file.parts if part != log_file.path]
         self.format: TextFormat = log_file.format
         self.source = log_file.source
         self.problems: Problems = log_file.problems
@@ -129,11 +133,17 @@ class FollowedFile:
         if stream is None:
             return
         end = _last_line_end(stream)
-        lines = TextLines(cast(BinaryIO, _Bounded(stream, end)), self.problems)
-        yield from read_batches(stream, self.format, self.source, self.problems, lines=lines)
+        readable = _Bounded(stream, end)
+        older = PartsStream(self.older) if self.older else None
+        lines = TextLines(cast(BinaryIO, _Chain(older, readable) if older else readable), self.problems)
+        try:
+            yield from read_batches(stream, self.format, self.source, self.problems, lines=lines)
+        finally:
+            if older is not None:
+                older.close()
         stream.seek(end)
         self._offset = end
-        self._line = lines.lines_read + 1
+        self._line = readable.newlines + 1
 
 
 class _LinesFrom(TextLines):
@@ -172,6 +182,8 @@ class _Bounded(io.RawIOBase):
     def __init__(self, stream: io.BufferedReader, limit: int) -> None:
         self._stream = stream
         self._left = limit
+        #: Lines read so far.
+        self.newlines = 0
 
     def readable(self) -> bool:
         return True
@@ -181,4 +193,23 @@ class _Bounded(io.RawIOBase):
             size = self._left
         data = self._stream.read(size)
         self._left -= len(data)
+        self.newlines += data.count(b"\n")
         return data
+
+
+class _Chain(io.RawIOBase):
+    """One stream, then another."""
+
+    def __init__(self, first: PartsStream, second: _Bounded) -> None:
+        self._streams: list[PartsStream | _Bounded] = [first, second]
+
+    def readable(self) -> bool:
+        return True
+
+    def read(self, size: int = -1) -> bytes:
+        while self._streams:
+            data = self._streams[0].read(size)
+            if data:
+                return data
+            self._streams.pop(0)
+        return b""

@@ -40,6 +40,9 @@ FLUSH_S = 0.2
 POLL_S = 0.02
 #: How often the graph is looked at for other aggregators.
 GRAPH_S = 5.0
+#: Records waiting to be forwarded, at most (about 10 s at 20k/s); past that they are
+#: counted as lost rather than kept, so a stalled aggregator cannot eat the robot's memory.
+QUEUE_LIMIT = 200_000
 
 
 @dataclass(frozen=True)
@@ -87,7 +90,7 @@ class RosoutAggregator:
             durability=DurabilityPolicy.TRANSIENT_LOCAL,
         )
         self.publisher = self.node.create_publisher(Log, ROSOUT_AGG, qos)
-        self.queue = IntakeQueue()
+        self.queue = IntakeQueue(limit=QUEUE_LIMIT)
         self.source = LiveLogSource(runtime, self.queue, topic=ROSOUT)
         self.encoder = LogEncoder()
         self._received = self._published = self._written = self._unencodable = 0

@@ -12,11 +12,12 @@ from textual.containers import Vertical
 from textual.screen import ModalScreen
 from textual.widgets import Footer, Static, TextArea
 
-from ...model.formats.console_lines import LOCAL_TIME_NOTE
+from ...model.formats.mixed_output import LOCAL_TIME_NOTE
 from ...model.levels import severity_name
 from ...model.record import LogRecord
 from ...model.text import multi_line, one_line
 from ...model.timefmt import full_text, stamp_text
+from ..focus import focus_now
 
 FIELD_LIMIT = 500
 #: Soft wrapping a longer line takes seconds in TextArea: such messages open unwrapped.
@@ -101,7 +102,7 @@ class DetailScreen(ModalScreen[None]):
         yield Footer()
 
     def on_mount(self) -> None:
-        self.query_one(TextArea).focus()
+        focus_now(self.query_one(TextArea))
 
     def show(self, record: LogRecord) -> None:
         self.record = record

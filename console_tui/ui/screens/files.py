@@ -7,7 +7,7 @@ import shlex
 from dataclasses import dataclass
 from pathlib import Path
 
-from textual import on
+from textual import events, on
 from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Vertical
@@ -16,6 +16,7 @@ from textual.suggester import Suggester
 from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
 
 from ...model.formats.save import save_format_for
+from ..plain import plain
 
 SAVE_FORMAT_TITLES = {
     "rqt": "rqt_console (ROS 2) .csv",
@@ -76,11 +77,11 @@ class OpenScreen(_Dialog):
         try:
             paths = [os.path.expanduser(p) for p in shlex.split(event.value)]
         except ValueError as error:
-            self.query_one("#error", Label).update(f"Can't read that: {error}")
+            self.query_one("#error", Label).update(plain(f"Can't read that: {error}"))
             return
         missing = [p for p in paths if not os.path.exists(p)]
         if not paths or missing:
-            self.query_one("#error", Label).update(f"No such file: {missing[0]}" if missing else "Type a path")
+            self.query_one("#error", Label).update(plain(f"No such file: {missing[0]}" if missing else "Type a path"))
             return
         self.dismiss(paths)
 
@@ -96,7 +97,7 @@ class PathScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(f"{self.title_text} (Tab completes; Enter, Esc cancels)")
+            yield Label(plain(f"{self.title_text} (Tab completes; Enter, Esc cancels)"))
             yield Input(self.default, suggester=PathSuggester(), id="path")
             yield Label("", classes="error", id="error")
 
@@ -107,9 +108,9 @@ class PathScreen(_Dialog):
         if not path:
             error.update("Type a path")
         elif self.must_exist and not os.path.isfile(path):
-            error.update(f"No such file: {path}")
+            error.update(plain(f"No such file: {path}"))
         elif not self.must_exist and not os.path.isdir(os.path.dirname(os.path.abspath(path))):
-            error.update(f"No such folder: {os.path.dirname(os.path.abspath(path))}")
+            error.update(plain(f"No such folder: {os.path.dirname(os.path.abspath(path))}"))
         else:
             self.dismiss(path)
 
@@ -163,11 +164,11 @@ class SaveScreen(_Dialog):
         pressed = self.query_one(RadioSet).pressed_button
         return (pressed.name if pressed is not None else None) or "rqt"
 
-    @on(Input.Submitted)
-    def submitted(self, event: Input.Submitted) -> None:
-        self.action_save()
-
-    def key_enter(self) -> None:
+    def key_enter(self, event: events.Key) -> None:
+        """Enter saves, wherever the focus is; the key stops here, so after the dialog closes
+        it does not go on to the table (where Enter opens the detail view)."""
+        event.stop()
+        event.prevent_default()
         self.action_save()
 
     def action_save(self) -> None:
@@ -178,10 +179,10 @@ class SaveScreen(_Dialog):
             return
         folder = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(folder):
-            error.update(f"No such folder: {folder}")
+            error.update(plain(f"No such folder: {folder}"))
             return
         if os.path.isdir(path):
-            error.update(f"{path} is a folder")
+            error.update(plain(f"{path} is a folder"))
             return
         shown_only = self.query_one("#shown-only", Checkbox).value and self.filtered
         self.dismiss(SaveRequest(path, self._format(), shown_only))

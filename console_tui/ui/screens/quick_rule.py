@@ -23,6 +23,8 @@ from ...model.rules.rule import Rule
 from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.text import one_line
+from ..focus import focus_now
+from ..plain import plain
 
 #: At most this many distinct messages make one "these messages" rule.
 MESSAGES_AT_MOST = 50
@@ -77,10 +79,10 @@ class QuickRuleScreen(ModalScreen[Entry | None]):
         verb = "Hide" if self.role is Role.EXCLUDE else "Highlight"
         with Vertical():
             yield Label(f"{verb} messages with... (Enter picks, Esc cancels)")
-            yield OptionList(*(Option(one_line(label, 200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
+            yield OptionList(*(Option(plain(label, limit=200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
 
     def on_mount(self) -> None:
-        self.query_one(OptionList).focus()
+        focus_now(self.query_one(OptionList))
 
     def on_option_list_option_selected(self, event: OptionList.OptionSelected) -> None:
         _, rule = self.choices[event.option_index]

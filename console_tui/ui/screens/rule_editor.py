@@ -20,6 +20,7 @@ from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.rules.time_range import TimeRangeRule
 from ...model.timefmt import full_text
+from ..plain import plain
 
 KINDS = {
     "message": "Message text",
@@ -150,7 +151,7 @@ class RuleEditor(ModalScreen[Entry | None]):
         try:
             rule = self.build_rule()
         except RuleError as error:
-            self.query_one("#rule-error", Label).update(f"Not applied: {error.message}")
+            self.query_one("#rule-error", Label).update(plain(f"Not applied: {error.message}"))
             return
         pressed = self.query_one("#role", RadioSet).pressed_button
         role = Role.HIGHLIGHT if pressed is not None and pressed.name == "highlight" else Role.EXCLUDE

@@ -12,6 +12,7 @@ from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from ...model.levels import MESSAGE_SEVERITIES, Severity
+from ..plain import plain
 
 
 class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
@@ -40,7 +41,7 @@ class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Static(Text(f"Temporary level for {self.logger} on {self.node}", style="bold"))
+            yield Static(plain(f"Temporary level for {self.logger} on {self.node}", style="bold"))
             yield OptionList(*(Option(s.name, id=s.name) for s in MESSAGE_SEVERITIES), id="temporary-levels")
             yield Static("For how many seconds (then the level before comes back):")
             yield Input(f"{self.seconds:g}", id="temporary-seconds", type="number")
@@ -68,7 +69,7 @@ class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
         except ValueError:
             seconds = -1.0
         if not seconds > 0:
-            self.query_one("#temporary-error", Static).update(Text(f"Seconds must be a number above 0, not {text!r}"))
+            self.query_one("#temporary-error", Static).update(plain(f"Seconds must be a number above 0, not {text!r}"))
             self.query_one(Input).focus()
             return
         highlighted = self.query_one(OptionList).highlighted or 0

@@ -8,6 +8,7 @@ from textual.widgets import Label, ProgressBar
 
 from ...sources.files import LoadProgress
 from ..keys import hint_line
+from ..plain import plain
 
 
 class LoadBar(Horizontal):
@@ -37,7 +38,9 @@ class LoadBar(Horizontal):
             f"{reading.source} ({reading.title})" if reading and reading.title else (reading.source if reading else "")
         )
         self.query_one(Label).update(
-            f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  "
-            + hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
+            plain(
+                f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  "
+                + hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
+            )
         )
         self.query_one(ProgressBar).update(progress=done)

@@ -15,6 +15,7 @@ from rich.cells import cell_len, set_cell_size
 from rich.segment import Segment
 from rich.style import Style
 from textual import events
+from textual.actions import SkipAction
 from textual.binding import Binding
 from textual.cache import LRUCache
 from textual.geometry import Region, Size, Spacing
@@ -306,9 +307,10 @@ class LogTable(ScrollView, can_focus=True):
         self.move_cursor(self.cursor_row + 1, extend=True)
 
     def action_clear_selection(self) -> None:
-        if self.selection_anchor is not None:
-            self.selection_anchor = None
-            self.refresh()
+        if self.selection_anchor is None:
+            raise SkipAction()  # Esc goes on to the app (it stops a long filtering)
+        self.selection_anchor = None
+        self.refresh()
 
     def selected_rows(self) -> range:
         """The selected rows (the cursor's alone when nothing else is selected)."""

@@ -37,6 +37,7 @@ from ...model.logger_levels import (
     node_of_logger,
 )
 from ..keys import Hint, hint_line
+from ..plain import plain
 from .side_pane import SidePane
 
 if TYPE_CHECKING:
@@ -557,7 +558,7 @@ class LoggerPane(SidePane):
             marker = Text("checking…", style="dim italic")
         else:
             marker = Text("no logger services", style="yellow")
-        return _two_columns(Text(node.fqn), marker)
+        return _two_columns(plain(node.fqn), marker)
 
     def _render_loggers(self, highlight: str | None = None) -> None:
         logger_list = self.logger_list
@@ -568,7 +569,7 @@ class LoggerPane(SidePane):
         node = self.node(self.selected) if self.selected else None
         own = node.logger_name if node is not None else ""
         options = [
-            Option(_two_columns(Text(logger_label(row, own)), level_cell(row, now)), id=_option_id(row.name))
+            Option(_two_columns(plain(logger_label(row, own)), level_cell(row, now)), id=_option_id(row.name))
             for row in rows
         ]
         current = [_logger_of_option(option) for option in logger_list.options]
@@ -592,12 +593,12 @@ class LoggerPane(SidePane):
             heading.update("Loggers")
             return
         busy = " …" if self.pending.get(self.selected) else ""
-        heading.update(Text(f"Loggers of {self.selected}{busy}", no_wrap=True, overflow="ellipsis"))
+        heading.update(plain(f"Loggers of {self.selected}{busy}", no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
         notice = self.notice_line
         text, error = self._notice_text()
-        notice.update(Text(text))
+        notice.update(plain(text, lines=True))
         notice.set_class(error, "-error")
 
     def _notice_text(self) -> tuple[str, bool]:

@@ -13,7 +13,9 @@ from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
 from ...model.text import one_line
+from ..focus import focus_now
 from ..keys import Hint, hint_line
+from ..plain import plain
 
 _HINTS: list[Hint] = [("submit", "applies"), ("close", "closes"), (("history(-1)", "history(1)"), "history")]
 PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
@@ -74,7 +76,7 @@ class QueryBar(Vertical):
         self.add_class("-open")
         self.input.value = self.applied_text
         self.input.cursor_position = len(self.applied_text)
-        self.input.focus()
+        focus_now(self.input)
 
     def action_close(self) -> None:
         self.remove_class("-open")
@@ -97,7 +99,7 @@ class QueryBar(Vertical):
         except QueryError as error:
             problem.remove_class("-ok")
             caret = caret_line(one_line(text), error)
-            problem.update(f"{caret}\n(the rules in force stay until the query is fixed)")
+            problem.update(plain(f"{caret}\n(the rules in force stay until the query is fixed)", lines=True))
             return None
         problem.add_class("-ok")
         count = len(entries)

@@ -6,6 +6,8 @@ from textual.containers import Vertical
 from textual.message import Message
 from textual.widget import Widget
 
+from ..focus import focus_now
+
 
 class SidePane(Vertical):
     """Hidden until opened. Subclasses say what takes focus (``focus_target``) and may do
@@ -42,7 +44,7 @@ class SidePane(Vertical):
             self.add_class("-open")
             self.when_opened()
         if focus and not self.has_focus_within:
-            self.focus_target().focus()
+            focus_now(self.focus_target())
 
     def close(self) -> None:
         if self.is_open:

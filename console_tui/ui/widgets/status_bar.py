@@ -8,6 +8,7 @@ from rich.text import Text
 from textual.widget import Widget
 
 from ...model.levels import MESSAGE_SEVERITIES
+from ...model.text import one_line
 from ...sources.status import SourceStatus
 
 _SEVERITY_LETTER = {
@@ -72,14 +73,14 @@ def render_status(facts: StatusFacts) -> Text:
     text.append(f" {facts.rate:,.0f}/s")
     for status in facts.sources:
         if status.topic:
-            text.append(f"  {status.topic}", style="bold")
+            text.append(f"  {one_line(status.topic, 200)}", style="bold")
             text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
         loss = status.loss_text()
         if loss:
             text.append(f"  {loss}", style="bold red")
         if status.problem:
-            text.append(f"  {status.problem}", style="bold red")
-        where = " ".join(part for part in (status.path, status.origin) if part)
+            text.append(f"  {one_line(status.problem, 300)}", style="bold red")
+        where = one_line(" ".join(part for part in (status.path, status.origin) if part), 300)
         if where:
             text.append(f" {where}" if status.topic and not loss and not status.problem else f"  {where}", style="dim")
     if facts.note:

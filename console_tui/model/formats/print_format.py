@@ -99,7 +99,7 @@ _ROS1_FIELDS = {
 }
 
 
-class ConsoleLine:
+class PrintFormat:
     """Prints records with one format (see the module docstring)."""
 
     def __init__(self, template: str | None = None, *, utc: bool = False, color: bool = False) -> None:

@@ -1,0 +1,93 @@
+"""Hostile rules (issue 17): a catastrophic regex must not freeze the app, a long filtering
+stops on Esc, and a rules file nested 100k deep is refused with a clear message."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+
+import pytest
+
+from console_tui.model.record import LogRecord
+from console_tui.model.rules import MessageRule, RuleSet, exclude
+from console_tui.model.rules.rule import RuleError
+from console_tui.model.rules.rulesfile import load_rules
+from console_tui.model.store import LogStore
+from console_tui.ui import rule_actions
+from console_tui.ui.app import ConsoleApp
+from console_tui.ui.screens.help import HelpScreen
+
+from support.ui import screen_text, type_text, until
+
+HOSTILE = "a" * 30 + "b"  # /(a+)+$/ backtracks 2**30 ways on each of these
+
+
+def hostile_app(count: int) -> ConsoleApp:
+    store = LogStore()
+    store.extend(
+        LogRecord(stamp_ns=1_795_000_000_000_000_000 + i, level=20, node="n", msg=HOSTILE) for i in range(count)
+    )
+    return ConsoleApp(store=store, utc=True)
+
+
+@pytest.mark.timeout(60)  # before the fix: frozen for minutes, ended by this timeout
+@pytest.mark.parametrize("how", ["query", "rules file"])
+async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
+    app = hostile_app(100_000)
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await pilot.pause()
+        row = app.table.cursor_row
+        # The work the app does from the rule change to answering a key, in CPU seconds: on
+        # this shared machine wall time depends on the neighbours, CPU time on the app.
+        began = time.process_time()
+        if how == "query":
+            await pilot.press("slash")
+            await type_text(pilot, "/(a+)+$/")
+            began = time.process_time()
+            await pilot.press("enter", "up")
+        else:
+            path = tmp_path / "rules.toml"
+            path.write_text('[[rules]]\nkind = "message"\ntext = "(a+)+$"\nregex = true\n')
+            app.action_load_rules(str(path))
+            await pilot.press("up")
+        await until(pilot, lambda: app.table.cursor_row == row - 1, timeout=10, what="the key's effect")
+        assert time.process_time() - began < 1.0
+        await until(pilot, lambda: "Rule switched off" in screen_text(app), timeout=5, what="the notification")
+        assert "too slow" in screen_text(app)
+        assert not app.rules.entries[0].enabled
+        assert not app.view.refiltering and len(app.view) == 100_000
+        await pilot.press("question_mark")  # and the app goes on answering
+        await until(pilot, lambda: isinstance(app.screen, HelpScreen), timeout=10, what="the help screen")
+
+
+async def test_esc_stops_a_long_filtering(monkeypatch):
+    # Slices so small that filtering 200,000 records takes many seconds, whatever the rule costs.
+    monkeypatch.setattr(rule_actions, "REFILTER_BUDGET_S", 0.0005)
+    monkeypatch.setattr(rule_actions, "REFILTER_PAUSE_S", 0.02)
+    store = LogStore()
+    store.extend(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
+    app = ConsoleApp(store=store, utc=True)
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await pilot.pause()
+        app.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
+        await pilot.pause(0.2)
+        assert app.view.refiltering and "filtering" in screen_text(app)
+        await pilot.press("escape")
+        await until(pilot, lambda: not app.view.refiltering, timeout=5, what="filtering to stop")
+        assert not app.rules.entries[0].enabled
+        await until(pilot, lambda: "Filtering stopped" in screen_text(app), timeout=5, what="the notification")
+        assert len(app.view) == 200_000
+
+
+def test_a_rules_file_nested_100k_deep_is_refused(tmp_path):
+    path = tmp_path / "deep.toml"
+    path.write_text("x = " + "[" * 100_000 + "]" * 100_000 + "\n")
+    with pytest.raises(RuleError) as caught:
+        load_rules(path)
+    assert "deep.toml" in caught.value.message and "nested" in caught.value.message
+    result = subprocess.run(
+        [sys.executable, "-m", "console_tui", "--rules", str(path)], capture_output=True, text=True, timeout=60
+    )
+    assert result.returncode == 2
+    assert "Traceback" not in result.stderr and "nested" in result.stderr

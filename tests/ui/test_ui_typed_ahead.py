@@ -1,0 +1,49 @@
+"""Keys typed ahead, or pressed while the app is still starting, go where a person meant them.
+
+Textual's ``Widget.focus`` queues the focus change behind the keys already waiting, so keys
+typed right after ``/`` went to the table (issue 11, item 16: "the first / did nothing").
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from console_tui.ui import app as app_module
+from console_tui.ui.app import ConsoleApp
+
+from support.feed import records
+from support.ui import line_with, make_app, screen_text, steady_cursors, type_ahead, until
+
+
+async def test_text_typed_right_after_slash_lands_in_the_query_line():
+    app = make_app(30)
+    async with app.run_test(size=(100, 30)) as pilot:
+        type_ahead(app, "/error")
+        await until(pilot, lambda: app.query_bar.input.value == "error", what="the typed text")
+        steady_cursors(app)
+        await pilot.pause()
+        _y, line = line_with(app, "error")
+        assert line.strip().startswith("error")
+        assert not app.rules_pane.is_open  # the r's did not reach the table
+        assert "Open log files" not in screen_text(app)  # nor the o
+
+
+class StartingApp(ConsoleApp):
+    """Keys that arrived while the app was starting: queued before it mounted."""
+
+    CSS_PATH = Path(app_module.__file__).with_name(ConsoleApp.CSS_PATH)
+
+    def on_mount(self) -> None:
+        type_ahead(self, "/warn", keys=("up", "up"))
+        super().on_mount()
+
+
+async def test_keys_pressed_while_the_app_starts_are_all_kept():
+    app = StartingApp(utc=True)
+    app.store.extend(records(50))
+    async with app.run_test(size=(100, 30)) as pilot:
+        await until(pilot, lambda: app.query_bar.input.value == "warn", what="the typed text")
+        await pilot.pause()
+        assert app.table.cursor_seq == 47 and not app.table.following  # the two ups moved the table
+        assert line_with(app, "warn")[1].strip().startswith("warn")
+        assert "rule" in screen_text(app)  # the query line's verdict under it
