@@ -43,7 +43,10 @@ def run_app(args: argparse.Namespace) -> int:
         query=getattr(args, "query", None) or "",
         remember_rules=True,
     )
-    return run_then_clean_up(app, cleanups)
+    code = run_then_clean_up(app, cleanups)
+    if live:
+        end_now(code)
+    return code
 
 
 def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
@@ -59,10 +62,7 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
                 cleanup()
             except Exception:
                 pass
-    code = app.return_code or 0
-    if live:
-        end_now(code)
-    return code
+    return app.return_code or 0
 
 
 def end_now(code: int) -> None:
