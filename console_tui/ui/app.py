@@ -38,7 +38,7 @@ from . import textual_fixes
 from .commands import ConsoleCommands
 from .exit_signals import ExitSignals
 from .file_actions import FileActions
-from .focus import focus_now, run_bindings_now
+from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .keys import binding_ids, keymap_path, load_keymap
 from .pane_actions import PaneActions
@@ -171,6 +171,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
+        self.key_gate = KeyGate(self)
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -334,15 +335,14 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self.update_status()
 
     async def on_event(self, event: events.Event) -> None:
-        # While the table has the focus, a key's binding runs at once, so that the keys typed
-        # behind it find the focus where it put it (see focus.py).
-        if (
-            isinstance(event, events.Key)
-            and not event.is_forwarded
-            and self.focused is self.table
-            and await run_bindings_now(self, event)
-        ):
-            return
+        # Keys typed ahead go where they were meant (see focus.py): they wait while the screen
+        # on top is not ready for them, and while the table has the focus a key's binding runs
+        # at once, so that the keys behind it find the focus where it put it.
+        if isinstance(event, events.Key) and not event.is_forwarded:
+            if self.key_gate.hold(event):
+                return
+            if self.focused is self.table and await run_bindings_now(self, event):
+                return
         await super().on_event(event)
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:

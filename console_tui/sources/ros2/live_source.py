@@ -224,7 +224,7 @@ class LiveLogSource:
             if now >= next_graph_check or reader.graph_changed or holding:
                 next_graph_check = now + GRAPH_PERIOD_S
                 reader.refresh_graph()
-                if holding:
+                if holding and choice is not None:
                     choice.publishers(reader.publisher_count, now)
                 self._set_status(topic=reader.topic, publishers=reader.publisher_count)
             subs, events = reader.handles(), reader.event_handlers()
