@@ -108,7 +108,7 @@ def test_the_process_ends_when_the_app_ends_however_it_ends(how):
         from console_tui.sources.intake_process.parent import ProcessSource
         source = ProcessSource(IntakeQueue(), "synthetic", args=["--rate", "1000"])
         source.start()
-        while source.pid is None:
+        while not source.status.running:  # the intake process is up and sending
             time.sleep(0.01)
         print(source.pid, flush=True)
         sys.stdin.readline()
@@ -126,7 +126,7 @@ def test_the_process_ends_when_the_app_ends_however_it_ends(how):
     else:
         app.send_signal(getattr(signal, how))
     app.wait(10)
-    assert wait_until(lambda: not pid_alive(child), timeout=5), "the intake process outlived the app"
+    assert wait_until(lambda: not pid_alive(child), timeout=15), "the intake process outlived the app"
 
 
 def test_frames_round_trip_and_a_cut_frame_is_not_read():
