@@ -11,6 +11,7 @@ from typing import Any
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
 from .sources.live import RosUnavailable, open_live
+from .sources.ros_version import ROS1, choose_ros
 
 
 def run_app(args: argparse.Namespace) -> int:
@@ -42,7 +43,10 @@ def run_app(args: argparse.Namespace) -> int:
         query=getattr(args, "query", None) or "",
         remember_rules=True,
     )
-    return run_then_clean_up(app, cleanups)
+    code = run_then_clean_up(app, cleanups)
+    if live:
+        end_now(code)
+    return code
 
 
 def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
@@ -61,14 +65,36 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
     return app.return_code or 0
 
 
+def end_now(code: int) -> None:
+    """End the process at once: the app has stopped everything it started (the intake
+    process, demo nodes, ROS), and the interpreter's own teardown (rclpy's and Fast DDS's
+    static destructors) took another 1-3 s here, while the person who pressed ``q`` waits."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
+
+
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
     """The live source for ROS 1 or ROS 2 (as ``--ros1``/``--ros2`` or the environment say),
     the demo nodes when asked; returns the logger control (or None)."""
+    ros = getattr(args, "ros", None)
     if args.demo:
-        from .demo.launcher import DEMO_ENVIRONMENT
+        ros = choose_ros(ros).version  # decided before the ROS 1 demo points us at its own master
+        if ros == ROS1:
+            from .demo.ros1_launcher import Ros1Demo, Ros1DemoUnavailable
 
-        os.environ.update(DEMO_ENVIRONMENT)
-    live = open_live(queue, topic=args.topic, ros=getattr(args, "ros", None))
+            try:
+                sources.append(Ros1Demo())  # first: its roscore starts before the source looks for it
+            except Ros1DemoUnavailable as error:
+                raise RosUnavailable(str(error)) from None
+        else:
+            from .demo.launcher import DEMO_ENVIRONMENT
+
+            os.environ.update(DEMO_ENVIRONMENT)
+    live = open_live(queue, topic=args.topic, ros=ros)
     cleanups.append(live.close)
     sources.append(live.source)
     if live.runtime is None:  # ROS 1

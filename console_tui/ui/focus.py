@@ -8,11 +8,18 @@ before: typing ``/error`` in the first second after launch, while the app was st
 starting, opened the query line and sent ``e``, ``r``, ``r``, ``o``, ``r`` to the table (``r``
 toggling the rules pane), and the query line stayed empty.
 
-``run_bindings_now`` runs a key's binding as soon as the app takes the key, and ``focus_now``
-moves the focus at once; the key after it then finds the focus where the binding put it.
+A key that opens a dialog has the same trouble: the dialog's widgets mount, and its text box
+takes the focus, a few turns of the event loop later, and the keys typed behind it meanwhile
+were lost (``o`` and a path typed at once gave an empty box).
+
+``run_bindings_now`` runs a key's binding as soon as the app takes the key, ``focus_now``
+moves the focus at once, and ``KeyGate`` holds the keys that arrive while the screen on top is
+not ready for them yet, then lets them through in order.
 """
 
 from __future__ import annotations
+
+import time
 
 from textual import events
 from textual.app import App
@@ -41,3 +48,43 @@ def focus_now(widget: Widget) -> None:
     except NoScreen:  # not on a screen yet
         pass
     widget.focus()
+
+
+#: Keys wait for a screen to get ready at most this long, then go on as they are.
+HOLD_AT_MOST_S = 1.0
+_POLL_S = 0.01
+
+
+def screen_ready(app: App) -> bool:
+    """Whether the screen on top can take keys: mounted, and focused if anything in it can be."""
+    screen = app.screen
+    return screen.is_mounted and (screen.focused is not None or not screen.focus_chain)
+
+
+class KeyGate:
+    """Holds keys while the screen on top is not ready for them (a dialog just opened, the app
+    still starting), and lets them through in the order they came once it is."""
+
+    def __init__(self, app: App, clock=time.monotonic) -> None:
+        self.app = app
+        self.clock = clock
+        self.held: list[events.Key] = []
+        self._since = 0.0
+
+    def hold(self, event: events.Key) -> bool:
+        """True when ``event`` is held (the caller then leaves it), False to handle it now."""
+        if not self.held and screen_ready(self.app):
+            return False
+        self.held.append(events.Key(event.key, event.character))
+        if len(self.held) == 1:
+            self._since = self.clock()
+            self.app.set_timer(_POLL_S, self._release)
+        return True
+
+    def _release(self) -> None:
+        if not screen_ready(self.app) and self.clock() - self._since < HOLD_AT_MOST_S:
+            self.app.set_timer(_POLL_S, self._release)
+            return
+        keys, self.held = self.held, []
+        for key in keys:
+            self.app.post_message(key)

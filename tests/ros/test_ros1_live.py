@@ -203,3 +203,48 @@ def test_a_publisher_of_another_type_is_reported(roscore, ros1_nodes):
         got.wait(lambda c: "refused /chatter" in c.status.problem, what="the refusal")
         assert "md5sum" in got.status.problem or "type" in got.status.problem
         assert got.status.publishers == 0 and got.status.running
+
+
+async def test_files_and_live_ros1_in_one_timeline(roscore, ros1_nodes, tmp_path):
+    """--live with files, on ROS 1: the recording comes first, the live rows follow in time order."""
+    pytest.importorskip("rosbags")
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.ros1.live_source import Ros1LiveSource
+    from console_tui.ui.app import ConsoleApp
+
+    from support.feed import records
+    from support.recordings import write_ros1_bag
+    from support.ui import until
+
+    bag = write_ros1_bag(tmp_path / "earlier.bag", records(300))
+    ros1_nodes.rospy("rospy_node.py", "now", "--period", "0.1").expect("ready")
+    queue = IntakeQueue()
+    app = ConsoleApp(queue=queue, sources=[Ros1LiveSource(queue)], files=[str(bag)], utc=True)
+    async with app.run_test(size=(140, 30)) as pilot:
+        await until(pilot, lambda: len([r for r in app.store if r.node == "/now"]) >= 10, what="live rows")
+        rows = list(app.store)
+        sources = [r.source for r in rows]
+        assert sources[:300] == ["earlier.bag"] * 300 and set(sources[300:]) == {ROSOUT_AGG}
+        assert rows[0].topics == "/chatter"  # a ROS 1 bag's topics are kept too
+        stamps = [r.stamp_ns for r in rows]
+        assert stamps == sorted(stamps)
+
+
+def test_the_launch_picks_ros1_when_a_master_answers(roscore, monkeypatch):
+    import argparse
+
+    from console_tui.launch import _start_live
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.ros1.live_source import Ros1LiveSource
+    from console_tui.sources.ros1.logger_control import Ros1LoggerControl
+
+    monkeypatch.setenv("ROS_VERSION", "2")  # a sourced ROS 2 says so; an answering master still wins
+    args = argparse.Namespace(ros=None, demo=False, topic=None)
+    sources: list = []
+    cleanups: list = []
+    control = _start_live(args, IntakeQueue(), sources, cleanups)
+    try:
+        assert [type(s) for s in sources] == [Ros1LiveSource] and isinstance(control, Ros1LoggerControl)
+    finally:
+        for cleanup in cleanups:
+            cleanup()

@@ -33,7 +33,9 @@ from ..record import LogRecord
 MD5SUM = "acffd30cd6b6de30f120938c17c593fb"
 TYPE = "rosgraph_msgs/Log"
 
-_HEAD = struct.Struct("<IIII").unpack_from  # seq, secs, nsecs, len(frame_id)
+#: A frame's length, then the Log's header: seq (skipped), secs, nsecs, len(frame_id).
+_FRAME = struct.Struct("<I4xIII").unpack_from
+_LEVEL_LENGTH = struct.Struct("<BI").unpack_from  # level, len(name)
 _U32 = struct.Struct("<I").unpack_from
 _LEVELS = tuple(from_ros1(level) for level in range(256))
 
@@ -118,9 +120,14 @@ class Ros1LogDecoder:
         tails_get = self._tails.get
         levels = _LEVELS
         u32 = _U32
-        head = _HEAD
+        frame = _FRAME
+        level_length = _LEVEL_LENGTH
         while pos + 4 <= size:
-            (length,) = u32(buffer, pos)
+            if pos + 20 <= size:  # the frame's length, then seq (skipped), stamp, len(frame_id)
+                length, secs, nsecs, skip = frame(buffer, pos)
+            else:
+                (length,) = u32(buffer, pos)
+                secs = nsecs = skip = 0
             if length > max_length:
                 raise Ros1LogError(f"a message of {length:,} bytes announced: not a Log stream")
             begin = pos + 4
@@ -131,12 +138,10 @@ class Ros1LogDecoder:
             try:
                 if length < MIN_LENGTH:
                     raise Ros1LogError(f"Log message truncated: {length} bytes")
-                _seq, secs, nsecs, skip = head(buffer, begin)
                 p = begin + 16 + skip
                 if p + 5 > end:
                     raise Ros1LogError(_past_end("header.frame_id", skip, end - begin - 16))
-                level = buffer[p]
-                (n,) = u32(buffer, p + 1)
+                level, n = level_length(buffer, p)
                 p += 5
                 q = p + n
                 if q + 4 > end:

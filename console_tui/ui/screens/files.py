@@ -16,7 +16,7 @@ from textual.suggester import Suggester
 from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
 
 from ...model.formats.save import save_format_for
-from ..keys import Hint, hint_line
+from ..keys import hint_line
 from ..plain import plain
 
 SAVE_FORMAT_TITLES = {
@@ -51,8 +51,29 @@ class PathSuggester(Suggester):
         return value + completion if completion else None
 
 
+class PathInput(Input):
+    """A path box: Tab (or →) takes the completion shown after the text; Tab with none shown
+    moves on to the next field.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | tab | Take the completion shown, or move on. |
+    """
+
+    BINDINGS = [Binding("tab", "complete", "Complete the path", show=False, id="path.complete")]
+
+    def action_complete(self) -> None:
+        suggestion = self._suggestion
+        if len(suggestion) > len(self.value) and self.cursor_position >= len(self.value):
+            self.value = suggestion
+            self.cursor_position = len(suggestion)
+        else:
+            self.screen.focus_next()
+
+
 class _Dialog(ModalScreen):
-    """What the file dialogs share: a box in the middle, Escape cancels.
+    """A title, the fields, a line of keys (from the bindings), and a line for what is wrong;
+    long lines wrap, none is cut.
 
     | Key(s) | Description |
     | :- | :- |
@@ -61,11 +82,24 @@ class _Dialog(ModalScreen):
 
     DEFAULT_CSS = """
     _Dialog { align: center middle; }
-    _Dialog > Vertical { width: 80; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 1 2; }
-    _Dialog Input { margin: 1 0; }
-    _Dialog .error { color: $error; }
+    _Dialog > Vertical { width: 80; max-width: 95%; height: auto; border: thick $primary; background: $surface; padding: 0 1; }
+    _Dialog Label { width: 100%; }
+    _Dialog .title { text-style: bold; }
+    _Dialog .hint { color: $text-muted; }
+    _Dialog Input { margin: 1 0 0 0; }
+    _Dialog .error { color: $text-error; }
     """
-    BINDINGS = [Binding("escape", "cancel", "Cancel")]
+    BINDINGS = [Binding("escape", "cancel", "Cancel", id="dialog.cancel")]
+    #: What Enter does, for the line of keys.
+    ENTER_WORDS = "opens"
+
+    def key_hints(self) -> str:
+        """``tab completes · ⏎ opens · esc cancels``, from the bindings."""
+        hints = [("complete", "completes"), ("submit", self.ENTER_WORDS), ("cancel", "cancels")]
+        return hint_line(self.app, [*PathInput.BINDINGS, *Input.BINDINGS, *self.BINDINGS], hints)
+
+    def error_line(self) -> Label:
+        return Label("", classes="error", id="error", markup=False)
 
     def action_cancel(self) -> None:
         self.dismiss(None)
@@ -76,9 +110,10 @@ class OpenScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label("Open log files, recordings or folders (several: separate with spaces; Tab completes)")
-            yield Input(placeholder="~/.ros/log/...  run.bag  saved.csv", suggester=PathSuggester(), id="paths")
-            yield Label("", classes="error", id="error")
+            yield Label("Open log files, recordings or folders", classes="title")
+            yield PathInput(placeholder="~/.ros/log/...  run.bag  saved.csv", suggester=PathSuggester(), id="paths")
+            yield Label(f"spaces separate files · {self.key_hints()}", classes="hint")
+            yield self.error_line()
 
     @on(Input.Submitted)
     def submitted(self, event: Input.Submitted) -> None:
@@ -102,14 +137,14 @@ class PathScreen(_Dialog):
         self.title_text = title
         self.default = default
         self.must_exist = must_exist
+        self.ENTER_WORDS = "opens" if must_exist else "saves"
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            hints: list[Hint] = [("submit", "accepts"), ("cancel", "cancels")]
-            keys = hint_line(self.app, [*Input.BINDINGS, *self.BINDINGS], hints)
-            yield Label(plain(f"{self.title_text} (Tab completes; {keys})"))
-            yield Input(self.default, suggester=PathSuggester(), id="path")
-            yield Label("", classes="error", id="error")
+            yield Label(plain(self.title_text), classes="title")
+            yield PathInput(self.default, suggester=PathSuggester(), id="path")
+            yield Label(self.key_hints(), classes="hint")
+            yield self.error_line()
 
     @on(Input.Submitted)
     def submitted(self, event: Input.Submitted) -> None:
@@ -135,6 +170,8 @@ class SaveRequest:
 class SaveScreen(_Dialog):
     """Asks where and how to save; returns a ``SaveRequest`` or None."""
 
+    ENTER_WORDS = "saves"
+
     def __init__(self, default_path: str, filtered: bool) -> None:
         super().__init__()
         self.default_path = default_path
@@ -142,15 +179,14 @@ class SaveScreen(_Dialog):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label("Save messages to (the extension picks the format; Tab completes)")
-            yield Input(self.default_path, suggester=PathSuggester(), id="path")
+            yield Label("Save messages to (the extension picks the format)", classes="title")
+            yield PathInput(self.default_path, suggester=PathSuggester(), id="path")
             with RadioSet(id="format"):
                 for key, title in SAVE_FORMAT_TITLES.items():
                     yield RadioButton(title, value=key == save_format_for(self.default_path), name=key)
             yield Checkbox("Only the rows shown (after rules)", value=True, id="shown-only", disabled=not self.filtered)
-            hints: list[Hint] = [("submit", "saves"), ("cancel", "cancels")]
-            yield Label(hint_line(self.app, [*Input.BINDINGS, *self.BINDINGS], hints), classes="hint")
-            yield Label("", classes="error", id="error")
+            yield Label(self.key_hints(), classes="hint")
+            yield self.error_line()
 
     @on(Input.Changed, "#path")
     def path_changed(self, event: Input.Changed) -> None:
