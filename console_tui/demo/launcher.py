@@ -6,6 +6,7 @@ import os
 import subprocess
 import sys
 
+from ..model.text import plural
 from ..sources.status import SourceStatus
 from .behaviours import DEMO_NODES
 
@@ -20,7 +21,7 @@ class DemoNodes:
         self.names = names or list(DEMO_NODES)
         self.processes: list[subprocess.Popen] = []
         #: Shown in the status line while the app runs the demo.
-        self.status = SourceStatus(path=f"demo: {len(self.names)} nodes")
+        self.status = SourceStatus(path=f"demo: {plural(len(self.names), 'node')}")
 
     def start(self) -> None:
         env = {**os.environ, **DEMO_ENVIRONMENT, "RCUTILS_LOGGING_USE_STDOUT": "0"}

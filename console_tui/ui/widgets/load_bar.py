@@ -6,6 +6,7 @@ from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
+from ...model.text import plural
 from ...sources.files import LoadProgress
 from ..keys import hint_line
 from ..plain import plain
@@ -39,7 +40,7 @@ class LoadBar(Horizontal):
         )
         self.query_one(Label).update(
             plain(
-                f"Loading {len(files)} file{'s' if len(files) != 1 else ''}: {name}  {records:,} records  "
+                f"Loading {plural(len(files), 'file')}: {name}  {plural(records, 'record')}  "
                 + hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
             )
         )
