@@ -83,7 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="QUERY",
         help=(
             "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' "
-            "(syntax: the README's section \"The query line\")"
+            '(syntax: the README\'s section "The query line")'
         ),
     )
     parser.add_argument(
