@@ -89,7 +89,9 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
         try:
             args.query_entries = parse_query(args.query, utc=args.utc)
         except QueryError as error:
-            parser.error(f"--query is not valid (at {error.position + 1}):\n{caret_line(one_line(args.query), error)}")
+            parser.error(
+                f"--query is not valid (at {(error.position or 0) + 1}):\n{caret_line(one_line(args.query), error)}"
+            )
     if args.rules:
         path = args.rules
         if path == "last":

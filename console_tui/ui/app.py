@@ -8,6 +8,7 @@ A feature adds its keys to ``BINDINGS`` below and its work in a module of its ow
 
 from __future__ import annotations
 
+import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
@@ -25,6 +26,7 @@ from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
+from ..model.record_batch import RecordColumns
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
@@ -62,6 +64,15 @@ DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
+#: How long quitting waits for the sources to stop, at most.
+SOURCE_STOP_TIMEOUT_S = 2.0
+
+
+def _stop_quietly(source: Source) -> None:
+    try:
+        source.stop()
+    except Exception:
+        pass
 
 
 class Source(Protocol):
@@ -250,12 +261,14 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self.exit(return_code=128 + signum)
 
     def stop_sources(self) -> None:
+        """Stop every source, all at once: each may wait a moment for a process of its own
+        (the intake process, demo nodes) to end, and the app should be gone within a second."""
         sources, self.sources = self.sources, []
-        for source in sources:
-            try:
-                source.stop()
-            except Exception:
-                pass
+        stopping = [threading.Thread(target=_stop_quietly, args=(source,), daemon=True) for source in sources]
+        for thread in stopping:
+            thread.start()
+        for thread in stopping:
+            thread.join(SOURCE_STOP_TIMEOUT_S)
 
     # -- records ----------------------------------------------------------------------------------
 
@@ -264,26 +277,33 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
 
         Records from files come first; live records wait while files load, so that a
         view of files plus the live stream stays in time order."""
-        records = self.file_queue.drain(MAX_RECORDS_PER_TICK)
+        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self.loading:
-            records += self.queue.drain(MAX_RECORDS_PER_TICK - len(records))
-        if records:
-            self.add_records(records)
+            room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
+            batches += self.queue.drain_batches(room)
+        arrived = self.add_batches(batches) if batches else 0
         if self.loads:
             self.check_loads()
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
-        self.collection_policy.tick(len(records))
+        self.collection_policy.tick(arrived)
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
+        self.add_batches([records if isinstance(records, list) else list(records)])
+
+    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
+        """Put batches (records, or records in columns) into the store and the view; how many."""
         table = self.table
+        added = 0
         with table.keeping_position():
-            added = self.store.extend(records)
+            for batch in batches:
+                added += len(self.store.extend(batch))
             self.view.update()
         if self.view.switched_off:
             self.rules_changed()
-        self._arrivals.append((self.clock(), len(added)))
+        self._arrivals.append((self.clock(), added))
+        return added
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second

@@ -24,13 +24,8 @@ rcutils' (DEBUG, INFO, WARN, ERROR, FATAL). Terminal colour codes are ignored.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 
-from ..record import LogRecord
-from .mixed_output import FillCounts, Plain, Start, assemble, decimal_ns, process_of_file, strip_colour
-from .problems import Problems
-from .text_format import TextFormat
-from .textlines import TextLines
+from .mixed_output import LineParser, MixedOutputFormat, Plain, Start, decimal_ns, process_of_file, strip_colour
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARNING": 30, "WARN": 30, "ERROR": 40, "CRITICAL": 50, "FATAL": 50}
 _CREATED = r"(?:(?P<created>\d{1,20}\.\d{1,9}) )?"
@@ -48,17 +43,9 @@ _NODE_LINE = re.compile(
 _PROCESS_NAME = re.compile(r"[^\]\s]+-\d+\Z")
 
 
-class LaunchLogFormat(TextFormat):
+class LaunchLogFormat(MixedOutputFormat):
     name = "launch"
     title = "ROS 2 launch log"
-
-    def __init__(self, file_name: str = "", mtime_ns: int = 0) -> None:
-        self.file_name = file_name
-        self.mtime_ns = mtime_ns
-        self.counts = FillCounts()
-
-    def for_file(self, name: str, mtime_ns: int = 0) -> LaunchLogFormat:
-        return LaunchLogFormat(name, mtime_ns)
 
     def looks_like(self, first_line: str) -> bool:
         line = strip_colour(first_line)
@@ -67,19 +54,8 @@ class LaunchLogFormat(TextFormat):
         found = _PROCESS.match(line)
         return found is not None and _PROCESS_NAME.match(found["process"]) is not None
 
-    def notes(self) -> list[str]:
-        return self.counts.notes()
-
-    def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
-        yield from assemble(
-            lines,
-            parse_launch_line,
-            source=source,
-            plain_node=process_of_file(self.file_name),
-            file_time_ns=self.mtime_ns,
-            counts=self.counts,
-            problems=problems,
-        )
+    def line_parser(self) -> tuple[LineParser, str]:
+        return parse_launch_line, process_of_file(self.file_name)
 
 
 def parse_launch_line(text: str) -> Start | Plain:

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import re
 import time
+from abc import abstractmethod
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -31,6 +32,8 @@ from ..record import LogRecord
 from ..text import plural
 from . import textlines
 from .problems import Problems
+from .text_format import TextFormat
+from .textlines import TextLines
 
 #: Most records without a time held back waiting for the first time in a file; beyond
 #: it they are given the file's modification time.
@@ -65,6 +68,43 @@ class Plain:
 
 
 LineParser = Callable[[str], "Start | Plain"]
+
+
+class MixedOutputFormat(TextFormat):
+    """A format of output that mixes log records with other lines, read with ``assemble``.
+
+    A format says how to read one line (``line_parser``) for the file it was made for
+    (``for_file``: its name gives the process, its modification time the last resort for
+    times); ``notes()`` says how times were filled in.
+    """
+
+    def __init__(self, file_name: str = "", mtime_ns: int = 0) -> None:
+        self.file_name = file_name
+        self.mtime_ns = mtime_ns
+        self.counts = FillCounts()
+
+    def for_file(self, name: str, mtime_ns: int = 0) -> MixedOutputFormat:
+        return type(self)(name, mtime_ns)
+
+    def notes(self) -> list[str]:
+        return self.counts.notes()
+
+    @abstractmethod
+    def line_parser(self) -> tuple[LineParser, str]:
+        """How to read this file's lines (called once per reading, so it may keep state), and
+        the name of the file's plain rows when their lines name no process."""
+
+    def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        parse, plain_node = self.line_parser()
+        yield from assemble(
+            lines,
+            parse,
+            source=source,
+            plain_node=plain_node,
+            file_time_ns=self.mtime_ns,
+            counts=self.counts,
+            problems=problems,
+        )
 
 
 @dataclass

@@ -16,23 +16,18 @@ logger ``rosout``: those records are named after the node instead (from the file
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 
-from ..record import LogRecord
 from .mixed_output import (
-    FillCounts,
+    LineParser,
+    MixedOutputFormat,
     Plain,
     Start,
-    assemble,
     local_seconds,
     local_time_note,
     process_of_file,
     ros1_node_of_process,
     rospy_node_name,
 )
-from .problems import Problems
-from .text_format import TextFormat
-from .textlines import TextLines
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARNING": 30, "WARN": 30, "ERROR": 40, "CRITICAL": 50, "FATAL": 50}
 _START = re.compile(
@@ -44,17 +39,9 @@ _START = re.compile(
 ROSPY_USER_LOGGER = "rosout"
 
 
-class PythonLogFormat(TextFormat):
+class PythonLogFormat(MixedOutputFormat):
     name = "rospy-log"
     title = "ROS 1 Python log"
-
-    def __init__(self, file_name: str = "", mtime_ns: int = 0) -> None:
-        self.file_name = file_name
-        self.mtime_ns = mtime_ns
-        self.counts = FillCounts()
-
-    def for_file(self, name: str, mtime_ns: int = 0) -> PythonLogFormat:
-        return PythonLogFormat(name, mtime_ns)
 
     def looks_like(self, first_line: str) -> bool:
         return _START.match(first_line) is not None
@@ -62,7 +49,7 @@ class PythonLogFormat(TextFormat):
     def notes(self) -> list[str]:
         return [local_time_note(), *self.counts.notes()]
 
-    def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+    def line_parser(self) -> tuple[LineParser, str]:
         process = process_of_file(self.file_name)
         node = ros1_node_of_process(process)
         match = _START.match
@@ -82,12 +69,4 @@ class PythonLogFormat(TextFormat):
             name = node if logger == ROSPY_USER_LOGGER and node else logger
             return Start(stamp, _LEVELS[found["level"]], name, message)
 
-        yield from assemble(
-            lines,
-            parse,
-            source=source,
-            plain_node=node or process,
-            file_time_ns=self.mtime_ns,
-            counts=self.counts,
-            problems=problems,
-        )
+        return parse, node or process

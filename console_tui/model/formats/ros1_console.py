@@ -20,45 +20,42 @@ record are rows of their own. Terminal colour codes are ignored.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 
-from ..record import LogRecord
 from ..text import plural
 from .mixed_output import (
-    FillCounts,
+    LineParser,
+    MixedOutputFormat,
     Plain,
     Start,
-    assemble,
     decimal_ns,
     process_of_file,
     ros1_node_of_process,
     strip_colour,
 )
-from .problems import Problems
-from .text_format import TextFormat
-from .textlines import TextLines
 
 _LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
 _LINE = re.compile(
     r"\[ ?(?P<level>DEBUG|INFO|WARN|ERROR|FATAL)\] \[(?P<wall>\d{1,20}\.\d{1,9})(?:, (?P<sim>-?\d{1,20}\.\d{1,9}))?\]: ?(?P<msg>.*)\Z",
     re.DOTALL,
 )
-#: Files of captured output, by name: read in this format when no line says otherwise.
-CAPTURE_SUFFIXES = ("-stdout.log", "-stderr.log")
+#: Files of captured output, by name (rotated ones too): ``<process>-stdout.log``,
+#: ``-stderr.log``, and a launched process's own ``<name>-<N>.log``. Read in this format
+#: when no line of theirs says otherwise.
+_CAPTURE_NAME = re.compile(r".+(?:-stdout|-stderr|-\d+)\.log(?:\.\d+)?\Z")
 
 
-class Ros1ConsoleFormat(TextFormat):
+def is_capture_name(name: str) -> bool:
+    """Whether a file is named as a process's captured output."""
+    return _CAPTURE_NAME.match(name) is not None
+
+
+class Ros1ConsoleFormat(MixedOutputFormat):
     name = "ros1-console"
     title = "ROS 1 console output"
 
     def __init__(self, file_name: str = "", mtime_ns: int = 0) -> None:
-        self.file_name = file_name
-        self.mtime_ns = mtime_ns
-        self.counts = FillCounts()
+        super().__init__(file_name, mtime_ns)
         self.simulated = 0
-
-    def for_file(self, name: str, mtime_ns: int = 0) -> Ros1ConsoleFormat:
-        return Ros1ConsoleFormat(name, mtime_ns)
 
     def looks_like(self, first_line: str) -> bool:
         return _LINE.match(strip_colour(first_line)) is not None
@@ -72,7 +69,7 @@ class Ros1ConsoleFormat(TextFormat):
             )
         return notes
 
-    def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+    def line_parser(self) -> tuple[LineParser, str]:
         process = process_of_file(self.file_name)
         node = ros1_node_of_process(process) or process
         match = _LINE.match
@@ -85,12 +82,4 @@ class Ros1ConsoleFormat(TextFormat):
                 self.simulated += 1
             return Start(decimal_ns(found["wall"]), _LEVELS[found["level"]], node, found["msg"])
 
-        yield from assemble(
-            lines,
-            parse,
-            source=source,
-            plain_node=node,
-            file_time_ns=self.mtime_ns,
-            counts=self.counts,
-            problems=problems,
-        )
+        return parse, node

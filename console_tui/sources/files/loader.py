@@ -14,7 +14,7 @@ from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
 from ...model.text import plural
 from .folders import Expansion, LogPaths, expand_paths
-from .log_file import LogFile, describe_error
+from .log_file import LogFile, describe_error, reading_stopped
 from .merge import merge_by_time
 from .opener import open_log_paths, source_names
 
@@ -43,6 +43,8 @@ class LoadProgress:
     records: int
     finished: bool
     cancelled: bool
+    #: Still looking through the folders given for the logs in them (``files`` are the paths given).
+    searching: bool = False
 
     @property
     def fraction(self) -> float:
@@ -135,7 +137,7 @@ def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[Log
             count += len(batch)
             yield batch
     except Exception as error:
-        file.problems.add(f"reading stopped: {describe_error(error)}; what came before was read")
+        file.problems.add(reading_stopped(error))
     file.records = count
     if count == 0 and not len(file.problems) and not (cancel is not None and cancel.is_set()):
         file.problems.add(file.empty_reason())
@@ -168,6 +170,7 @@ class FileLoad:
         self.failures: list[Problem] = []
         self.error = ""
         self._names = source_names(self.paths)
+        self._expanded = False
         #: Files of opened folders passed over (not logs by their names, or empty).
         self.skipped: list[Path] = []
         self._records = 0
@@ -203,7 +206,7 @@ class FileLoad:
             else FileProgress(name, "", 0.0, 1 if name in failed else 0, failed=name in failed)
             for name in self._names
         )
-        return LoadProgress(files, self._records, self._finished, self.cancel_event.is_set())
+        return LoadProgress(files, self._records, self._finished, self.cancel_event.is_set(), not self._expanded)
 
     def problems(self) -> list[Problem]:
         """Everything that went wrong so far: files that could not be opened, then each
@@ -228,6 +231,7 @@ class FileLoad:
             self.failures += folder_problems(expansion)
             self.skipped = expansion.skipped
             self._names = [log.name for log in expansion.logs]
+            self._expanded = True
             many = len(expansion.logs) > MANY_FILES
             for log in expansion.logs:
                 if self.cancel_event.is_set():

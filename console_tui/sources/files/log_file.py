@@ -30,6 +30,11 @@ def describe_error(error: BaseException) -> str:
     return f"{type(error).__name__} (a check of the reading library failed on this data: the file is probably damaged)"
 
 
+def reading_stopped(error: BaseException) -> str:
+    """The problem of a file whose reading an unexpected error ended."""
+    return f"reading stopped: {describe_error(error)}; what came before was read"
+
+
 class LogFile(ABC):
     """An opened log file or recording, ready to be read once into record batches.
 

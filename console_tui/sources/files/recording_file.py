@@ -15,7 +15,7 @@ from ...model.formats.ros1_log_msg import Ros1LogDecoder
 from ...model.formats.ros2_log_msg import LogDecoder
 from ...model.record import LogRecord
 from ..log_topics import ROSOUT, ROSOUT_AGG
-from .log_file import Cancel, LogFile
+from .log_file import Cancel, LogFile, reading_stopped
 
 ROS2_LOG = "rcl_interfaces/msg/Log"
 ROS1_LOG = "rosgraph_msgs/msg/Log"
@@ -83,6 +83,22 @@ class RecordingFile(LogFile):
             return "no log messages: the recording holds no topics"
         shown = ", ".join(others[:8]) + (f" and {len(others) - 8} more" if len(others) > 8 else "")
         return f"no log messages: no log topic (rcl_interfaces/msg/Log, rosgraph_msgs/Log) was recorded, only {shown}"
+
+    def _read_then_close(
+        self,
+        items: Iterable[tuple[Callable[[bytes], LogRecord], bytes, str]],
+        cancel: Cancel | None,
+        *,
+        count_messages: bool = True,
+    ) -> Iterator[list[LogRecord]]:
+        """``_decode_all``, where an error the library did not expect ends the reading (and
+        a problem says so); the file is closed either way."""
+        try:
+            yield from self._decode_all(items, cancel, count_messages=count_messages)
+        except Exception as error:
+            self.problems.add(reading_stopped(error))
+        finally:
+            self.close()
 
     def _decode_all(
         self,

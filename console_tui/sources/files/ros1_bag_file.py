@@ -70,12 +70,7 @@ class Ros1BagFile(RecordingFile):
             return
         if not self.connections:
             return
-        try:
-            yield from self._decode_all(self._messages(), cancel)
-        except Exception as error:
-            self.problems.add(f"reading stopped: {describe_error(error)}; what came before was read")
-        finally:
-            self.close()
+        yield from self._read_then_close(self._messages(), cancel)
 
     def _scanned(self, scan: BagScan, cancel: Cancel | None) -> Iterator[list[LogRecord]]:
         decode = decoder(ROS1_LOG, "ros1", self.source)
@@ -89,11 +84,8 @@ class Ros1BagFile(RecordingFile):
                 self.problems.add(f"{error}: what came before it was read", offset=error.offset)
             self.topics = sorted(scan.topics)
 
-        try:
-            yield from self._decode_all(items(), cancel, count_messages=False)
-        finally:
-            self.done = self.total
-            self.close()
+        yield from self._read_then_close(items(), cancel, count_messages=False)
+        self.done = self.total
 
     def _messages(self) -> Iterator[tuple[Callable[[bytes], LogRecord], bytes, str]]:
         reader = self._reader

@@ -63,12 +63,7 @@ class Rosbag2File(RecordingFile):
         if not self.connections:
             self.close()
             return
-        try:
-            yield from self._decode_all(self._messages(), cancel)
-        except Exception as error:
-            self.problems.add(f"reading stopped: {describe_error(error)}; what came before was read")
-        finally:
-            self.close()
+        yield from self._read_then_close(self._messages(), cancel)
 
     def _messages(self) -> Iterator[tuple[Callable[[bytes], LogRecord], bytes, str]]:
         topics = set(self.topics)

@@ -1,0 +1,144 @@
+"""Counts per node and severity, and each node's rate over the last minute.
+
+``NodeStats`` counts every kept record (whatever the rules hide: it describes the run),
+incrementally as records arrive (``update``) and as the store drops the oldest (its
+eviction hook), a chunk column at a time: about 0.3 us a record. The rate of a node is
+its records in the last ``window_s`` seconds of stamps (the newest stamp's second and
+the ones before it) divided by that window, or by the seconds the history covers when
+it is shorter.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass
+
+from .find_level import find_level, find_node, severity_range
+from .levels import MESSAGE_SEVERITIES, severity_bucket
+from .store import LogStore
+
+NS_PER_S = 1_000_000_000
+RATE_WINDOW_S = 60
+SLOTS = len(MESSAGE_SEVERITIES)
+_SLOT = {level: MESSAGE_SEVERITIES.index(severity_bucket(level)) for level in range(256)}
+
+
+@dataclass(frozen=True)
+class NodeCounts:
+    """One node's kept records per severity (DEBUG .. FATAL) and its recent rate."""
+
+    node: str
+    node_id: int
+    counts: tuple[int, ...]
+    rate: float
+
+    @property
+    def total(self) -> int:
+        return sum(self.counts)
+
+
+class NodeStats:
+    """Kept records per node and severity over ``store``; call ``update`` after records arrive."""
+
+    def __init__(self, store: LogStore, *, window_s: int = RATE_WINDOW_S) -> None:
+        self.store = store
+        self.window_s = window_s
+        #: node id -> five counts (DEBUG .. FATAL)
+        self._counts: list[list[int]] = []
+        #: second of the stamp -> records of each node id in it (the last ``window_s`` seconds)
+        self._seconds: dict[int, Counter[int]] = {}
+        self._newest_second: int | None = None
+        self._oldest_second: int | None = None
+        self._seen_to = store.first_seq
+        store.evict_listeners.append(self._evicting)
+
+    def clear(self) -> None:
+        """After the store was cleared."""
+        self._counts.clear()
+        self._seconds.clear()
+        self._newest_second = self._oldest_second = None
+        self._seen_to = self.store.end_seq
+
+    def update(self) -> None:
+        store = self.store
+        start = max(self._seen_to, store.first_seq)
+        for span in store.spans(start, store.end_seq):
+            chunk, lo, hi = span.chunk, span.lo, span.hi
+            self._count(chunk.nodes[lo:hi], chunk.levels[lo:hi], chunk.stamps[lo:hi], +1)
+        self._seen_to = store.end_seq
+
+    def _evicting(self, first: int, new_first: int) -> None:
+        for span in self.store.spans(first, min(new_first, self._seen_to)):
+            chunk, lo, hi = span.chunk, span.lo, span.hi
+            self._count(chunk.nodes[lo:hi], chunk.levels[lo:hi], chunk.stamps[lo:hi], -1)
+        self._oldest_second = None  # found again when asked
+        self._seen_to = max(self._seen_to, new_first)
+
+    def _count(self, nodes, levels, stamps, sign: int) -> None:
+        counts = self._counts
+        slot = _SLOT
+        for (node, level), number in Counter(zip(nodes, levels, strict=False)).items():
+            while node >= len(counts):
+                counts.append([0] * SLOTS)
+            counts[node][slot[level]] += sign * number
+        seconds = [stamp // NS_PER_S for stamp in stamps]
+        if not seconds:
+            return
+        newest = max(seconds)
+        if sign > 0:
+            if self._oldest_second is not None:
+                self._oldest_second = min(self._oldest_second, min(seconds))
+            if self._newest_second is None or newest > self._newest_second:
+                self._newest_second = newest
+        cut = (self._newest_second or newest) - self.window_s
+        window = self._seconds
+        for (second, node), number in Counter(zip(seconds, nodes, strict=False)).items():
+            if second > cut:
+                window.setdefault(second, Counter())[node] += sign * number
+        for second in [second for second in window if second <= cut]:
+            del window[second]
+
+    # -- reading ----------------------------------------------------------------------------------
+
+    def window_seconds(self) -> int:
+        """The seconds the rates are over: ``window_s``, or less when the history is shorter."""
+        if self._newest_second is None:
+            return self.window_s
+        if self._oldest_second is None:
+            oldest = None
+            for span in self.store.spans(self.store.first_seq, self.store.end_seq):
+                low = min(span.chunk.stamps[span.lo : span.hi]) // NS_PER_S
+                oldest = low if oldest is None else min(oldest, low)
+                if oldest <= self._newest_second - self.window_s:
+                    break
+            self._oldest_second = oldest if oldest is not None else self._newest_second
+        return max(min(self.window_s, self._newest_second - self._oldest_second + 1), 1)
+
+    def nodes(self) -> list[NodeCounts]:
+        """Every node with a kept record, most records first."""
+        recent: Counter[int] = Counter()
+        for counter in self._seconds.values():
+            recent.update(counter)
+        seconds = self.window_seconds()
+        names = self.store.nodes
+        found = [
+            NodeCounts(names[node], node, tuple(counts), max(recent.get(node, 0), 0) / seconds)
+            for node, counts in enumerate(self._counts)
+            if any(counts)
+        ]
+        found.sort(key=lambda entry: (-entry.total, entry.node))
+        return found
+
+    def busiest(self, number: int = 5) -> list[NodeCounts]:
+        """The nodes with the highest rates over the last minute (those with any)."""
+        ranked = sorted((entry for entry in self.nodes() if entry.rate > 0), key=lambda e: (-e.rate, e.node))
+        return ranked[:number]
+
+    def first_of(self, severity: int) -> int | None:
+        """The seq of the first kept record of a severity (levels between steps count under
+        the step below), or None."""
+        low, high = severity_range(severity)
+        return find_level(self.store, self.store.first_seq, self.store.end_seq, low, high)
+
+    def first_of_node(self, node_id: int) -> int | None:
+        return find_node(self.store, self.store.first_seq, self.store.end_seq, node_id)
