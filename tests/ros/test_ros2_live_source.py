@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import contextlib
 import struct
-import threading
 import time
 
 import pytest
+from nodes.stalled_intake import StalledQueue
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
@@ -168,21 +168,6 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
         runtime.shutdown()
 
 
-class _StalledQueue(IntakeQueue):
-    """Holds the intake thread in its first ``put`` until released."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.stalled = threading.Event()
-        self.release = threading.Event()
-
-    def put(self, batch):
-        if not self.stalled.is_set():
-            self.stalled.set()
-            self.release.wait(30)
-        super().put(batch)
-
-
 def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_publisher_left(nodes, monkeypatch):
     """With the intake held up, a reader history of 10 keeps the last 10 of a burst of 100
     and Fast DDS reports nothing lost; the gaps in the publisher's sequence numbers do."""
@@ -191,7 +176,7 @@ def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_
     monkeypatch.setattr(module, "QUEUE_DEPTH", 10)
     talker = nodes.start("talker.py", "--name", "gap_talker")
     talker.expect("ready")
-    queue = _StalledQueue()
+    queue = StalledQueue()
     with live_source(queue=queue) as source:
         assert wait_until(lambda: source.status.publishers >= 1)
         talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
