@@ -29,6 +29,10 @@ _HINTS: list[Hint] = [
 ]
 
 
+#: How the pane names the rules the level and node keys make (``model/toggles.py``).
+_TOGGLE_NAMES = {"levels": "level keys", "solo": "solo", "mute": "mute"}
+
+
 def entry_text(entry: Entry, count: int | None) -> Text:
     """One line of the list: on/off, role, the rule, its count (or why it is inactive)."""
     text = Text(no_wrap=True, overflow="ellipsis")
@@ -41,6 +45,8 @@ def entry_text(entry: Entry, count: int | None) -> Text:
     text.append(description, style="" if entry.active else "dim strike" if not entry.enabled else "dim")
     if entry.from_query:
         text.append("  (query)", style="dim italic")
+    if entry.toggle:
+        text.append(f"  ({_TOGGLE_NAMES.get(entry.toggle, entry.toggle)})", style="dim italic")
     if count is not None:
         text.append(f"  {count:,}", style="bold cyan")
     elif entry.enabled and entry.rule.is_empty:
