@@ -32,10 +32,12 @@ from _report import machine_line
 from console_tui.model.record import LogRecord
 from console_tui.model.rules import (
     CustomRule,
+    LocationRule,
     MessageRule,
     NodeRule,
     RuleSet,
     SeverityRule,
+    TimeRangeRule,
     exclude,
     highlight,
 )
@@ -63,6 +65,9 @@ TEMPLATES = [
     "Parameter update: max_velocity={t:.2f}, min_velocity={x:.2f}, acc_limit={y:.2f} for {part}",
 ]
 LEVELS = [10] * 20 + [20] * 60 + [30] * 12 + [40] * 7 + [50]
+START_NS = 1_795_000_000_000_000_000
+#: The newest stamp of a million records (one a millisecond).
+LAST_STAMP = START_NS + 999_999 * 1_000_000
 
 
 def make_records(count: int) -> list[LogRecord]:
@@ -70,7 +75,7 @@ def make_records(count: int) -> list[LogRecord]:
     nodes = [f"{rng.choice(AREAS)}.{rng.choice(PARTS)}_{i}" for i in range(60)]
     files = [f"/opt/robot/src/{rng.choice(AREAS)}/src/{rng.choice(PARTS)}_{i}.cpp" for i in range(90)]
     functions = [f"{rng.choice(['on_', 'update_', 'handle_', ''])}{rng.choice(PARTS)}_{i}" for i in range(120)]
-    start = 1_795_000_000_000_000_000
+    start = START_NS
     records = []
     for i in range(count):
         part = rng.choice(PARTS)
@@ -107,9 +112,15 @@ def scenarios() -> list[tuple[str, RuleSet]]:
         ("text, ignore case: hide 'timeout'", RuleSet((exclude(MessageRule("timeout", ignore_case=True)),))),
         ("regex /time(out|d out)/i, highlight", RuleSet((highlight(MessageRule("time(out|d out)", True, True)),))),
         ("  + highlighted only (masks kept)", RuleSet((highlight(MessageRule("time(out|d out)", True, True)),), True)),
+        ("regex /\\d{3}\\.\\d ms/, exclude", RuleSet((exclude(MessageRule(r"\d{3}\.\d ms", regex=True)),))),
         (
             "custom: warn+ AND nav* AND 'goal'",
             RuleSet((exclude(CustomRule((SeverityRule.at_least(30), NodeRule(("nav*",)), MessageRule("goal")))),)),
+        ),
+        ("location: file 'planner', hide", RuleSet((exclude(LocationRule(file="planner")),))),
+        (
+            "time range: the last 10 minutes only",
+            RuleSet((exclude(TimeRangeRule(LAST_STAMP - 600 * 10**9, None), inverted=True),)),
         ),
         ("query: issue example", RuleSet().with_query(parse_query(example))),
         ("everything off again", RuleSet()),

@@ -196,6 +196,9 @@ class _Run:
 
     def print(self, batch: list[LogRecord]) -> None:
         self.printer.write(self.filter.filter(batch))
+        for rule, why in self.filter.switched_off:
+            _complain(f"rule switched off, {why}: {rule.describe()}")
+        self.filter.switched_off.clear()
 
     def main(self, args: argparse.Namespace) -> int:
         live: LiveIntake | None = None

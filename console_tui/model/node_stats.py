@@ -1,154 +1,144 @@
-"""Per node (logger) statistics for the node panel: messages kept per severity, and the
-current rate.
+"""Counts per node and severity, and each node's rate over the last minute.
 
-Counts are of the messages kept (the store's bound drops the oldest), whatever the rules
-show. A full chunk is counted once and its counts kept until it is evicted; the chunk still
-filling and the oldest one (partly evicted) are counted again on each ``refresh``. Counting a
-million messages the first time takes steps of a time budget (``refresh`` says when it has
-caught up). The rate is of messages arriving, over the last few seconds (``RATE_WINDOW_S``).
+``NodeStats`` counts every kept record (whatever the rules hide: it describes the run),
+incrementally as records arrive (``update``) and as the store drops the oldest (its
+eviction hook), a chunk column at a time: about 0.3 us a record. The rate of a node is
+its records in the last ``window_s`` seconds of stamps (the newest stamp's second and
+the ones before it) divided by that window, or by the seconds the history covers when
+it is shorter.
 """
 
 from __future__ import annotations
 
-from collections import Counter, deque
-from collections.abc import Callable
+from collections import Counter
 from dataclasses import dataclass
-from itertools import compress
-from time import monotonic, perf_counter
 
+from .find_level import find_level, find_node, severity_range
 from .levels import MESSAGE_SEVERITIES, severity_bucket
-from .store import CHUNK_SIZE, Chunk, LogStore
+from .store import LogStore
 
-RATE_WINDOW_S = 3.0
-_LEVELS = [int(s) for s in MESSAGE_SEVERITIES]
-_TABLES = [bytes(1 if severity_bucket(level) == wanted else 0 for level in range(256)) for wanted in _LEVELS]
-
-#: node id -> messages per severity (DEBUG .. FATAL)
-Counts = dict[int, list[int]]
+NS_PER_S = 1_000_000_000
+RATE_WINDOW_S = 60
+SLOTS = len(MESSAGE_SEVERITIES)
+_SLOT = {level: MESSAGE_SEVERITIES.index(severity_bucket(level)) for level in range(256)}
 
 
 @dataclass(frozen=True)
-class NodeRow:
-    """One node in the panel."""
+class NodeCounts:
+    """One node's kept records per severity (DEBUG .. FATAL) and its recent rate."""
 
-    name: str
-    #: Messages kept per severity: DEBUG, INFO, WARN, ERROR, FATAL.
+    node: str
+    node_id: int
     counts: tuple[int, ...]
-    #: Messages a second arriving now, or None before it is known.
-    rate: float | None
+    rate: float
 
     @property
     def total(self) -> int:
         return sum(self.counts)
 
-    @property
-    def errors(self) -> int:
-        """ERROR and FATAL."""
-        return self.counts[3] + self.counts[4]
-
-    @property
-    def warnings(self) -> int:
-        return self.counts[2]
-
-
-def count_span(chunk: Chunk, lo: int, hi: int, into: Counts) -> None:
-    """Add the messages of ``chunk[lo:hi]`` per node and severity to ``into``."""
-    levels = chunk.levels[lo:hi].tobytes()
-    nodes = chunk.nodes[lo:hi]
-    for index, table in enumerate(_TABLES):
-        mask = levels.translate(table)
-        if 1 not in mask:
-            continue
-        for node, number in Counter(compress(nodes, mask)).items():
-            row = into.get(node)
-            if row is None:
-                row = into[node] = [0, 0, 0, 0, 0]
-            row[index] += number
-
-
-def _add(total: Counts, part: Counts, sign: int = 1) -> None:
-    for node, numbers in part.items():
-        row = total.get(node)
-        if row is None:
-            row = total[node] = [0, 0, 0, 0, 0]
-        for index, number in enumerate(numbers):
-            row[index] += sign * number
-
 
 class NodeStats:
-    """Counts per node and severity over a ``LogStore``, kept up to date by ``refresh``."""
+    """Kept records per node and severity over ``store``; call ``update`` after records arrive."""
 
-    def __init__(self, store: LogStore, clock: Callable[[], float] = monotonic) -> None:
+    def __init__(self, store: LogStore, *, window_s: int = RATE_WINDOW_S) -> None:
         self.store = store
-        self.clock = clock
-        #: Counts of each full chunk counted (by its first seq), and their sum.
-        self._chunks: dict[int, Counts] = {}
-        self._full: Counts = {}
-        #: The partly kept and the filling chunks, counted on the last refresh.
-        self._partial: Counts = {}
-        #: Messages that arrived per node since the start (for rates), and samples of it.
-        self._arrived: Counter[int] = Counter()
-        self._arrived_to = store.end_seq
-        self._samples: deque[tuple[float, Counter[int]]] = deque()
-        self.caught_up = False
+        self.window_s = window_s
+        #: node id -> five counts (DEBUG .. FATAL)
+        self._counts: list[list[int]] = []
+        #: second of the stamp -> records of each node id in it (the last ``window_s`` seconds)
+        self._seconds: dict[int, Counter[int]] = {}
+        self._newest_second: int | None = None
+        self._oldest_second: int | None = None
+        self._seen_to = store.first_seq
+        store.evict_listeners.append(self._evicting)
 
-    def refresh(self, budget_s: float = 0.008) -> bool:
-        """Count what changed, for about ``budget_s``; True when the counts are complete."""
-        store = self.store
-        deadline = perf_counter() + budget_s
-        self._count_arrivals()
-        spans = list(store.spans(store.first_seq, store.end_seq))
-        kept = set()
-        partial: Counts = {}
-        complete = True
-        for span in spans:
-            base = span.seq - span.lo
-            if span.lo == 0 and span.hi == CHUNK_SIZE:
-                kept.add(base)
-                if base not in self._chunks:
-                    if perf_counter() >= deadline:
-                        complete = False
-                        continue
-                    counts: Counts = {}
-                    count_span(span.chunk, 0, CHUNK_SIZE, counts)
-                    self._chunks[base] = counts
-                    _add(self._full, counts)
-            else:
-                count_span(span.chunk, span.lo, span.hi, partial)
-        for base in [base for base in self._chunks if base not in kept]:
-            _add(self._full, self._chunks.pop(base), -1)
-        self._partial = partial
-        self.caught_up = complete
-        return complete
+    def clear(self) -> None:
+        """After the store was cleared."""
+        self._counts.clear()
+        self._seconds.clear()
+        self._newest_second = self._oldest_second = None
+        self._seen_to = self.store.end_seq
 
-    def _count_arrivals(self) -> None:
+    def update(self) -> None:
         store = self.store
-        start = max(self._arrived_to, store.first_seq)
+        start = max(self._seen_to, store.first_seq)
         for span in store.spans(start, store.end_seq):
-            self._arrived.update(span.chunk.nodes[span.lo : span.hi])
-        self._arrived_to = store.end_seq
-        now = self.clock()
-        samples = self._samples
-        samples.append((now, Counter(self._arrived)))
-        while len(samples) > 2 and samples[1][0] <= now - RATE_WINDOW_S:
-            samples.popleft()
+            chunk, lo, hi = span.chunk, span.lo, span.hi
+            self._count(chunk.nodes[lo:hi], chunk.levels[lo:hi], chunk.stamps[lo:hi], +1)
+        self._seen_to = store.end_seq
 
-    def rows(self) -> list[NodeRow]:
-        """Every node with messages kept, or that sent some lately, by name."""
+    def _evicting(self, first: int, new_first: int) -> None:
+        for span in self.store.spans(first, min(new_first, self._seen_to)):
+            chunk, lo, hi = span.chunk, span.lo, span.hi
+            self._count(chunk.nodes[lo:hi], chunk.levels[lo:hi], chunk.stamps[lo:hi], -1)
+        self._oldest_second = None  # found again when asked
+        self._seen_to = max(self._seen_to, new_first)
+
+    def _count(self, nodes, levels, stamps, sign: int) -> None:
+        counts = self._counts
+        slot = _SLOT
+        for (node, level), number in Counter(zip(nodes, levels, strict=False)).items():
+            while node >= len(counts):
+                counts.append([0] * SLOTS)
+            counts[node][slot[level]] += sign * number
+        seconds = [stamp // NS_PER_S for stamp in stamps]
+        if not seconds:
+            return
+        newest = max(seconds)
+        if sign > 0:
+            if self._oldest_second is not None:
+                self._oldest_second = min(self._oldest_second, min(seconds))
+            if self._newest_second is None or newest > self._newest_second:
+                self._newest_second = newest
+        cut = (self._newest_second or newest) - self.window_s
+        window = self._seconds
+        for (second, node), number in Counter(zip(seconds, nodes, strict=False)).items():
+            if second > cut:
+                window.setdefault(second, Counter())[node] += sign * number
+        for second in [second for second in window if second <= cut]:
+            del window[second]
+
+    # -- reading ----------------------------------------------------------------------------------
+
+    def window_seconds(self) -> int:
+        """The seconds the rates are over: ``window_s``, or less when the history is shorter."""
+        if self._newest_second is None:
+            return self.window_s
+        if self._oldest_second is None:
+            oldest = None
+            for span in self.store.spans(self.store.first_seq, self.store.end_seq):
+                low = min(span.chunk.stamps[span.lo : span.hi]) // NS_PER_S
+                oldest = low if oldest is None else min(oldest, low)
+                if oldest <= self._newest_second - self.window_s:
+                    break
+            self._oldest_second = oldest if oldest is not None else self._newest_second
+        return max(min(self.window_s, self._newest_second - self._oldest_second + 1), 1)
+
+    def nodes(self) -> list[NodeCounts]:
+        """Every node with a kept record, most records first."""
+        recent: Counter[int] = Counter()
+        for counter in self._seconds.values():
+            recent.update(counter)
+        seconds = self.window_seconds()
         names = self.store.nodes
-        counts: Counts = {node: list(numbers) for node, numbers in self._full.items()}
-        _add(counts, self._partial)
-        rates = self._rates()
-        ids = {node for node, numbers in counts.items() if any(numbers)} | {n for n, r in rates.items() if r}
-        return sorted(
-            (NodeRow(names[node], tuple(counts.get(node, (0, 0, 0, 0, 0))), rates.get(node)) for node in ids),
-            key=lambda row: row.name,
-        )
+        found = [
+            NodeCounts(names[node], node, tuple(counts), max(recent.get(node, 0), 0) / seconds)
+            for node, counts in enumerate(self._counts)
+            if any(counts)
+        ]
+        found.sort(key=lambda entry: (-entry.total, entry.node))
+        return found
 
-    def _rates(self) -> dict[int, float | None]:
-        samples = self._samples
-        if len(samples) < 2 or samples[-1][0] - samples[0][0] < 0.5:
-            return {node: None for node in self._arrived}
-        (then, before), (now, after) = samples[0], samples[-1]
-        seconds = now - then
-        return {node: (after[node] - before[node]) / seconds for node in after}
+    def busiest(self, number: int = 5) -> list[NodeCounts]:
+        """The nodes with the highest rates over the last minute (those with any)."""
+        ranked = sorted((entry for entry in self.nodes() if entry.rate > 0), key=lambda e: (-e.rate, e.node))
+        return ranked[:number]
+
+    def first_of(self, severity: int) -> int | None:
+        """The seq of the first kept record of a severity (levels between steps count under
+        the step below), or None."""
+        low, high = severity_range(severity)
+        return find_level(self.store, self.store.first_seq, self.store.end_seq, low, high)
+
+    def first_of_node(self, node_id: int) -> int | None:
+        return find_node(self.store, self.store.first_seq, self.store.end_seq, node_id)

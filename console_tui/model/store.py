@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from array import array
 from collections import Counter, deque
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import Any, NamedTuple
 
 from .levels import MESSAGE_SEVERITIES, severity_bucket
@@ -156,6 +156,9 @@ class LogStore:
         self.counts: dict[int, int] = {int(s): 0 for s in MESSAGE_SEVERITIES}
         #: Records dropped at the bound since the start.
         self.evicted = 0
+        #: Called as ``listener(first, new_first)`` just before the records ``first:new_first``
+        #: are dropped at the bound: they can still be read, and nothing else has changed yet.
+        self.evict_listeners: list[Callable[[int, int], None]] = []
 
     def __len__(self) -> int:
         return self.end_seq - self.first_seq
@@ -253,6 +256,15 @@ class LogStore:
         number, offset = divmod(seq - self._base_seq, CHUNK_SIZE)
         return self._chunks[number].levels[offset]
 
+    def stamp_of(self, seq: int) -> int:
+        number, offset = divmod(seq - self._base_seq, CHUNK_SIZE)
+        return self._chunks[number].stamps[offset]
+
+    def node_id_of(self, seq: int) -> int:
+        """The id of the record's node in ``nodes``."""
+        number, offset = divmod(seq - self._base_seq, CHUNK_SIZE)
+        return self._chunks[number].nodes[offset]
+
     def __iter__(self) -> Iterator[LogRecord]:
         return self.records(self.first_seq, self.end_seq)
 
@@ -283,6 +295,8 @@ class LogStore:
             self.counts[key] = 0
 
     def _evict_to(self, new_first: int) -> None:
+        for listener in self.evict_listeners:
+            listener(self.first_seq, new_first)
         counts = self.counts
         for span in self.spans(self.first_seq, new_first):
             for level, number in Counter(span.chunk.levels[span.lo : span.hi]).items():

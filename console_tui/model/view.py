@@ -21,6 +21,7 @@ goes on under the rules without it and lists it in ``switched_off`` for the call
 
 from __future__ import annotations
 
+import sys
 from array import array
 from bisect import bisect_left, bisect_right
 from itertools import compress
@@ -29,7 +30,7 @@ from time import perf_counter
 
 from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
-from .rules.time_limit import MatchTimeout, time_limit
+from .rules.time_limit import MatchTimeout, alarms, time_limit
 from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 from .text import plural
 
@@ -99,12 +100,13 @@ class LogView:
     ) -> None:
         """Use new rules: the newest ``first_screen`` rows at once (within ``budget_s``),
         the rest by ``refilter_step``. A rule too slow to test is switched off (``switched_off``)."""
-        while True:
-            try:
-                self._set_rules(rules, first_screen, budget_s)
-                return
-            except _TooSlow as slow:
-                rules = self._switch_off(slow)
+        with alarms():
+            while True:
+                try:
+                    self._set_rules(rules, first_screen, budget_s)
+                    return
+                except _TooSlow as slow:
+                    rules = self._switch_off(slow)
 
     def _switch_off(self, slow: _TooSlow) -> RuleSet:
         """The rules in force without the rule that was too slow (noted in ``switched_off``)."""
@@ -167,7 +169,8 @@ class LogView:
     def refilter_step(self, budget_s: float = 0.008) -> bool:
         """Filter older records, newest first, for about ``budget_s``; True when all are done."""
         try:
-            done = self._refilter_step(budget_s)
+            with alarms():
+                done = self._refilter_step(budget_s)
         except _TooSlow as slow:
             self.set_rules(self._switch_off(slow))
             done = not self.refiltering
@@ -197,17 +200,17 @@ class LogView:
         lo = max(self._pending_lo, self.store.first_seq, hi - rows)
         front, marks = self._front, self._front_marks
         for span in self.store.spans(lo, hi, newest_first=True):
-            seqs, highlighted = self._evaluate(span)
-            seqs.reverse()
+            seqs, highlighted = self._evaluate(span, descending=True)
             front.extend(seqs)
-            marks.extend(highlighted[::-1])
+            marks.extend(highlighted)
         self._pending_hi = lo
         return hi - lo
 
     def update(self) -> None:
         """Take in records appended (and forget those evicted) since the last call."""
         try:
-            self._update()
+            with alarms():
+                self._update()
         except _TooSlow as slow:
             self.set_rules(self._switch_off(slow))
 
@@ -225,13 +228,22 @@ class LogView:
 
     # -- testing spans ----------------------------------------------------------------------
 
-    def _evaluate(self, span: ChunkSpan) -> tuple[array, bytes]:
-        """The seqs of ``span`` that are shown, and their highlight marks."""
+    def _evaluate(self, span: ChunkSpan, *, descending: bool = False) -> tuple[array, bytes]:
+        """The seqs of ``span`` that are shown, and their highlight marks (newest first when
+        ``descending``)."""
         chunk, lo, hi, seq = span
+        size = hi - lo
         base = seq - lo
         masks = {rule: self._rule_mask(base, chunk, rule, lo, hi) for rule in self._tests}
-        shown, highlighted = self.rules.decide(masks, hi - lo)
-        return array("q", compress(range(seq, seq + hi - lo), shown)), bytes(compress(highlighted, shown))
+        shown, highlighted = self.rules.decide(masks, size)
+        if shown.count(0) == 0:  # every record shown (highlight rules only, say): no per-record work
+            seqs = consecutive(seq, size, descending=descending)
+        else:
+            seqs = array("q", compress(range(seq, seq + size), shown))
+            highlighted = bytes(compress(highlighted, shown))
+            if descending:
+                seqs.reverse()
+        return seqs, highlighted[::-1] if descending else highlighted
 
     def _rule_mask(self, base: int, chunk: Chunk, rule: Rule, lo: int, hi: int) -> bytes:
         """The rule's matches over ``chunk[lo:hi]``, testing only records not tested before."""
@@ -353,3 +365,23 @@ class LogView:
             at = bisect_left(back, seq, self._start)
             found = at < len(back) and back[at] == seq and self._back_marks[at]
         return "highlight" if found else "dim"
+
+
+#: 1 in every 8-byte lane, and each lane's index, for CHUNK_SIZE lanes (``consecutive``).
+_LANES = 8 * CHUNK_SIZE
+_ONES = int.from_bytes(array("q", [1] * CHUNK_SIZE).tobytes(), sys.byteorder)
+_INDEXES = int.from_bytes(array("q", range(CHUNK_SIZE)).tobytes(), sys.byteorder)
+
+
+def consecutive(first: int, count: int, *, descending: bool = False) -> array:
+    """``array("q", range(first, first + count))`` (reversed when ``descending``), built as
+    one big integer, one 64-bit lane per seq, instead of one Python int per seq."""
+    if count > CHUNK_SIZE or count <= 0:
+        values = range(first, first + count)
+        return array("q", reversed(values) if descending else values)
+    keep = (1 << (64 * count)) - 1
+    ones, indexes = _ONES & keep, _INDEXES & keep
+    value = (first + count - 1) * ones - indexes if descending else first * ones + indexes
+    seqs = array("q")
+    seqs.frombytes(value.to_bytes(8 * count, sys.byteorder))
+    return seqs

@@ -10,6 +10,7 @@ A feature adds its keys to ``BINDINGS`` below and its work in a module of its ow
 
 from __future__ import annotations
 
+import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
@@ -26,7 +27,9 @@ from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
 from ..model.marks import Marks
+from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
+from ..model.record_batch import RecordColumns
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
@@ -70,6 +73,15 @@ DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
+#: How long quitting waits for the sources to stop, at most.
+SOURCE_STOP_TIMEOUT_S = 2.0
+
+
+def _stop_quietly(source: Source) -> None:
+    try:
+        source.stop()
+    except Exception:
+        pass
 
 
 class Source(Protocol):
@@ -172,7 +184,10 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
-        self.node_pane = NodePane(self.store, self.node_toggles, clock=clock)
+        #: Messages per node and severity, and rates: the node panel shows them.
+        self.node_stats = NodeStats(self.store)
+        self.node_stats.update()
+        self.node_pane = NodePane(self.node_stats, self.node_toggles)
         self.exit_signals = ExitSignals(self._exit_on_signal)
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
@@ -266,12 +281,14 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.exit(return_code=128 + signum)
 
     def stop_sources(self) -> None:
+        """Stop every source, all at once: each may wait a moment for a process of its own
+        (the intake process, demo nodes) to end, and the app should be gone within a second."""
         sources, self.sources = self.sources, []
-        for source in sources:
-            try:
-                source.stop()
-            except Exception:
-                pass
+        stopping = [threading.Thread(target=_stop_quietly, args=(source,), daemon=True) for source in sources]
+        for thread in stopping:
+            thread.start()
+        for thread in stopping:
+            thread.join(SOURCE_STOP_TIMEOUT_S)
 
     # -- records ----------------------------------------------------------------------------------
 
@@ -280,27 +297,35 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
 
         Records from files come first; live records wait while files load, so that a
         view of files plus the live stream stays in time order."""
-        records = self.file_queue.drain(MAX_RECORDS_PER_TICK)
+        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self.loading:
-            records += self.queue.drain(MAX_RECORDS_PER_TICK - len(records))
-        if records:
-            self.add_records(records)
+            room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
+            batches += self.queue.drain_batches(room)
+        arrived = self.add_batches(batches) if batches else 0
         if self.loads:
             self.check_loads()
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
-        self.collection_policy.tick(len(records))
+        self.collection_policy.tick(arrived)
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
+        self.add_batches([records if isinstance(records, list) else list(records)])
+
+    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
+        """Put batches (records, or records in columns) into the store and the view; how many."""
         table = self.table
+        added = 0
         with table.keeping_position():
-            added = self.store.extend(records)
+            for batch in batches:
+                added += len(self.store.extend(batch))
             self.view.update()
         if self.view.switched_off:
             self.rules_changed()
-        self._arrivals.append((self.clock(), len(added)))
+        self._arrivals.append((self.clock(), added))
+        self.node_stats.update()
         self.search_after_records()
+        return added
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
@@ -369,6 +394,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
     def action_clear(self) -> None:
         self.marks.clear()
         self.store.clear()
+        self.node_stats.clear()
         self.view.rebuild()
         self.table.reset()
         self.update_status()

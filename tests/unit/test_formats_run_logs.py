@@ -254,6 +254,8 @@ def test_captured_output_without_any_log_line_is_known_by_its_name(tmp_path):
     (tmp_path / "rosout-1-stdout.log.2").write_bytes(prints)
     assert open_log_file(tmp_path / "rosout-1-stdout.log").title == "ROS 1 console output"
     assert open_log_file(tmp_path / "rosout-1-stdout.log.2").title == "ROS 1 console output"
+    (tmp_path / "talker-1.log").write_bytes(prints)  # a launched process's own log: plain output
+    assert open_log_file(tmp_path / "talker-1.log").title == "ROS 1 console output"
     (tmp_path / "notes.log").write_bytes(prints)
     with pytest.raises(FormatError):
         open_log_file(tmp_path / "notes.log")

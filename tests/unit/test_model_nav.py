@@ -1,19 +1,16 @@
 """The model behind finding your way: marks, level and node toggles (rules underneath),
-node statistics, and the Time column's formats."""
+and the Time column's formats."""
 
 from __future__ import annotations
-
-import random
 
 import pytest
 
 from console_tui.model import toggles
 from console_tui.model.marks import Marks
-from console_tui.model.node_stats import NodeStats
 from console_tui.model.record import LogRecord
 from console_tui.model.rules.message import MessageRule
 from console_tui.model.rules.ruleset import RuleSet, exclude
-from console_tui.model.store import CHUNK_SIZE, LogStore
+from console_tui.model.store import LogStore
 from console_tui.model.time_column import TimeFormat, duration_text, sim_time_note, time_cell
 from console_tui.model.view import LogView
 
@@ -83,28 +80,6 @@ def test_solo_and_mute_are_exact_and_exclusive():
     assert toggles.soloed(rules) == () and not rules.verdict(record(20, "/talker"))[0]
     assert rules.verdict(record(20, "other"))[0]
     assert toggles.without_node_toggles(rules).entries == ()
-
-
-# -- node statistics --------------------------------------------------------------------------
-
-
-def test_node_stats_count_per_severity_through_eviction():
-    rng = random.Random(3)
-    store = LogStore(max_messages=3 * CHUNK_SIZE + 100)
-    now = [0.0]
-    stats = NodeStats(store, clock=lambda: now[0])
-    for _ in range(6):
-        store.extend(record(rng.choice([10, 20, 30, 40, 50, 45]), rng.choice("abc")) for _ in range(1500))
-        while not stats.refresh(0.001):
-            pass
-        now[0] += 1.0
-        expected: dict[str, list[int]] = {}
-        for rec in store:
-            row = expected.setdefault(rec.node, [0] * 5)
-            row[min(rec.level, 50) // 10 - 1] += 1
-        assert {row.name: list(row.counts) for row in stats.rows()} == expected
-    rates = {row.name: row.rate for row in stats.rows()}
-    assert sum(rates.values()) == pytest.approx(1500)
 
 
 # -- time formats -----------------------------------------------------------------------------

@@ -403,10 +403,11 @@ def test_custom_rule_narrowing_agrees_with_each_part():
 @pytest.mark.parametrize(
     ("pattern", "expected"),
     [
-        (r"\d{3}\.\d ms", RequiredLiteral(" ms", lead=5, tail=0)),
-        ("time(out|d out)", RequiredLiteral("time", lead=0, tail=5)),
-        ("^goal", RequiredLiteral("goal", lead=0, tail=None)),  # an anchor: no end to the window
+        (r"\d{3}\.\d ms", RequiredLiteral(" ms", lead=5, tail=0, fixed_lead=True)),
+        ("time(out|d out)", RequiredLiteral("time", lead=0, tail=5, fixed_lead=True)),
+        ("^goal", RequiredLiteral("goal", lead=0, tail=None, fixed_lead=True)),  # an anchor: no end to the window
         (r"x.*abc", RequiredLiteral("abc", lead=None, tail=0)),
+        (r"\d{1,3} ms", RequiredLiteral(" ms", lead=3, tail=0)),  # a lead of 1 to 3: not fixed
     ],
 )
 def test_required_literal_and_its_window(pattern, expected):

@@ -132,3 +132,17 @@ def test_ros1_topics_are_kept_and_cost_nothing_for_records_without():
         "/rosout,/chatter",
         "",
     ]
+
+
+def test_evict_listeners_see_the_records_that_go():
+    store = LogStore(max_messages=5000)
+    seen = []
+
+    def going(first, new_first):
+        assert store.first_seq == first
+        seen.append((first, new_first, [store.get(seq).msg for seq in (first, new_first - 1)]))
+
+    store.evict_listeners.append(going)
+    store.extend(LogRecord(stamp_ns=i, level=20, node="n", msg=f"m{i}") for i in range(6000))
+    assert seen == [(0, 1000, ["m0", "m999"])]
+    assert store.stamp_of(1000) == 1000 and store.nodes[store.node_id_of(1000)] == "n"

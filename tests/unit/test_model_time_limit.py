@@ -136,3 +136,14 @@ def test_stop_filtering_switches_off_only_the_rules_being_applied():
     while not view.refilter_step(1.0):
         pass
     assert len(view) == 10_000
+
+
+def test_a_too_slow_rule_in_a_stream_is_switched_off():
+    from console_tui.model.rules.stream import StreamFilter
+
+    slow = MessageRule(CATASTROPHIC, regex=True)
+    stream = StreamFilter(RuleSet((exclude(slow), exclude(MessageRule("hide me")))), rule_limit_s=0.1)
+    batch = [LogRecord(stamp_ns=i, level=20, node="n", msg=m) for i, m in enumerate([HOSTILE, "hide me", "ok"])]
+    assert [record.msg for record, _ in stream.filter(batch)] == [HOSTILE, "ok"]
+    assert [rule for rule, _ in stream.switched_off] == [slow]
+    assert [record.msg for record, _ in stream.filter(batch)] == [HOSTILE, "ok"]

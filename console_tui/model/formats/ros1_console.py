@@ -38,8 +38,15 @@ _LINE = re.compile(
     r"\[ ?(?P<level>DEBUG|INFO|WARN|ERROR|FATAL)\] \[(?P<wall>\d{1,20}\.\d{1,9})(?:, (?P<sim>-?\d{1,20}\.\d{1,9}))?\]: ?(?P<msg>.*)\Z",
     re.DOTALL,
 )
-#: Files of captured output, by name: read in this format when no line says otherwise.
-CAPTURE_SUFFIXES = ("-stdout.log", "-stderr.log")
+#: Files of captured output, by name (rotated ones too): ``<process>-stdout.log``,
+#: ``-stderr.log``, and a launched process's own ``<name>-<N>.log``. Read in this format
+#: when no line of theirs says otherwise.
+_CAPTURE_NAME = re.compile(r".+(?:-stdout|-stderr|-\d+)\.log(?:\.\d+)?\Z")
+
+
+def is_capture_name(name: str) -> bool:
+    """Whether a file is named as a process's captured output."""
+    return _CAPTURE_NAME.match(name) is not None
 
 
 class Ros1ConsoleFormat(MixedOutputFormat):

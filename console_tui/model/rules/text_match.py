@@ -19,8 +19,9 @@ import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from itertools import chain, compress, repeat
-from operator import add, contains, sub
+from operator import add, contains, is_, ne, sub
 
+from .regex_shape import RequiredLiteral, literal_alternatives, required_literal
 from .rule import RuleError, mask_and, mask_not, mask_of_rows
 from .time_limit import MatchTimeout, time_limit
 
@@ -77,8 +78,8 @@ class TextMatch:
         if self.regex:
             return _RegexMasker(self.pattern())
         if self.ignore_case:
-            folded = self.text.casefold()
-            return lambda strings: bytes(map(contains, map(str.casefold, strings), repeat(folded)))
+            needle = self.text.casefold()
+            return lambda strings: bytes(map(contains, folded(strings), repeat(needle)))
         text = self.text
         return lambda strings: bytes(map(contains, strings, repeat(text)))
 
@@ -93,117 +94,152 @@ class TextMatch:
         return shown + (f" ({', '.join(options)})" if options else "")
 
 
-@dataclass(frozen=True)
-class RequiredLiteral:
-    """Plain text every match of a regex contains, and where matches can lie around it.
-
-    ``lead`` and ``tail``: at most how many characters a match holds before and after the
-    text (None: unbounded, or, for ``tail``, a pattern whose answer depends on what lies
-    outside the match: anchors, ``\\b``, lookarounds).
-    """
-
-    text: str = ""
-    lead: int | None = None
-    tail: int | None = None
-
-
-_MAX_WIDTH = 10_000
-_CONTEXT_OPS = frozenset({"AT", "ASSERT", "ASSERT_NOT"})
-
-
-def required_literal(pattern: re.Pattern[str]) -> RequiredLiteral:
-    """The longest run of plain characters every match of ``pattern`` contains, if any.
-
-    A fast ``in`` over many messages then leaves few for the regex, and those are searched
-    only around the run's occurrences."""
-    try:
-        from re import _parser as parser  # Python 3.11+
-    except ImportError:  # pragma: no cover - Python 3.10
-        import sre_parse as parser  # type: ignore[no-redef]
-    try:
-        parsed = parser.parse(pattern.pattern, pattern.flags & ~re.UNICODE)
-        items = list(parsed)
-        best, best_start, run = "", 0, []
-        for index, (op, argument) in enumerate([*items, (None, None)]):
-            if str(op) == "LITERAL":
-                run.append(chr(argument))
-                continue
-            if len(run) > len(best):
-                best, best_start = "".join(run), index - len(run)
-            run = []
-        _, lead = parser.SubPattern(parsed.state, items[:best_start]).getwidth()
-        _, tail = parser.SubPattern(parsed.state, items[best_start + len(best) :]).getwidth()
-        context = _uses_context(items)
-    except Exception:  # a parser internal changed, a pattern nested too deep: no literal
-        return RequiredLiteral()
-    return RequiredLiteral(
-        best,
-        lead if lead < _MAX_WIDTH else None,
-        tail if tail < _MAX_WIDTH and not context else None,
-    )
-
-
-def _uses_context(items: list) -> bool:
-    """Whether a parsed regex holds an op that looks outside the matched text (iterative:
-    a pattern may nest deeper than Python's recursion limit allows)."""
-    stack: list[object] = [items]
-    while stack:
-        node = stack.pop()
-        if isinstance(node, tuple) and len(node) == 2 and str(node[0]) in _CONTEXT_OPS:
-            return True
-        if isinstance(node, (list, tuple)):
-            stack.extend(node)
-            continue
-        data = getattr(node, "data", None)  # a SubPattern
-        if isinstance(data, list):
-            stack.append(data)
-    return False
-
-
 class _RegexMasker:
-    """Regex masks. With a required literal, only strings that contain it are searched, and
-    only around its occurrences (from the first one less the lead, to the last one plus the
-    tail) where those are bounded.
+    """Regex masks, skipping what the pattern's shape allows (``regex_shape``):
 
-    Ignoring case, the literal is looked for in lower-cased text, which is exact for an ASCII
-    literal in ASCII text; other strings are searched whole, and a non-ASCII literal is not used.
+    - a pattern that stands for a few strings is ``in`` tests alone;
+    - otherwise, with a required literal, only strings that contain it are searched, and only
+      around its occurrences; where every match holds a fixed number of characters before
+      it, one ``match`` at the first occurrence answers most strings.
+
+    Ignoring case, literals are looked for in lower-cased text (``folded``, shared by the
+    rules testing the same strings), which is exact for ASCII literals in ASCII strings;
+    other strings are searched whole.
     """
 
-    __slots__ = ("_ignore_case", "_literal", "_search")
+    __slots__ = ("_ignore_case", "alternatives", "literal", "match", "search")
 
     def __init__(self, pattern: re.Pattern[str]) -> None:
-        self._search = pattern.search
+        self.search = pattern.search
+        self.match = pattern.match
         self._ignore_case = bool(pattern.flags & re.IGNORECASE)
         literal = required_literal(pattern)
+        alternatives = literal_alternatives(pattern)
         if self._ignore_case:
             literal = replace(literal, text=literal.text.lower()) if literal.text.isascii() else RequiredLiteral()
-        self._literal = literal
+            if alternatives is not None:
+                alternatives = tuple({a.lower() for a in alternatives}) if all(map(str.isascii, alternatives)) else None
+        self.literal = literal
+        self.alternatives = alternatives
 
     def __call__(self, strings: list[str]) -> bytes:
-        search, literal = self._search, self._literal
-        text = literal.text
-        if not text:
-            return bytes(map(bool, map(search, strings)))
         everything = range(len(strings))
+        haystacks = strings
+        usable: bytes | None = None  # which strings may use the literals (None: all)
         searched_whole: list[int] = []
-        if self._ignore_case:
-            haystacks = list(map(str.lower, strings))
-            ascii_only = bytes(map(str.isascii, strings))
-            searched_whole = list(compress(everything, mask_not(ascii_only)))
-            candidates = mask_and(bytes(map(contains, haystacks, repeat(text))), ascii_only)
+        if self._ignore_case and (self.alternatives is not None or self.literal.text):
+            haystacks, usable = folded(strings), ascii_only(strings)
+            if usable.count(0):
+                searched_whole = list(compress(everything, mask_not(usable)))
+            else:
+                usable = None
+        if self.alternatives is not None:
+            found: Iterable[int] = compress(everything, self._any_of(haystacks, usable))
+        elif self.literal.text:
+            found = self._around_literal(strings, haystacks, usable)
         else:
-            haystacks = strings
-            candidates = bytes(map(contains, strings, repeat(text)))
-        # C-level loops over the candidates (``map``), a Python one only over the matches.
-        rows = list(compress(everything, candidates))
-        starts: Iterable[int] = repeat(0)
-        ends: Iterable[int] = repeat(sys.maxsize)
-        if literal.lead is not None:
-            firsts = map(str.find, map(haystacks.__getitem__, rows), repeat(text))
-            starts = map(max, map(sub, firsts, repeat(literal.lead)), repeat(0))
-        if literal.tail is not None:
-            lasts = map(str.rfind, map(haystacks.__getitem__, rows), repeat(text))
-            ends = map(add, lasts, repeat(len(text) + literal.tail))
-        found = compress(rows, map(search, map(strings.__getitem__, rows), starts, ends))
-        whole = compress(searched_whole, map(search, map(strings.__getitem__, searched_whole)))
+            return bytes(map(bool, map(self.search, strings)))
+        whole = compress(searched_whole, map(self.search, map(strings.__getitem__, searched_whole)))
         return mask_of_rows(chain(found, whole), len(strings))
+
+    def _any_of(self, haystacks: list[str], ascii_only: bytes | None) -> bytes:
+        """Where any of the alternatives occurs (ASCII strings only, when ignoring case)."""
+        alternatives = self.alternatives or ()
+        hits = 0
+        for text in alternatives:
+            hits |= int.from_bytes(bytes(map(contains, haystacks, repeat(text))), "little")
+        mask = hits.to_bytes(len(haystacks), "little")
+        return mask if ascii_only is None else mask_and(mask, ascii_only)
+
+    def _around_literal(self, strings: list[str], haystacks: list[str], usable: bytes | None) -> Iterable[int]:
+        """The rows that match, among those whose haystack holds the literal."""
+        literal, search = self.literal, self.search
+        text = literal.text
+        candidates = bytes(map(contains, haystacks, repeat(text)))
+        if usable is not None:
+            candidates = mask_and(candidates, usable)
+        # C-level loops over the candidates (``map``), a Python one only over the few left.
+        rows = list(compress(range(len(strings)), candidates))
+        texts = list(map(strings.__getitem__, rows))
+        hays = texts if haystacks is strings else list(map(haystacks.__getitem__, rows))
+        firsts = list(map(str.find, hays, repeat(text)))
+        if literal.fixed_lead:
+            return self._at_occurrences(rows, texts, hays, firsts)
+        starts: Iterable[int] = repeat(0) if literal.lead is None else map(sub, firsts, repeat(literal.lead))
+        ends: Iterable[int] = repeat(sys.maxsize)
+        if literal.tail is not None:
+            lasts = map(str.rfind, hays, repeat(text))
+            ends = map(add, lasts, repeat(len(text) + literal.tail))
+        return compress(rows, map(search, texts, starts, ends))
+
+    def _at_occurrences(self, rows: list[int], texts: list[str], hays: list[str], at: list[int]) -> list[int]:
+        """Every match holds the literal right after ``lead`` characters: one ``match``
+        (anchored, cheap) at each occurrence less the lead answers, the first occurrence
+        for every row at once, then the next for the rows left, a few times; a row with
+        still more occurrences is searched from there (a negative position counts as 0)."""
+        text, lead, match = self.literal.text, self.literal.lead or 0, self.match
+        found: list[int] = []
+        pending = list(range(len(rows)))
+        for _ in range(_OCCURRENCES_MATCHED):
+            hits = bytes(map(bool, map(match, texts, map(sub, at, repeat(lead)))))
+            found.extend(compress(pending, hits))
+            misses = mask_not(hits)
+            pending = list(compress(pending, misses))
+            texts = list(compress(texts, misses))
+            hays = list(compress(hays, misses))
+            at = list(map(str.find, hays, repeat(text), map(add, compress(at, misses), repeat(1))))
+            more = bytes(map(ne, at, repeat(-1)))
+            pending, texts, hays, at = (list(compress(seq, more)) for seq in (pending, texts, hays, at))
+            if not pending:
+                break
+        else:
+            found.extend(
+                i for i, string, first in zip(pending, texts, at, strict=True) if self.search(string, first - lead)
+            )
+        return [rows[i] for i in sorted(found)]
+
+
+#: Occurrences of the literal tried one ``match`` each, before a row is searched instead.
+_OCCURRENCES_MATCHED = 3
+
+
+class _SameStrings:
+    """What is worked out once for the strings of a span, for every rule testing them in
+    turn (the view tests each rule on a span one after the other): their case folding, and
+    which are ASCII. Only the last strings are kept."""
+
+    __slots__ = ("ascii_only", "folded", "strings")
+
+    def __init__(self, strings: list[str]) -> None:
+        self.strings = strings
+        self.folded: list[str] | None = None
+        self.ascii_only: bytes | None = None
+
+
+_last: _SameStrings | None = None
+
+
+def _about(strings: list[str]) -> _SameStrings:
+    global _last
+    last = _last
+    if last is not None and len(last.strings) == len(strings) and all(map(is_, last.strings, strings)):
+        return last
+    _last = about = _SameStrings(strings)
+    return about
+
+
+def folded(strings: list[str]) -> list[str]:
+    """``strings`` case-folded (``str.casefold``: ``größe`` is ``grösse``; for ASCII text the
+    same as ``str.lower``), worked out once for the same strings."""
+    about = _about(strings)
+    if about.folded is None:
+        about.folded = list(map(str.casefold, strings))
+    return about.folded
+
+
+def ascii_only(strings: list[str]) -> bytes:
+    """1 for each ASCII string (where case folding keeps every character's position)."""
+    about = _about(strings)
+    if about.ascii_only is None:
+        about.ascii_only = bytes(map(str.isascii, strings))
+    return about.ascii_only

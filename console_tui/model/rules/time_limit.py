@@ -9,8 +9,12 @@ code inside it: past ``seconds`` that code is abandoned with ``MatchTimeout``, w
 is, a catastrophic ``re.search`` included. Python's ``re`` keeps its semantics and its
 speed; nothing needs installing.
 
+Putting a signal handler in place costs far more than arming the timer (tens of µs against
+one), so a caller that runs many limited pieces in a row holds ``alarms()`` around them:
+inside it, each ``time_limit`` only arms and disarms the timer.
+
 The timer and handler in place before (pytest-timeout's, say) are put back afterwards, with
-what was left of the earlier timer; an earlier timer that falls due inside the limit has its
+what was left of the earlier timer; an earlier timer that falls due meanwhile has its
 handler called then, as it would have been.
 
 Only the main thread gets signals: on any other thread ``time_limit`` cannot stop a call,
@@ -41,34 +45,35 @@ class MatchTimeout(Exception):
         self.seconds = seconds
 
 
-class _Limit:
-    """The limit in force (at most one: nested limits leave the outermost in charge)."""
-
+class _State:
+    #: ``alarms()`` holds the handler (how deep).
+    held = 0
+    #: A limit is armed, and when it falls due.
     armed = False
     deadline = 0.0
     seconds = 0.0
-    #: The handler and timer that were in place before, and when that timer falls due.
+    #: The handler and timer in place before, and when that timer falls due.
     previous_handler: Any = None
     previous_due: float | None = None
     previous_fired = False
 
 
-_limit = _Limit()
+_state = _State()
 
 
 def _on_alarm(signum: int, frame: FrameType | None) -> None:
     now = perf_counter()
-    due = _limit.previous_due
-    if due is not None and now >= due - _SLACK_S and not _limit.previous_fired:
-        _limit.previous_fired = True
-        handler = _limit.previous_handler
+    due = _state.previous_due
+    if due is not None and now >= due - _SLACK_S and not _state.previous_fired:
+        _state.previous_fired = True
+        handler = _state.previous_handler
         if callable(handler):
             handler(signum, frame)
-    if _limit.armed:
-        if now >= _limit.deadline - _SLACK_S:
-            _limit.armed = False
-            raise MatchTimeout(_limit.seconds)
-        signal.setitimer(signal.ITIMER_REAL, _limit.deadline - now)  # early (an earlier timer): wait on
+    if _state.armed:
+        if now >= _state.deadline - _SLACK_S:
+            _state.armed = False
+            raise MatchTimeout(_state.seconds)
+        signal.setitimer(signal.ITIMER_REAL, _state.deadline - now)  # early (an earlier timer): wait on
 
 
 def can_abandon() -> bool:
@@ -77,9 +82,41 @@ def can_abandon() -> bool:
 
 
 @contextmanager
+def alarms() -> Iterator[None]:
+    """Hold the timer signal for the ``time_limit``s inside (cheaper when there are many)."""
+    if not can_abandon():
+        yield
+        return
+    if _state.held:
+        _state.held += 1
+        try:
+            yield
+        finally:
+            _state.held -= 1
+        return
+    began = perf_counter()
+    _state.previous_fired = False
+    _state.previous_handler = signal.getsignal(signal.SIGALRM)
+    signal.signal(signal.SIGALRM, _on_alarm)
+    previous_delay, _ = signal.getitimer(signal.ITIMER_REAL)
+    _state.previous_due = began + previous_delay if previous_delay > 0 else None
+    _state.held = 1
+    try:
+        yield
+    finally:
+        _state.held = 0
+        _state.armed = False
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, _state.previous_handler)
+        signal.setitimer(signal.ITIMER_REAL, _earlier_timer_left())
+        _state.previous_handler = None
+        _state.previous_due = None
+
+
+@contextmanager
 def time_limit(seconds: float) -> Iterator[None]:
     """Run the body for at most ``seconds``; past that it is abandoned with ``MatchTimeout``."""
-    if _limit.armed:
+    if _state.armed:
         yield  # the outer limit holds
         return
     if not can_abandon():
@@ -88,25 +125,25 @@ def time_limit(seconds: float) -> Iterator[None]:
         if perf_counter() - began > seconds:
             raise MatchTimeout(seconds)
         return
-    began = perf_counter()
-    _limit.seconds = seconds
-    _limit.deadline = began + seconds
-    _limit.previous_fired = False
-    _limit.previous_handler = signal.getsignal(signal.SIGALRM)
-    signal.signal(signal.SIGALRM, _on_alarm)
-    previous_delay, _ = signal.setitimer(signal.ITIMER_REAL, seconds)
-    _limit.previous_due = began + previous_delay if previous_delay > 0 else None
-    if previous_delay and previous_delay < seconds:
-        signal.setitimer(signal.ITIMER_REAL, previous_delay)  # the earlier timer first, then ours
-    _limit.armed = True
-    try:
-        yield
-    finally:
-        _limit.armed = False
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, _limit.previous_handler)
-        due = _limit.previous_due
-        if due is not None and not _limit.previous_fired:
-            signal.setitimer(signal.ITIMER_REAL, max(due - perf_counter(), 1e-6))
-        _limit.previous_handler = None
-        _limit.previous_due = None
+    with alarms():
+        now = perf_counter()
+        _state.seconds = seconds
+        _state.deadline = now + seconds
+        due = _state.previous_due
+        # An earlier timer falling due first rings first; the handler then waits on for ours.
+        first = min(seconds, due - now) if due is not None and not _state.previous_fired else seconds
+        _state.armed = True
+        signal.setitimer(signal.ITIMER_REAL, max(first, 1e-6))
+        try:
+            yield
+        finally:
+            _state.armed = False
+            signal.setitimer(signal.ITIMER_REAL, _earlier_timer_left())
+
+
+def _earlier_timer_left() -> float:
+    """What is left of the earlier timer while ``alarms()`` holds the signal (0: none)."""
+    due = _state.previous_due
+    if due is None or _state.previous_fired:
+        return 0
+    return max(due - perf_counter(), 1e-6)

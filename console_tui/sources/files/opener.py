@@ -9,7 +9,7 @@ from pathlib import Path
 
 from ...model.formats import FormatError, Ros1ConsoleFormat, detect_text_format, recording_kind, text_formats
 from ...model.formats.detect import HEAD_SIZE
-from ...model.formats.ros1_console import CAPTURE_SUFFIXES
+from ...model.formats.ros1_console import is_capture_name
 from .folders import LogPaths
 from .log_file import LogFile, TextLogFile
 
@@ -58,7 +58,7 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
         raise FormatError(f"{file_path.name}: named like a recording, but it does not start like one (damaged?)")
     env_template = os.environ.get(FORMAT_VARIABLE, "")
     candidates = text_formats(log_format, (env_template,) if env_template else ())
-    fallback = Ros1ConsoleFormat() if _is_capture(file_path.name) else None
+    fallback = Ros1ConsoleFormat() if is_capture_name(file_path.name) else None
     return TextLogFile(file_path, name, detect_text_format(head, candidates, file_path.name, fallback=fallback))
 
 
@@ -69,7 +69,7 @@ def open_log_paths(log: LogPaths, *, log_format: str | None = None) -> LogFile:
         return open_log_file(log.path, log_format=log_format, source=log.name)
     env_template = os.environ.get(FORMAT_VARIABLE, "")
     candidates = text_formats(log_format, (env_template,) if env_template else ())
-    fallback = Ros1ConsoleFormat() if _is_capture(log.path.name) else None
+    fallback = Ros1ConsoleFormat() if is_capture_name(log.path.name) else None
     error: FormatError | None = None
     for part in log.parts:
         try:
@@ -84,12 +84,6 @@ def open_log_paths(log: LogPaths, *, log_format: str | None = None) -> LogFile:
             error = error or FormatError(f"{part.name}: cannot read: {failure.strerror or failure}")
     assert error is not None
     raise FormatError(f"{log.name}: {error!s}") from None
-
-
-def _is_capture(name: str) -> bool:
-    """Whether a file is named as captured output (``talker-2-stdout.log``, rotated too)."""
-    stem = name.rstrip("0123456789").removesuffix(".") if name[-1:].isdigit() else name
-    return stem.endswith(CAPTURE_SUFFIXES)
 
 
 def _not_regular(mode: int) -> str:

@@ -56,7 +56,15 @@ def fields_table(record: LogRecord, *, utc: bool = False, notes: tuple[str, ...]
 
 
 class DetailScreen(ModalScreen[None]):
-    """A record's fields and its full multi-line message; n/p step through rows."""
+    """A record's fields and its full multi-line message; n and p step through the table's rows.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape, q | Close. |
+    | n / p | The next / previous row. |
+    | w | Wrap the message, or not. |
+    | y | Copy the message. |
+    """
 
     DEFAULT_CSS = """
     DetailScreen { align: center middle; }

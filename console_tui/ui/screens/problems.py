@@ -12,6 +12,13 @@ from ...model.text import one_line
 
 
 class ProblemsScreen(ModalScreen[None]):
+    """What went wrong while loading files, and where.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape, q | Close. |
+    """
+
     DEFAULT_CSS = """
     ProblemsScreen { align: center middle; }
     ProblemsScreen > Vertical { width: 90%; height: 70%; border: thick $error; background: $surface; padding: 0 1; }

@@ -44,7 +44,29 @@ _QUIET_SCROLLBAR_PERIOD = 0.1
 
 
 class LogTable(ScrollView, can_focus=True):
-    """Rows of a ``LogView``; follows the tail until the user moves away or pauses."""
+    """Rows of a ``LogView``; follows the tail until the user moves away or pauses.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | up, k / down, j | Move the cursor. |
+    | shift+up, K / shift+down, J | Select rows upwards / downwards. |
+    | escape | Clear the selection. |
+    | pageup / pagedown | A page up / down. |
+    | home, g | The first row. |
+    | end, G | Follow the tail. |
+    | enter | Details of the row (``RowActivated``). |
+
+    | Class | Description |
+    | :- | :- |
+    | `log-table--header` | The header row. |
+    | `log-table--cursor` | The cursor's row. |
+    | `log-table--selected` | Rows selected with shift+arrows. |
+    | `log-table--dim-column` | Columns of lesser weight (number, time, location, source). |
+    | `log-table--row-debug` ... `log-table--row-fatal` | A row, by its severity. |
+    | `log-table--severity-debug` ... `log-table--severity-fatal` | The severity cell, by severity. |
+    | `log-table--highlight` | Rows a highlight rule marks. |
+    | `log-table--dimmed` | The other rows while highlighting. |
+    """
 
     DEFAULT_CSS = """
     LogTable {
@@ -108,6 +130,9 @@ class LogTable(ScrollView, can_focus=True):
 
     class StateChanged(Message):
         """Following, pause or cursor changed (for the status bar)."""
+
+        def can_replace(self, message: Message) -> bool:
+            return isinstance(message, LogTable.StateChanged)  # it says nothing but "look again"
 
     def __init__(self, store: LogStore, view: LogView, *, utc: bool = False, id: str | None = None) -> None:
         super().__init__(id=id)

@@ -1,10 +1,10 @@
 """The node panel, beside the table: every node (logger) seen, its messages per severity and
-its rate now; solo or mute a node with one key.
+its rate (over the last minute of stamps); solo or mute a node with one key.
 
 It shares the right side with the logger levels pane (opening one closes the other). The
-counts are the model's ``NodeStats`` (of the messages kept, whatever the rules show), read
-again every second while the panel is open; solo and mute are rules (``model/toggles.py``),
-which the app applies when the panel asks (``Toggle``).
+counts are the model's ``NodeStats`` (of the messages kept, whatever the rules show; the app
+keeps them up to date), read again every second while the panel is open; solo and mute are
+rules (``model/toggles.py``), which the app applies when the panel asks (``Toggle``).
 """
 
 from __future__ import annotations
@@ -24,16 +24,13 @@ from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
-from ...model.node_stats import NodeRow, NodeStats
-from ...model.store import LogStore
+from ...model.node_stats import NodeCounts, NodeStats
 from ...model.text import one_line
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from .side_pane import SidePane
 
 REFRESH_S = 1.0
-#: While the first count of a long history is under way: steps this often, this long.
-CATCH_UP_S, CATCH_UP_BUDGET_S = 0.05, 0.008
 
 _HINTS: list[Hint] = [
     ("solo", "solo"),
@@ -49,15 +46,19 @@ _HINTS: list[Hint] = [
 class Sort:
     key: str
     title: str
-    order: Callable[[NodeRow], Any]
+    order: Callable[[NodeCounts], Any]
+
+
+def _errors(row: NodeCounts) -> int:
+    return row.counts[3] + row.counts[4]
 
 
 SORTS = (
-    Sort("name", "name", lambda row: row.name),
-    Sort("errors", "errors", lambda row: (-row.errors, -row.warnings, row.name)),
-    Sort("warnings", "warnings", lambda row: (-row.warnings, -row.errors, row.name)),
-    Sort("total", "messages", lambda row: (-row.total, row.name)),
-    Sort("rate", "rate", lambda row: (-(row.rate or 0.0), row.name)),
+    Sort("name", "name", lambda row: row.node),
+    Sort("errors", "errors", lambda row: (-_errors(row), -row.counts[2], row.node)),
+    Sort("warnings", "warnings", lambda row: (-row.counts[2], -_errors(row), row.node)),
+    Sort("total", "messages", lambda row: (-row.total, row.node)),
+    Sort("rate", "rate", lambda row: (-row.rate, row.node)),
 )
 _LEVEL_STYLES = ("dim", "green", "yellow", "red", "bold red")
 
@@ -71,15 +72,13 @@ def compact(number: int) -> str:
     return f"{number / 1_000_000:.1f}M"
 
 
-def rate_text(rate: float | None) -> str:
-    if rate is None:
-        return "…"
+def rate_text(rate: float) -> str:
     if rate < 100:
         return f"{rate:.1f}"
     return compact(round(rate))
 
 
-def node_line(row: NodeRow, state: str) -> Table:
+def node_line(row: NodeCounts, state: str) -> Table:
     """A node's line: S (solo) or M (mute), its name, its counts per severity, its rate."""
     grid = Table.grid(expand=True)
     grid.add_column(width=2, no_wrap=True)
@@ -94,7 +93,7 @@ def node_line(row: NodeRow, state: str) -> Table:
     ]
     grid.add_row(
         Text(state, style="bold reverse" if state else ""),
-        Text(one_line(row.name, 200), style=name_style),
+        Text(one_line(row.node, 200), style=name_style),
         *counts,
         Text(rate_text(row.rate), style="cyan"),
     )
@@ -171,19 +170,18 @@ class NodePane(SidePane):
 
     def __init__(
         self,
-        store: LogStore,
+        stats: NodeStats,
         toggles: Callable[[], tuple[tuple[str, ...], tuple[str, ...]]],
         *,
-        clock: Callable[[], float] | None = None,
         id: str | None = "node-pane",
     ) -> None:
         super().__init__(id=id)
-        self.stats = NodeStats(store, clock) if clock is not None else NodeStats(store)
+        self.stats = stats
         #: The nodes soloed and muted now (the app's rules).
         self.toggles = toggles
         self.sort = SORTS[1]
         self.filter_text = ""
-        self.rows: list[NodeRow] = []
+        self.rows: list[NodeCounts] = []
         self._shown_key: tuple = ()
         self._timer: Timer | None = None
         self.node_list = NodeList(id="nodes-list", compact=True)
@@ -210,24 +208,23 @@ class NodePane(SidePane):
     # -- counts ---------------------------------------------------------------------------------
 
     def update_counts(self) -> None:
-        """Count again (a step, when the first count of a long history is under way) and show."""
+        """Read the counts again and show them."""
         if not self.is_open:
             return
-        caught_up = self.stats.refresh(CATCH_UP_BUDGET_S)
-        self.rows = self.stats.rows()
+        self.rows = self.stats.nodes()
         self.show()
         if self._timer is not None:
             self._timer.stop()
-        self._timer = self.set_timer(REFRESH_S if caught_up else CATCH_UP_S, self.update_counts)
+        self._timer = self.set_timer(REFRESH_S, self.update_counts)
 
     def show(self) -> None:
         """The rows as they are now, filtered and sorted, with the solo and mute marks."""
         soloed, muted = self.toggles()
         needle = self.filter_text.casefold()
-        rows = [row for row in self.rows if needle in row.name.casefold()] if needle else list(self.rows)
+        rows = [row for row in self.rows if needle in row.node.casefold()] if needle else list(self.rows)
         rows.sort(key=self.sort.order)
         states = {name: "S" for name in soloed} | {name: "M" for name in muted}
-        key = (tuple(rows), tuple(sorted(states.items())), self.sort.key, self.stats.caught_up)
+        key = (tuple(rows), tuple(sorted(states.items())), self.sort.key)
         title = self.query_one("#nodes-title", Static)
         parts = [f"Nodes: {len(self.rows)}"]
         if needle:
@@ -236,8 +233,6 @@ class NodePane(SidePane):
             parts.append(f"solo {len(soloed)}")
         if muted:
             parts.append(f"muted {len(muted)}")
-        if not self.stats.caught_up:
-            parts.append("counting…")
         title.update(" · ".join(parts))
         if key == self._shown_key:
             return
@@ -247,9 +242,9 @@ class NodePane(SidePane):
         highlighted = self.highlighted_node
         with options.prevent(OptionList.OptionHighlighted):
             options.clear_options()
-            options.add_options([Option(node_line(row, states.get(row.name, "")), id=row.name) for row in rows])
+            options.add_options([Option(node_line(row, states.get(row.node, "")), id=row.node) for row in rows])
             if rows:
-                names = [row.name for row in rows]
+                names = [row.node for row in rows]
                 options.highlighted = names.index(highlighted) if highlighted in names else 0
 
     @property

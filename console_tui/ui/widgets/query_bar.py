@@ -22,7 +22,13 @@ PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d o
 
 
 class QueryBar(Vertical):
-    """Hidden until opened; while the text does not parse, the rules in force stay."""
+    """Hidden until opened; while the text does not parse, the rules in force stay.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Close (``Closed``). |
+    | up / down | An earlier / a later query from the history. |
+    """
 
     DEFAULT_CSS = """
     QueryBar { height: auto; display: none; background: $panel; padding: 0 1; }

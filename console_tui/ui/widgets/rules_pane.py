@@ -55,7 +55,19 @@ def entry_text(entry: Entry, count: int | None) -> Text:
 
 
 class RulesPane(SidePane):
-    """Lists a ``RuleSet``; every change is posted as a new set (the app applies it)."""
+    """Lists a ``RuleSet``; every change is posted as a new set (the app applies it).
+
+    | Key(s) | Description |
+    | :- | :- |
+    | space | Switch the highlighted rule on or off. |
+    | i | Invert it. |
+    | h | Exclude or highlight. |
+    | e, enter | Edit it (``EditRequested``). |
+    | d, delete | Delete it. |
+    | a | Add a rule (``EditRequested``). |
+    | S / O | Save the rule set / open one (``FileRequested``). |
+    | escape | Back to the table. |
+    """
 
     DEFAULT_CSS = """
     RulesPane { dock: left; width: 52; max-width: 50%; border-right: vkey $primary; padding: 0 1; background: $surface; }

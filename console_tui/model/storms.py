@@ -1,0 +1,309 @@
+"""Storms collapsed: the table's rows with each run of repeats as one row.
+
+A **storm** is a run of one node's consecutive shown messages with the same severity and
+the same text (or, with ``mask_digits``, the same text once every run of digits reads
+``#``): messages of other nodes in between do not break it, a message of the same node
+with another text does. It shows as one row, at its first message, with its count and
+the time of its last one; its other messages are no rows while it is collapsed.
+Expanding it (``expand``) makes them rows again where they are, between the others.
+
+``StormRows`` reads like a ``LogView`` (``len``, ``seq_at``, ``row_of``,
+``count_before``): the table draws it instead of the view. Its rows are the seqs of the
+runs' first messages (and of the messages of expanded storms), in seq order, taken in as
+records arrive (``ShownFollower``), about 1 us a record, so counts are exact at every
+frame. After a rule change it collapses again from the oldest record in the background;
+until it has caught up, the rows it has not reached are the view's own rows. When the
+store drops a storm's first message, the next one kept takes its place and the count
+goes down by what was dropped.
+"""
+
+from __future__ import annotations
+
+import re
+from array import array
+from bisect import bisect_left
+from collections.abc import Sequence
+from operator import itemgetter
+from typing import NamedTuple
+
+from .find_level import find_node
+from .shown_follower import ShownFollower
+from .shown_rows import ShownPiece, shown_pieces
+from .store import LogStore
+from .view import LogView
+
+_DIGITS = re.compile(r"[0-9]+")
+
+
+def mask_digits(text: str) -> str:
+    """``text`` with every run of digits as ``#``: ``took 12.5 ms`` -> ``took #.# ms``."""
+    return _DIGITS.sub("#", text)
+
+
+class Storm:
+    """A run of one node's repeats: its first and last seq, and how many shown messages."""
+
+    __slots__ = ("count", "expanded", "head", "key", "last", "level", "members", "node")
+
+    def __init__(self, head: int, node: int, level: int, key: str) -> None:
+        self.head = head
+        self.last = head
+        self.count = 1
+        self.node = node
+        self.level = level
+        self.key = key
+        self.expanded = False
+        #: While expanded: the seqs after the head, which are rows then.
+        self.members: array | None = None
+
+
+class StormBadge(NamedTuple):
+    """What a row shows of its storm: ``head`` rows carry the count and the last seq."""
+
+    repeats: int
+    last: int
+    expanded: bool
+    head: bool
+
+
+class StormRows(ShownFollower):
+    """The rows of ``view`` with storms collapsed (all of them while ``enabled`` is off)."""
+
+    def __init__(self, store: LogStore, view: LogView, *, mask_digits: bool = False, enabled: bool = True) -> None:
+        self._rows = array("q")
+        self._start = 0
+        #: first seq -> storm, for runs of two messages or more
+        self._storms: dict[int, Storm] = {}
+        #: node id -> its latest run (which a repeat continues)
+        self._runs: dict[int, Storm] = {}
+        self._expanded: list[Storm] = []
+        #: While the store drops records: the storms whose first message goes, and per node
+        #: the one whose repeats are going.
+        self._leaving: list[Storm] = []
+        self._going: dict[int, Storm] = {}
+        self.mask_digits = mask_digits
+        super().__init__(store, view)
+        self.enabled = enabled
+
+    # -- following the view -----------------------------------------------------------------------
+
+    def reset(self) -> None:
+        self._rows = array("q")
+        self._start = 0
+        self._storms.clear()
+        self._runs.clear()
+        self._expanded.clear()
+
+    def set_mask_digits(self, mask: bool) -> None:
+        if mask != self.mask_digits:
+            self.mask_digits = mask
+            self.restart()
+
+    def take(self, piece: ShownPiece) -> None:
+        chunk, offsets = piece.chunk, piece.offsets
+        if isinstance(offsets, range):
+            lo, hi = offsets.start, offsets.stop
+            nodes: Sequence[int] = chunk.nodes[lo:hi]
+            levels: Sequence[int] = chunk.levels[lo:hi]
+            texts: Sequence[str] = chunk.msgs[lo:hi]
+        elif len(offsets) == 1:
+            nodes, levels, texts = [chunk.nodes[offsets[0]]], [chunk.levels[offsets[0]]], [chunk.msgs[offsets[0]]]
+        else:
+            pick = itemgetter(*offsets)
+            nodes, levels, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.msgs)
+        if self.mask_digits:
+            texts = [_DIGITS.sub("#", text) for text in texts]
+        runs, storms, rows = self._runs, self._storms, self._rows
+        for seq, node, level, key in zip(piece.seqs(), nodes, levels, texts, strict=False):
+            run = runs.get(node)
+            if run is not None and run.key == key and run.level == level:
+                run.count += 1
+                run.last = seq
+                if run.count == 2:
+                    storms[run.head] = run
+                if run.expanded:
+                    rows.append(seq)
+                    run.members.append(seq)  # type: ignore[union-attr]  # expanded: it has members
+            else:
+                rows.append(seq)
+                runs[node] = Storm(seq, node, level, key)
+
+    def forget(self, piece: ShownPiece) -> None:
+        leaving, going, storms, runs = self._leaving, self._going, self._storms, self._runs
+        chunk, offsets = piece.chunk, piece.offsets
+        if isinstance(offsets, range):
+            nodes: Sequence[int] = chunk.nodes[offsets.start : offsets.stop]
+        elif len(offsets) == 1:
+            nodes = [chunk.nodes[offsets[0]]]
+        else:
+            nodes = itemgetter(*offsets)(chunk.nodes)
+        for seq, node in zip(piece.seqs(), nodes, strict=False):
+            storm = storms.get(seq)
+            if storm is None:
+                run = runs.get(node)
+                if run is not None and run.head == seq:
+                    storm = run  # the node's latest run, still one message
+            if storm is not None:
+                storm.count -= 1
+                leaving.append(storm)
+                going[node] = storm
+                continue
+            storm = going.get(node)
+            if storm is not None and seq <= storm.last:
+                storm.count -= 1
+
+    def forgotten(self, new_first: int) -> None:
+        """Storms whose first message went start at their next one kept."""
+        leaving, self._leaving = self._leaving, []
+        self._going.clear()
+        for storm in leaving:
+            self._storms.pop(storm.head, None)
+            if storm.last < new_first or storm.count < 1:
+                if self._runs.get(storm.node) is storm:
+                    del self._runs[storm.node]
+                if storm in self._expanded:
+                    self._expanded.remove(storm)
+                continue
+            head = self._next_of_node(storm.node, new_first, storm.last)
+            if head is None:  # cannot happen while counts are right; keep the rows whole
+                continue
+            storm.head = head
+            if storm.count >= 2:
+                self._storms[head] = storm
+            if storm.expanded:
+                members = storm.members
+                assert members is not None
+                del members[: bisect_left(members, head + 1)]
+            else:
+                at = bisect_left(self._rows, head, self._start)
+                self._rows.insert(at, head)
+
+    def _next_of_node(self, node: int, start: int, last: int) -> int | None:
+        """The first shown seq of ``node`` in ``start..last``."""
+        view = self.view
+        while start <= last:
+            seq = find_node(self.store, start, last + 1, node)
+            if seq is None:
+                return None
+            if not view.filtered or view.seq_at(view.row_of(seq)) == seq:
+                return seq
+            start = seq + 1
+        return None
+
+    # -- rows, as a LogView has them --------------------------------------------------------------
+
+    def _fresh(self) -> None:
+        if self.view.rules is not self._rules:
+            self.restart()
+        first = self.store.first_seq
+        rows = self._rows
+        if self._start < len(rows) and rows[self._start] < first:
+            self._start = bisect_left(rows, first, self._start)
+            if self._start > 4096 and self._start * 2 > len(rows):
+                del rows[: self._start]
+                self._start = 0
+
+    def _collapsed(self) -> int:
+        return len(self._rows) - self._start
+
+    def _raw_from(self) -> int:
+        """The view's row of the first record not taken in yet."""
+        return self.view.row_of(self.done_to)
+
+    def __len__(self) -> int:
+        if not self.enabled:
+            return len(self.view)
+        self._fresh()
+        if self.done_to >= self.store.end_seq:
+            return self._collapsed()
+        return self._collapsed() + len(self.view) - self._raw_from()
+
+    def seq_at(self, row: int) -> int:
+        """The seq shown at ``row``; ``IndexError`` past the end."""
+        if not self.enabled:
+            return self.view.seq_at(row)
+        if row < 0:
+            raise IndexError(row)
+        self._fresh()
+        collapsed = self._collapsed()
+        if row < collapsed:
+            return self._rows[self._start + row]
+        if self.done_to >= self.store.end_seq:
+            raise IndexError(row)
+        return self.view.seq_at(self._raw_from() + row - collapsed)
+
+    def row_of(self, seq: int) -> int:
+        """The row showing ``seq``, or the row of the next one shown after it (a collapsed
+        repeat shows in its storm's row, further up)."""
+        if not self.enabled:
+            return self.view.row_of(seq)
+        self._fresh()
+        if seq < self.done_to or self.done_to >= self.store.end_seq:
+            return bisect_left(self._rows, seq, self._start) - self._start
+        return self._collapsed() + self.view.row_of(seq) - self._raw_from()
+
+    def count_before(self, seq: int) -> int:
+        return self.row_of(seq)
+
+    # -- storms -----------------------------------------------------------------------------------
+
+    def storm_of(self, seq: int) -> Storm | None:
+        """The storm shown by ``seq``'s row: the storm it starts, or the expanded storm it is part of."""
+        if not self.enabled:
+            return None
+        storm = self._storms.get(seq)
+        if storm is not None:
+            return storm
+        for storm in self._expanded:
+            members = storm.members
+            if members and storm.head < seq <= storm.last:
+                at = bisect_left(members, seq)
+                if at < len(members) and members[at] == seq:
+                    return storm
+        return None
+
+    def badge(self, seq: int) -> StormBadge | None:
+        """How ``seq``'s row is marked as a storm, or None for a message on its own."""
+        storm = self.storm_of(seq)
+        if storm is None:
+            return None
+        return StormBadge(storm.count, storm.last, storm.expanded, storm.head == seq)
+
+    def expand(self, storm: Storm) -> None:
+        """Show every message of the storm as a row (each where it is)."""
+        if storm.expanded or not self.enabled:
+            return
+        members = array("q")
+        for piece in shown_pieces(self.store, self.view, storm.head + 1, min(storm.last + 1, self.done_to)):
+            chunk = piece.chunk
+            members.extend(piece.base + offset for offset in piece.offsets if chunk.nodes[offset] == storm.node)
+        storm.members = members
+        storm.expanded = True
+        self._expanded.append(storm)
+        self._merge_rows(storm.head, storm.last, members, add=True)
+
+    def collapse(self, storm: Storm) -> None:
+        """Show the storm as one row again."""
+        if not storm.expanded:
+            return
+        members = storm.members or array("q")
+        storm.expanded = False
+        storm.members = None
+        if storm in self._expanded:
+            self._expanded.remove(storm)
+        self._merge_rows(storm.head, storm.last, members, add=False)
+
+    def _merge_rows(self, head: int, last: int, members: array, *, add: bool) -> None:
+        rows = self._rows
+        lo = bisect_left(rows, head + 1, self._start)
+        hi = bisect_left(rows, last + 1, lo)
+        if add:
+            rows[lo:hi] = array("q", sorted([*rows[lo:hi], *members]))
+        else:
+            gone = set(members)
+            rows[lo:hi] = array("q", [seq for seq in rows[lo:hi] if seq not in gone])
+
+    @property
+    def storm_count(self) -> int:
+        """Storms (runs of two or more) among the rows."""
+        return len(self._storms)

@@ -1,0 +1,255 @@
+"""The message rate over the whole history, by severity: what the timeline strip draws.
+
+``Timeline`` counts the rows the table shows (records hidden by the rules are not
+counted) in time buckets by their stamps, per severity, and keeps the first seq of each
+bucket (where a jump to that time lands). Buckets are ``width_ns`` wide, on a ladder of
+widths (1 ms, 10 ms, ..., 1 s, 5 s, 1 min, 5 min, 1 h, 1 day, ...) where each width
+divides the next: when the history no longer fits ``MAX_BUCKETS`` buckets, neighbours
+merge into the next width up, so the cost of adding a record stays the same however
+long the run. ``columns(width)`` groups the buckets into at most ``width`` columns, as
+many buckets a column as it takes to fill the width (``TimelineColumns``), for drawing.
+
+It follows the view as records arrive and are dropped (``ShownFollower``): after a rule
+change it counts again from the oldest record in the background, and meanwhile
+``columns`` shows the counts from before the change.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass
+from operator import itemgetter
+
+from .levels import MESSAGE_SEVERITIES, severity_bucket
+from .shown_follower import ShownFollower
+from .shown_rows import ShownPiece
+from .store import LogStore
+from .view import LogView
+
+MS = 1_000_000
+S = 1_000 * MS
+MIN = 60 * S
+H = 60 * MIN
+DAY = 24 * H
+#: Bucket widths: each divides the next, so buckets merge exactly.
+LADDER_NS = (MS, 10 * MS, 100 * MS, S, 5 * S, MIN, 5 * MIN, H, DAY, 10 * DAY, 100 * DAY, 1000 * DAY, 10000 * DAY)
+MAX_BUCKETS = 4096
+#: Severity slots of a bucket's counts: DEBUG, INFO, WARN, ERROR, FATAL.
+SLOTS = len(MESSAGE_SEVERITIES)
+_SLOT = {level: MESSAGE_SEVERITIES.index(severity_bucket(level)) for level in range(256)}
+_FIRST = SLOTS  # where a bucket keeps its first seq
+_NO_SEQ = 1 << 62
+
+
+@dataclass(frozen=True)
+class TimelineColumns:
+    """The counts grouped into columns of ``step_ns`` from ``start_ns``, for drawing.
+
+    ``counts[c]`` is the column's five counts (DEBUG .. FATAL); ``first_seqs[c]`` the seq
+    of its first shown record (None for an empty column)."""
+
+    start_ns: int
+    step_ns: int
+    counts: tuple[tuple[int, ...], ...]
+    first_seqs: tuple[int | None, ...]
+    #: Stamps of the oldest and newest shown records counted.
+    oldest_ns: int
+    newest_ns: int
+
+    def __len__(self) -> int:
+        return len(self.counts)
+
+    def column_of(self, stamp_ns: int) -> int:
+        """The column of a stamp, clamped to the columns there are."""
+        return min(max((stamp_ns - self.start_ns) // self.step_ns, 0), len(self.counts) - 1)
+
+    def totals(self) -> list[int]:
+        return [sum(column) for column in self.counts]
+
+    def peak_rate(self) -> float:
+        """The most records a second in any column."""
+        return max(self.totals(), default=0) * S / self.step_ns
+
+
+class _Histogram:
+    """Counts per bucket of one width: ``buckets[index] = [5 counts..., first seq]``."""
+
+    __slots__ = ("buckets", "level", "total")
+
+    def __init__(self) -> None:
+        self.level = 0
+        self.buckets: dict[int, list[int]] = {}
+        self.total = 0
+
+    @property
+    def width_ns(self) -> int:
+        return LADDER_NS[self.level]
+
+    def add(self, stamps: Sequence[int], levels: Sequence[int], seqs: Sequence[int]) -> None:
+        width = LADDER_NS[self.level]
+        indexes = [stamp // width for stamp in stamps]
+        low, high = min(indexes), max(indexes)
+        buckets = self.buckets
+        if buckets:
+            low, high = min(low, min(buckets)), max(high, max(buckets))
+        if high - low >= MAX_BUCKETS and self.level < len(LADDER_NS) - 1:
+            self._widen(low, high)
+            buckets = self.buckets
+            width = LADDER_NS[self.level]
+            indexes = [stamp // width for stamp in stamps]
+        slot = _SLOT
+        for (index, level), number in Counter(zip(indexes, levels, strict=False)).items():
+            bucket = buckets.get(index)
+            if bucket is None:
+                bucket = buckets[index] = [0] * SLOTS + [_NO_SEQ]
+            bucket[slot[level]] += number
+        # The first seq of each bucket: a dict built from the end keeps the first one.
+        for index, seq in dict(zip(reversed(indexes), reversed(seqs), strict=False)).items():
+            bucket = buckets[index]
+            if seq < bucket[_FIRST]:
+                bucket[_FIRST] = seq
+        self.total += len(indexes)
+
+    def remove(self, stamps: Sequence[int], levels: Sequence[int], new_first: int) -> None:
+        width = LADDER_NS[self.level]
+        buckets = self.buckets
+        slot = _SLOT
+        for (index, level), number in Counter(zip((stamp // width for stamp in stamps), levels, strict=False)).items():
+            bucket = buckets.get(index)
+            if bucket is None:
+                continue
+            bucket[slot[level]] -= number
+            if not any(bucket[:SLOTS]):
+                del buckets[index]
+            elif bucket[_FIRST] < new_first:
+                bucket[_FIRST] = new_first  # its first record goes; the next kept is at or after this
+        self.total -= len(stamps)
+
+    def _widen(self, low: int, high: int) -> None:
+        """Merge buckets into wider ones until ``low..high`` fits."""
+        old = LADDER_NS[self.level]
+        level = self.level
+        while (
+            level < len(LADDER_NS) - 1
+            and (high * old // LADDER_NS[level]) - (low * old // LADDER_NS[level]) >= MAX_BUCKETS
+        ):
+            level += 1
+        factor = LADDER_NS[level] // old
+        merged: dict[int, list[int]] = {}
+        for index, bucket in self.buckets.items():
+            into = merged.get(index // factor)
+            if into is None:
+                merged[index // factor] = list(bucket)
+            else:
+                for slot in range(SLOTS):
+                    into[slot] += bucket[slot]
+                into[_FIRST] = min(into[_FIRST], bucket[_FIRST])
+        self.buckets = merged
+        self.level = level
+
+    def columns(self, width: int) -> TimelineColumns | None:
+        buckets = self.buckets
+        if not buckets or width < 1:
+            return None
+        bucket_ns = LADDER_NS[self.level]
+        low, high = min(buckets), max(buckets)
+        oldest, newest = low * bucket_ns, (high + 1) * bucket_ns
+        # As many buckets a column as it takes to fit the width: the strip fills it.
+        per_column = -(-(high + 1 - low) // width)
+        step = per_column * bucket_ns
+        start = oldest
+        number = -(-(high + 1 - low) // per_column)
+        counts = [[0] * SLOTS for _ in range(number)]
+        firsts = [_NO_SEQ] * number
+        for index, bucket in buckets.items():
+            column = min((index * bucket_ns - start) // step, number - 1)
+            into = counts[column]
+            for slot in range(SLOTS):
+                into[slot] += bucket[slot]
+            if bucket[_FIRST] < firsts[column]:
+                firsts[column] = bucket[_FIRST]
+        return TimelineColumns(
+            start_ns=start,
+            step_ns=step,
+            counts=tuple(tuple(column) for column in counts),
+            first_seqs=tuple(None if seq == _NO_SEQ else seq for seq in firsts),
+            oldest_ns=oldest,
+            newest_ns=newest,
+        )
+
+
+def _columns_of(piece: ShownPiece) -> tuple[Sequence[int], Sequence[int]]:
+    """The stamps and levels of a piece's records."""
+    chunk, offsets = piece.chunk, piece.offsets
+    if isinstance(offsets, range):
+        return chunk.stamps[offsets.start : offsets.stop], chunk.levels[offsets.start : offsets.stop]
+    if len(offsets) == 1:
+        return [chunk.stamps[offsets[0]]], [chunk.levels[offsets[0]]]
+    pick = itemgetter(*offsets)
+    return pick(chunk.stamps), pick(chunk.levels)
+
+
+class Timeline(ShownFollower):
+    """Shown records per time bucket and severity, over everything kept."""
+
+    def __init__(self, store: LogStore, view: LogView) -> None:
+        self._histogram = _Histogram()
+        #: What was counted before the rules changed, shown while counting again.
+        self._before: _Histogram | None = None
+        self.generation = 0
+        self._columns_key: tuple | None = None
+        self._columns: TimelineColumns | None = None
+        super().__init__(store, view)
+
+    @property
+    def total(self) -> int:
+        """Records counted."""
+        return self._histogram.total
+
+    @property
+    def bucket_ns(self) -> int:
+        return self._histogram.width_ns
+
+    def reset(self) -> None:
+        if self._histogram.total and self._before is None:
+            self._before = self._histogram
+        self._histogram = _Histogram()
+        self.generation += 1
+
+    def take(self, piece: ShownPiece) -> None:
+        stamps, levels = _columns_of(piece)
+        self._histogram.add(stamps, levels, piece.seqs())
+        self.generation += 1
+
+    def forget(self, piece: ShownPiece) -> None:
+        stamps, levels = _columns_of(piece)
+        self._histogram.remove(stamps, levels, _first_after(piece))
+        self.generation += 1
+
+    def sync(self, budget_s: float | None = None, *, stop: int | None = None) -> bool:
+        done = super().sync(budget_s, stop=stop)
+        if self._before is not None and not self.rebuilding and not self.view.refiltering:
+            self._before = None
+            self.generation += 1
+        return done
+
+    def columns(self, width: int) -> TimelineColumns | None:
+        """The counts in at most ``width`` columns (those from before a rule change while
+        counting again); None when nothing is counted."""
+        histogram = self._before if self._before is not None else self._histogram
+        key = (width, self.generation, id(histogram))
+        if key != self._columns_key:
+            self._columns_key = key
+            self._columns = histogram.columns(width)
+        return self._columns
+
+    @property
+    def recounting(self) -> bool:
+        """Counting again after a rule change (``columns`` shows the counts from before)."""
+        return self._before is not None
+
+
+def _first_after(piece: ShownPiece) -> int:
+    """The seq after the piece's last record (records before it are going)."""
+    return piece.base + piece.offsets[-1] + 1

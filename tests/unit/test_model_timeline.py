@@ -1,0 +1,171 @@
+"""The timeline's counts (``Timeline``) and the summary's (``NodeStats``, ``find_level``),
+against brute force: as records arrive, under rules (hidden records not counted), with
+eviction, over long and odd histories."""
+
+import random
+
+from console_tui.model.find_level import find_level, find_node, severity_range
+from console_tui.model.node_stats import NodeStats
+from console_tui.model.record import LogRecord
+from console_tui.model.rules import NodeRule, RuleSet, SeverityRule, exclude
+from console_tui.model.store import LogStore
+from console_tui.model.timeline import MAX_BUCKETS, Timeline
+from console_tui.model.view import LogView
+
+S = 1_000_000_000
+SLOT = {10: 0, 20: 1, 30: 2, 40: 3, 50: 4}
+
+
+def rec(stamp, level=20, node="a", msg="m"):
+    return LogRecord(stamp_ns=stamp, level=level, node=node, msg=msg)
+
+
+def shown(view):
+    return [view.seq_at(r) for r in range(len(view))]
+
+
+def brute_columns(store, view, columns):
+    counts = [[0] * 5 for _ in range(len(columns))]
+    firsts = [None] * len(columns)
+    for seq in shown(view):
+        record = store.get(seq)
+        column = (record.stamp_ns - columns.start_ns) // columns.step_ns
+        assert 0 <= column < len(columns), (record.stamp_ns, columns.start_ns, columns.step_ns)
+        counts[column][SLOT[record.level]] += 1
+        if firsts[column] is None:
+            firsts[column] = seq
+    return [tuple(c) for c in counts], firsts
+
+
+def test_an_error_burst_in_the_middle_is_its_own_column():
+    store = LogStore()
+    store.extend(rec(i * S // 10) for i in range(1000))  # 100 s of INFO, ten a second
+    store.extend(rec(50 * S + i, level=40) for i in range(30))  # 30 errors at 50 s
+    view = LogView(store)
+    timeline = Timeline(store, view)
+    assert timeline.sync()
+    columns = timeline.columns(100)
+    assert len(columns) <= 100
+    marked = [c for c, counts in enumerate(columns.counts) if counts[3]]
+    assert len(marked) == 1 and 45 <= marked[0] <= 55
+    assert columns.counts[marked[0]][3] == 30
+    assert columns.first_seqs[marked[0]] is not None
+    assert sum(columns.totals()) == 1030
+
+
+def test_hidden_records_are_not_counted():
+    store = LogStore()
+    store.extend(rec(i * S, level=10 * (1 + i % 5), node=f"n{i % 3}") for i in range(300))
+    view = LogView(store)
+    timeline = Timeline(store, view)
+    timeline.sync()
+    view.set_rules(RuleSet((exclude(SeverityRule.of("debug", "info")),)))
+    # While the view filters and the timeline counts again, it shows the counts from before.
+    assert sum(timeline.columns(50).totals()) == 300
+    while not view.refilter_step(0.01):
+        pass
+    while not timeline.sync(0.001):
+        pass
+    assert not timeline.recounting
+    columns = timeline.columns(50)
+    assert sum(columns.totals()) == len(view) == 180
+    assert (brute_columns(store, view, columns)) == (list(columns.counts), list(columns.first_seqs))
+
+
+def test_live_tail_and_eviction_against_brute_force():
+    rng = random.Random(3)
+    for _trial in range(30):
+        store = LogStore(max_messages=rng.choice([100, 1000, 100_000]))
+        view = LogView(store)
+        timeline = Timeline(store, view)
+        stamp = rng.randint(0, 10**18)
+        for _ in range(rng.randint(2, 10)):
+            batch = []
+            for _ in range(rng.randint(1, 300)):
+                stamp += rng.choice([1, 1000, 10**6, 10**8, S, 60 * S, 3600 * S]) * rng.random()
+                stamp = int(stamp)
+                batch.append(
+                    rec(stamp + rng.randint(-S, S), level=rng.choice([10, 20, 30, 40, 50]), node=rng.choice("abc"))
+                )
+            store.extend(batch)
+            view.update()
+            if rng.random() < 0.2:
+                view.set_rules(RuleSet((exclude(NodeRule(("b",))),)), first_screen=5)
+                if rng.random() < 0.5:
+                    while not view.refilter_step(0.01):
+                        pass
+            timeline.sync(0.0005 if rng.random() < 0.3 else None)
+        while not view.refilter_step(0.01):
+            pass
+        while not timeline.sync(0.001):
+            pass
+        for width in (1, 7, 80, 300):
+            columns = timeline.columns(width)
+            if not len(view):
+                assert columns is None
+                continue
+            assert 1 <= len(columns) <= width
+            counts, firsts = brute_columns(store, view, columns)
+            assert counts == list(columns.counts)
+            if store.evicted == 0:
+                assert firsts == list(columns.first_seqs)
+        assert len(timeline._histogram.buckets) <= MAX_BUCKETS
+
+
+def test_a_long_history_widens_its_buckets():
+    store = LogStore()
+    view = LogView(store)
+    timeline = Timeline(store, view)
+    for day in range(40):
+        store.extend(rec(day * 86_400 * S + i * S) for i in range(100))
+        view.update()
+        timeline.sync()
+    assert timeline.bucket_ns >= 60 * S
+    columns = timeline.columns(120)
+    assert sum(columns.totals()) == 4000
+    assert brute_columns(store, view, columns)[0] == list(columns.counts)
+
+
+def test_node_stats_against_brute_force():
+    rng = random.Random(5)
+    for max_messages in (50, 10_000):
+        store = LogStore(max_messages=max_messages)
+        stats = NodeStats(store, window_s=60)
+        stamp = 1000 * S
+        for _ in range(10):
+            batch = []
+            for _ in range(rng.randint(1, 200)):
+                stamp += rng.randint(0, 2 * S)
+                batch.append(rec(stamp, level=rng.choice([10, 20, 30, 40, 50, 25]), node=rng.choice(["a", "b", "c"])))
+            store.extend(batch)
+            stats.update()
+        records = list(store)
+        newest = max(r.stamp_ns for r in records) // S
+        oldest = min(r.stamp_ns for r in records) // S
+        window = min(60, newest - oldest + 1)
+        for entry in stats.nodes():
+            mine = [r for r in records if r.node == entry.node]
+            want = [sum(1 for r in mine if SLOT[r.level - r.level % 10] == slot) for slot in range(5)]
+            assert list(entry.counts) == want
+            recent = sum(1 for r in mine if r.stamp_ns // S > newest - 60)
+            assert abs(entry.rate - recent / window) < 1e-9
+        assert stats.window_seconds() == window
+        assert sum(e.total for e in stats.nodes()) == len(store)
+        busiest = stats.busiest(2)
+        assert [e.rate for e in busiest] == sorted((e.rate for e in busiest), reverse=True)
+
+
+def test_first_of_a_severity_and_of_a_node():
+    store = LogStore(max_messages=10_000)
+    store.extend(rec(i, level=20, node="a") for i in range(9000))
+    store.extend([rec(9000, level=45, node="b"), rec(9001, level=50, node="c"), rec(9002, level=40, node="b")])
+    stats = NodeStats(store)
+    stats.update()
+    assert stats.first_of(40) == 9000
+    assert stats.first_of(50) == 9001
+    assert stats.first_of(30) is None
+    assert stats.first_of_node(store.nodes.id_of("b")) == 9000
+    assert find_level(store, 0, store.end_seq, *severity_range(40), last=True) == 9002
+    assert find_level(store, 0, store.end_seq, *severity_range(30, or_worse=True)) == 9000
+    assert find_node(store, 9001, store.end_seq, store.nodes.id_of("b")) == 9002
+    assert severity_range(10) == (0, 19) and severity_range(50) == (50, 255)
