@@ -125,7 +125,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         ),
         Binding("C", "columns", "Columns", id="console.columns"),
         Binding("l", "toggle_loggers", "Loggers", id="console.loggers"),
-        Binding("p", "toggle_nodes", "Nodes", id="console.nodes"),
+        Binding("ctrl+n", "toggle_nodes", "Nodes", id="console.nodes"),
         Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False, id="console.loggers_for_row"),
         Binding("question_mark,f1", "help", "Help", id="console.help"),
         Binding("q", "quit", "Quit", id="console.quit"),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from rich.table import Table
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -20,16 +21,21 @@ from ..keys import Hint, hint_line
 _HINTS: list[Hint] = [("go", "goes to it"), ("unmark", "takes the mark off"), ("close", "closes")]
 
 
-def mark_text(record: LogRecord, shown: bool, utc: bool) -> Text:
-    text = Text(no_wrap=True, overflow="ellipsis")
-    text.append(f"{record.seq + 1:>7} ", style="dim")
-    text.append(clock_text(record.stamp_ns, utc=utc) + " ", style="dim")
-    text.append(f"{severity_name(record.level):<5} ", style="bold")
-    text.append(one_line(record.node, 40) + " ", style="cyan")
-    text.append(one_line(record.msg, 300))
+def mark_line(record: LogRecord, shown: bool, utc: bool) -> Table:
+    """One mark: its row number, time, severity, node and message, on one line."""
+    head = Text(no_wrap=True)
+    head.append(f"{record.seq + 1:>7} ", style="dim")
+    head.append(clock_text(record.stamp_ns, utc=utc) + " ", style="dim")
+    head.append(f"{severity_name(record.level):<5} ", style="bold")
+    head.append(one_line(record.node, 40), style="cyan")
+    message = Text(one_line(record.msg, 300), no_wrap=True, overflow="ellipsis")
     if not shown:
-        text.append("  (hidden by the rules)", style="italic dim")
-    return text
+        message.append("  (hidden by the rules)", style="italic dim")
+    grid = Table.grid(expand=True, padding=(0, 1))
+    grid.add_column(no_wrap=True)
+    grid.add_column(ratio=1, no_wrap=True, overflow="ellipsis")
+    grid.add_row(head, message)
+    return grid
 
 
 def marks_title(count: int) -> str:
@@ -69,7 +75,7 @@ class MarksScreen(ModalScreen[int | None]):
         with Vertical():
             yield Label(marks_title(len(self.records)))
             yield OptionList(
-                *(Option(mark_text(r, r.seq in self.shown, self.utc), id=str(r.seq)) for r in self.records),
+                *(Option(mark_line(r, r.seq in self.shown, self.utc), id=str(r.seq)) for r in self.records),
                 id="marks-list",
             )
             yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="marks-hint")

@@ -66,6 +66,8 @@ class LogTable(ScrollView, can_focus=True):
     | `log-table--severity-debug` ... `log-table--severity-fatal` | The severity cell, by severity. |
     | `log-table--highlight` | Rows a highlight rule marks. |
     | `log-table--dimmed` | The other rows while highlighting. |
+    | `log-table--match` | Where a search matches, in the message. |
+    | `log-table--gutter` | The gutter's marks: ● a mark, » a search match. |
     """
 
     DEFAULT_CSS = """
