@@ -102,16 +102,26 @@ def process_cpu(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-def process_rss_mb(pid: int) -> float:
+def process_rss_mb(pid: int | None) -> float:
     """A process's resident memory in MB; 0 if it is gone."""
+    return _proc_kb(f"/proc/{pid}/status", "VmRSS:") / 1024 if pid else 0.0
+
+
+def process_pss_mb(pid: int | None) -> float:
+    """A process's proportional set size in MB (shared pages split between the processes
+    that map them, so that processes add up honestly); 0 if it is gone."""
+    return _proc_kb(f"/proc/{pid}/smaps_rollup", "Pss:") / 1024 if pid else 0.0
+
+
+def _proc_kb(path: str, key: str) -> int:
     try:
-        with open(f"/proc/{pid}/status", encoding="ascii") as status:
-            for line in status:
-                if line.startswith("VmRSS:"):
-                    return int(line.split()[1]) / 1024
+        with open(path, encoding="ascii") as lines:
+            for line in lines:
+                if line.startswith(key):
+                    return int(line.split()[1])
     except OSError:
         pass
-    return 0.0
+    return 0
 
 
 def percentile(values: list[float], share: float) -> float:

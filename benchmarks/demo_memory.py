@@ -23,24 +23,11 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _probe import process_pss_mb as pss_mb
 from _probe import process_rss_mb
 from _report import machine_line, table, verdict
 
 TARGET_MB = 150.0
-
-
-def pss_mb(pid: int | None) -> float:
-    """A process's proportional set size in MB; 0 if it is gone."""
-    if pid is None:
-        return 0.0
-    try:
-        with open(f"/proc/{pid}/smaps_rollup", encoding="ascii") as rollup:
-            for line in rollup:
-                if line.startswith("Pss:"):
-                    return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return 0.0
 
 
 async def run(minutes: float, every: float) -> list[list[object]]:
@@ -69,7 +56,7 @@ async def run(minutes: float, every: float) -> list[list[object]]:
                     f"{(time.monotonic() - began) / 60:.1f}",
                     f"{len(app.store):,}",
                     f"{process_rss_mb(me):.0f}",
-                    f"{process_rss_mb(intake) if intake else 0:.0f}",
+                    f"{process_rss_mb(intake):.0f}",
                     f"{pss_mb(me):.0f}",
                     f"{pss_mb(intake):.0f}",
                     f"{pss_mb(me) + pss_mb(intake):.0f}",

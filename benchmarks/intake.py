@@ -73,6 +73,7 @@ ALL_KINDS = (
     "typed-ee",
 )
 BATCHED_COALESCE_S = 0.02
+APP_PREFILL = 10_000
 DEFAULT_RATES = ("max", "1000", "5000", "20000", "50000")
 TARGET_VS_RAW_EE = 0.95
 STALL_OVER_FLOOR_MS = 10.0
@@ -291,6 +292,7 @@ def run_app_subscriber(kind: str) -> None:
     from _probe import KeyProbe, StallProbe, count_frames, percentile, process_rss_mb
 
     from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.intake_process.synthetic import synthetic_record
     from console_tui.sources.ros2.logger_control import Ros2LoggerControl
     from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
@@ -300,6 +302,8 @@ def run_app_subscriber(kind: str) -> None:
     runtime = runtime or RosRuntime()
     control = Ros2LoggerControl(runtime)
     app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
+    # Rows for the keys to move over before anything arrives (not counted as received).
+    app.store.extend([synthetic_record(number) for number in range(APP_PREFILL)])
     quit_event = threading.Event()
     state: dict[str, Any] = {}
 

@@ -8,6 +8,7 @@ import sys
 import threading
 import time
 
+from ..model.text import plural
 from ..sources.status import SourceStatus
 from .behaviours import DEMO_NODES
 
@@ -26,7 +27,7 @@ class DemoNodes:
         self.names = names or list(DEMO_NODES)
         self.processes: list[subprocess.Popen] = []
         #: Shown in the status line while the app runs the demo.
-        self.status = SourceStatus(path=f"demo: {len(self.names)} nodes")
+        self.status = SourceStatus(path=f"demo: {plural(len(self.names), 'node')}")
         self._lock = threading.Lock()
         self._stopping = False
         self._starter: threading.Thread | None = None

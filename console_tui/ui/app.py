@@ -14,6 +14,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
@@ -103,6 +104,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
     COMMANDS = App.COMMANDS | {ConsoleCommands}
 
     BINDINGS = [
+        # Named for what it does now: the footer says Resume while paused (name_pause_key).
         Binding("space", "toggle_pause", "Pause", id="console.pause"),
         Binding("c", "clear", "Clear", id="console.clear"),
         Binding("o", "open", "Open", id="console.open"),
@@ -193,6 +195,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
+        self._shown_paused = False
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -361,6 +364,19 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
+        paused = self.table.paused_end is not None
+        if paused != self._shown_paused:
+            self._shown_paused = paused
+            self.name_pause_key(paused)
+
+    def name_pause_key(self, paused: bool) -> None:
+        """The footer names what the pause key does now: Pause, or Resume while paused. (The
+        app's own bindings are changed in place; a keymap applies over them as before.)"""
+        words = "Resume" if paused else "Pause"
+        table = self._bindings.key_to_bindings
+        for key, bindings in table.items():
+            table[key] = [replace(b, description=words) if b.id == "console.pause" else b for b in bindings]
+        self.refresh_bindings()
 
     async def on_event(self, event: events.Event) -> None:
         # Keys typed ahead go where they were meant (see focus.py): they wait while the screen

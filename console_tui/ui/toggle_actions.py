@@ -50,7 +50,7 @@ class ToggleActions(App[None]):
             show=False,
             id="time.format",
         ),
-        Binding("T", "toggle_utc", "Time in UTC / local time", show=False, id="time.utc"),
+        Binding("ctrl+u", "toggle_utc", "Time in UTC / local time", show=False, id="time.utc"),
     ]
 
     # What it uses of the app (``ConsoleApp`` sets them).

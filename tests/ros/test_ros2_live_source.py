@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import contextlib
 import struct
-import threading
 import time
 
 import pytest
+from nodes.stalled_intake import StalledQueue
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
@@ -168,21 +168,6 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
         runtime.shutdown()
 
 
-class _StalledQueue(IntakeQueue):
-    """Holds the intake thread in its first ``put`` until released."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.stalled = threading.Event()
-        self.release = threading.Event()
-
-    def put(self, batch):
-        if not self.stalled.is_set():
-            self.stalled.set()
-            self.release.wait(30)
-        super().put(batch)
-
-
 def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_publisher_left(nodes, monkeypatch):
     """With the intake held up, a reader history of 10 keeps the last 10 of a burst of 100
     and Fast DDS reports nothing lost; the gaps in the publisher's sequence numbers do."""
@@ -191,7 +176,7 @@ def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_
     monkeypatch.setattr(module, "QUEUE_DEPTH", 10)
     talker = nodes.start("talker.py", "--name", "gap_talker")
     talker.expect("ready")
-    queue = _StalledQueue()
+    queue = StalledQueue()
     with live_source(queue=queue) as source:
         assert wait_until(lambda: source.status.publishers >= 1)
         talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
@@ -208,3 +193,32 @@ def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_
         status = source.status
     assert (status.lost, status.lost_qos) == (90, 90)
     assert status.loss_text() == "90 lost (90 in the middleware)"
+
+
+def test_a_node_that_logs_as_it_starts_beside_a_volatile_one_arrives_once(nodes):
+    """With a VOLATILE publisher on /rosout the second subscription hears every publisher.
+    A TRANSIENT_LOCAL node that logs the moment it starts is heard by both subscriptions
+    before the periodic look at the graph: its unknown publisher makes the source look at
+    the graph at once, and its messages arrive once (from the main subscription)."""
+    volatile = nodes.start("talker.py", "--name", "volatile_neighbour", "--volatile")
+    volatile.expect("ready")
+    with live_source() as source:
+        assert wait_until(lambda: source.status.publishers >= 1)
+        records: list[LogRecord] = []
+        for number in range(40):  # until the second subscription has matched the volatile node
+            volatile.send({"cmd": "log", "level": "warn", "msg": f"volatile {number}"})
+            volatile.expect_next("logged")
+            records += collect(source, lambda got: any(r.msg.startswith("volatile") for r in got), timeout=0.5)
+            if any(r.msg.startswith("volatile") for r in records):
+                break
+        assert any(r.msg.startswith("volatile") for r in records)
+        newcomer = nodes.start("talker.py", "--name", "eager_newcomer")
+        newcomer.expect("ready")
+        newcomer.send({"cmd": "log_all", "tag": "at once"})
+        sent = [m["msg"] for m in newcomer.expect("logged")["messages"] if m["level"] >= 20]
+        records += collect(source, lambda got: all(any(r.msg == m for r in got) for m in sent))
+        records += collect(source, lambda got: False, timeout=1.5)  # anything late, twice
+        status = source.status
+    got = [r.msg for r in records if r.node == "eager_newcomer"]
+    assert sorted(got) == sorted(sent), "every message of the new node once, none twice"
+    assert status.lost == 0 and status.publishers == 2

@@ -46,6 +46,7 @@ from ...model.formats.ros2_log_msg import CdrError, LogDecoder
 from ...model.intake_queue import IntakeQueue
 from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
+from ...model.text import plural
 from ..log_message import log_to_record
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
@@ -180,7 +181,7 @@ class LiveLogSource:
         }
         if counts.incompatible:
             fields["problem"] = (
-                f"{counts.incompatible} publisher(s) on {reader.topic} offer a QoS no subscription can match"
+                f"{plural(counts.incompatible, 'publisher')} on {reader.topic} with a QoS no subscription can match"
                 f" ({counts.last_policy or 'unknown policy'}): their messages are not received"
             )
         return fields

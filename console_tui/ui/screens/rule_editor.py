@@ -64,7 +64,7 @@ class RuleEditor(ModalScreen[Entry | None]):
     RuleEditor .group.-hidden { display: none; }
     RuleEditor Horizontal { height: auto; }
     RuleEditor Input { width: 1fr; }
-    RuleEditor #rule-error { color: $text-error; height: auto; }
+    RuleEditor #rule-error { color: $text-error; height: auto; width: 100%; }
     RuleEditor RadioSet { layout: horizontal; height: auto; }
     """
     BINDINGS = [Binding("escape", "cancel", "Cancel"), Binding("ctrl+s,f2", "apply", "Apply")]

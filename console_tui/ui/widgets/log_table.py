@@ -158,7 +158,10 @@ class LogTable(ScrollView, can_focus=True):
         #: What the Time column shows (``t``), in local time or UTC.
         self.time_format = TimeFormat.CLOCK
         self.style_generation = 0
-        self._cache: LRUCache[tuple, Strip] = LRUCache(512)
+        # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
+        # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
+        # about a fifth more per full collection than 192).
+        self._cache: LRUCache[tuple, Strip] = LRUCache(192)
         self._layout_key: tuple = ()
         self._nodes_measured = 0
         self._widest_node = 8

@@ -12,7 +12,7 @@ from textual.widgets import Input, Static
 from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
-from ...model.text import one_line
+from ...model.text import one_line, plural
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..plain import plain
@@ -109,7 +109,7 @@ class QueryBar(Vertical):
             return None
         problem.add_class("-ok")
         count = len(entries)
-        problem.update(f"{count} rule{'s' if count != 1 else ''} · {self.key_hints()}")
+        problem.update(f"{plural(count, 'rule')} · {self.key_hints()}")
         return entries
 
     @on(Input.Changed, "#query-input")

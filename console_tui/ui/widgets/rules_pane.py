@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from rich.table import Table
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -33,9 +34,10 @@ _HINTS: list[Hint] = [
 _TOGGLE_NAMES = {"levels": "level keys", "solo": "solo", "mute": "mute"}
 
 
-def entry_text(entry: Entry, count: int | None) -> Text:
-    """One line of the list: on/off, role, the rule, its count (or why it is inactive)."""
-    text = Text(no_wrap=True, overflow="ellipsis")
+def entry_text(entry: Entry, count: int | None) -> Table:
+    """One entry of the list: on/off, role, the rule (wrapping when long), and at the right
+    of its first line its count, or why it is inactive."""
+    text = Text()
     text.append("● " if entry.enabled else "○ ", style="bold green" if entry.enabled else "dim")
     if entry.role is Role.EXCLUDE:
         text.append("hide ", style="bold red")
@@ -47,11 +49,13 @@ def entry_text(entry: Entry, count: int | None) -> Text:
         text.append("  (query)", style="dim italic")
     if entry.toggle:
         text.append(f"  ({_TOGGLE_NAMES.get(entry.toggle, entry.toggle)})", style="dim italic")
-    if count is not None:
-        text.append(f"  {count:,}", style="bold cyan")
-    elif entry.enabled and entry.rule.is_empty:
+    if count is None and entry.enabled and entry.rule.is_empty:
         text.append("  (empty: matches nothing)", style="dim italic")
-    return text
+    row = Table.grid(expand=True)
+    row.add_column(ratio=1, overflow="fold")
+    row.add_column(justify="right", no_wrap=True)
+    row.add_row(text, Text(f" {count:,}", style="bold cyan") if count is not None else "")
+    return row
 
 
 class RulesPane(SidePane):
@@ -115,6 +119,7 @@ class RulesPane(SidePane):
         self.rules = RuleSet()
         self.counts: list[int | None] = []
         self.progress = ""
+        self._drawn = False
 
     def compose(self) -> ComposeResult:
         yield Label("Rules", classes="title")
@@ -128,9 +133,19 @@ class RulesPane(SidePane):
 
     def show(self, rules: RuleSet, counts: list[int | None], progress: str = "") -> None:
         """Show these rules with these counts (only redrawn when something changed)."""
-        if rules == self.rules and counts == self.counts and progress == self.progress and self.is_mounted:
+        unchanged = rules == self.rules and counts == self.counts and progress == self.progress
+        if unchanged and self._drawn:
             return
         self.rules, self.counts, self.progress = rules, list(counts), progress
+        if self.is_mounted:
+            self._draw()
+
+    def on_mount(self) -> None:
+        self._draw()
+
+    def _draw(self) -> None:
+        self._drawn = True
+        rules, counts, progress = self.rules, self.counts, self.progress
         options = self.query_one(OptionList)
         highlighted = options.highlighted
         options.clear_options()
