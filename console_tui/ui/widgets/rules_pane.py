@@ -33,6 +33,10 @@ _HINTS: list[Hint] = [
 ]
 
 
+#: How the pane names the rules the level and node keys make (``model/toggles.py``).
+_TOGGLE_NAMES = {"levels": "level keys", "solo": "solo", "mute": "mute"}
+
+
 def entry_text(entry: Entry, count: int | None, styles: Mapping[str, Style] | None = None) -> Table:
     """One entry of the list: on/off, role, the rule (wrapping when long), and at the right
     of its first line its count, or why it is inactive; ``styles`` are the pane's component classes."""
@@ -50,6 +54,8 @@ def entry_text(entry: Entry, count: int | None, styles: Mapping[str, Style] | No
     text.append(description, style=_PLAIN if entry.active else look("inactive" if entry.enabled else "off-rule"))
     if entry.from_query:
         text.append("  (query)", style=look("aside"))
+    if entry.toggle:
+        text.append(f"  ({_TOGGLE_NAMES.get(entry.toggle, entry.toggle)})", style=look("aside"))
     if count is None and entry.enabled and entry.rule.is_empty:
         text.append("  (empty: matches nothing)", style=look("aside"))
     row = Table.grid(expand=True)

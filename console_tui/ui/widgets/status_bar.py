@@ -1,4 +1,5 @@
-"""The status line: rows shown of total, counts per severity, rate, state, source."""
+"""The status line: rows shown of total, the search, level and node toggles, counts per
+severity, rate, state, source, the rules and the time format."""
 
 from __future__ import annotations
 
@@ -29,6 +30,12 @@ class StatusFacts:
     new_while_paused: int = 0
     sources: list[SourceStatus] = field(default_factory=list)
     note: str = ""
+    #: The search: ``match 3 of 17 'timeout'``, or "".
+    search: str = ""
+    #: Level and node toggles in force: ``level≥WARN · solo navigation.planner``, or "".
+    toggles: str = ""
+    #: What the Time column shows when not the wall clock, and a sim time note, or "".
+    time: str = ""
 
 
 class StatusBar(Widget):
@@ -39,11 +46,13 @@ class StatusBar(Widget):
     | `status-bar--follow` | FOLLOW: the table follows the newest message. |
     | `status-bar--scroll` | SCROLL: the table stays where the user put it. |
     | `status-bar--paused` | PAUSED, and the count of messages that came since. |
+    | `status-bar--search` | The search and where the cursor is among its matches. |
+    | `status-bar--toggles` | The level and node toggles in force. |
     | `status-bar--severity-debug` ... `status-bar--severity-fatal` | A severity's count. |
     | `status-bar--topic` | The live topic. |
     | `status-bar--problem` | Losses and a source's problem. |
     | `status-bar--where` | Where records come from (a file, a log folder). |
-    | `status-bar--note` | What the rules do. |
+    | `status-bar--note` | What the rules do; the time format. |
     """
 
     DEFAULT_CSS = """
@@ -51,6 +60,8 @@ class StatusBar(Widget):
     StatusBar > .status-bar--follow { background: $success; color: $text; text-style: bold; }
     StatusBar > .status-bar--scroll { background: $primary; color: $text; text-style: bold; }
     StatusBar > .status-bar--paused { background: $warning; color: $text; text-style: bold; }
+    StatusBar > .status-bar--search { background: $accent; color: $text; text-style: bold; }
+    StatusBar > .status-bar--toggles { color: $text-accent; text-style: bold; }
     StatusBar > .status-bar--topic { text-style: bold; }
     StatusBar > .status-bar--problem { color: $text-error; text-style: bold; }
     StatusBar > .status-bar--where { color: $foreground-muted; }
@@ -58,6 +69,8 @@ class StatusBar(Widget):
     StatusBar:nocolor > .status-bar--follow { background: $foreground; color: $background; }
     StatusBar:nocolor > .status-bar--scroll { background: $foreground; color: $background; }
     StatusBar:nocolor > .status-bar--paused { background: $foreground; color: $background; }
+    StatusBar:nocolor > .status-bar--search { background: $foreground; color: $background; }
+    StatusBar:nocolor > .status-bar--toggles { color: $foreground; }
     StatusBar:nocolor > .status-bar--problem { color: $foreground; text-style: bold underline; }
     """ + severity_css("StatusBar", "status-bar--severity")
 
@@ -65,6 +78,8 @@ class StatusBar(Widget):
         "status-bar--follow",
         "status-bar--scroll",
         "status-bar--paused",
+        "status-bar--search",
+        "status-bar--toggles",
         *severity_classes("status-bar--severity"),
         "status-bar--topic",
         "status-bar--problem",
@@ -111,6 +126,12 @@ def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None)
     else:
         text.append(" SCROLL ", style=look("scroll"))
     text.append(f"  {facts.shown:,}/{facts.total:,} shown  ")
+    if facts.search:
+        text.append(f"{one_line(facts.search, 120)}", style=look("search"))
+        text.append("  ")
+    if facts.toggles:
+        text.append(f"{one_line(facts.toggles, 200)}", style=look("toggles"))
+        text.append("  ")
     for level in SEVERITY_TABLE:
         text.append(
             f"{level.letter}{facts.counts.get(int(level.severity), 0):,}", style=look(f"severity-{level.style}")
@@ -132,6 +153,8 @@ def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None)
             text.append(spaced, style=look("where"))
     if facts.note:
         text.append(f"  {facts.note}", style=look("note"))
+    if facts.time:
+        text.append(f"  {facts.time}", style=look("note"))
     return text
 
 
