@@ -39,11 +39,13 @@ from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .keys import binding_ids, keymap_path, load_keymap
+from .overview_actions import OverviewActions
 from .pane_actions import PaneActions
 from .rule_actions import RuleActions
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
+from .screens.summary import SummaryScreen
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
@@ -51,6 +53,7 @@ from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 from .widgets.status_bar import StatusBar, StatusFacts
 from .widgets.table_columns import COLUMNS
+from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
     from ..sources.logger_control import LoggerControl
@@ -73,7 +76,11 @@ class Source(Protocol):
     def stop(self) -> None: ...
 
 
-class ConsoleApp(RuleActions, FileActions, PaneActions):
+def _keys(bindings: Iterable[object]) -> list[Binding]:
+    return [binding for binding in bindings if isinstance(binding, Binding)]
+
+
+class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
@@ -103,6 +110,11 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         Binding("C", "columns", "Columns", id="console.columns"),
         Binding("l", "toggle_loggers", "Loggers", id="console.loggers"),
         Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False, id="console.loggers_for_row"),
+        Binding("T", "timeline", "Timeline: pick a time to show", show=False, id="overview.timeline"),
+        Binding("ctrl+t", "toggle_timeline", "Show / hide the timeline", show=False, id="overview.toggle_timeline"),
+        Binding("z", "toggle_storm", "Expand / collapse the row's storm", show=False, id="overview.storm"),
+        Binding("Z", "toggle_storms", "Storms collapsed on / off", show=False, id="overview.storms"),
+        Binding("S", "summary", "Summary of the run", show=False, id="overview.summary"),
         Binding("question_mark,f1", "help", "Help", id="console.help"),
         Binding("q", "quit", "Quit", id="console.quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
@@ -137,7 +149,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self._rate = 0.0
         self._rate_at = 0.0
         self.collection_policy = CollectionPolicy()
-        self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
+        rows = self.make_overview(self.store, self.view, utc)
+        self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
         self._initial_query = query
@@ -185,6 +198,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     # -- layout -------------------------------------------------------------------------------
 
     def compose(self) -> ComposeResult:
+        yield self.timeline_strip
         with Horizontal(id="main"):
             yield self.rules_pane
             yield self.table
@@ -201,6 +215,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
             listed = "\n".join(self._keymap_problems[:5])
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
         focus_now(self.table)
+        self.start_overview()
         self.set_interval(self.drain_interval, self.drain_intake)
         self.apply_initial_rules(self._initial_rules, self._initial_query)
         self.update_status()
@@ -271,6 +286,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
+        self.show_overview()
         self.collection_policy.tick(len(records))
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
@@ -278,6 +294,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         with table.keeping_position():
             added = self.store.extend(records)
             self.view.update()
+            self.follow_overview()
         if self.view.switched_off:
             self.rules_changed()
         self._arrivals.append((self.clock(), len(added)))
@@ -298,8 +315,10 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     def update_status(self) -> None:
         table = self.table
         statuses = [source.status for source in self.sources]
+        paused_end = table.paused_end
         facts = StatusFacts(
-            shown=table.row_count,
+            # Messages, not rows: a storm's row shows many.
+            shown=len(self.view) if paused_end is None else self.view.count_before(paused_end),
             total=len(self.store),
             counts=dict(self.store.counts),
             rate=self.receive_rate(),
@@ -307,12 +326,13 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
-            note=self.rules_note(),
+            note=", ".join(note for note in (self.rules_note(), self.storms_note()) if note),
         )
         self.status_bar.show_facts(facts)
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
+        self.show_overview(force=True)
 
     async def on_event(self, event: events.Event) -> None:
         # Keys typed ahead go where they were meant (see focus.py): they wait while the screen
@@ -344,6 +364,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     def action_clear(self) -> None:
         self.store.clear()
         self.view.rebuild()
+        self.clear_overview()
         self.table.reset()
         self.update_status()
 
@@ -375,11 +396,11 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     def _step_record(self, seq: int, delta: int) -> LogRecord | None:
         """The record ``delta`` rows away from ``seq`` in the table, moving the cursor too."""
         table = self.table
-        row = self.view.row_of(seq) + delta
+        row = table.view.row_of(seq) + delta
         if not 0 <= row < table.row_count:
             return None
         table.move_cursor(row)
-        return self.store.get(self.view.seq_at(row))
+        return self.store.get(table.view.seq_at(row))
 
     # -- help and the command palette -------------------------------------------------------------
 
@@ -391,12 +412,14 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         """Every key, by where it works: the help screen, the keymap and the palette read these."""
         return [
-            ("Table", list(LogTable.BINDINGS)),
-            ("Console", list(self.BINDINGS)),
-            ("Rules pane", list(RulesPane.BINDINGS)),
-            ("Query line", list(QueryBar.BINDINGS)),
-            ("Logger levels pane", list(LoggerPane.BINDINGS)),
-            ("Details", list(DetailScreen.BINDINGS)),
+            ("Table", _keys(LogTable.BINDINGS)),
+            ("Console", _keys(self.BINDINGS)),
+            ("Rules pane", _keys(RulesPane.BINDINGS)),
+            ("Query line", _keys(QueryBar.BINDINGS)),
+            ("Logger levels pane", _keys(LoggerPane.BINDINGS)),
+            ("Timeline", _keys(TimelineStrip.BINDINGS)),
+            ("Summary", _keys(SummaryScreen.BINDINGS)),
+            ("Details", _keys(DetailScreen.BINDINGS)),
             ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
         ]
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from typing import Protocol
 
 from rich.cells import cell_len, set_cell_size
 from rich.segment import Segment
@@ -26,13 +27,26 @@ from textual.strip import Strip
 from ...model.levels import severity_bucket, severity_name
 from ...model.record import LogRecord
 from ...model.store import LogStore
+from ...model.storms import StormBadge
 from ...model.text import one_line
-from ...model.timefmt import clock_text
-from ...model.view import LogView
+from ...model.timefmt import clock_text, duration_text
 from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
 
 #: How a row is marked by the rules: None (plain), "highlight" or "dim".
 Decoration = str | None
+
+
+class TableRows(Protocol):
+    """What the table reads its rows from: a ``LogView``, or ``StormRows`` over one."""
+
+    def __len__(self) -> int: ...
+
+    def seq_at(self, row: int) -> int: ...
+
+    def row_of(self, seq: int) -> int: ...
+
+    def count_before(self, seq: int) -> int: ...
+
 
 _SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
 _MESSAGE_LIMIT = 2000
@@ -42,7 +56,7 @@ _QUIET_SCROLLBAR_PERIOD = 0.1
 
 
 class LogTable(ScrollView, can_focus=True):
-    """Rows of a ``LogView``; follows the tail until the user moves away or pauses."""
+    """Rows of a ``LogView`` (or ``StormRows``); follows the tail until the user moves away or pauses."""
 
     DEFAULT_CSS = """
     LogTable {
@@ -67,6 +81,7 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--selected { background: $primary-muted; }
     LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
+    LogTable > .log-table--storm { color: $text-accent; text-style: bold; }
     """
 
     COMPONENT_CLASSES = {
@@ -78,6 +93,7 @@ class LogTable(ScrollView, can_focus=True):
         *(f"log-table--severity-{name}" for name in _SEVERITY_CLASS.values()),
         "log-table--highlight",
         "log-table--dimmed",
+        "log-table--storm",
     }
 
     BINDINGS = [
@@ -103,7 +119,7 @@ class LogTable(ScrollView, can_focus=True):
     class StateChanged(Message):
         """Following, pause or cursor changed (for the status bar)."""
 
-    def __init__(self, store: LogStore, view: LogView, *, utc: bool = False, id: str | None = None) -> None:
+    def __init__(self, store: LogStore, view: TableRows, *, utc: bool = False, id: str | None = None) -> None:
         super().__init__(id=id)
         self.store = store
         self.view = view
@@ -117,6 +133,8 @@ class LogTable(ScrollView, can_focus=True):
         self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
         #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
         self.decoration_of: Callable[[int], Decoration] | None = None
+        #: Storms hook: seq -> how its row is marked as a storm (``×N until ...``), or None.
+        self.badge_of: Callable[[int], StormBadge | None] | None = None
         self.style_generation = 0
         self._cache: LRUCache[tuple, Strip] = LRUCache(512)
         self._layout_key: tuple = ()
@@ -192,11 +210,14 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
         self.post_message(self.StateChanged())
 
-    def _shown_seqs(self, top: int) -> tuple[int | None, ...]:
+    def _shown_seqs(self, top: int) -> tuple[object, ...]:
         """The cursor's seq and those of the rows on screen with ``top`` as the first row."""
         seq_at = self.view.seq_at
         end = min(top + self._body_height, self.row_count)
-        return (self.cursor_seq, *(seq_at(row) for row in range(max(top, 0), end)))
+        seqs = [seq_at(row) for row in range(max(top, 0), end)]
+        if self.badge_of is not None:  # a storm's count changes its row
+            return (self.cursor_seq, *seqs, *map(self.badge_of, seqs))
+        return (self.cursor_seq, *seqs)
 
     def reset(self) -> None:
         """After a clear or a new filter: back to the tail."""
@@ -461,10 +482,11 @@ class LogTable(ScrollView, can_focus=True):
         is_cursor = row == self.cursor_row
         selected = self.selection_anchor is not None and row in self.selected_rows()
         decoration = self.decoration_of(seq) if self.decoration_of is not None else None
-        key = (seq, is_cursor, selected, decoration, self.style_generation)
+        badge = self.badge_of(seq) if self.badge_of is not None else None
+        key = (seq, is_cursor, selected, decoration, self.style_generation, badge)
         strip = self._cache.get(key)
         if strip is None:
-            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, selected, decoration)
+            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, selected, decoration, badge)
             self._cache[key] = strip
         return strip
 
@@ -484,6 +506,7 @@ class LogTable(ScrollView, can_focus=True):
         is_cursor: bool,
         selected: bool,
         decoration: Decoration,
+        badge: StormBadge | None = None,
     ) -> Strip:
         styles = self._styles
         name = _SEVERITY_CLASS.get(int(severity_bucket(record.level)), "info")
@@ -500,6 +523,13 @@ class LogTable(ScrollView, can_focus=True):
         segments: list[Segment] = []
         for place in placed:
             key = place.column.key
+            if key == "message" and badge is not None:
+                mark = self._badge_text(badge, place.width)
+                segments.append(Segment(mark, row_style + styles.get("log-table--storm", Style())))
+                text = self._cell_text(record, key, place.width - len(mark))
+                segments.append(Segment(_fit(text, place.width - len(mark)), row_style))
+                segments.append(Segment(" ", row_style))
+                continue
             text = self._cell_text(record, key, place.width)
             style = row_style
             if key == "severity" and not is_cursor:
@@ -509,6 +539,24 @@ class LogTable(ScrollView, can_focus=True):
             segments.append(Segment(_fit(text, place.width, place.column.align), style))
             segments.append(Segment(" ", row_style))
         return Strip(segments).adjust_cell_length(width, row_style).simplify()
+
+    def _badge_text(self, badge: StormBadge, width: int) -> str:
+        """``×120 until 12:00:31.200`` on a storm's row when the message keeps half the cell,
+        else ``×120 +30.1 s`` (the time from its first message to its last) when it keeps 8
+        cells, else ``×120``; ``┆`` on the rows of an expanded storm."""
+        if not badge.head:
+            return "  ┆ "
+        count = f"{'▾' if badge.expanded else ''}×{badge.repeats} "
+        last, first = badge.last, badge.first
+        if last in self.store:
+            last_ns = self.store.stamp_of(last)
+            marks = [(f"{count}until {clock_text(last_ns, utc=self.utc)}  ", max(12, width // 2))]
+            if first in self.store:
+                marks.append((f"{count}+{duration_text(max(last_ns - self.store.stamp_of(first), 0))} ", 8))
+            for mark, room in marks:
+                if width - len(mark) >= room:
+                    return mark
+        return count[: max(width - 1, 0)]
 
     def _cell_text(self, record: LogRecord, key: str, width: int) -> str:
         if key == "message":
