@@ -1,8 +1,10 @@
-"""What the benchmarks of the running app measure with: event-loop stalls and frames drawn."""
+"""What the benchmarks of the running app measure with: event-loop stalls, frames drawn, keys
+answered, and the CPU and memory of processes."""
 
 from __future__ import annotations
 
 import asyncio
+import os
 import time
 from typing import Any
 
@@ -43,3 +45,88 @@ def count_frames(widget: Any) -> list[float]:
 
     widget.render_lines = counting_render_lines
     return frames
+
+
+class KeyProbe:
+    """Presses keys in the running app and times each from the key to the first frame of
+    ``table`` that shows its effect: Up (the cursor moves; following stops), then End (not
+    timed) to follow the tail again. ``latencies`` holds the seconds; 2 s means no effect."""
+
+    def __init__(self, app: Any, table: Any, frames: list[float], period: float = 0.25) -> None:
+        self.app = app
+        self.table = table
+        self.frames = frames
+        self.period = period
+        self.latencies: list[float] = []
+        self._task: asyncio.Task | None = None
+
+    async def press_up(self) -> float:
+        from textual import events
+
+        table = self.table
+        before = table.cursor_row
+        pressed = time.perf_counter()
+        self.app.post_message(events.Key("up", None))
+        while time.perf_counter() - pressed < 2.0:
+            await asyncio.sleep(0.001)
+            if table.cursor_row != before or not table.following:
+                drawn = [frame for frame in self.frames if frame > pressed]
+                if drawn:
+                    return drawn[0] - pressed
+        return 2.0
+
+    async def _run(self) -> None:
+        from textual import events
+
+        while True:
+            self.latencies.append(await self.press_up())
+            await asyncio.sleep(self.period / 2)
+            self.app.post_message(events.Key("end", None))
+            await asyncio.sleep(self.period / 2)
+
+    def start(self) -> None:
+        self._task = asyncio.create_task(self._run())
+
+    def stop(self) -> None:
+        if self._task is not None:
+            self._task.cancel()
+
+
+def process_cpu(pid: int) -> float:
+    """CPU seconds (user + system) a process has used so far; 0 if it is gone."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as stat:
+            fields = stat.read().rsplit(")", 1)[1].split()
+    except OSError:
+        return 0.0
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def process_rss_mb(pid: int | None) -> float:
+    """A process's resident memory in MB; 0 if it is gone."""
+    return _proc_kb(f"/proc/{pid}/status", "VmRSS:") / 1024 if pid else 0.0
+
+
+def process_pss_mb(pid: int | None) -> float:
+    """A process's proportional set size in MB (shared pages split between the processes
+    that map them, so that processes add up honestly); 0 if it is gone."""
+    return _proc_kb(f"/proc/{pid}/smaps_rollup", "Pss:") / 1024 if pid else 0.0
+
+
+def _proc_kb(path: str, key: str) -> int:
+    try:
+        with open(path, encoding="ascii") as lines:
+            for line in lines:
+                if line.startswith(key):
+                    return int(line.split()[1])
+    except OSError:
+        pass
+    return 0
+
+
+def percentile(values: list[float], share: float) -> float:
+    """The value below which ``share`` of ``values`` lie (0 for none)."""
+    if not values:
+        return 0.0
+    ordered = sorted(values)
+    return ordered[min(int(share * len(ordered)), len(ordered) - 1)]

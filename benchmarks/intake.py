@@ -4,22 +4,35 @@
 Real rclpy publisher processes (1 and 4) send pre-serialized ``rcl_interfaces/msg/Log``
 messages with ``/rosout``'s QoS on a test topic, as fast as they can ("max") and at fixed
 total rates. In the same run, one after another against the same publishers, these
-subscribers (each a process of its own, all with the same QoS: RELIABLE, TRANSIENT_LOCAL,
-KEEP_LAST 10000) count what they receive:
+subscribers (each a process of its own, started fresh) count what they receive:
 
-- ``intake``: console-tui's ``LiveLogSource`` into an ``IntakeQueue``, drained every 50 ms
-  into a ``LogStore`` as the app does;
-- ``raw-ee``: a raw (serialized) subscription on rclpy's EventsExecutor, counting only;
+- ``intake``: console-tui's intake as ``console-tui`` runs it: the live source in the intake
+  process, its batches read from the pipe into an ``IntakeQueue`` drained every 50 ms into
+  a ``LogStore`` as the app does (its CPU includes the intake process's);
+- ``raw-ee``: a raw (serialized) subscription on rclpy's EventsExecutor, counting only
+  (RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 10000), the ceiling a Python subscriber reaches;
 - ``typed-spin``: a typed subscription spun by ``rclpy.spin`` (rqt_console's pattern).
 
-``intake-typed`` (the intake's typed fallback path), ``intake-ee`` (the intake's decoder
-and queue fed by an EventsExecutor callback instead of its wait-set loop) and ``typed-ee``
-can be added with ``--kinds``. Received/s counts what arrived while the publishers sent; lost is what was
-sent and never arrived once everything settled. Every process uses
-ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST and a ROS_DOMAIN_ID of its own.
+The whole app, headless at 160x48 and drawing, with a probe measuring event-loop stalls
+and Up/End keys measuring key-to-effect times (first with nothing arriving, ``--floor``
+seconds, then while the messages arrive), and the logger levels' rclpy context as
+``console-tui`` has it:
+
+- ``app``: with the intake process (as ``console-tui`` runs);
+- ``app-thread``: with the intake in a thread of the app's own process (the design before);
+- ``app-thread-batched``: the same, its thread waking less often for bigger batches.
+
+Also: ``intake-thread`` (the live source in a thread of the subscriber's process, no UI),
+``intake-typed`` (the typed fallback path, in the intake process), ``intake-ee`` (the
+decoder and queue fed by an EventsExecutor callback) and ``typed-ee``. Received/s counts
+what arrived while the publishers sent; lost is what was sent and never arrived once
+everything settled; the status bar's count is what the source reported. Every process
+uses ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST and a ROS_DOMAIN_ID of its own.
 
     python benchmarks/intake.py                      # the table (about 5 minutes)
-    python benchmarks/intake.py --sustained 60       # 0 lost at 20k/s for 60 s?
+    python benchmarks/intake.py --kinds intake app app-thread raw-ee typed-spin   # the designs
+    python benchmarks/intake.py --sustained 600      # the app: 0 lost at 20k/s for 10 minutes?
+    python benchmarks/intake.py --sustained 600 --publishers 4 --rates 10000
     python benchmarks/intake.py --publishers 1 --rates max --duration 3
 """
 
@@ -39,18 +52,36 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
+from _probe import process_cpu
 from _report import ros_header, table, verdict
 
 TOPIC = "/console_tui_bench_log"
 QUEUE_DEPTH = 10_000
 DEFAULT_KINDS = ("intake", "raw-ee", "typed-spin")
-ALL_KINDS = (*DEFAULT_KINDS, "intake-typed", "intake-ee", "typed-ee")
+#: The console's intake in its own process (as console-tui runs it), alone or under the app.
+PROCESS_KINDS = {"intake", "intake-typed", "app"}
+#: The whole app, headless and drawing.
+APP_KINDS = {"app", "app-thread", "app-thread-batched"}
+ALL_KINDS = (
+    *DEFAULT_KINDS,
+    "intake-thread",
+    "app",
+    "app-thread",
+    "app-thread-batched",
+    "intake-typed",
+    "intake-ee",
+    "typed-ee",
+)
+BATCHED_COALESCE_S = 0.02
+APP_PREFILL = 10_000
 DEFAULT_RATES = ("max", "1000", "5000", "20000", "50000")
-TARGET_VS_RAW_EE = 0.9
+TARGET_VS_RAW_EE = 0.95
+STALL_OVER_FLOOR_MS = 10.0
+KEY_TARGET_MS = 100.0
 TARGET_VS_TYPED = 5.0
 LOSSLESS_RATE = 20_000
 #: Subscribers that say how long stopping took (the intake's ``stop()``).
-STOP_REPORTING_KINDS = {"intake", "intake-typed", "intake-ee"}
+STOP_REPORTING_KINDS = {"intake", "intake-thread", "intake-typed", "intake-ee", *APP_KINDS}
 
 
 def say(**fields: Any) -> None:
@@ -188,26 +219,48 @@ def serve_commands(count, publishers, extra=dict) -> None:
                 time.sleep(0.02)
             say(event="publishers", count=publishers())
         elif command["cmd"] == "count":
-            say(event="count", count=count(), cpu=time.process_time(), **extra())
+            say(**{"event": "count", "count": count(), "cpu": time.process_time(), **extra()})
         elif command["cmd"] == "quit":
             return
 
 
-def run_intake_subscriber(raw: bool) -> None:
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.store import LogStore
-    from console_tui.sources.ros2.live_source import LiveLogSource
+def console_source(kind: str, queue: Any) -> tuple[Any, Any]:
+    """The console's intake for ``kind``, feeding ``queue``: the source, and the rclpy runtime
+    it runs on in this process (None when it runs in the intake process)."""
+    if kind in PROCESS_KINDS:
+        from console_tui.sources.intake_process.parent import ProcessSource
+
+        args = ["--typed"] if kind == "intake-typed" else []
+        return ProcessSource(queue, "ros2", topic=TOPIC, args=args), None
+    from console_tui.sources.ros2 import live_source
     from console_tui.sources.ros2.runtime import RosRuntime
 
+    if kind == "app-thread-batched":  # fewer wake-ups of the intake thread, bigger batches
+        live_source.COALESCE_BELOW = live_source.MAX_BATCH
+        live_source.COALESCE_S = BATCHED_COALESCE_S
     runtime = RosRuntime()
+    return live_source.LiveLogSource(runtime, queue, TOPIC), runtime
+
+
+def cpu_seconds(source: Any) -> float:
+    """CPU used by this process and, if the source has one, its intake process."""
+    pid = getattr(source, "pid", None)
+    return time.process_time() + (process_cpu(pid) if pid else 0.0)
+
+
+def run_intake_subscriber(kind: str) -> None:
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store import LogStore
+
     queue = IntakeQueue()
     store = LogStore()
-    source = LiveLogSource(runtime, queue, TOPIC, raw=raw)
+    source, runtime = console_source(kind, queue)
     stop = threading.Event()
 
     def app_drain() -> None:  # what the app's timer does
         while not stop.wait(0.05):
-            store.extend(queue.drain())
+            for batch in queue.drain_batches():
+                store.extend(batch)
 
     drain = threading.Thread(target=app_drain, daemon=True)
     source.start()
@@ -216,15 +269,107 @@ def run_intake_subscriber(raw: bool) -> None:
 
     def loss() -> dict[str, Any]:
         status = source.status
-        return {"lost_reported": status.lost, "path": status.path, "stored": len(store)}
+        return {"lost_reported": status.lost, "path": status.path, "stored": len(store), "cpu": cpu_seconds(source)}
 
     serve_commands(lambda: queue.received, lambda: source.status.publishers, loss)
     stop.set()
     drain.join()
     began = time.monotonic()
     source.stop()
-    runtime.shutdown()
+    if runtime is not None:
+        runtime.shutdown()
     say(event="stopped", seconds=time.monotonic() - began)
+
+
+def run_app_subscriber(kind: str) -> None:
+    """The whole app, headless at 160x48 and drawing, with the console's intake (``app``: in
+    its process, as ``console-tui`` runs it; ``app-thread``: in a thread of the app's process,
+    the design before) and the logger levels' rclpy context, as ``console-tui`` has them.
+    Measures event-loop stalls and key-to-effect times between ``mark`` commands."""
+    import asyncio
+    import gc
+
+    from _probe import KeyProbe, StallProbe, count_frames, percentile, process_rss_mb
+
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.intake_process.synthetic import synthetic_record
+    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
+    from console_tui.sources.ros2.runtime import RosRuntime
+    from console_tui.ui.app import ConsoleApp
+
+    queue = IntakeQueue()
+    source, runtime = console_source(kind, queue)
+    runtime = runtime or RosRuntime()
+    control = Ros2LoggerControl(runtime)
+    app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
+    # Rows for the keys to move over before anything arrives (not counted as received).
+    app.store.extend([synthetic_record(number) for number in range(APP_PREFILL)])
+    quit_event = threading.Event()
+    state: dict[str, Any] = {}
+
+    def stats() -> dict[str, Any]:
+        stalls, keys = state["stalls"].stalls, state["keys"].latencies
+        pid = getattr(source, "pid", None)
+        return {
+            "lost_reported": source.status.lost,
+            "path": source.status.path + (" (process)" if pid else " (thread)"),
+            "stored": app.store.end_seq,
+            "cpu": cpu_seconds(source),
+            "stall_max": max(stalls, default=0.0) * 1000,
+            "stall_p99": percentile(stalls, 0.99) * 1000,
+            "key_median": percentile(keys, 0.5) * 1000,
+            "key_max": max(keys, default=0.0) * 1000,
+            "keys": len(keys),
+            "rss_app": process_rss_mb(os.getpid()),
+            "rss_intake": process_rss_mb(pid) if pid else 0.0,
+            "gc_longest": app.collection_policy.longest * 1000,
+        }
+
+    def mark() -> None:
+        state["stalls"].stalls = []
+        state["keys"].latencies = []
+        app.collection_policy.longest = 0.0
+
+    async def main() -> None:
+        async with app.run_test(size=(160, 48)):
+            frames = count_frames(app.table)
+            state["stalls"] = StallProbe()
+            state["keys"] = KeyProbe(app, app.table, frames)
+            state["stalls"].start()
+            state["keys"].start()
+            say(event="ready")
+            while not quit_event.is_set():
+                await asyncio.sleep(0.05)
+                del frames[:-100]  # keep the list short
+            state["keys"].stop()
+            await state["stalls"].stop()
+            state["quit_at"] = time.monotonic()
+        state["stopped_at"] = time.monotonic()
+
+    def commands() -> None:
+        for raw in sys.stdin:
+            command = json.loads(raw)
+            if command["cmd"] == "mark":
+                mark()
+                say(event="marked")
+            elif command["cmd"] == "publishers":
+                deadline = time.monotonic() + 30
+                while source.status.publishers < command["count"] and time.monotonic() < deadline:
+                    time.sleep(0.02)
+                say(event="publishers", count=source.status.publishers)
+            elif command["cmd"] == "count":
+                say(event="count", count=queue.received, **stats())
+            elif command["cmd"] == "quit":
+                break
+        quit_event.set()
+
+    threading.Thread(target=commands, daemon=True).start()
+    gc.collect()
+    asyncio.run(main())
+    began = time.monotonic()
+    control.close()
+    runtime.shutdown()
+    say(event="stopped", seconds=time.monotonic() - state["quit_at"], app_seconds=began - state["quit_at"])
 
 
 class EventsExecutorThread:
@@ -393,6 +538,9 @@ class Row:
     lost_reported: int | None = None
     path: str = ""
     stop_ms: float | None = None
+    #: The whole app's figures (APP_KINDS): during the load, and with nothing arriving.
+    app: dict[str, float] | None = None
+    floor: dict[str, float] | None = None
 
     @property
     def received_per_s(self) -> float:
@@ -442,12 +590,18 @@ def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
 def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list[Child], kind: str, rate: str) -> Row:
     """One subscriber process, started fresh, measured at one rate."""
     subscriber = Child(["--role", "subscriber", "--kind", kind], env)
+    floor = None
     try:
         subscriber.expect("ready")
         subscriber.ask("publishers", cmd="publishers", count=len(publishers))
         for child in publishers:
             child.ask("matched", cmd="matched", count=1)
         before = settle(subscriber)  # publishers' TRANSIENT_LOCAL history, delivered on matching
+        if kind in APP_KINDS and args.floor > 0:
+            subscriber.ask("marked", cmd="mark")
+            time.sleep(args.floor)  # nothing arriving: the floor this machine sets for stalls and keys
+            floor = subscriber.ask("count", cmd="count")
+            subscriber.ask("marked", cmd="mark")
         per_publisher = 0.0 if rate == "max" else float(rate) / len(publishers)
         for child in publishers:
             child.send(cmd="go", rate=per_publisher, duration=args.duration)
@@ -460,6 +614,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         subscriber.close()
         for child in publishers:  # the next subscriber starts once this one is gone
             child.ask("matched", cmd="matched", count=0)
+    app_keys = ("stall_max", "stall_p99", "key_median", "key_max", "keys", "rss_app", "rss_intake", "gc_longest")
     row = Row(
         publishers=len(publishers),
         rate=rate,
@@ -472,14 +627,22 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         lost_reported=after["lost_reported"] - before["lost_reported"] if "lost_reported" in after else None,
         path=after.get("path", ""),
         stop_ms=stopped["seconds"] * 1000 if stopped else None,
+        app={key: window[key] for key in app_keys} if kind in APP_KINDS else None,
+        floor={key: floor[key] for key in app_keys} if floor else None,
     )
     print(
         f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received {row.received:>8,} "
-        f"({row.received_per_s:,.0f}/s), lost {row.lost:,}",
+        f"({row.received_per_s:,.0f}/s), lost {row.lost:,}"
+        + (f", longest stall {row.app['stall_max']:.0f} ms, worst key {row.app['key_max']:.0f} ms" if row.app else ""),
         file=sys.stderr,
         flush=True,
     )
     return row
+
+
+CONSOLE_KINDS = {"intake", "intake-thread", "intake-typed", "intake-ee", *APP_KINDS}
+#: Rows whose targets are the product's: the intake as console-tui runs it, alone and in the app.
+PRODUCT_KINDS = {"intake", "app"}
 
 
 def report(rows: list[Row], args: argparse.Namespace) -> str:
@@ -489,9 +652,9 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
     for row in rows:
         raw_ee = by_key.get((row.publishers, row.rate, "raw-ee"))
         typed = by_key.get((row.publishers, row.rate, "typed-spin"))
-        is_intake = row.kind == "intake"
-        vs_raw = f"{row.received_per_s / raw_ee.received_per_s:.2f}" if is_intake and raw_ee else ""
-        vs_typed = f"{row.received_per_s / typed.received_per_s:.1f}x" if is_intake and typed else ""
+        console = row.kind in CONSOLE_KINDS
+        vs_raw = f"{row.received_per_s / raw_ee.received_per_s:.2f}" if console and raw_ee else ""
+        vs_typed = f"{row.received_per_s / typed.received_per_s:.1f}x" if console and typed else ""
         cpu_per_message = f"{row.cpu / row.received * 1e6:.0f}" if row.received else "-"
         reported = "" if row.lost_reported is None else f"{row.lost_reported:,}"
         body.append(
@@ -509,53 +672,94 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
                 vs_typed,
             ]
         )
-    lines.append(
-        table(
-            [
-                "pubs",
-                "offered/s",
-                "subscriber",
-                "sent/s",
-                "received/s",
-                "lost",
-                "lost %",
-                "lost (status bar)",
-                "CPU us/msg",
-                "intake ÷ raw-ee",
-                "intake ÷ typed-spin",
-            ],
-            body,
-        )
-    )
+    headers = ["pubs", "offered/s", "subscriber", "sent/s", "received/s", "lost", "lost %"]
+    headers += ["lost (status bar)", "CPU us/msg", "÷ raw-ee", "÷ typed-spin"]
+    lines.append(table(headers, body))
+    app_rows = [row for row in rows if row.app is not None]
+    if app_rows:
+        lines += ["", "The whole app (headless at 160x48, drawing) while the messages arrive; in brackets, the same"]
+        lines += ["app before the publishers start (nothing arriving: the floor this machine sets):", ""]
+        lines.append(app_table(app_rows))
     lines.append("")
     lines.append("Targets:")
     for row in rows:
-        if row.kind != "intake":
-            continue
-        where = f"{row.publishers} pub, {row.rate}/s"
-        raw_ee = by_key.get((row.publishers, row.rate, "raw-ee"))
-        if raw_ee:
-            ratio = row.received_per_s / raw_ee.received_per_s
-            lines.append(
-                f"- {where}: intake >= 90% of raw-ee: {ratio:.0%}, "
-                + verdict(ratio >= TARGET_VS_RAW_EE, f"short by {TARGET_VS_RAW_EE - ratio:.0%} points")
-            )
-        typed = by_key.get((row.publishers, row.rate, "typed-spin"))
-        if typed and row.rate == "max":
-            ratio = row.received_per_s / typed.received_per_s
-            lines.append(
-                f"- {where}: intake >= 5x typed-spin: {ratio:.1f}x, "
-                + verdict(ratio >= TARGET_VS_TYPED, f"short by {TARGET_VS_TYPED - ratio:.1f}x")
-            )
-        if row.rate != "max" and float(row.rate) == LOSSLESS_RATE:
-            lines.append(
-                f"- {where} for {row.seconds:.0f} s: 0 lost: {row.lost:,} lost, "
-                + verdict(row.lost == 0, f"{row.lost:,} lost, {100 * row.lost / row.sent:.2f}%")
-            )
-    stops = [row.stop_ms for row in rows if row.stop_ms is not None]
+        if row.kind in PRODUCT_KINDS:
+            lines += targets(row, by_key)
+    stops = [row.stop_ms for row in rows if row.stop_ms is not None and row.kind in PRODUCT_KINDS]
     if stops:
-        lines.append(f"- intake stop() (thread joined): at most {max(stops):.0f} ms over {len(stops)} runs")
+        lines.append(
+            f"- stopping (the intake; for the app: from quit until the intake process is gone): at most "
+            f"{max(stops):.0f} ms over {len(stops)} runs, target 1000: " + verdict(max(stops) <= 1000, "too slow")
+        )
     return "\n".join(lines)
+
+
+def app_table(rows: list[Row]) -> str:
+    body = []
+    for row in rows:
+        app, floor = row.app or {}, row.floor or {}
+
+        def both(key: str, app: dict = app, floor: dict = floor) -> str:
+            return f"{app[key]:.0f} ({floor[key]:.0f})" if floor else f"{app[key]:.0f}"
+
+        body.append(
+            [
+                row.publishers,
+                row.rate,
+                row.kind,
+                both("stall_max"),
+                both("stall_p99"),
+                both("key_median"),
+                both("key_max"),
+                int(app["keys"]),
+                f"{app['gc_longest']:.0f}",
+                f"{app['rss_app']:.0f} + {app['rss_intake']:.0f}",
+                f"{row.stop_ms:.0f}" if row.stop_ms is not None else "",
+            ]
+        )
+    headers = ["pubs", "offered/s", "app", "longest stall ms", "stall p99 ms", "key median ms", "key worst ms"]
+    headers += ["keys", "longest gc ms", "RSS MB app + intake", "quit ms"]
+    return table(headers, body)
+
+
+def targets(row: Row, by_key: dict) -> list[str]:
+    lines = []
+    where = f"{row.kind}, {row.publishers} pub, {row.rate}/s"
+    raw_ee = by_key.get((row.publishers, row.rate, "raw-ee"))
+    if raw_ee:
+        ratio = row.received_per_s / raw_ee.received_per_s
+        lines.append(
+            f"- {where}: >= {TARGET_VS_RAW_EE:.0%} of raw-ee: {ratio:.0%}, "
+            + verdict(ratio >= TARGET_VS_RAW_EE, f"short by {100 * (TARGET_VS_RAW_EE - ratio):.0f} points")
+        )
+    typed = by_key.get((row.publishers, row.rate, "typed-spin"))
+    if typed and row.rate == "max":
+        ratio = row.received_per_s / typed.received_per_s
+        lines.append(
+            f"- {where}: >= 5x typed-spin: {ratio:.1f}x, "
+            + verdict(ratio >= TARGET_VS_TYPED, f"short by {TARGET_VS_TYPED - ratio:.1f}x")
+        )
+    if row.rate != "max" and float(row.rate) <= LOSSLESS_RATE:
+        lines.append(
+            f"- {where} for {row.seconds:.0f} s: 0 lost: {row.lost:,} lost, "
+            + verdict(row.lost == 0, f"{row.lost:,} lost, {100 * row.lost / row.sent:.2f}%")
+        )
+    if row.lost_reported is not None and row.lost_reported != row.lost:
+        lines.append(f"- {where}: the status line said {row.lost_reported:,} lost where {row.lost:,} were")
+    if row.app is not None and row.floor is not None:
+        limit = row.floor["stall_max"] + STALL_OVER_FLOOR_MS
+        stall = row.app["stall_max"]
+        lines.append(
+            f"- {where}: longest stall <= floor + {STALL_OVER_FLOOR_MS:.0f} ms ({limit:.0f}): {stall:.0f} ms, "
+            + verdict(stall <= limit, f"over by {stall - limit:.0f} ms")
+        )
+    if row.app is not None and row.rate != "max":
+        worst = row.app["key_max"]
+        lines.append(
+            f"- {where}: worst key to effect <= {KEY_TARGET_MS:.0f} ms: {worst:.0f} ms, "
+            + verdict(worst <= KEY_TARGET_MS, f"over by {worst - KEY_TARGET_MS:.0f} ms")
+        )
+    return lines
 
 
 def main() -> None:
@@ -573,7 +777,14 @@ def main() -> None:
         "--sustained",
         type=float,
         metavar="S",
-        help="only the intake at 20k/s from 1 publisher for S seconds (flags above override)",
+        help="only the whole app (kind app) at 20k/s from 1 publisher for S seconds (flags above override)",
+    )
+    parser.add_argument(
+        "--floor",
+        type=float,
+        default=5.0,
+        metavar="S",
+        help="app kinds: seconds measured with nothing arriving first, for the stall floor (default 5)",
     )
     parser.add_argument(
         "--udp", action="store_true", help="Fast DDS over UDP only (default: its defaults, shared memory)"
@@ -590,8 +801,10 @@ def main() -> None:
     if args.role == "publisher":
         return run_publisher(args.index, args.topic)
     if args.role == "subscriber":
-        if args.kind in ("intake", "intake-typed"):
-            return run_intake_subscriber(raw=args.kind == "intake")
+        if args.kind in APP_KINDS:
+            return run_app_subscriber(args.kind)
+        if args.kind in ("intake", "intake-thread", "intake-typed"):
+            return run_intake_subscriber(args.kind)
         if args.kind == "intake-ee":
             return run_intake_events_executor()
         return run_reference_subscriber(args.kind, args.topic)
@@ -599,7 +812,7 @@ def main() -> None:
     sustained = args.sustained is not None
     args.publishers = args.publishers or ([1] if sustained else [1, 4])
     args.rates = args.rates or ([str(LOSSLESS_RATE)] if sustained else list(DEFAULT_RATES))
-    args.kinds = args.kinds or (["intake"] if sustained else list(DEFAULT_KINDS))
+    args.kinds = args.kinds or (["app"] if sustained else list(DEFAULT_KINDS))
     args.duration = args.duration or (args.sustained if sustained else 5.0)
     env = {**os.environ, "ROS_DOMAIN_ID": str(args.domain), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
     env.pop("ROS_LOCALHOST_ONLY", None)

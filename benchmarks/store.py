@@ -35,7 +35,7 @@ from console_tui.model.record import LogRecord
 from console_tui.model.store import LogStore
 
 BATCH = 1_000
-TARGET_MB = 300
+TARGET_MB = 200
 WORDS = [
     "goal",
     "received",

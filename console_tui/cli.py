@@ -82,7 +82,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--query",
         metavar="QUERY",
         help=(
-            "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' (syntax: docs/rules.md)"
+            "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' "
+            '(syntax: the README\'s section "The query line")'
         ),
     )
     parser.add_argument(

@@ -43,7 +43,10 @@ def run_app(args: argparse.Namespace) -> int:
         query=getattr(args, "query", None) or "",
         remember_rules=True,
     )
-    return run_then_clean_up(app, cleanups)
+    code = run_then_clean_up(app, cleanups)
+    if live:
+        end_now(code)
+    return code
 
 
 def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
@@ -60,6 +63,18 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
             except Exception:
                 pass
     return app.return_code or 0
+
+
+def end_now(code: int) -> None:
+    """End the process at once: the app has stopped everything it started (the intake
+    process, demo nodes, ROS), and the interpreter's own teardown (rclpy's and Fast DDS's
+    static destructors) took another 1-3 s here, while the person who pressed ``q`` waits."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
 
 
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:

@@ -17,6 +17,7 @@ from datetime import datetime
 from pathlib import Path
 
 from ..model.rules.query import QueryError, parse_time
+from ..model.text import plural
 from ..sources.log_dir import LogRun, UnsafeRemoval, dangling_links, remove_run, ros_log_dir, scan_runs
 from .arguments import parse_size, size_text
 
@@ -106,7 +107,7 @@ def check(log_dir: Path, top: int) -> int:
     total = sum(run.size for run in runs)
     real = log_dir.resolve()
     shown = f"{log_dir} (-> {real})" if real != log_dir.absolute() else str(log_dir)
-    print(f"{shown}: {size_text(total)} in {_count(len(runs), 'run')}")
+    print(f"{shown}: {size_text(total)} in {plural(len(runs), 'run')}")
     largest = sorted((run for run in runs if run.type != "symlink"), key=lambda run: -run.size)[: max(top, 0)]
     if largest:
         print("Largest runs:" if len(largest) > 1 else "Largest run:")
@@ -140,12 +141,12 @@ def purge(log_dir: Path, *, cutoff: float | None, keep_size: int | None, confirm
     runs = scan_runs(log_dir)
     chosen = select(runs, cutoff=cutoff, keep_size=keep_size)
     if not chosen:
-        print(f"{log_dir}: nothing to remove ({size_text(sum(r.size for r in runs))} in {_count(len(runs), 'run')})")
+        print(f"{log_dir}: nothing to remove ({size_text(sum(r.size for r in runs))} in {plural(len(runs), 'run')})")
         return EXIT_OK
     freed = sum(run.size for run in chosen)
     for run in chosen:
         print(_run_line(run))
-    question = f"Remove these {_count(len(chosen), 'run')} ({size_text(freed)}) from {log_dir}?"
+    question = f"Remove these {plural(len(chosen), 'run')} ({size_text(freed)}) from {log_dir}?"
     if not confirmed and not _ask(question):
         print("Nothing removed.", file=sys.stderr)
         return EXIT_DECLINED
@@ -162,7 +163,7 @@ def purge(log_dir: Path, *, cutoff: float | None, keep_size: int | None, confirm
         except (UnsafeRemoval, OSError):
             pass
     removed = len(chosen) - failed
-    print(f"Removed {_count(removed, 'run')} ({size_text(freed)} before any failures) from {log_dir}.")
+    print(f"Removed {plural(removed, 'run')} ({size_text(freed)} before any failures) from {log_dir}.")
     return EXIT_FAILED if failed else EXIT_OK
 
 
@@ -188,10 +189,6 @@ def _age(seconds: float) -> str:
         if seconds >= length:
             return f"{int(seconds // length)}{unit}"
     return f"{max(int(seconds), 0)}s"
-
-
-def _count(number: int, noun: str) -> str:
-    return f"{number} {noun}{'' if number == 1 else 's'}"
 
 
 def _reason(error: BaseException) -> str:

@@ -16,7 +16,7 @@ from collections.abc import Iterable, Sequence
 from ..model.formats import SAVE_FORMATS, FormatError, Problem, save_records
 from ..model.formats.save import save_format_for
 from ..model.record import LogRecord
-from ..model.text import one_line
+from ..model.text import one_line, plural
 from ..sources.files import LogFile, latest_run, load_records, open_logs
 from .arguments import add_last_argument, add_log_format_argument
 
@@ -101,9 +101,11 @@ def main(argv: Sequence[str]) -> int:
             say(f"{file.source}: note: {note}")
     if opened.skipped:
         shown = ", ".join(path.name for path in opened.skipped[:5]) + (", ..." if len(opened.skipped) > 5 else "")
-        say(f"note: {len(opened.skipped)} files in the folders were not read (empty, or not logs by name): {shown}")
+        say(
+            f"note: {plural(len(opened.skipped), 'file')} in the folders were not read (empty, or not logs by name): {shown}"
+        )
     if args.output != "-":
-        say(f"{count} records from {len(files)} file(s) written to {args.output} ({save_format})")
+        say(f"{plural(count, 'record')} from {plural(len(files), 'file')} written to {args.output} ({save_format})")
     return PROBLEMS if found else CLEAN
 
 
@@ -122,7 +124,7 @@ def _report(failures: list[Problem], files: list[LogFile]) -> int:
             say(str(problem))
             count += 1
         if file.problems.omitted:
-            say(f"{file.source}: {file.problems.omitted} more problems")
+            say(f"{file.source}: {plural(file.problems.omitted, 'more problem')}")
             count += file.problems.omitted
     return count
 

@@ -18,6 +18,7 @@ from pathlib import Path
 
 from ..model.formats.rosout_log import ROS2_HEADER
 from ..model.formats.rotating_file import RotatingFile
+from ..model.text import plural
 from ..sources.live import RosUnavailable, start_ros2
 from ..sources.log_dir import ros_log_dir
 from .arguments import parse_size, positive_int, size_text
@@ -127,7 +128,7 @@ def main(argv: Sequence[str]) -> int:
         aggregator.run(stop)
         counts = aggregator.counts()
         print(
-            f"console-tui rosout: {counts.received:,} messages republished, {counts.written:,} written, "
+            f"console-tui rosout: {plural(counts.received, 'message')} republished, {counts.written:,} written, "
             f"{counts.lost:,} lost",
             file=sys.stderr,
         )

@@ -6,6 +6,7 @@ so the demo nodes never outlive the console that started them.
 
 from __future__ import annotations
 
+import os
 import sys
 import threading
 
@@ -44,4 +45,8 @@ if __name__ == "__main__":
     if len(sys.argv) != 2 or sys.argv[1] not in DEMO_NODES:
         print(f"usage: python -m console_tui.demo.nodes {{{','.join(DEMO_NODES)}}}", file=sys.stderr)
         raise SystemExit(2)
-    raise SystemExit(run(sys.argv[1]))
+    code = run(sys.argv[1])
+    # rclpy is shut down by now; the interpreter's own ending (Fast DDS's static
+    # destructors) took another 0.5 s or more, and the console waits for its demo nodes.
+    sys.stderr.flush()
+    os._exit(code)

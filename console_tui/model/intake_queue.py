@@ -6,55 +6,78 @@ import threading
 from collections import deque
 
 from .record import LogRecord
+from .record_batch import RecordColumns
 
 DEFAULT_QUEUE_LIMIT = 2_000_000
+
+#: What a source hands over: records, or the same in columns (``RecordColumns``).
+Batch = list[LogRecord] | RecordColumns
 
 
 class IntakeQueue:
     """A thread-safe queue of record batches that the UI drains on a timer.
 
-    Sources ``put`` whole batches from their own threads; the UI calls ``drain`` a few
-    times a second and gets everything that arrived since, in order. Past ``limit``
-    records waiting, new batches are counted in ``dropped`` instead of kept, so a stalled
-    UI cannot grow memory without bound and the loss is visible.
+    Sources ``put`` whole batches from their own threads; the UI calls ``drain_batches``
+    (or ``drain``, for ``LogRecord``s) a few times a second and gets everything that
+    arrived since, in order. Past ``limit`` records waiting, new batches are counted in
+    ``dropped`` instead of kept, so a stalled UI cannot grow memory without bound and the
+    loss is visible.
     """
 
     def __init__(self, limit: int = DEFAULT_QUEUE_LIMIT) -> None:
         self.limit = limit
         self._lock = threading.Lock()
-        self._batches: deque[list[LogRecord]] = deque()
+        self._batches: deque[Batch] = deque()
         self._waiting = 0
         self.dropped = 0
         self.received = 0
 
-    def put(self, batch: list[LogRecord]) -> None:
+    def put(self, batch: Batch) -> None:
         """Queue a batch; the caller hands it over and must not use it again."""
-        if not batch:
+        size = len(batch)
+        if not size:
             return
         with self._lock:
-            self.received += len(batch)
-            if self._waiting + len(batch) > self.limit:
-                self.dropped += len(batch)
+            self.received += size
+            if self._waiting + size > self.limit:
+                self.dropped += size
                 return
             self._batches.append(batch)
-            self._waiting += len(batch)
+            self._waiting += size
 
-    def drain(self, limit: int | None = None) -> list[LogRecord]:
-        """What is waiting, oldest first, at most ``limit`` records (an empty list if none)."""
-        out: list[LogRecord] = []
+    def drain_batches(self, limit: int | None = None) -> list[Batch]:
+        """What is waiting, oldest first, as the batches that were put (the last one cut
+        to fit), at most ``limit`` records in all."""
+        out: list[Batch] = []
+        taken = 0
         with self._lock:
             batches = self._batches
-            while batches and (limit is None or len(out) < limit):
+            while batches and (limit is None or taken < limit):
                 batch = batches.popleft()
-                room = len(batch) if limit is None else limit - len(out)
-                if len(batch) > room:
-                    batches.appendleft(batch[room:])
-                    batch = batch[:room]
-                if out:
-                    out.extend(batch)
-                else:
-                    out = batch  # handed over by the producer: ours to extend
-                self._waiting -= len(batch)
+                size = len(batch)
+                if limit is not None and size > limit - taken:
+                    room = limit - taken
+                    rest: Batch
+                    if isinstance(batch, RecordColumns):
+                        batch, rest = batch.slice(0, room), batch.slice(room, size)
+                    else:
+                        batch, rest = batch[:room], batch[room:]
+                    batches.appendleft(rest)
+                    size = room
+                out.append(batch)
+                taken += size
+            self._waiting -= taken
+        return out
+
+    def drain(self, limit: int | None = None) -> list[LogRecord]:
+        """What is waiting, oldest first, as records, at most ``limit`` (an empty list if none)."""
+        out: list[LogRecord] = []
+        for batch in self.drain_batches(limit):
+            records = batch.records() if isinstance(batch, RecordColumns) else batch
+            if out:
+                out.extend(records)
+            else:
+                out = records  # handed over by the producer: ours to extend
         return out
 
     def __len__(self) -> int:

@@ -6,6 +6,10 @@ the environment: ``sources.ros_version``), starts what the stream runs on (for R
 rclpy context of the process's own) and returns a ``LiveIntake`` whose ``source`` has the
 sources' shape: ``start()``, ``stop()``, ``status`` (a ``SourceStatus``), feeding
 ``queue``. ``close()`` stops the source and shuts its ROS down.
+
+The ROS 2 stream is taken in a child process (``intake_process``), where nothing the app
+does can hold it up; this process keeps its rclpy context for the logger levels.
+``in_process=True`` takes it in a thread of this process instead (as ROS 1 still is).
 """
 
 from __future__ import annotations
@@ -64,7 +68,9 @@ def start_ros2() -> Any:
         raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None
 
 
-def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None) -> LiveIntake:
+def open_live(
+    queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None, in_process: bool = False
+) -> LiveIntake:
     """The live log stream into ``queue`` (not started yet: call ``source.start()``).
 
     ``ros`` is 1 or 2 (``--ros1``/``--ros2``), or None to decide from the environment.
@@ -79,6 +85,11 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
         runtime = start_ros2()
     except RosUnavailable as error:
         raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
+    origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
+    if not in_process:
+        from .intake_process.parent import ProcessSource
+
+        return LiveIntake(ProcessSource(queue, "ros2", topic=topic, origin=origin), runtime, [runtime.shutdown])
     from .ros2.live_source import LiveLogSource
 
     try:
@@ -86,5 +97,5 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
     except Exception:
         runtime.shutdown()
         raise
-    source.status = replace(source.status, origin=f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}")
+    source.status = replace(source.status, origin=origin)
     return LiveIntake(source, runtime, [runtime.shutdown])

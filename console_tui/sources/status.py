@@ -17,8 +17,9 @@ class SourceStatus:
     path: str = ""
     #: Messages known lost, all causes: the sum of the ``lost_*`` counts below.
     lost: int = 0
-    #: Lost in the middleware, as its message-lost events report (for example a
-    #: publisher's history overwritten before the console read it).
+    #: Lost in the middleware (for example a publisher's history overwritten before the
+    #: console read it): as its message-lost events report, or as the gaps in each
+    #: publisher's sequence numbers show, whichever is more. Kept after publishers leave.
     lost_qos: int = 0
     #: Dropped because the UI fell behind and the intake queue was full.
     lost_queue: int = 0

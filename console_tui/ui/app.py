@@ -8,9 +8,11 @@ A feature adds its keys to ``BINDINGS`` below and its work in a module of its ow
 
 from __future__ import annotations
 
+import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
@@ -24,6 +26,7 @@ from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
+from ..model.record_batch import RecordColumns
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
@@ -64,6 +67,15 @@ DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
+#: How long quitting waits for the sources to stop, at most.
+SOURCE_STOP_TIMEOUT_S = 2.0
+
+
+def _stop_quietly(source: Source) -> None:
+    try:
+        source.stop()
+    except Exception:
+        pass
 
 
 class Source(Protocol):
@@ -89,6 +101,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
     COMMANDS = App.COMMANDS | {ConsoleCommands}
 
     BINDINGS = [
+        # Named for what it does now: the footer says Resume while paused (name_pause_key).
         Binding("space", "toggle_pause", "Pause", id="console.pause"),
         Binding("c", "clear", "Clear", id="console.clear"),
         Binding("o", "open", "Open", id="console.open"),
@@ -174,6 +187,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
+        self._shown_paused = False
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -262,12 +276,14 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
         self.exit(return_code=128 + signum)
 
     def stop_sources(self) -> None:
+        """Stop every source, all at once: each may wait a moment for a process of its own
+        (the intake process, demo nodes) to end, and the app should be gone within a second."""
         sources, self.sources = self.sources, []
-        for source in sources:
-            try:
-                source.stop()
-            except Exception:
-                pass
+        stopping = [threading.Thread(target=_stop_quietly, args=(source,), daemon=True) for source in sources]
+        for thread in stopping:
+            thread.start()
+        for thread in stopping:
+            thread.join(SOURCE_STOP_TIMEOUT_S)
 
     # -- records ----------------------------------------------------------------------------------
 
@@ -276,28 +292,35 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
 
         Records from files come first; live records wait while files load, so that a
         view of files plus the live stream stays in time order."""
-        records = self.file_queue.drain(MAX_RECORDS_PER_TICK)
+        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self.loading:
-            records += self.queue.drain(MAX_RECORDS_PER_TICK - len(records))
-        if records:
-            self.add_records(records)
+            room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
+            batches += self.queue.drain_batches(room)
+        arrived = self.add_batches(batches) if batches else 0
         if self.loads:
             self.check_loads()
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
         self.show_overview()
-        self.collection_policy.tick(len(records))
+        self.collection_policy.tick(arrived)
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
+        self.add_batches([records if isinstance(records, list) else list(records)])
+
+    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
+        """Put batches (records, or records in columns) into the store and the view; how many."""
         table = self.table
+        added = 0
         with table.keeping_position():
-            added = self.store.extend(records)
+            for batch in batches:
+                added += len(self.store.extend(batch))
             self.view.update()
             self.follow_overview()
         if self.view.switched_off:
             self.rules_changed()
-        self._arrivals.append((self.clock(), len(added)))
+        self._arrivals.append((self.clock(), added))
+        return added
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
@@ -333,6 +356,19 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
         self.show_overview(force=True)
+        paused = self.table.paused_end is not None
+        if paused != self._shown_paused:
+            self._shown_paused = paused
+            self.name_pause_key(paused)
+
+    def name_pause_key(self, paused: bool) -> None:
+        """The footer names what the pause key does now: Pause, or Resume while paused. (The
+        app's own bindings are changed in place; a keymap applies over them as before.)"""
+        words = "Resume" if paused else "Pause"
+        table = self._bindings.key_to_bindings
+        for key, bindings in table.items():
+            table[key] = [replace(b, description=words) if b.id == "console.pause" else b for b in bindings]
+        self.refresh_bindings()
 
     async def on_event(self, event: events.Event) -> None:
         # Keys typed ahead go where they were meant (see focus.py): they wait while the screen

@@ -72,7 +72,7 @@ class FileActions(App[None]):
             self.source_notes.update(load.notes())
             files = len(progress.files)
             verb = "Cancelled after" if progress.cancelled else "Loaded"
-            text = f"{verb} {progress.records:,} records from {plural(files, 'file')}"
+            text = f"{verb} {plural(progress.records, 'record')} from {plural(files, 'file')}"
             if load.skipped:
                 text += f" ({plural(len(load.skipped), 'other file')} in the folders passed over: empty, or not logs by name)"
             if problems:
@@ -130,5 +130,5 @@ class FileActions(App[None]):
             self.notify(f"Not saved: {error}", severity="error", timeout=15)
             return 0
         note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
-        self.notify(f"Saved {written:,} messages to {request.path}{note}", timeout=8)
+        self.notify(f"Saved {plural(written, 'message')} to {request.path}{note}", timeout=8)
         return written

@@ -8,11 +8,16 @@ from __future__ import annotations
 
 from textual.app import App
 
+from ..model.logger_view import shown_logger
 from ..model.store import LogStore
 from .focus import focus_now
+from .screens.temporary_level import TemporaryLevelScreen
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
 from .widgets.side_pane import SidePane
+
+#: How long ``t`` sets a temporary level for unless told otherwise.
+DEFAULT_TEMPORARY_S = 30.0
 
 
 class PaneActions(App[None]):
@@ -33,6 +38,16 @@ class PaneActions(App[None]):
             self.logger_pane.open()
         else:
             self.logger_pane.open_for_logger(self.store.get(seq).node)
+
+    def on_logger_pane_temporary_requested(self, message: LoggerPane.TemporaryRequested) -> None:
+        """Ask which level and for how long, then have the pane set it."""
+        pane, fqn, logger = message.pane, message.fqn, message.logger
+
+        def chosen(choice: tuple[int, float] | None) -> None:
+            if choice is not None:
+                pane.set_temporary(fqn, logger, *choice)
+
+        self.push_screen(TemporaryLevelScreen(fqn, shown_logger(logger), DEFAULT_TEMPORARY_S), chosen)
 
     def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
         focus_now(self.table)

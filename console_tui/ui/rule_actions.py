@@ -19,6 +19,7 @@ from ..model.rules.rule import RuleError
 from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
 from ..model.store import LogStore
+from ..model.text import plural
 from ..model.view import LogView
 from .focus import focus_now
 from .screens.files import PathScreen
@@ -111,7 +112,7 @@ class RuleActions(App[None]):
         active = sum(1 for entry in self.rules.entries if entry.active)
         if not active:
             return "rules off" if self.rules.entries else ""
-        note = f"{active} rule{'s' if active != 1 else ''}"
+        note = plural(active, "rule")
         if self.rules.highlighted_only and self.rules.highlighting:
             note += ", highlighted only"
         if self.view.refiltering:
@@ -225,7 +226,7 @@ class RuleActions(App[None]):
             except OSError as error:
                 self.notify(f"Rules not saved: {error}", severity="error", timeout=10)
                 return
-            self.notify(f"Saved {len(self.rules.entries)} rules to {path}", timeout=5)
+            self.notify(f"Saved {plural(len(self.rules.entries), 'rule')} to {path}", timeout=5)
 
         default = os.path.join(os.getcwd(), "console-tui-rules.toml")
         self.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
@@ -240,7 +241,7 @@ class RuleActions(App[None]):
                 self.notify(f"Rules not loaded, the rules in force stay: {error.message}", severity="error", timeout=15)
                 return
             self.apply_rules(rules)
-            self.notify(f"Loaded {len(rules.entries)} rules from {path}", timeout=5)
+            self.notify(f"Loaded {plural(len(rules.entries), 'rule')} from {path}", timeout=5)
 
         if path is not None:
             chosen(path)

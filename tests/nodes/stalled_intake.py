@@ -28,7 +28,7 @@ class StalledQueue(IntakeQueue):
     def put(self, batch):
         if not self.stalled.is_set():
             self.stalled.set()
-            self.release.wait()
+            self.release.wait(60)
         super().put(batch)
 
 

@@ -21,14 +21,14 @@ pytestmark = pytest.mark.ros2
 
 async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
     from console_tui.demo.launcher import DemoNodes
-    from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.runtime import RosRuntime
+    from console_tui.sources.live import open_live
 
     demo = DemoNodes()
     demo.start()
-    runtime = RosRuntime()
+    demo.wait_started()
     queue = IntakeQueue()
-    app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)])
+    live = open_live(queue, ros=2)
+    app = ConsoleApp(queue=queue, sources=[live.source])
     try:
         async with app.run_test(size=(160, 40)) as pilot:
             expected = {
@@ -57,10 +57,10 @@ async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
             assert "FOLLOW" in shown and f"{fatal.source} 4 pubs" in shown, shown.splitlines()[-2]
             assert "count_and_log" in shown and "is divisible by" in shown
     finally:
-        runtime.shutdown()
+        live.close()
         pids = [p.pid for p in demo.processes]
         demo.stop()
-    assert not any(pid_alive(pid) for pid in pids)
+    assert not any(pid_alive(pid) for pid in [*pids, live.source.pid])
 
 
 def test_demo_nodes_end_when_the_console_dies(ros_env):
@@ -70,6 +70,7 @@ def test_demo_nodes_end_when_the_console_dies(ros_env):
         from console_tui.demo.launcher import DemoNodes
         demo = DemoNodes(["battery_monitor", "planner"])
         demo.start()
+        demo.wait_started()
         print(" ".join(str(p.pid) for p in demo.processes), flush=True)
         time.sleep(60)
         """

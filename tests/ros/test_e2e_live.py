@@ -9,6 +9,7 @@ import sys
 import pytest
 
 from console_tui.model.intake_queue import IntakeQueue
+from console_tui.sources.live import LiveIntake, open_live
 from console_tui.ui.app import ConsoleApp
 
 from support.ui import until
@@ -16,14 +17,11 @@ from support.ui import until
 pytestmark = pytest.mark.ros2
 
 
-def live_app(topic: str | None = None) -> tuple[ConsoleApp, object]:
-    from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.runtime import RosRuntime
-
-    runtime = RosRuntime()
+def live_app(topic: str | None = None) -> tuple[ConsoleApp, LiveIntake]:
+    """The app with the live stream as ``console-tui`` has it: taken in the intake process."""
     queue = IntakeQueue()
-    source = LiveLogSource(runtime, queue, topic=topic)
-    return ConsoleApp(queue=queue, sources=[source], utc=True), runtime
+    live = open_live(queue, topic=topic, ros=2)
+    return ConsoleApp(queue=queue, sources=[live.source], utc=True), live
 
 
 def fields(record) -> dict:
@@ -46,7 +44,7 @@ async def test_every_severity_with_every_field_in_order_late_join_and_volatile(n
     early.send({"cmd": "log_all", "tag": "before the console started"})
     logged_early = (await asyncio.to_thread(early.expect, "logged"))["messages"]
 
-    app, runtime = live_app()
+    app, live = live_app()
     try:
         async with app.run_test(size=(200, 50)) as pilot:
             # Late join: the history kept by the TRANSIENT_LOCAL rosout publisher arrives.
@@ -85,7 +83,7 @@ async def test_every_severity_with_every_field_in_order_late_join_and_volatile(n
             status = app.sources[0].status
             assert status.topic == "/rosout" and status.publishers >= 2
     finally:
-        runtime.shutdown()
+        live.close()
 
 
 async def test_reads_rosout_agg_when_something_publishes_it(nodes):
@@ -94,7 +92,7 @@ async def test_reads_rosout_agg_when_something_publishes_it(nodes):
     await asyncio.to_thread(aggregator.expect, "ready")
     await asyncio.to_thread(talker.expect, "ready")
     await asyncio.sleep(1.0)
-    app, runtime = live_app()
+    app, live = live_app()
     try:
         async with app.run_test(size=(160, 30)) as pilot:
             # Chosen at start when discovery is quick, else switched to within a second.
@@ -104,7 +102,7 @@ async def test_reads_rosout_agg_when_something_publishes_it(nodes):
             record = next(r for r in app.store if r.msg == "through the aggregator")
             assert record.source == "/rosout_agg" and record.level == 30
     finally:
-        runtime.shutdown()
+        live.close()
 
 
 async def test_topic_flag_picks_the_topic(nodes):
@@ -116,11 +114,11 @@ async def test_topic_flag_picks_the_topic(nodes):
     """
     aggregator = nodes.start("aggregator.py")
     await asyncio.to_thread(aggregator.expect, "ready")
-    app, runtime = live_app(topic="/rosout")
+    app, live = live_app(topic="/rosout")
     try:
         async with app.run_test(size=(160, 30)) as pilot:
             await until(pilot, lambda: app.sources[0].status.running)
-            probe = runtime.create_node("probe")
+            probe = live.runtime.create_node("probe")
             await until(pilot, lambda: probe.count_publishers("/rosout_agg") == 1, what="the aggregator in the graph")
             talkers = [nodes.start("talker.py", "--name", f"flag_talker_{n}") for n in range(2)]
             for talker in talkers:
@@ -137,7 +135,7 @@ async def test_topic_flag_picks_the_topic(nodes):
             assert [r.source for r in app.store if r.msg == "straight on /rosout"] == ["/rosout"]
             assert app.sources[0].status.topic == "/rosout"
     finally:
-        runtime.shutdown()
+        live.close()
 
 
 def test_without_ros_a_clear_message_and_no_traceback():

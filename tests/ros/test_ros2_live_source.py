@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import contextlib
 import struct
+import time
 
 import pytest
+from nodes.stalled_intake import StalledQueue
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
@@ -164,3 +166,30 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
         assert reader.path == "typed"
     finally:
         runtime.shutdown()
+
+
+def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_publisher_left(nodes, monkeypatch):
+    """With the intake held up, a reader history of 10 keeps the last 10 of a burst of 100
+    and Fast DDS reports nothing lost; the gaps in the publisher's sequence numbers do."""
+    from console_tui.sources.ros2 import live_source as module
+
+    monkeypatch.setattr(module, "QUEUE_DEPTH", 10)
+    talker = nodes.start("talker.py", "--name", "gap_talker")
+    talker.expect("ready")
+    queue = StalledQueue()
+    with live_source(queue=queue) as source:
+        assert wait_until(lambda: source.status.publishers >= 1)
+        talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
+        assert queue.stalled.wait(15)
+        talker.send({"cmd": "burst", "count": 100})
+        talker.expect("burst")
+        time.sleep(1.0)  # all of it in the reader's history of 10 by now
+        queue.release.set()
+        records = collect(source, lambda got: any(r.msg == "burst 99" for r in got))
+        assert [r.msg for r in records][-10:] == [f"burst {n}" for n in range(90, 100)]
+        assert wait_until(lambda: source.status.lost_qos == 90)
+        talker.stop()
+        assert wait_until(lambda: source.status.publishers == 0)
+        status = source.status
+    assert (status.lost, status.lost_qos) == (90, 90)
+    assert status.loss_text() == "90 lost (90 in the middleware)"

@@ -4,7 +4,12 @@ from console_tui.sources.ros2.runtime import FASTDDS_PROFILE, reader_profile_env
 
 
 def test_profile_added_under_fast_dds_when_the_user_has_none(tmp_path):
-    assert reader_profile_environment({}, tmp_path) == {"FASTDDS_DEFAULT_PROFILES_FILE": str(FASTDDS_PROFILE)}
+    profile = str(FASTDDS_PROFILE)
+    assert reader_profile_environment({}, tmp_path, fast_dds_2=False) == {"FASTDDS_DEFAULT_PROFILES_FILE": profile}
+    both = {"FASTDDS_DEFAULT_PROFILES_FILE": profile, "FASTRTPS_DEFAULT_PROFILES_FILE": profile}
+    assert reader_profile_environment({}, tmp_path, fast_dds_2=True) == both  # Jazzy's Fast DDS 2.14 reads the second
+    assert reader_profile_environment({"ROS_DISTRO": "jazzy"}, tmp_path) == both
+    assert reader_profile_environment({"ROS_DISTRO": "kilted"}, tmp_path) == {"FASTDDS_DEFAULT_PROFILES_FILE": profile}
     assert FASTDDS_PROFILE.is_file() and "max_samples" in FASTDDS_PROFILE.read_text()
 
 

@@ -33,20 +33,26 @@ async def until(pilot, condition: Callable[[], object], timeout: float = 20.0, w
         await pilot.pause(0.02)
 
 
-def screen_text(app) -> str:
-    """What the terminal shows now, as plain text: one line per terminal row, every
-    screen on the stack composed as the terminal gets it."""
+def _screen_update(app, color_system: str | None):
+    """The update that draws the whole screen now (every screen on the stack), and a
+    terminal-sized console to render it."""
     width, height = app.size
     console = Console(
         width=width,
         height=height,
         file=io.StringIO(),
         force_terminal=True,
-        color_system=None,
+        color_system=color_system,
         record=True,
         legacy_windows=False,
     )
-    update = app.screen._compositor.render_update(full=True, screen_stack=app._background_screens)
+    return app.screen._compositor.render_update(full=True, screen_stack=app._background_screens), console
+
+
+def screen_text(app) -> str:
+    """What the terminal shows now, as plain text: one line per terminal row, every
+    screen on the stack composed as the terminal gets it."""
+    update, console = _screen_update(app, None)
     console.print(update)
     return console.export_text(styles=False)
 
@@ -55,16 +61,7 @@ def terminal_output(app) -> str:
     """What the app would write to the terminal to draw the screen now (escape sequences for
     colours and cursor moves included): the headless driver writes nothing, so this renders
     the same update the real driver is given."""
-    width, height = app.size
-    console = Console(
-        width=width,
-        height=height,
-        file=io.StringIO(),
-        force_terminal=True,
-        color_system="truecolor",
-        legacy_windows=False,
-    )
-    update = app.screen._compositor.render_update(full=True, screen_stack=app._background_screens)
+    update, console = _screen_update(app, "truecolor")
     return update.render_segments(console)
 
 

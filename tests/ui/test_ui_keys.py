@@ -41,7 +41,7 @@ async def test_a_remapped_key_works_and_the_screen_names_it(own_config_folder):
         assert app.table.paused_end is None, "space no longer pauses"
         await pilot.press("p")
         assert app.table.paused_end is not None
-        assert " p Pause " in screen_text(app).splitlines()[-1], "the footer names the new key"
+        assert " p Resume " in screen_text(app).splitlines()[-1], "the footer names the new key (and what it does now)"
         await pilot.press("ctrl+l")
         feed_logger_pane(app.logger_pane)
         await pilot.pause()

@@ -62,7 +62,7 @@ async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
         pane = app.logger_pane
         assert notice(pane) == NO_ROS_TEXT
         await pilot.press("d", "t", "x")
-        assert notice(pane) == NO_ROS_TEXT and pane.notice_is_error
+        assert notice(pane) == NO_ROS_TEXT and pane.view.notice_is_error
         assert not isinstance(app.screen, TemporaryLevelScreen)
         await pilot.press("L")
         assert "No node in the ROS graph logs as" in notice(pane)

@@ -27,7 +27,7 @@ def test_convert_rqt_to_jsonl_and_back_gives_the_same_bytes(tmp_path, capsys):
     # convert merges by time: the file's one record stamped 0 comes first
     rows = original.read_text().split("\n")
     assert back.read_text().split("\n") == [rows[0], rows[-2], *rows[1:-2], ""]
-    assert "11 records from 1 file(s)" in capsys.readouterr().err
+    assert "11 records from 1 file written" in capsys.readouterr().err
 
 
 def test_convert_reports_problems_and_unreadable_inputs(tmp_path, capsys):
@@ -72,4 +72,4 @@ def test_convert_reads_a_kinetic_rosout_log(tmp_path, capsys):
     assert main(["convert", str(log), "-o", str(out)]) == 0
     lines = out.read_text().splitlines()
     assert len(lines) == 451 and json.loads(lines[0])["function"] == "MapServer"
-    assert "451 records from 1 file(s)" in capsys.readouterr().err
+    assert "451 records from 1 file written" in capsys.readouterr().err

@@ -182,11 +182,11 @@ def test_convert_a_folder_and_the_last_run(log_dir, capsys, monkeypatch):
     out = log_dir.parent / "out.jsonl"
     assert main(["convert", str(log_dir / RUN_ID), "-o", str(out)]) == 0
     err = capsys.readouterr().err
-    assert "22 records from 6 file(s)" in err
+    assert "22 records from 6 files written" in err
     assert "talker-2.log: note: its times are local times without a zone" in err
     monkeypatch.setenv("ROS_LOG_DIR", str(log_dir))
     assert main(["convert", "--last", "-o", str(out)]) == 0
-    assert "8 records from 2 file(s)" in capsys.readouterr().err
+    assert "8 records from 2 files written" in capsys.readouterr().err
     monkeypatch.setenv("ROS_LOG_DIR", str(log_dir / "none"))
     assert main(["convert", "--latest", "-o", str(out)]) == 2
     assert "no ROS log directory at" in capsys.readouterr().err

@@ -181,5 +181,5 @@ def test_damaged_rqt_csv_keeps_the_row_before_each_bad_line():
     assert [(r.msg, r.level) for r in records] == [("one", 20), ("two\nlines", 30), ("three", 40)]
     assert [(p.line, p.what) for p in problems] == [
         (3, "not a rqt_console CSV record: 'GARBAGE'"),
-        (6, "not a rqt_console CSV record: 'more garbage' (and 1 more lines up to line 7)"),
+        (6, "not a rqt_console CSV record: 'more garbage' (and 1 more line up to line 7)"),
     ]

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import BinaryIO
 
+from ...model.text import plural
 from .problems import Problems
 
 BLOCK_SIZE = 1 << 20
@@ -210,5 +211,5 @@ def stray_text_problem(group: LineGroup, problems: Problems, format_name: str) -
     shown = first if len(first) <= 60 else first[:57] + "..."
     what = f"not a {format_name} record: {shown!r}"
     if count > 1:
-        what += f" (and {count - 1} more lines up to line {group.line + count - 1})"
+        what += f" (and {plural(count - 1, 'more line')} up to line {group.line + count - 1})"
     problems.add(what, line=group.line)

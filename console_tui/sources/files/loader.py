@@ -12,6 +12,7 @@ from pathlib import Path
 from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from ...model.text import plural
 from .folders import Expansion, LogPaths, expand_paths
 from .log_file import LogFile, describe_error, reading_stopped
 from .merge import merge_by_time
@@ -214,7 +215,7 @@ class FileLoad:
         for file in list(self.files):
             found.extend(file.problems)
             if file.problems.omitted:
-                found.append(Problem(file.source, f"{file.problems.omitted} more problems not listed"))
+                found.append(Problem(file.source, f"{plural(file.problems.omitted, 'more problem')} not listed"))
         if self.error:
             found.append(Problem("", self.error))
         return found

@@ -27,6 +27,7 @@ from ...model.formats.rosout_log import rosout_log_text
 from ...model.formats.rotating_file import RotatingFile
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from ...model.text import plural
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from .live_source import LiveLogSource
 from .runtime import RosRuntime
@@ -189,8 +190,8 @@ class RosoutAggregator:
         """Log the counts on our own /rosout."""
         counts = self.counts()
         text = (
-            f"{counts.received:,} messages from {counts.publishers} publishers, {counts.published:,} "
-            f"republished to {counts.subscribers} subscribers"
+            f"{plural(counts.received, 'message')} from {plural(counts.publishers, 'publisher')}, "
+            f"{counts.published:,} republished to {plural(counts.subscribers, 'subscriber')}"
         )
         if self.log is not None:
             text += f", {counts.written:,} written to {self.log.path}"
@@ -204,14 +205,16 @@ class RosoutAggregator:
     def _report_problems(self) -> None:
         status = self.source.status
         if status.lost > self._reported_lost:
-            self.logger.warning(f"{status.lost - self._reported_lost:,} messages lost: {status.loss_text()}")
+            self.logger.warning(f"{plural(status.lost - self._reported_lost, 'message')} lost: {status.loss_text()}")
             self._reported_lost = status.lost
         if status.problem and status.problem != self._reported_error:
             self.logger.error(status.problem)
             self._reported_error = status.problem
         log = self.log
         if log is not None and log.error and log.error != self._reported_error:
-            self.logger.error(f"cannot write rosout.log: {log.error} ({log.lost:,} messages not written so far)")
+            self.logger.error(
+                f"cannot write rosout.log: {log.error} ({plural(log.lost, 'message')} not written so far)"
+            )
             self._reported_error = log.error
 
     def _look_for_other_aggregators(self) -> None:

@@ -46,6 +46,7 @@ from ...model.formats.ros2_log_msg import CdrError, LogDecoder
 from ...model.intake_queue import IntakeQueue
 from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
+from ...model.text import plural
 from ..log_message import log_to_record
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
@@ -73,16 +74,55 @@ PATH_TYPED = "typed"
 
 
 class LossCounts:
-    """What the intake thread counts as it goes; turned into ``SourceStatus`` fields."""
+    """What the intake thread counts as it goes; turned into ``SourceStatus`` fields.
 
-    __slots__ = ("decoded_by_rclpy", "incompatible", "last_policy", "lost_qos", "lost_undecodable")
+    Loss in the middleware is counted twice over, and the larger count shown: by the
+    middleware's message-lost events (``lost_qos``), and by the gaps in each publisher's
+    sequence numbers (``lost_gaps``, see ``SequenceGaps``). Each misses what the other
+    sees: Fast DDS reports nothing for messages its reader history overwrote (KEEP_LAST),
+    nor, it seems, when the publisher left before telling it; gaps need a publisher GID in
+    the message info (Jazzy's rclpy gives none) and the next message from that publisher.
+    """
+
+    __slots__ = ("decoded_by_rclpy", "incompatible", "last_policy", "lost_gaps", "lost_qos", "lost_undecodable")
 
     def __init__(self) -> None:
         self.lost_qos = 0
+        self.lost_gaps = 0
         self.lost_undecodable = 0
         self.decoded_by_rclpy = 0
         self.incompatible = 0
         self.last_policy = ""
+
+    @property
+    def lost_in_middleware(self) -> int:
+        return max(self.lost_qos, self.lost_gaps)
+
+
+class SequenceGaps:
+    """Messages lost as the gaps in each publisher's sequence numbers show.
+
+    A publisher numbers what it sends 1, 2, 3...; a subscription that got 7 then 10 from
+    the same publisher (by GID) lost 2. The first number seen from a publisher starts its
+    count (what it sent before we joined is not ours to miss)."""
+
+    __slots__ = ("_last", "counts")
+
+    def __init__(self, counts: LossCounts) -> None:
+        self.counts = counts
+        self._last: dict[bytes, int] = {}
+
+    def see(self, info: dict) -> None:
+        gid = info.get("publisher_gid")
+        number = info.get("publication_sequence_number")
+        if not gid or not number:
+            return
+        key = gid.get("data", b"") if isinstance(gid, dict) else gid
+        last = self._last.get(key)
+        if last is None or number > last:
+            if last is not None and number > last + 1:
+                self.counts.lost_gaps += number - last - 1
+            self._last[key] = number
 
 
 class LiveLogSource:
@@ -132,8 +172,8 @@ class LiveLogSource:
         lost_queue = self.queue.dropped
         fields: dict[str, Any] = {
             "path": reader.path,
-            "lost": counts.lost_qos + lost_queue + counts.lost_undecodable,
-            "lost_qos": counts.lost_qos,
+            "lost": counts.lost_in_middleware + lost_queue + counts.lost_undecodable,
+            "lost_qos": counts.lost_in_middleware,
             "lost_queue": lost_queue,
             "lost_undecodable": counts.lost_undecodable,
             "decoded_by_rclpy": counts.decoded_by_rclpy,
@@ -141,7 +181,7 @@ class LiveLogSource:
         }
         if counts.incompatible:
             fields["problem"] = (
-                f"{counts.incompatible} publisher(s) on {reader.topic} offer a QoS no subscription can match"
+                f"{plural(counts.incompatible, 'publisher')} on {reader.topic} with a QoS no subscription can match"
                 f" ({counts.last_policy or 'unknown policy'}): their messages are not received"
             )
         return fields
@@ -215,7 +255,7 @@ class LiveLogSource:
             loss = (
                 self.queue.dropped,
                 reader.path,
-                self.counts.lost_qos,
+                self.counts.lost_in_middleware,
                 self.counts.lost_undecodable,
                 self.counts.decoded_by_rclpy,
                 self.counts.incompatible,
@@ -336,6 +376,8 @@ class _TopicReader:
             main=True,
         )
         self.extra: Any = None
+        #: Per subscription: the sequence numbers seen from each publisher.
+        self._sequences: dict[int, SequenceGaps] = {}
         #: GIDs of the publishers only the extra (VOLATILE) subscription matches.
         self._uncovered: set[bytes] = set()
         self._covered: set[bytes] = set()
@@ -497,6 +539,8 @@ class _TopicReader:
         raw = decoder is not None
         messages: list[Any] = []
         append = messages.append
+        # (Not on the typed path: a message rclpy cannot deserialize is counted as such.)
+        see = self._gaps(subscription).see if raw else _ignore
         count = 0
         while count < limit:
             try:
@@ -514,14 +558,22 @@ class _TopicReader:
             if taken is None:
                 break
             count += 1
-            if keep is None or keep(taken[1]):
+            info = taken[1]
+            if keep is None or keep(info):
                 append(taken[0])
+                see(info)
         if raw:
             batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
         else:
             topic = self.topic
             batch.extend([log_to_record(message, topic) for message in messages])
         return count
+
+    def _gaps(self, subscription: Any) -> SequenceGaps:
+        gaps = self._sequences.get(id(subscription))
+        if gaps is None:
+            gaps = self._sequences[id(subscription)] = SequenceGaps(self.counts)
+        return gaps
 
     def close(self) -> None:
         for sub in (self.main, self.extra):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib.metadata
 import os
 import threading
 from collections.abc import Mapping
@@ -12,13 +13,20 @@ from .rclpy_loader import load_rclpy
 
 FASTDDS_PROFILE = Path(__file__).with_name("fastdds_reader_profile.xml")
 _PROFILE_VARIABLES = ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE")
+_FAST_DDS_2_DISTROS = frozenset({"foxy", "galactic", "humble", "iron", "jazzy"})
 
 
-def reader_profile_environment(environ: Mapping[str, str], cwd: str | os.PathLike[str] = ".") -> dict[str, str]:
+def reader_profile_environment(
+    environ: Mapping[str, str], cwd: str | os.PathLike[str] = ".", *, fast_dds_2: bool | None = None
+) -> dict[str, str]:
     """What to add to the environment so that this process's Fast DDS readers can hold
     more unread messages (see fastdds_reader_profile.xml): nothing under another RMW, or
     when the user has a Fast DDS profiles file of their own (named by a variable, or the
-    DEFAULT_FASTDDS_PROFILES.xml that Fast DDS reads from the working directory)."""
+    DEFAULT_FASTDDS_PROFILES.xml that Fast DDS reads from the working directory).
+
+    Fast DDS 3 (Kilted and later) reads ``FASTDDS_DEFAULT_PROFILES_FILE`` and warns about
+    the old name; Fast DDS 2 (Humble, Iron, Jazzy) reads only ``FASTRTPS_DEFAULT_PROFILES_FILE``:
+    both are set there (``fast_dds_2``: None finds out, see ``uses_fast_dds_2``)."""
     rmw = environ.get("RMW_IMPLEMENTATION", "rmw_fastrtps_cpp")
     if not rmw.startswith("rmw_fastrtps"):
         return {}
@@ -26,7 +34,22 @@ def reader_profile_environment(environ: Mapping[str, str], cwd: str | os.PathLik
         return {}
     if any((Path(cwd) / name).exists() for name in ("DEFAULT_FASTDDS_PROFILES.xml", "DEFAULT_FASTRTPS_PROFILES.xml")):
         return {}
-    return {"FASTDDS_DEFAULT_PROFILES_FILE": str(FASTDDS_PROFILE)}
+    if fast_dds_2 is None:
+        fast_dds_2 = uses_fast_dds_2(environ)
+    return dict.fromkeys(_PROFILE_VARIABLES if fast_dds_2 else _PROFILE_VARIABLES[:1], str(FASTDDS_PROFILE))
+
+
+def uses_fast_dds_2(environ: Mapping[str, str]) -> bool:
+    """Whether this ROS 2 comes with Fast DDS 2: a sourced Humble, Iron or Jazzy, or an
+    rclpy older than Kilted's (9.x)."""
+    distro = environ.get("ROS_DISTRO", "")
+    if distro:
+        return distro in _FAST_DDS_2_DISTROS
+    try:
+        major = int(importlib.metadata.version("rclpy").split(".")[0])
+    except (importlib.metadata.PackageNotFoundError, ValueError):
+        return False
+    return major < 9
 
 
 class RosRuntime:

@@ -18,7 +18,15 @@ _HINTS: list[Hint] = [("toggle_column", "shows or hides"), ("apply", "applies"),
 class ColumnList(SelectionList[str], inherit_bindings=False):
     """The columns, each shown or hidden with space. Enter is left to the dialog (a selection
     list would take it as "toggle"), and space toggles at once (a selection list does it a
-    message later), so that Enter typed right behind them applies what they chose."""
+    message later), so that Enter typed right behind them applies what they chose.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | up / down | Move the highlight. |
+    | home / end | The first / last column. |
+    | pageup / pagedown | A page up / down. |
+    | space | Show or hide the highlighted column. |
+    """
 
     BINDINGS = [
         Binding("down", "cursor_down", "Down", show=False),
@@ -39,7 +47,13 @@ class ColumnList(SelectionList[str], inherit_bindings=False):
 
 
 class ColumnsScreen(ModalScreen[frozenset[str] | None]):
-    """Space shows or hides the highlighted column, Enter applies and closes, Escape cancels."""
+    """Space shows or hides the highlighted column, Enter applies and closes, Escape cancels.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    | enter | Apply and close. |
+    """
 
     DEFAULT_CSS = """
     ColumnsScreen { align: center middle; }

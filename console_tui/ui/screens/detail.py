@@ -15,7 +15,7 @@ from textual.widgets import Footer, Static, TextArea
 from ...model.formats.mixed_output import LOCAL_TIME_NOTE
 from ...model.levels import severity_name
 from ...model.record import LogRecord
-from ...model.text import multi_line, one_line
+from ...model.text import multi_line, one_line, plural
 from ...model.timefmt import full_text, stamp_text
 from ..focus import focus_now
 
@@ -47,7 +47,7 @@ def fields_table(record: LogRecord, *, utc: bool = False, notes: tuple[str, ...]
         ("Line", str(record.line)),
         ("Source", record.source),
         *([("Topics", record.topics.replace(",", ", "))] if record.topics else []),
-        ("Length", f"{len(record.msg):,} characters, {record.msg.count(chr(10)) + 1:,} lines"),
+        ("Length", f"{plural(len(record.msg), 'character')}, {plural(record.msg.count(chr(10)) + 1, 'line')}"),
     ]
     rows += [("File notes" if index == 0 else "", note) for index, note in enumerate(notes)]
     for name, value in rows:
@@ -56,7 +56,15 @@ def fields_table(record: LogRecord, *, utc: bool = False, notes: tuple[str, ...]
 
 
 class DetailScreen(ModalScreen[None]):
-    """A record's fields and its full multi-line message; n/p step through rows."""
+    """A record's fields and its full multi-line message; n and p step through the table's rows.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape, q | Close. |
+    | n / p | The next / previous row. |
+    | w | Wrap the message, or not. |
+    | y | Copy the message. |
+    """
 
     DEFAULT_CSS = """
     DetailScreen { align: center middle; }

@@ -53,7 +53,12 @@ class PathSuggester(Suggester):
 
 class PathInput(Input):
     """A path box: Tab (or →) takes the completion shown after the text; Tab with none shown
-    moves on to the next field."""
+    moves on to the next field.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | tab | Take the completion shown, or move on. |
+    """
 
     BINDINGS = [Binding("tab", "complete", "Complete the path", show=False, id="path.complete")]
 
@@ -68,7 +73,12 @@ class PathInput(Input):
 
 class _Dialog(ModalScreen):
     """A title, the fields, a line of keys (from the bindings), and a line for what is wrong;
-    long lines wrap, none is cut."""
+    long lines wrap, none is cut.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    """
 
     DEFAULT_CSS = """
     _Dialog { align: center middle; }

@@ -52,7 +52,7 @@ class HelpScreen(ModalScreen[None]):
 
     | Key(s) | Description |
     | :- | :- |
-    | escape, q, ?, f1 | Close. |
+    | escape, q, question_mark, f1 | Close. |
     """
 
     DEFAULT_CSS = """

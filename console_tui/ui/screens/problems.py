@@ -8,10 +8,17 @@ from textual.containers import Vertical
 from textual.screen import ModalScreen
 from textual.widgets import Label, Log
 
-from ...model.text import one_line
+from ...model.text import one_line, plural
 
 
 class ProblemsScreen(ModalScreen[None]):
+    """What went wrong while loading files, and where.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape, q | Close. |
+    """
+
     DEFAULT_CSS = """
     ProblemsScreen { align: center middle; }
     ProblemsScreen > Vertical { width: 90%; height: 70%; border: thick $error; background: $surface; padding: 0 1; }
@@ -25,9 +32,7 @@ class ProblemsScreen(ModalScreen[None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(
-                f"{len(self.problems)} problem{'s' if len(self.problems) != 1 else ''} while loading (Escape closes)"
-            )
+            yield Label(f"{plural(len(self.problems), 'problem')} while loading (Escape closes)")
             log = Log(highlight=False)
             yield log
 

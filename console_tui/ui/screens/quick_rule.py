@@ -24,6 +24,7 @@ from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.text import one_line
 from ..focus import focus_now
+from ..keys import Hint, hint_line
 from ..plain import plain
 
 #: At most this many distinct messages make one "these messages" rule.
@@ -61,7 +62,12 @@ def _label(kind: str, values: Sequence[str]) -> str:
 
 
 class QuickRuleScreen(ModalScreen[Entry | None]):
-    """A short menu; returns the chosen rule as an exclude or highlight entry."""
+    """A short menu; returns the chosen rule as an exclude or highlight entry.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    """
 
     DEFAULT_CSS = """
     QuickRuleScreen { align: center middle; }
@@ -78,7 +84,10 @@ class QuickRuleScreen(ModalScreen[Entry | None]):
     def compose(self) -> ComposeResult:
         verb = "Hide" if self.role is Role.EXCLUDE else "Highlight"
         with Vertical():
-            yield Label(f"{verb} messages with... (Enter picks, Esc cancels)")
+            hints: list[Hint] = [("select", "picks"), ("cancel", "cancels")]
+            yield Label(
+                f"{verb} messages with... ({hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], hints)})"
+            )
             yield OptionList(*(Option(plain(label, limit=200), id=str(i)) for i, (label, _) in enumerate(self.choices)))
 
     def on_mount(self) -> None:

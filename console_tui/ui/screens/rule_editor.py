@@ -20,6 +20,7 @@ from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
 from ...model.rules.time_range import TimeRangeRule
 from ...model.timefmt import full_text
+from ..keys import Hint, hint_line
 from ..plain import plain
 
 KINDS = {
@@ -48,7 +49,13 @@ def _parts(rule: Rule) -> dict[str, Rule]:
 
 class RuleEditor(ModalScreen[Entry | None]):
     """Returns the new entry, or None when cancelled. A rule that cannot be made (a bad
-    regex, a bad time) says why here, and nothing changes until it is fixed."""
+    regex, a bad time) says why here, and nothing changes until it is fixed.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    | ctrl+s, f2 | Apply (Enter in a field too). |
+    """
 
     DEFAULT_CSS = """
     RuleEditor { align: center middle; }
@@ -57,7 +64,7 @@ class RuleEditor(ModalScreen[Entry | None]):
     RuleEditor .group.-hidden { display: none; }
     RuleEditor Horizontal { height: auto; }
     RuleEditor Input { width: 1fr; }
-    RuleEditor #rule-error { color: $text-error; height: auto; }
+    RuleEditor #rule-error { color: $text-error; height: auto; width: 100%; }
     RuleEditor RadioSet { layout: horizontal; height: auto; }
     """
     BINDINGS = [Binding("escape", "cancel", "Cancel"), Binding("ctrl+s,f2", "apply", "Apply")]
@@ -121,7 +128,8 @@ class RuleEditor(ModalScreen[Entry | None]):
                 )
                 yield Input(self._time(period.end_ns), placeholder="to; empty: open", id="time-to")
             yield Label("", id="rule-error")
-            yield Label("Enter or F2 applies · Esc cancels", classes="hint")
+            hints: list[Hint] = [(("submit", "apply"), "applies"), ("cancel", "cancels")]
+            yield Label(hint_line(self.app, [*Input.BINDINGS, *self.BINDINGS], hints), classes="hint")
 
     def _time(self, stamp: int | None) -> str:
         return "" if stamp is None else full_text(stamp, utc=self.utc).rsplit(" ", 1)[0].replace(" ", "T")

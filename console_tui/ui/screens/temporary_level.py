@@ -12,11 +12,18 @@ from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from ...model.levels import MESSAGE_SEVERITIES, Severity
+from ..keys import Hint, hint_line
 from ..plain import plain
 
 
 class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
-    """↑/↓ pick the level (DEBUG first), type the seconds, Enter sets it; Escape cancels."""
+    """Which level, for how many seconds: returns ``(level, seconds)``, or None.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel. |
+    | up / down | The level above / below (DEBUG first); Enter in the seconds sets it. |
+    """
 
     DEFAULT_CSS = """
     TemporaryLevelScreen { align: center middle; }
@@ -46,7 +53,8 @@ class TemporaryLevelScreen(ModalScreen[tuple[int, float] | None]):
             yield Static("For how many seconds (then the level before comes back):")
             yield Input(f"{self.seconds:g}", id="temporary-seconds", type="number")
             yield Static("", id="temporary-error")
-            yield Static(Text("↑/↓ level · Enter sets it · Esc cancels", style="dim"))
+            hints: list[Hint] = [(("level(-1)", "level(1)"), "level"), ("submit", "sets it"), ("cancel", "cancels")]
+            yield Static(Text(hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], hints), style="dim"))
 
     def on_mount(self) -> None:
         levels = self.query_one(OptionList)

@@ -45,7 +45,7 @@ class LoadBar(Horizontal):
             name = reading.source.rsplit("/", 1)[-1] if reading else ""
             what = f"Loading {plural(len(files), 'file')}: {name}"
         hint = hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
-        self.query_one(Label).update(plain(f"{what}  {records:,} records  {hint}"))
+        self.query_one(Label).update(plain(f"{what}  {plural(records, 'record')}  {hint}"))
         self.query_one(ProgressBar).update(progress=done)
 
 

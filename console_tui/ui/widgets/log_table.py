@@ -56,7 +56,30 @@ _QUIET_SCROLLBAR_PERIOD = 0.1
 
 
 class LogTable(ScrollView, can_focus=True):
-    """Rows of a ``LogView`` (or ``StormRows``); follows the tail until the user moves away or pauses."""
+    """Rows of a ``LogView`` (or ``StormRows``); follows the tail until the user moves away or pauses.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | up, k / down, j | Move the cursor. |
+    | shift+up, K / shift+down, J | Select rows upwards / downwards. |
+    | escape | Clear the selection. |
+    | pageup / pagedown | A page up / down. |
+    | home, g | The first row. |
+    | end, G | Follow the tail. |
+    | enter | Details of the row (``RowActivated``). |
+
+    | Class | Description |
+    | :- | :- |
+    | `log-table--header` | The header row. |
+    | `log-table--cursor` | The cursor's row. |
+    | `log-table--selected` | Rows selected with shift+arrows. |
+    | `log-table--dim-column` | Columns of lesser weight (number, time, location, source). |
+    | `log-table--row-debug` ... `log-table--row-fatal` | A row, by its severity. |
+    | `log-table--severity-debug` ... `log-table--severity-fatal` | The severity cell, by severity. |
+    | `log-table--highlight` | Rows a highlight rule marks. |
+    | `log-table--dimmed` | The other rows while highlighting. |
+    | `log-table--storm` | The count of a storm's row (``×120 until ...``). |
+    """
 
     DEFAULT_CSS = """
     LogTable {
@@ -119,6 +142,9 @@ class LogTable(ScrollView, can_focus=True):
     class StateChanged(Message):
         """Following, pause or cursor changed (for the status bar)."""
 
+        def can_replace(self, message: Message) -> bool:
+            return isinstance(message, LogTable.StateChanged)  # it says nothing but "look again"
+
     def __init__(self, store: LogStore, view: TableRows, *, utc: bool = False, id: str | None = None) -> None:
         super().__init__(id=id)
         self.store = store
@@ -136,7 +162,10 @@ class LogTable(ScrollView, can_focus=True):
         #: Storms hook: seq -> how its row is marked as a storm (``×N until ...``), or None.
         self.badge_of: Callable[[int], StormBadge | None] | None = None
         self.style_generation = 0
-        self._cache: LRUCache[tuple, Strip] = LRUCache(512)
+        # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
+        # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
+        # about a fifth more per full collection than 192).
+        self._cache: LRUCache[tuple, Strip] = LRUCache(192)
         self._layout_key: tuple = ()
         self._nodes_measured = 0
         self._widest_node = 8

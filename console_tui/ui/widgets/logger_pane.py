@@ -1,10 +1,11 @@
 """The logger levels pane, beside the table: the graph's nodes, a node's loggers and their levels.
 
-What it shows is UI state, changed through its ``show_*`` and ``select_node`` methods. With a
-``LoggerControl`` the pane feeds them itself (nodes as the graph changes, levels as they are
-read, temporary levels as they run); tests may feed them directly for a fixed picture. Every
-service call runs on the control's thread: its future's outcome comes back as a message, so
-the screen never waits for a node.
+The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into calls of the
+``LoggerControl``. With a control, the pane feeds the view itself (nodes as the graph changes,
+levels as they are read, temporary levels as they run); tests may feed it through ``show_*``
+and ``select_node`` for a fixed picture. Every service call runs on the control's thread: its
+future's outcome comes back as a message, so the screen never waits for a node. For a
+temporary level the pane posts ``TemporaryRequested``: the app asks for the level and time.
 """
 
 from __future__ import annotations
@@ -13,8 +14,6 @@ from collections.abc import Callable, Collection, Mapping, Sequence
 from concurrent.futures import Future
 from typing import TYPE_CHECKING, Any
 
-from rich.table import Table
-from rich.text import Text
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -22,32 +21,22 @@ from textual.message import Message
 from textual.timer import Timer
 from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
-from textual.widgets.option_list import Option
 
-from ...model.levels import MESSAGE_SEVERITIES, Severity, severity_name
-from ...model.logger_levels import (
-    DEFAULT_LOGGER,
-    ENABLE_LOGGER_SERVICE_HINT,
-    GraphNode,
-    LoggerRow,
-    LoggerSource,
-    NodeLoggers,
-    TemporaryLevel,
-    format_remaining,
-    node_of_logger,
-)
+from ...model.levels import MESSAGE_SEVERITIES
+from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, LoggerRow, TemporaryLevel, node_of_logger
+from ...model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
 from ..keys import Hint, hint_line
 from ..plain import plain
+from .level_bar import TEMPORARY, LevelBar
+from .logger_lists import LoggerList, NodeList
 from .side_pane import SidePane
 
 if TYPE_CHECKING:
-    from ...sources.logger_control import LoggerControl
+    from ...sources.logger_control import LoggerControl, LoggerEvent
 
-#: How long ``t`` sets a temporary level for unless told otherwise.
-DEFAULT_TEMPORARY_S = 30.0
+__all__ = ["NO_ROS_TEXT", "LoggerPane"]
+
 TICK_S = 1.0
-#: What the pane says when this run has no live ROS (files only).
-NO_ROS_TEXT = "No live ROS in this console (files only): logger levels cannot be read or set."
 
 _HINTS: list[Hint] = [
     (tuple(f"set_level({int(s)})" for s in MESSAGE_SEVERITIES), "level"),
@@ -59,70 +48,25 @@ _HINTS: list[Hint] = [
     ("leave", "table"),
 ]
 
-_LEVEL_STYLE = {10: "dim", 20: "green", 30: "yellow", 40: "red", 50: "bold red"}
 
-
-def logger_label(row: LoggerRow, own: str) -> str:
-    """How a logger's name reads in the list: children relative to the node's logger."""
-    if row.source is LoggerSource.DEFAULT:
-        return '"" (default)'
-    if row.source is LoggerSource.CHILD and row.name.startswith(own + "."):
-        return "  ." + row.name[len(own) + 1 :]
-    return row.name
-
-
-def level_cell(row: LoggerRow, now: float) -> Text:
-    """A logger's level: ``DEBUG``, ``inherited (INFO)``, ``?``, or ``DEBUG 25s`` while temporary."""
-    if row.temporary is not None:
-        temporary = row.temporary
-        text = Text(severity_name(temporary.level), style=_LEVEL_STYLE.get(temporary.level, ""))
-        text.append(" for ")
-        text.append(format_remaining(temporary.remaining(now)), style="bold")
-        return text
-    if row.level == Severity.UNSET:
-        return Text(row.level_text, style="italic dim")
-    return Text(row.level_text, style=_LEVEL_STYLE.get(row.level or 0, "dim"))
-
-
-def _two_columns(left: Text | str, right: Text | str) -> Table:
-    grid = Table.grid(expand=True)
-    grid.add_column(ratio=1, no_wrap=True, overflow="ellipsis")
-    grid.add_column(no_wrap=True, justify="right")
-    grid.add_row(left, right)
-    return grid
-
-
-class NodeList(OptionList):
-    """The graph's nodes; the highlighted one is the pane's selected node."""
-
-
-class LoggerList(OptionList):
-    """The selected node's loggers; level keys act on the highlighted one."""
-
-
-class LevelBar(Static):
-    """Clickable level names: a click sets the highlighted logger's level."""
-
-    class Chosen(Message):
-        def __init__(self, level: int) -> None:
-            super().__init__()
-            self.level = level
-
-    def on_mount(self) -> None:
-        parts = [f"[@click=choose({int(s)})]{s.name}[/]" for s in MESSAGE_SEVERITIES]
-        parts.append(f"[@click=choose({int(Severity.UNSET)})]unset[/]")
-        parts.append("[@click=temporary]temporary[/]")
-        self.update(" ".join(parts))
-
-    def action_choose(self, level: int) -> None:
-        self.post_message(self.Chosen(level))
-
-    def action_temporary(self) -> None:
-        self.post_message(self.Chosen(-1))
+#: Where levels are read only when asked (ROS 1): how to ask.
+_READ_HINTS: list[Hint] = [(("select", "refresh"), "read its loggers"), ("add_logger", "set one by name")]
 
 
 class LoggerPane(SidePane):
-    """Nodes, then the selected node's loggers; keys set the highlighted logger's level."""
+    """Nodes, then the selected node's loggers; keys set the highlighted logger's level.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | d, 1 / i, 2 / w, 3 / e, 4 / f, 5 | Set DEBUG / INFO / WARN / ERROR / FATAL. |
+    | u, 0 | Unset: the logger inherits its level. |
+    | t | Temporary level (the app asks which, and for how long). |
+    | x | End the temporary level now. |
+    | a, plus | Add a logger by name. |
+    | r | Read the levels again. |
+    | left / right | To the nodes / to the loggers. |
+    | escape | Back to the table. |
+    """
 
     DEFAULT_CSS = """
     LoggerPane {
@@ -165,19 +109,38 @@ class LoggerPane(SidePane):
     class ControlEvent(Message):
         """An event of the ``LoggerControl`` (posted from its thread)."""
 
-        def __init__(self, event: Any) -> None:
+        def __init__(self, event: LoggerEvent) -> None:
             super().__init__()
             self.event = event
+
+        def can_replace(self, message: Message) -> bool:
+            # A burst of graph changes: only the newest node list matters.
+            from ...sources.logger_control import NodesChanged
+
+            return (
+                isinstance(message, LoggerPane.ControlEvent)
+                and isinstance(self.event, NodesChanged)
+                and isinstance(message.event, NodesChanged)
+            )
 
     class CallDone(Message):
         """A service call finished (its future is done); ``then`` takes its result."""
 
-        def __init__(self, future: Future, fqn: str, what: str, then: Callable[[Any], None]) -> None:
+        def __init__(self, future: Future[Any], fqn: str, what: str, then: Callable[[Any], None]) -> None:
             super().__init__()
             self.future = future
             self.fqn = fqn
             self.what = what
             self.then = then
+
+    class TemporaryRequested(Message):
+        """``t`` on a logger: ask for a level and a time, then call ``set_temporary``."""
+
+        def __init__(self, pane: LoggerPane, fqn: str, logger: str) -> None:
+            super().__init__()
+            self.pane = pane
+            self.fqn = fqn
+            self.logger = logger
 
     def __init__(
         self,
@@ -192,15 +155,13 @@ class LoggerPane(SidePane):
         #: Logger names seen in records (the store's node column): where child loggers come from.
         self.seen_loggers = seen_loggers
         self.clock = control.clock if control is not None else clock
-        self.nodes: tuple[GraphNode, ...] = ()
-        self.checking: frozenset[str] = frozenset()
-        self.selected: str | None = None
-        self.loggers: dict[str, NodeLoggers] = {}
-        self.temporaries: tuple[TemporaryLevel, ...] = ()
-        self.pending: dict[str, int] = {}
-        self.notice = ""
-        self.notice_is_error = False
-        self._seen_count = -1
+        # Without a control (files only, or a test feeding the pane) nodes are ROS 2's.
+        self.view = LoggerView(
+            has_ros=control is not None,
+            no_services_hint=control.no_services_hint if control is not None else ENABLE_LOGGER_SERVICE_HINT,
+            lists_loggers=control is not None and control.lists_loggers,
+            read_when_asked=control is not None and control.read_when_asked,
+        )
         self._ticker: Timer | None = None
         self.node_list = NodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
@@ -228,7 +189,7 @@ class LoggerPane(SidePane):
         self._render_all()
 
     def when_opened(self) -> None:
-        self._note_seen_loggers()
+        self.view.note_seen(self.seen_loggers)
         self._refresh_checking()
         if self.selected is None and self.node_list.option_count:
             self.node_list.highlighted = 0
@@ -242,60 +203,64 @@ class LoggerPane(SidePane):
     def focus_target(self) -> Widget:
         return self.logger_list if self.selected and self.logger_list.option_count else self.node_list
 
-    # -- UI state -----------------------------------------------------------------------------
+    # -- what it shows ----------------------------------------------------------------------------
+
+    @property
+    def selected(self) -> str | None:
+        return self.view.selected
+
+    @property
+    def nodes(self) -> tuple[GraphNode, ...]:
+        return self.view.nodes
+
+    @property
+    def highlighted_logger(self) -> str | None:
+        return self.logger_list.highlighted_logger
+
+    def rows(self) -> list[LoggerRow]:
+        """The selected node's logger rows, as shown."""
+        return self.view.rows()
 
     def show_nodes(self, nodes: Sequence[GraphNode], checking: Collection[str] | None = None) -> None:
         """The graph's nodes; ``checking`` names those whose logger services may yet appear."""
-        before = {node.fqn: node for node in self.nodes}
-        self.nodes = tuple(nodes)
-        self.checking = frozenset(checking) if checking is not None else self._checking_now()
-        selected = self.selected
-        if selected is not None and selected not in {node.fqn for node in self.nodes}:
-            self.selected = None
-            self._say(f"{selected} left the ROS graph")
-        self._note_seen_loggers(force=True)
+        view = self.view
+        had_selection = view.selected is not None
+        if checking is None:
+            checking = self._checking_now(nodes)
+        services_appeared = view.set_nodes(nodes, checking)
+        view.note_seen(self.seen_loggers, force=True)
         self._render_nodes()
-        if selected is None and self.is_open and self.nodes:
+        if not had_selection and self.is_open and view.nodes:
             self.node_list.highlighted = 0  # the first nodes since the pane opened: show one
-        elif self.selected is not None:
-            node = self.node(self.selected)
-            old = before.get(self.selected)
-            if node is not None and node.has_logger_services and not (old and old.has_logger_services):
-                self.read_levels(node.fqn)  # its services just showed up
+        elif services_appeared and view.selected is not None:
+            self.read_levels(view.selected)
         self._render_loggers()
         self._update_ticker()
 
     def select_node(self, fqn: str, logger: str | None = None) -> bool:
         """Show ``fqn``'s loggers (reading their levels), with ``logger`` highlighted."""
-        node = self.node(fqn)
-        if node is None:
+        view = self.view
+        changed = view.select(fqn, logger)
+        if changed is None:
             return False
-        changed = fqn != self.selected
-        self.selected = fqn
-        loggers = self._loggers_of(node)
-        self._note_seen_loggers(force=True)
-        if logger is not None and logger not in loggers.names():
-            loggers.add_typed(logger)
+        view.note_seen(self.seen_loggers, force=True)
         if changed:
-            self.notice = ""
             with self.node_list.prevent(OptionList.OptionHighlighted):
                 self.node_list.highlighted = self.node_list.get_option_index(fqn)
-        self._render_loggers(highlight=logger if logger is not None else (None if not changed else loggers.own))
+        node = view.selected_node
+        own = node.logger_name if node is not None else None
+        self._render_loggers(highlight=logger if logger is not None else (None if not changed else own))
         if changed or logger is not None:
             self.read_levels(fqn)
         return True
 
     def show_levels(self, fqn: str, levels: Mapping[str, int]) -> None:
         """Levels read from (or just set on) node ``fqn``."""
-        node = self.node(fqn)
-        if node is None:
-            return
-        self._loggers_of(node).update_levels(levels)
-        if fqn == self.selected:
+        if self.view.set_levels(fqn, levels):
             self._render_loggers()
 
     def show_temporaries(self, entries: Sequence[TemporaryLevel]) -> None:
-        self.temporaries = tuple(entries)
+        self.view.temporaries = tuple(entries)
         self._render_loggers()
         self._update_ticker()
 
@@ -303,21 +268,6 @@ class LoggerPane(SidePane):
         """A failed call: said in the pane and as a notification."""
         self._say(text, error=True)
         self.app.notify(text, title="Logger levels", severity="error", timeout=8, markup=False)
-
-    def node(self, fqn: str) -> GraphNode | None:
-        return next((node for node in self.nodes if node.fqn == fqn), None)
-
-    def rows(self) -> list[LoggerRow]:
-        """The selected node's logger rows, as shown."""
-        node = self.node(self.selected) if self.selected else None
-        if node is None or not node.has_logger_services:
-            return []
-        return self._loggers_of(node).rows(self.temporaries)
-
-    @property
-    def highlighted_logger(self) -> str | None:
-        option = self.logger_list.highlighted_option
-        return None if option is None else _logger_of_option(option)
 
     def open_for_logger(self, logger: str) -> bool:
         """Open on the node whose messages carry this logger name (a table row's node)."""
@@ -334,15 +284,13 @@ class LoggerPane(SidePane):
     # -- service calls ------------------------------------------------------------------------
 
     def read_levels(self, fqn: str, *, asked: bool = False) -> None:
-        """Read ``fqn``'s levels; with a control that reads only when asked (ROS 1), only when ``asked``."""
-        node = self.node(fqn)
-        control = self.control
-        if control is None or node is None or not node.has_logger_services:
+        """Read ``fqn``'s levels; where they are read only when asked (ROS 1), only when ``asked``."""
+        names = self.view.names_to_read(fqn)
+        if self.control is None or names is None or (self.view.read_when_asked and not asked):
             return
-        if control.read_when_asked and not asked:
-            return
-        names = self._loggers_of(node).names_to_read()
-        self._call(control.get_levels(fqn, names), fqn, "read the levels", lambda levels: self.show_levels(fqn, levels))
+        self._call(
+            self.control.get_levels(fqn, names), fqn, "read the levels", lambda levels: self.show_levels(fqn, levels)
+        )
 
     def set_level(self, fqn: str, logger: str, level: int) -> None:
         control = self._usable_control()
@@ -350,12 +298,12 @@ class LoggerPane(SidePane):
             return
 
         def done(levels: Mapping[str, int]) -> None:
-            self.show_levels(fqn, levels)
+            self.view.level_set(fqn, logger, level, levels)
             self.show_temporaries(control.temporaries())
-            self._say(f"{_shown(logger)} set to {_level_word(level)}")
             self.read_levels(fqn)
 
-        self._call(control.set_level(fqn, logger, level), fqn, f"set {_shown(logger)} to {_level_word(level)}", done)
+        what = f"set {shown_logger(logger)} to {level_word(level)}"
+        self._call(control.set_level(fqn, logger, level), fqn, what, done)
 
     def set_temporary(self, fqn: str, logger: str, level: int, seconds: float) -> None:
         control = self._usable_control()
@@ -363,14 +311,11 @@ class LoggerPane(SidePane):
             return
 
         def done(entry: TemporaryLevel) -> None:
-            self.show_levels(fqn, {logger: level})
+            self.view.temporary_set(fqn, entry, seconds)
             self.show_temporaries(control.temporaries())
-            self._say(
-                f"{_shown(logger)} at {_level_word(level)} for {seconds:g} s, then back to {_level_word(entry.previous)}"
-            )
             self.read_levels(fqn)
 
-        what = f"set {_shown(logger)} to {_level_word(level)} for {seconds:g} s"
+        what = f"set {shown_logger(logger)} to {level_word(level)} for {seconds:g} s"
         self._call(control.set_temporary(fqn, logger, level, seconds), fqn, what, done)
 
     def end_temporary(self, fqn: str, logger: str) -> None:
@@ -379,26 +324,25 @@ class LoggerPane(SidePane):
             return
 
         def done(_levels: Mapping[str, int]) -> None:
+            self.view.say(f"{shown_logger(logger)}: temporary level ended")
             self.show_temporaries(control.temporaries())
-            self._say(f"{_shown(logger)}: temporary level ended")
             self.read_levels(fqn)
 
-        self._call(control.end_temporary(fqn, logger), fqn, f"end the temporary level of {_shown(logger)}", done)
+        self._call(control.end_temporary(fqn, logger), fqn, f"end the temporary level of {shown_logger(logger)}", done)
 
     def _usable_control(self) -> LoggerControl | None:
         if self.control is None:
             self._say(NO_ROS_TEXT, error=True)
         return self.control
 
-    def _call(self, future: Future, fqn: str, what: str, then: Callable[[Any], None]) -> None:
-        self.pending[fqn] = self.pending.get(fqn, 0) + 1
+    def _call(self, future: Future[Any], fqn: str, what: str, then: Callable[[Any], None]) -> None:
+        self.view.call_started(fqn)
         self._render_heading()
         future.add_done_callback(lambda done: self.post_message(self.CallDone(done, fqn, what, then)))
 
     def on_logger_pane_call_done(self, message: CallDone) -> None:
         message.stop()
-        fqn = message.fqn
-        self.pending[fqn] = max(0, self.pending.get(fqn, 0) - 1)
+        self.view.call_ended(message.fqn)
         self._render_heading()
         error = message.future.exception()
         if error is None:
@@ -406,7 +350,7 @@ class LoggerPane(SidePane):
         else:
             self.show_failure(f"Could not {message.what}: {error}")
 
-    def _from_control_thread(self, event: Any) -> None:
+    def _from_control_thread(self, event: LoggerEvent) -> None:
         self.post_message(self.ControlEvent(event))
 
     def on_logger_pane_control_event(self, message: ControlEvent) -> None:
@@ -417,38 +361,19 @@ class LoggerPane(SidePane):
         if isinstance(event, NodesChanged):
             self.show_nodes(event.nodes)
         elif isinstance(event, TemporaryEnded) and self.control is not None:
+            failure = self.view.temporary_ended(event.entry, event.error)
             self.show_temporaries(self.control.temporaries())
-            entry = event.entry
-            if event.error is not None:
-                self.show_failure(
-                    f"Could not put {_shown(entry.logger)} of {entry.node} back to {_level_word(entry.previous)}: {event.error}"
-                )
-            else:
-                self._say(f"{_shown(entry.logger)} of {entry.node} is back to {_level_word(entry.previous)}")
-                self.show_levels(entry.node, {entry.logger: entry.previous})
-            self.read_levels(entry.node)
+            if failure is not None:
+                self.show_failure(failure)
+            self.read_levels(event.entry.node)
 
     # -- keys and clicks -------------------------------------------------------------------------
 
     def _target(self) -> tuple[str, str] | None:
-        """The selected node and highlighted logger a key acts on; says why when there is none."""
-        if self.control is None:
-            self._say(NO_ROS_TEXT, error=True)
-            return None
-        node = self.node(self.selected) if self.selected else None
-        if node is None:
-            self._say("Select a node first", error=True)
-            return None
-        if not node.has_logger_services:
-            self._render_loggers()
-            return None
-        logger = self.highlighted_logger
-        if logger is None:
-            logger = self._loggers_of(node).own
-        if not logger and self._loggers_of(node).listing:
-            self._say("Read the node's loggers first (r), or add one by name (a)", error=True)
-            return None
-        return node.fqn, logger
+        target = self.view.target(self.highlighted_logger)
+        if target is None:
+            self._render_loggers()  # says why
+        return target
 
     def action_set_level(self, level: int) -> None:
         target = self._target()
@@ -456,18 +381,9 @@ class LoggerPane(SidePane):
             self.set_level(*target, level)
 
     def action_temporary(self) -> None:
-        from ..screens.temporary_level import TemporaryLevelScreen
-
         target = self._target()
-        if target is None:
-            return
-        fqn, logger = target
-
-        def apply(choice: tuple[int, float] | None) -> None:
-            if choice is not None:
-                self.set_temporary(fqn, logger, *choice)
-
-        self.app.push_screen(TemporaryLevelScreen(fqn, _shown(logger), DEFAULT_TEMPORARY_S), apply)
+        if target is not None:
+            self.post_message(self.TemporaryRequested(self, *target))
 
     def action_end_temporary(self) -> None:
         target = self._target()
@@ -478,7 +394,7 @@ class LoggerPane(SidePane):
         self.name_input.focus()
 
     def action_refresh(self) -> None:
-        self._note_seen_loggers(force=True)
+        self.view.note_seen(self.seen_loggers, force=True)
         if self.selected is not None:
             self.read_levels(self.selected, asked=True)
         self._render_all()
@@ -506,7 +422,7 @@ class LoggerPane(SidePane):
     @on(OptionList.OptionSelected, "#logger-nodes")
     def _node_chosen(self, message: OptionList.OptionSelected) -> None:
         message.stop()
-        if self.selected is not None and self.control is not None and self.control.read_when_asked:
+        if self.selected is not None and self.view.read_when_asked:
             self.read_levels(self.selected, asked=True)  # Enter opens the node: its loggers are read
         self.logger_list.focus()
 
@@ -517,7 +433,7 @@ class LoggerPane(SidePane):
     @on(LevelBar.Chosen)
     def _level_clicked(self, message: LevelBar.Chosen) -> None:
         message.stop()
-        if message.level < 0:
+        if message.level == TEMPORARY:
             self.action_temporary()
         else:
             self.action_set_level(message.level)
@@ -525,14 +441,12 @@ class LoggerPane(SidePane):
     @on(Input.Submitted, "#logger-name")
     def _name_typed(self, message: Input.Submitted) -> None:
         message.stop()
-        node = self.node(self.selected) if self.selected else None
-        name = message.value.strip()
-        if node is None or not name:
+        name = self.view.add_logger(message.value)
+        if name is None or self.selected is None:
             return
-        name = self._loggers_of(node).add_typed(name)
         self.name_input.value = ""
         self._render_loggers(highlight=name)
-        self.read_levels(node.fqn)
+        self.read_levels(self.selected)
         self.logger_list.focus()
 
     # -- drawing ------------------------------------------------------------------------------
@@ -542,121 +456,45 @@ class LoggerPane(SidePane):
         self._render_loggers()
 
     def _render_nodes(self) -> None:
-        node_list = self.node_list
-        options = [Option(self._node_prompt(node), id=node.fqn) for node in self.nodes]
-        with node_list.prevent(OptionList.OptionHighlighted):
-            node_list.set_options(options)
-            if self.selected is not None:
-                node_list.highlighted = node_list.get_option_index(self.selected)
-        if not self.nodes:
+        self.node_list.show(self.view.nodes, self.view.checking, self.view.selected)
+        if not self.view.nodes:
             self._render_heading()
 
-    def _node_prompt(self, node: GraphNode) -> Table:
-        if node.has_logger_services:
-            marker = Text("")
-        elif node.fqn in self.checking:
-            marker = Text("checking…", style="dim italic")
-        else:
-            marker = Text("no logger services", style="yellow")
-        return _two_columns(plain(node.fqn), marker)
-
     def _render_loggers(self, highlight: str | None = None) -> None:
-        logger_list = self.logger_list
-        if highlight is None:
-            highlight = self.highlighted_logger
-        now = self.clock() if self.clock is not None else 0.0
-        rows = self.rows()
-        node = self.node(self.selected) if self.selected else None
+        node = self.view.selected_node
         own = node.logger_name if node is not None else ""
-        options = [
-            Option(_two_columns(plain(logger_label(row, own)), level_cell(row, now)), id=_option_id(row.name))
-            for row in rows
-        ]
-        current = [_logger_of_option(option) for option in logger_list.options]
-        if current == [row.name for row in rows]:
-            for index, option in enumerate(options):
-                logger_list.replace_option_prompt_at_index(index, option.prompt)
-        else:
-            with logger_list.prevent(OptionList.OptionHighlighted):
-                logger_list.set_options(options)
-        names = [row.name for row in rows]
-        if highlight in names:
-            logger_list.highlighted = names.index(highlight)
-        elif rows and logger_list.highlighted is None:
-            logger_list.highlighted = 0
+        now = self.clock() if self.clock is not None else 0.0
+        self.logger_list.show(self.view.rows(), own, now, highlight)
         self._render_heading()
         self._render_notice()
 
     def _render_heading(self) -> None:
-        heading = self.heading
-        if self.selected is None:
-            heading.update("Loggers")
-            return
-        busy = " …" if self.pending.get(self.selected) else ""
-        heading.update(plain(f"Loggers of {self.selected}{busy}", no_wrap=True, overflow="ellipsis"))
+        self.heading.update(plain(self.view.heading(), no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
-        notice = self.notice_line
-        text, error = self._notice_text()
-        notice.update(plain(text, lines=True))
-        notice.set_class(error, "-error")
-
-    def _notice_text(self) -> tuple[str, bool]:
-        if self.control is not None and self.control.problem:
-            return self.control.problem, True
-        if self.notice:
-            return self.notice, self.notice_is_error
-        if not self.nodes:
-            if self.control is None:
-                return NO_ROS_TEXT, False
-            return "No nodes in the ROS graph yet.", False
-        node = self.node(self.selected) if self.selected else None
-        if node is None:
-            return "Select a node.", False
-        if node.has_logger_services:
-            if self.control is not None and self.control.read_when_asked and not self._loggers_of(node).levels:
-                return "Enter or r: read its loggers · a: set one by name", False
-            return "", False
-        if node.fqn in self.checking:
-            return f"Checking whether {node.fqn} offers logger services…", False
-        hint = self.control.no_services_hint if self.control is not None else ENABLE_LOGGER_SERVICE_HINT
-        return f"{node.fqn} has no logger services: {hint}.", False
+        problem = self.control.problem if self.control is not None else ""
+        text, error = self.view.notice_text(
+            problem, hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS)
+        )
+        self.notice_line.update(plain(text, lines=True))
+        self.notice_line.set_class(error, "-error")
 
     def _say(self, text: str, error: bool = False) -> None:
-        self.notice = text
-        self.notice_is_error = error
+        self.view.say(text, error)
         self._render_notice()
 
     # -- keeping up -----------------------------------------------------------------------------
 
-    def _loggers_of(self, node: GraphNode) -> NodeLoggers:
-        loggers = self.loggers.get(node.fqn)
-        if loggers is None:
-            listing = self.control is not None and self.control.lists_loggers
-            loggers = self.loggers[node.fqn] = NodeLoggers(node, listing=listing)
-        return loggers
-
-    def _note_seen_loggers(self, force: bool = False) -> bool:
-        """Take child loggers of the selected node from the logger names seen so far."""
-        seen = self.seen_loggers
-        if not force and len(seen) == self._seen_count:
-            return False
-        self._seen_count = len(seen)
-        node = self.node(self.selected) if self.selected else None
-        if node is None:
-            return False
-        return self._loggers_of(node).note_seen(seen, {n.logger_name for n in self.nodes})
-
-    def _checking_now(self) -> frozenset[str]:
+    def _checking_now(self, nodes: Sequence[GraphNode] | None = None) -> frozenset[str]:
         control = self.control
         if control is None:
-            return self.checking
-        return frozenset(n.fqn for n in self.nodes if not n.has_logger_services and not control.is_settled(n.fqn))
+            return self.view.checking
+        return self.view.unsettled(control.is_settled, self.view.nodes if nodes is None else nodes)
 
     def _refresh_checking(self) -> None:
         checking = self._checking_now()
-        if checking != self.checking:
-            self.checking = checking
+        if checking != self.view.checking:
+            self.view.checking = checking
             self._render_nodes()
             self._render_notice()
 
@@ -669,34 +507,19 @@ class LoggerPane(SidePane):
             self._ticker = None
 
     def _tick(self) -> None:
+        view = self.view
         if self.control is not None:
             if self.control.problem and self.control.problem not in str(self.notice_line.content):
                 self._render_notice()
             temporaries = self.control.temporaries()
-            if temporaries != self.temporaries:
-                self.temporaries = temporaries
+            if temporaries != view.temporaries:
+                view.temporaries = temporaries
                 self._render_loggers()
-        if self.checking:
+        if view.checking:
             self._refresh_checking()
-        if self._note_seen_loggers():
+        if view.note_seen(self.seen_loggers):
             self._render_loggers()
             if self.selected is not None:
                 self.read_levels(self.selected)
-        elif any(t.node == self.selected for t in self.temporaries):
+        elif view.counting_down():
             self._render_loggers()  # the countdown
-
-
-def _option_id(logger: str) -> str:
-    return "logger:" + logger
-
-
-def _logger_of_option(option: Option) -> str:
-    return (option.id or "logger:")[len("logger:") :]
-
-
-def _shown(logger: str) -> str:
-    return '"" (the default logger)' if logger == DEFAULT_LOGGER else logger
-
-
-def _level_word(level: int) -> str:
-    return "inherited" if level == Severity.UNSET else severity_name(level)

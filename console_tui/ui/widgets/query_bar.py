@@ -12,7 +12,7 @@ from textual.widgets import Input, Static
 from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
-from ...model.text import one_line
+from ...model.text import one_line, plural
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..plain import plain
@@ -22,7 +22,13 @@ PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d o
 
 
 class QueryBar(Vertical):
-    """Hidden until opened; while the text does not parse, the rules in force stay."""
+    """Hidden until opened; while the text does not parse, the rules in force stay.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Close (``Closed``). |
+    | up / down | An earlier / a later query from the history. |
+    """
 
     DEFAULT_CSS = """
     QueryBar { height: auto; display: none; background: $panel; padding: 0 1; }
@@ -103,7 +109,7 @@ class QueryBar(Vertical):
             return None
         problem.add_class("-ok")
         count = len(entries)
-        problem.update(f"{count} rule{'s' if count != 1 else ''} · {self.key_hints()}")
+        problem.update(f"{plural(count, 'rule')} · {self.key_hints()}")
         return entries
 
     @on(Input.Changed, "#query-input")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from rich.table import Table
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -29,9 +30,10 @@ _HINTS: list[Hint] = [
 ]
 
 
-def entry_text(entry: Entry, count: int | None) -> Text:
-    """One line of the list: on/off, role, the rule, its count (or why it is inactive)."""
-    text = Text(no_wrap=True, overflow="ellipsis")
+def entry_text(entry: Entry, count: int | None) -> Table:
+    """One entry of the list: on/off, role, the rule (wrapping when long), and at the right
+    of its first line its count, or why it is inactive."""
+    text = Text()
     text.append("● " if entry.enabled else "○ ", style="bold green" if entry.enabled else "dim")
     if entry.role is Role.EXCLUDE:
         text.append("hide ", style="bold red")
@@ -41,15 +43,29 @@ def entry_text(entry: Entry, count: int | None) -> Text:
     text.append(description, style="" if entry.active else "dim strike" if not entry.enabled else "dim")
     if entry.from_query:
         text.append("  (query)", style="dim italic")
-    if count is not None:
-        text.append(f"  {count:,}", style="bold cyan")
-    elif entry.enabled and entry.rule.is_empty:
+    if count is None and entry.enabled and entry.rule.is_empty:
         text.append("  (empty: matches nothing)", style="dim italic")
-    return text
+    row = Table.grid(expand=True)
+    row.add_column(ratio=1, overflow="fold")
+    row.add_column(justify="right", no_wrap=True)
+    row.add_row(text, Text(f" {count:,}", style="bold cyan") if count is not None else "")
+    return row
 
 
 class RulesPane(SidePane):
-    """Lists a ``RuleSet``; every change is posted as a new set (the app applies it)."""
+    """Lists a ``RuleSet``; every change is posted as a new set (the app applies it).
+
+    | Key(s) | Description |
+    | :- | :- |
+    | space | Switch the highlighted rule on or off. |
+    | i | Invert it. |
+    | h | Exclude or highlight. |
+    | e, enter | Edit it (``EditRequested``). |
+    | d, delete | Delete it. |
+    | a | Add a rule (``EditRequested``). |
+    | S / O | Save the rule set / open one (``FileRequested``). |
+    | escape | Back to the table. |
+    """
 
     DEFAULT_CSS = """
     RulesPane { dock: left; width: 52; max-width: 50%; border-right: vkey $primary; padding: 0 1; background: $surface; }
@@ -97,6 +113,7 @@ class RulesPane(SidePane):
         self.rules = RuleSet()
         self.counts: list[int | None] = []
         self.progress = ""
+        self._drawn = False
 
     def compose(self) -> ComposeResult:
         yield Label("Rules", classes="title")
@@ -110,9 +127,19 @@ class RulesPane(SidePane):
 
     def show(self, rules: RuleSet, counts: list[int | None], progress: str = "") -> None:
         """Show these rules with these counts (only redrawn when something changed)."""
-        if rules == self.rules and counts == self.counts and progress == self.progress and self.is_mounted:
+        unchanged = rules == self.rules and counts == self.counts and progress == self.progress
+        if unchanged and self._drawn:
             return
         self.rules, self.counts, self.progress = rules, list(counts), progress
+        if self.is_mounted:
+            self._draw()
+
+    def on_mount(self) -> None:
+        self._draw()
+
+    def _draw(self) -> None:
+        self._drawn = True
+        rules, counts, progress = self.rules, self.counts, self.progress
         options = self.query_one(OptionList)
         highlighted = options.highlighted
         options.clear_options()

@@ -8,7 +8,7 @@ from rich.text import Text
 from textual.widget import Widget
 
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.text import one_line
+from ...model.text import one_line, plural
 from ...sources.status import SourceStatus
 
 _SEVERITY_LETTER = {
@@ -74,7 +74,7 @@ def render_status(facts: StatusFacts) -> Text:
     for status in facts.sources:
         if status.topic:
             text.append(f"  {one_line(status.topic, 200)}", style="bold")
-            text.append(f" {status.publishers} pub{'s' if status.publishers != 1 else ''}")
+            text.append(f" {plural(status.publishers, 'pub')}")
         loss = status.loss_text()
         if loss:
             text.append(f"  {loss}", style="bold red")

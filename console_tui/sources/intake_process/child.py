@@ -1,0 +1,180 @@
+"""The intake process: a live source run in a process of its own, its records sent to the app.
+
+    python -m console_tui.sources.intake_process.child ros2 [--topic T] [--typed]
+    python -m console_tui.sources.intake_process.child ros1 [--topic T]
+    python -m console_tui.sources.intake_process.child synthetic [--rate N] [--count N]
+
+The source (``FACTORIES``) takes and decodes messages with its own thread into an
+``IntakeQueue`` of this process, exactly as it would in the app's; every ``FLUSH_S`` the
+main thread packs what is waiting into ``BATCH`` frames (``model.record_batch``) and writes
+them, and the source's status as a ``STATUS`` frame whenever it changed, to the pipe the
+app reads (see ``frames``). Nothing the app does (drawing, filtering, collecting garbage,
+holding its GIL) can hold up taking messages: while the app is busy, the pipe and then
+this process's queue hold what arrives (2 million records at most, then counted as lost).
+
+It ends, stopping the source cleanly, when its stdin closes (the app stops it, or the app
+died: the kernel closes the app's end of the pipe, even after a SIGKILL), on SIGTERM, and
+when the app's process ends (Linux: ``PR_SET_PDEATHSIG``, when started from the app's main
+thread). Ctrl+C in the terminal is for the app, not for it. Whatever it would print goes
+to stderr: its stdout carries only frames.
+"""
+
+from __future__ import annotations
+
+import argparse
+import ctypes
+import os
+import signal
+import sys
+import threading
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import Any
+
+from ...model.intake_queue import IntakeQueue
+from ...model.record_batch import BatchPacker
+from ..status import SourceStatus
+from .frames import BATCH, STATUS, status_payload, write_frame
+
+FLUSH_S = 0.02
+#: Records in one BATCH frame at most (a frame of a few hundred kB).
+FRAME_RECORDS = 4096
+_PR_SET_PDEATHSIG = 1
+
+Factory = Callable[[IntakeQueue, argparse.Namespace], tuple[Any, Callable[[], None]]]
+
+
+def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ..ros2.live_source import LiveLogSource
+    from ..ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed), runtime.shutdown
+
+
+def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ..ros1.live_source import Ros1LiveSource
+
+    return Ros1LiveSource(queue, topic=args.topic), lambda: None
+
+
+def _synthetic(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from .synthetic import SyntheticSource
+
+    return SyntheticSource(queue, args.rate, count=args.count), lambda: None
+
+
+#: The sources this process can run: a name, and how to make one (the source and what
+#: to call once it has stopped). A source has ``start()``, ``stop()`` and ``status``
+#: (a ``SourceStatus``) and puts record batches into the queue it is given.
+FACTORIES: dict[str, Factory] = {"ros2": _ros2, "ros1": _ros1, "synthetic": _synthetic}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="console_tui.sources.intake_process.child")
+    parser.add_argument("kind", choices=sorted(FACTORIES))
+    parser.add_argument("--topic")
+    parser.add_argument("--typed", action="store_true", help="ROS 2: take typed messages (the slow path)")
+    parser.add_argument("--rate", type=float, default=1000.0, help="synthetic: records a second")
+    parser.add_argument("--count", type=int, help="synthetic: records in all (default: until stopped)")
+    parser.add_argument("--parent", type=int, help="end when this process (the app) ends")
+    return parser
+
+
+def die_with_parent(parent: int) -> None:
+    """Be sent SIGTERM when the app's thread that started us ends (Linux), and end now if
+    the app is already gone."""
+    if sys.platform.startswith("linux"):
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != parent:
+        raise SystemExit(0)
+
+
+class Sender:
+    """Writes what the source queued, and its status when it changed, to ``fd``."""
+
+    def __init__(self, fd: int, queue: IntakeQueue) -> None:
+        self.fd = fd
+        self.queue = queue
+        self.packer = BatchPacker()
+        self._sent: SourceStatus | None = None
+
+    def flush(self, status: SourceStatus) -> None:
+        while True:
+            batches = self.queue.drain_batches(FRAME_RECORDS)
+            if not batches:
+                break
+            for batch in batches:
+                write_frame(self.fd, BATCH, self.packer.pack(batch))
+        if status != self._sent:
+            write_frame(self.fd, STATUS, status_payload(status))
+            self._sent = status
+
+
+def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event) -> None:
+    """Run ``source`` until ``stop`` is set, sending its records and status to ``fd``."""
+    sender = Sender(fd, queue)
+    source.start()
+    try:
+        while not stop.wait(FLUSH_S):
+            sender.flush(source.status)
+    finally:
+        source.stop()
+    sender.flush(source.status)
+
+
+def _stop_at_end_of_input(stop: threading.Event) -> None:
+    try:
+        while sys.stdin.buffer.read(4096):
+            pass
+    except (OSError, ValueError):
+        pass
+    stop.set()
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    fd = os.dup(1)
+    os.dup2(2, 1)  # stray prints go to stderr, never between the frames
+    stop = threading.Event()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    if args.parent is not None:
+        die_with_parent(args.parent)
+    threading.Thread(target=_stop_at_end_of_input, args=(stop,), name="console-tui-stdin", daemon=True).start()
+    queue = IntakeQueue()
+    try:
+        source, cleanup = FACTORIES[args.kind](queue, args)
+    except Exception as error:
+        problem = f"the live intake could not start: {type(error).__name__}: {error}"
+        try:
+            write_frame(fd, STATUS, status_payload(SourceStatus(topic=args.topic or "", problem=problem)))
+        except OSError:
+            pass
+        return 2
+    try:
+        serve(source, queue, fd, stop)
+    except BrokenPipeError:  # the app is gone
+        pass
+    except Exception as error:
+        status = replace(source.status, problem=f"intake stopped: {type(error).__name__}: {error}", running=False)
+        try:
+            write_frame(fd, STATUS, status_payload(status))
+        except OSError:
+            pass
+        return 1
+    finally:
+        cleanup()
+    return 0
+
+
+if __name__ == "__main__":
+    exit_code = main()
+    # ROS is shut down by now; the interpreter's own ending (libraries' static destructors,
+    # Fast DDS's threads) took another 0.5 s here, and the app waits for this process.
+    sys.stderr.flush()
+    os._exit(exit_code)

@@ -1,0 +1,143 @@
+"""The ROS 2 intake in its own process: what the in-process source gives, the same through
+the pipe; and ``console-tui`` ends with ``q``, its intake process (and demo nodes) with it."""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import pty
+import select
+import struct
+import sys
+import termios
+import time
+from pathlib import Path
+
+import pytest
+from test_ros2_live_source import serialized_log
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.sources.intake_process.parent import ProcessSource
+
+from support.rosproc import pid_alive, wait_until
+
+pytestmark = pytest.mark.ros2
+
+
+def collect(queue: IntakeQueue, enough, timeout: float = 20.0) -> list:
+    records: list = []
+
+    def done() -> bool:
+        records.extend(queue.drain())
+        return enough(records)
+
+    wait_until(done, timeout)
+    return records
+
+
+def test_every_field_and_the_loss_counts_come_through_the_pipe(nodes):
+    talker = nodes.start("talker.py", "--name", "piped_talker", "--namespace", "/ns", "--debug")
+    logger = talker.expect("ready")["logger"]
+    topic = "/piped_raw_log"
+    queue = IntakeQueue()
+    rosout = ProcessSource(queue, "ros2", topic="/rosout")
+    raw = ProcessSource(IntakeQueue(), "ros2", topic=topic)
+    rosout.start()
+    raw.start()
+    try:
+        assert wait_until(lambda: rosout.status.publishers >= 1, timeout=30)
+        talker.send({"cmd": "log_all", "tag": "piped"})
+        logged = talker.expect("logged")["messages"]
+        records = collect(queue, lambda got: sum(r.msg.startswith("piped ") for r in got) >= len(logged))
+        mine = [r for r in records if r.msg.startswith("piped ")]
+        assert [(r.level, r.msg, r.file, r.function, r.line) for r in mine] == [
+            (m["level"], m["msg"], m["file"], m["function"], m["line"]) for m in logged
+        ]
+        assert {r.node for r in mine} == {logger} and {r.source for r in mine} == {"/rosout"}
+        status = rosout.status
+        assert (status.topic, status.path, status.running, status.lost) == ("/rosout", "raw+cdr", True, 0)
+
+        publisher = nodes.start("raw_publisher.py", "--topic", topic)
+        publisher.expect("ready")
+        assert wait_until(lambda: raw.status.publishers >= 1, timeout=30)
+        bad = ["00010000ffffffff", "0001000005000000060000001400000000ffffff"]
+        publisher.send({"cmd": "publish", "hex": [*bad, serialized_log("after the bad ones")]})
+        publisher.expect("published")
+        after = collect(raw.queue, lambda got: any(r.msg == "after the bad ones" for r in got))
+        assert [r.msg for r in after] == ["after the bad ones"]
+        assert wait_until(lambda: raw.status.lost_undecodable == 2)
+        assert raw.status.lost == 2 and "2 unreadable" in raw.status.loss_text()
+    finally:
+        rosout.stop()
+        raw.stop()
+    for source in (rosout, raw):
+        assert source.pid is not None and not pid_alive(source.pid)
+
+
+def _children(pid: int) -> set[int]:
+    found = set()
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        children = (task / "children").read_text().split()
+        found.update(int(child) for child in children)
+    return found
+
+
+def _intake_children(pid: int) -> set[int]:
+    return {
+        child
+        for child in _children(pid)
+        if b"intake_process" in Path(f"/proc/{child}/cmdline").read_bytes().replace(b"\0", b" ")
+    }
+
+
+def _run_and_quit(ros_env: dict[str, str], *args: str, others_expected: int = 0) -> tuple[set[int], set[int], int]:
+    """``console-tui ARGS`` in a terminal; once it shows its table and has started its intake
+    process (and ``others_expected`` other processes), ``q``. Returns the intake process(es)
+    and the other children seen while it ran, and its exit status."""
+    command = [str(Path(sys.executable).parent / "console-tui"), *args]
+    pid, fd = pty.fork()
+    if pid == 0:  # the child: becomes console-tui
+        os.execve(command[0], command, {**ros_env, "TERM": "xterm-256color"})
+    fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 120, 0, 0))
+    intake: set[int] = set()
+    others: set[int] = set()
+    seen = b""
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not (intake and b"Message" in seen and len(others) >= others_expected):
+            if select.select([fd], [], [], 0.1)[0]:
+                seen += os.read(fd, 65536)
+            intake = _intake_children(pid)
+            others = _children(pid) - intake
+        assert intake, "no intake process seen"
+        time.sleep(1.0)
+        os.write(fd, b"q")
+        deadline = time.monotonic() + 20
+        status = None
+        while time.monotonic() < deadline:
+            done, status = os.waitpid(pid, os.WNOHANG)
+            if done:
+                break
+            if select.select([fd], [], [], 0.05)[0]:
+                try:
+                    os.read(fd, 65536)
+                except OSError:
+                    pass
+        assert status is not None, "console-tui did not end after q"
+    finally:
+        try:
+            os.kill(pid, 9)
+            os.waitpid(pid, 0)
+        except (ProcessLookupError, ChildProcessError):
+            pass
+        os.close(fd)
+    return intake, others, os.waitstatus_to_exitcode(status)
+
+
+@pytest.mark.parametrize("args", [(), ("--demo",)], ids=["live", "demo"])
+def test_q_ends_console_tui_and_its_intake_process(ros_env, args):
+    intake, others, code = _run_and_quit(ros_env, *args, others_expected=4 if args else 0)
+    assert code == 0
+    assert not any(pid_alive(pid) for pid in intake | others), "a child of console-tui outlived it"
+    if args:
+        assert len(others) == 4  # the demo nodes
