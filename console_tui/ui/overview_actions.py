@@ -123,6 +123,17 @@ class OverviewActions(App[None]):
             return None
         return store.stamp_of(first), store.stamp_of(last)
 
+    def set_overview(self, enabled: bool) -> None:
+        """The timeline and the storms on, or off altogether (nothing counted: the screen
+        benchmark's run without them)."""
+        self.timeline.set_enabled(enabled)
+        self.storms.set_enabled(enabled)
+        self.table.badge_of = self.storms.badge if enabled else None
+        self.timeline_strip.set_class(not enabled, "-hidden")
+        self.table.restyle()
+        if enabled:
+            self._catch_up()
+
     def clear_overview(self) -> None:
         """After the store was cleared."""
         self.node_stats.clear()

@@ -86,26 +86,16 @@ class SummaryScreen(ModalScreen[int | None]):
     def _title(self) -> Text:
         store = self.store
         text = Text(f"Summary: {len(store):,} messages kept", style="bold")
-        if len(store):
-            oldest = min(self._stamps(store.first_seq), default=None)
-            newest = self._newest()
-            if oldest is not None and newest is not None:
-                first, last = span_text(oldest, newest, utc=self.utc)
-                text.append(f", {first} to {last} ({duration_text(max(newest - oldest, 0))})")
+        spans = list(store.spans(store.first_seq, store.end_seq))
+        if spans:
+            oldest = min(min(span.chunk.stamps[span.lo : span.hi]) for span in spans)
+            newest = max(max(span.chunk.stamps[span.lo : span.hi]) for span in spans)
+            first, last = span_text(oldest, newest, utc=self.utc)
+            text.append(f", {first} to {last} ({duration_text(newest - oldest)})")
         hidden = len(store) - self.shown_rows
         if hidden > 0:
             text.append(f"; the rules hide {hidden:,}", style="italic")
         return text
-
-    def _stamps(self, start: int):
-        for span in self.store.spans(start, min(start + 4096, self.store.end_seq)):
-            yield from span.chunk.stamps[span.lo : span.hi]
-
-    def _newest(self) -> int | None:
-        end = self.store.end_seq
-        for span in self.store.spans(max(end - 4096, self.store.first_seq), end):
-            return max(span.chunk.stamps[span.lo : span.hi])
-        return None
 
     def _options(self) -> list[Option]:
         store, stats = self.store, self.stats
@@ -146,7 +136,7 @@ class SummaryScreen(ModalScreen[int | None]):
 
     def _target_option(self, line: Text, target: str | None) -> Option:
         """A line that jumps to ``target`` (``seq:N``, ``node:ID``); none: a line only."""
-        line.no_wrap, line.overflow = True, "ellipsis"
+        line.truncate(max(self.app.size.width - 12, 40), overflow="ellipsis")
         if target is None:
             return Option(line, disabled=True)
         option_id = f"line-{len(self._targets)}"

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
+from functools import lru_cache
 
 from rich.segment import Segment
 from rich.style import Style
@@ -44,14 +45,16 @@ _NS_PER_S = 1_000_000_000
 LINES = 4
 
 
-def stack(counts: Sequence[int], peak: int, eighths: int = _EIGHTHS) -> list[int]:
+def stack(counts: Sequence[int], peak: int, eighths: int = _EIGHTHS) -> tuple[int, ...]:
     """Eighths of the bar for each severity: the bar as high as the total against ``peak``
     (at least one eighth when there is anything), each severity its share of it, and at least
     one eighth for any WARN, ERROR or FATAL."""
     total = sum(counts)
     if not total or peak <= 0:
-        return [0] * len(counts)
-    height = max(round(total / peak * eighths), 1)
+        return (0,) * len(counts)
+    height = max((total * eighths * 2 + peak) // (2 * peak), 1)
+    if total in counts:  # one severity only (the common case)
+        return tuple(height if count else 0 for count in counts)
     parts = [count * height / total for count in counts]
     shares = [int(part) for part in parts]
     for slot in range(2, len(counts)):
@@ -71,10 +74,11 @@ def stack(counts: Sequence[int], peak: int, eighths: int = _EIGHTHS) -> list[int
             break
         shares[biggest] -= 1
         short += 1
-    return shares
+    return tuple(shares)
 
 
-def bar_cells(shares: Sequence[int]) -> list[tuple[str, int | None, int | None]]:
+@lru_cache(maxsize=4096)
+def bar_cells(shares: tuple[int, ...]) -> tuple[tuple[str, int | None, int | None], ...]:
     """The bar's cells, bottom up: (glyph, severity slot drawn, slot behind it or None)."""
     fill: list[int] = []
     for slot, share in enumerate(shares):
@@ -93,7 +97,7 @@ def bar_cells(shares: Sequence[int]) -> list[tuple[str, int | None, int | None]]
             top = part[-1]
             below = [slot for slot in part if slot != top]
             cells.append((_LOWER[len(below)], max(below), top))
-    return cells
+    return tuple(cells)
 
 
 def span_text(start_ns: int, end_ns: int, *, utc: bool) -> tuple[str, str]:
@@ -112,6 +116,22 @@ def _dated(stamp_ns: int, utc: bool) -> str:
     except (OverflowError, OSError, ValueError):
         return str(seconds)
     return time.strftime("%Y-%m-%d %H:%M", parts)
+
+
+def _runs(cells: Sequence[tuple[str, Style]]) -> list[Segment]:
+    """Cells as segments, neighbours of the same style joined."""
+    segments: list[Segment] = []
+    text: list[str] = []
+    current: Style | None = None
+    for glyph, style in cells:
+        if style is not current and style != current:
+            if text:
+                segments.append(Segment("".join(text), current))
+            text, current = [], style
+        text.append(glyph)
+    if text:
+        segments.append(Segment("".join(text), current))
+    return segments
 
 
 def rate_text(rate: float) -> str:
@@ -260,22 +280,28 @@ class TimelineStrip(Widget, can_focus=True):
         return Strip([Segment(text, style)]).adjust_cell_length(width, base)
 
     def _bar_lines(self, columns: TimelineColumns, width: int, base: Style) -> list[Strip]:
-        styles = [base + self._style(name) for name in _SEVERITIES]
+        severities = [base + self._style(name) for name in _SEVERITIES]
         picked_style = self._style("picked")
-        totals = columns.totals()
-        peak = max(totals, default=0)
-        picked = self.picked_column(columns)
-        rows: list[list[Segment]] = [[] for _ in range(_BAR_ROWS)]
-        for column, counts in enumerate(columns.counts):
-            cells = bar_cells(stack(counts, peak))
-            for row, (glyph, slot, behind) in enumerate(cells):
-                style = styles[slot] if slot is not None else base
-                if behind is not None and styles[behind].color is not None:
-                    style = style + Style(bgcolor=styles[behind].color)
-                if column == picked:
+        styles: dict[tuple[int | None, int | None, bool], Style] = {}
+
+        def style_of(slot: int | None, behind: int | None, picked: bool) -> Style:
+            style = styles.get((slot, behind, picked))
+            if style is None:
+                style = severities[slot] if slot is not None else base
+                if behind is not None and severities[behind].color is not None:
+                    style = style + Style(bgcolor=severities[behind].color)
+                if picked:
                     style = style + picked_style
-                rows[_BAR_ROWS - 1 - row].append(Segment(glyph, style))
-        return [Strip(segments).simplify().adjust_cell_length(width, base) for segments in rows]
+                styles[(slot, behind, picked)] = style
+            return style
+
+        peak = max(columns.totals(), default=0)
+        picked = self.picked_column(columns)
+        rows: list[list[tuple[str, Style]]] = [[] for _ in range(_BAR_ROWS)]
+        for column, counts in enumerate(columns.counts):
+            for row, (glyph, slot, behind) in enumerate(bar_cells(stack(counts, peak))):
+                rows[_BAR_ROWS - 1 - row].append((glyph, style_of(slot, behind, column == picked)))
+        return [Strip(_runs(cells)).adjust_cell_length(width, base) for cells in rows]
 
     def _mark_line(self, columns: TimelineColumns, width: int, base: Style) -> Strip:
         axis, position = base + self._style("axis"), base + self._style("position")
@@ -285,7 +311,7 @@ class TimelineStrip(Widget, can_focus=True):
         here = None
         if self.position is not None:
             here = (columns.column_of(self.position[0]), columns.column_of(self.position[1]))
-        segments = []
+        segments: list[tuple[str, Style]] = []
         for column, counts in enumerate(columns.counts):
             inside = here is not None and here[0] <= column <= here[1]
             glyph, style = ("━", position) if inside else ("─", axis)
@@ -295,8 +321,8 @@ class TimelineStrip(Widget, can_focus=True):
                     break
             if column == picked:
                 style = style + picked_style
-            segments.append(Segment(glyph, style))
-        return Strip(segments).simplify().adjust_cell_length(width, base)
+            segments.append((glyph, style))
+        return Strip(_runs(segments)).adjust_cell_length(width, base)
 
     # -- picking a column ---------------------------------------------------------------------------
 
