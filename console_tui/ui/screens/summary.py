@@ -27,6 +27,8 @@ from ..keys import hint_line
 from ..widgets.timeline_strip import span_text
 
 _NAME_WIDTH = 28
+#: The dialog's room for text: its width less the border, the padding and the scrollbar.
+_FRAME = 6
 _STYLES = ("dim", "green", "yellow", "red", "bold red")
 
 
@@ -41,7 +43,13 @@ class SummaryFacts:
 
 
 class SummaryScreen(ModalScreen[int | None]):
-    """The run at a glance; dismissed with the seq to show in the table, or None."""
+    """The run at a glance; dismissed with the seq to show in the table, or None.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | enter | Show the line's message (the first of a severity, of a node) in the table. |
+    | escape, q, S | Close. |
+    """
 
     DEFAULT_CSS = """
     SummaryScreen { align: center middle; }
@@ -97,8 +105,19 @@ class SummaryScreen(ModalScreen[int | None]):
             text.append(f"; the rules hide {hidden:,}", style="italic")
         return text
 
+    def _room(self) -> int:
+        """Cells for a line of the list: the dialog's width less its frame."""
+        return max(min(100, self.app.size.width * 96 // 100) - _FRAME, 40)
+
+    def _widths(self) -> tuple[int, int]:
+        """The node column's width and a count's, to fit the dialog (narrower on 80 columns)."""
+        room = self._room() - 2
+        count_width = 9 if room - 6 * 9 - 1 >= _NAME_WIDTH else 8
+        return max(min(room - 6 * count_width - 1, _NAME_WIDTH), 12), count_width
+
     def _options(self) -> list[Option]:
         store, stats = self.store, self.stats
+        name_width, count_width = self._widths()
         options: list[Option] = [_heading("Severity       count   first")]
         counts = store.counts
         for slot, severity in enumerate(MESSAGE_SEVERITIES):
@@ -118,25 +137,27 @@ class SummaryScreen(ModalScreen[int | None]):
         if not busiest:
             options.append(_heading("  none"))
         for entry in busiest:
-            line = Text(f"  {one_line(entry.node, _NAME_WIDTH):<{_NAME_WIDTH}}", style="bold")
+            line = Text(f"  {one_line(entry.node, name_width):<{name_width}}", style="bold")
             line.append(f"{entry.rate:>12,.1f}/s")
             options.append(self._target_option(line, f"node:{entry.node_id}"))
         options.append(_heading(""))
         header = (
-            f"{'Nodes':<{_NAME_WIDTH + 2}}" + "".join(f"{s.name:>9}" for s in MESSAGE_SEVERITIES) + f"{'total':>10}"
+            f"{'Nodes':<{name_width + 2}}"
+            + "".join(f"{s.name:>{count_width}}" for s in MESSAGE_SEVERITIES)
+            + f"{'total':>{count_width + 1}}"
         )
         options.append(_heading(header))
         for entry in stats.nodes():
-            line = Text(f"  {one_line(entry.node, _NAME_WIDTH):<{_NAME_WIDTH}}")
+            line = Text(f"  {one_line(entry.node, name_width):<{name_width}}")
             for slot, number in enumerate(entry.counts):
-                line.append(f"{number:>9,}", style=_STYLES[slot] if number else "dim")
-            line.append(f"{entry.total:>10,}", style="bold")
+                line.append(f"{number:>{count_width},}", style=_STYLES[slot] if number else "dim")
+            line.append(f"{entry.total:>{count_width + 1},}", style="bold")
             options.append(self._target_option(line, f"node:{entry.node_id}"))
         return options
 
     def _target_option(self, line: Text, target: str | None) -> Option:
         """A line that jumps to ``target`` (``seq:N``, ``node:ID``); none: a line only."""
-        line.truncate(max(self.app.size.width - 12, 40), overflow="ellipsis")
+        line.truncate(self._room(), overflow="ellipsis")
         if target is None:
             return Option(line, disabled=True)
         option_id = f"line-{len(self._targets)}"

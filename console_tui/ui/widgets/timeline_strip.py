@@ -143,7 +143,24 @@ def rate_text(rate: float) -> str:
 
 
 class TimelineStrip(Widget, can_focus=True):
-    """The rate of the rows shown over the whole history (``Timeline``), with the table's place in it."""
+    """The rate of the rows shown over the whole history (``Timeline``), with the table's place in it.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | left / right | The column before / after. |
+    | shift+left, pageup / shift+right, pagedown | Ten columns earlier / later. |
+    | home / end | The first / last column. |
+    | enter | Show the column's time in the table (``Jump``). |
+    | escape | Back to the table (``Leave``). |
+
+    | Class | Description |
+    | :- | :- |
+    | `timeline--debug` .. `timeline--fatal` | A severity's part of the bars, and its mark. |
+    | `timeline--label` | The first line: the span, a column's duration, the peak rate. |
+    | `timeline--axis` | The axis under the bars. |
+    | `timeline--position` | The table's place on the axis. |
+    | `timeline--picked` | The column picked with the keys. |
+    """
 
     DEFAULT_CSS = """
     TimelineStrip { height: 4; background: $surface; }
@@ -262,8 +279,9 @@ class TimelineStrip(Widget, can_focus=True):
             start = columns.start_ns + picked * columns.step_ns
             when = clock_text(start, utc=self.utc, digits=3 if columns.step_ns < 60 * _NS_PER_S else 0)
             marks = " ".join(f"{letter}{counts[slot]:,}" for slot, letter in reversed(_MARKS) if counts[slot])
-            middle = f"▸ {when} +{duration_text(columns.step_ns)}: {sum(counts):,} rows" + (
-                f" {marks}" if marks else ""
+            middle = (
+                f"▸ {when} +{duration_text(columns.step_ns)}: {sum(counts):,} row{'' if sum(counts) == 1 else 's'}"
+                + (f" {marks}" if marks else "")
             )
         else:
             middle = f"{duration_text(columns.step_ns)} a column, peak {rate_text(columns.peak_rate())}"
