@@ -44,7 +44,12 @@ def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp
     may not have reported yet (never more than were sent)."""
     profile = tmp_path / "defaults.xml"
     profile.write_text('<?xml version="1.0" encoding="UTF-8" ?><dds xmlns="http://www.eprosima.com"><profiles/></dds>')
-    nodes.env = {**nodes.env, "FASTDDS_DEFAULT_PROFILES_FILE": str(profile)}
+    # Kilted's Fast DDS 3 reads the first name, Jazzy's Fast DDS 2.14 the second.
+    nodes.env = {
+        **nodes.env,
+        "FASTDDS_DEFAULT_PROFILES_FILE": str(profile),
+        "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile),
+    }
     talker = nodes.start("talker.py", "--name", "burst_talker")
     talker.expect("ready")
     reader = nodes.start("stalled_intake.py", "10001")
