@@ -204,6 +204,9 @@ def main() -> int:
             [name, shape.format(floor[key]), *(shape.format(results[run_key][key]) for run_key in runs), target]
         )
     print(table(["figure", "nothing arriving", *(title(key) for key in runs), "target"], rows))
+    print(
+        "\nRSS is the whole process's, and the runs are one after another in it: it reads the most of any run so far."
+    )
     print("\nTargets:")
     for key in runs:
         result = results[key]
