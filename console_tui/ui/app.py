@@ -11,7 +11,8 @@ from __future__ import annotations
 import threading
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
@@ -76,6 +77,14 @@ def _stop_quietly(source: Source) -> None:
         source.stop()
     except Exception:
         pass
+
+
+class TerminalGuard(Protocol):
+    """Something holding the terminal's descriptors that lets go while the app is suspended."""
+
+    def pause(self) -> None: ...
+
+    def resume(self) -> None: ...
 
 
 class Source(Protocol):
@@ -203,6 +212,22 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, OverviewActions):
         """Every notification (ours, the screens', Textual's) as plain, inert text: messages
         name files, nodes and errors from outside, which may hold markup or escapes."""
         super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
+
+    #: What catches native code's output while the app draws (``sources.native_output``): put
+    #: aside while the app is suspended (an editor has the terminal). Set by the launch.
+    native_output: TerminalGuard | None = None
+
+    @contextmanager
+    def suspend(self) -> Iterator[None]:
+        guard = self.native_output
+        if guard is not None:
+            guard.pause()
+        try:
+            with super().suspend():
+                yield
+        finally:
+            if guard is not None:
+                guard.resume()
 
     def copy_to_clipboard(self, text: str) -> None:
         """Copy with control characters made visible (newlines and tabs kept): pasted into a
