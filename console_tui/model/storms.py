@@ -272,6 +272,14 @@ class StormRows(ShownFollower):
                 return earlier if storm is not None and storm.last >= seq else row
         return row
 
+    def row_shown(self, seq: int) -> int | None:
+        """The row that shows ``seq`` (its storm's for a collapsed repeat); None when no row
+        does (the rules hide it, or it is gone)."""
+        row = self.row_showing(seq)
+        if not 0 <= row < len(self):
+            return None
+        return row if self.seq_at(row) <= seq else None  # a row after it: it is no row
+
     # -- storms -----------------------------------------------------------------------------------
 
     def storm_of(self, seq: int) -> Storm | None:

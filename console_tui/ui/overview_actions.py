@@ -1,7 +1,8 @@
 """The app's overview: the timeline strip, storms collapsed in the table, the summary.
 
 A part of ``ConsoleApp`` (it mixes this in). The model does the counting (``Timeline``,
-``StormRows``, ``NodeStats``), kept up to date as records arrive (``follow_overview``,
+``StormRows``; the summary reads the app's ``NodeStats``, which the node panel shares), kept
+up to date as records arrive (``follow_overview``,
 inside the table's ``keeping_position``) and, after a rule change, caught up in the
 background in slices with the event loop free between them, as the rules are.
 """
@@ -55,7 +56,6 @@ class OverviewActions(App[None]):
         """The overview's model and strip; returns the rows the table shows."""
         self.timeline = Timeline(store, view)
         self.storms = StormRows(store, view)
-        self.node_stats = NodeStats(store)
         self.timeline_strip = TimelineStrip(self.timeline, utc=utc, id="timeline")
         return self.storms
 
@@ -69,7 +69,6 @@ class OverviewActions(App[None]):
     def follow_overview(self) -> None:
         """Take in what arrived (call inside the table's ``keeping_position``); what is left
         (after a rule change: everything) is caught up in the background."""
-        self.node_stats.update()
         caught_up = True
         for follower in (self.storms, self.timeline):
             if follower.rebuilding or not follower.sync(FOLLOW_BUDGET_S):
@@ -136,7 +135,6 @@ class OverviewActions(App[None]):
 
     def clear_overview(self) -> None:
         """After the store was cleared."""
-        self.node_stats.clear()
         self.storms.restart()
         self.timeline.restart()
         self.show_overview(force=True)

@@ -155,7 +155,8 @@ async def test_the_timeline_hides_and_the_summary_jumps():
         await until(pilot, lambda: "a column, peak" in screen_text(app), what="the timeline")
         await pilot.press("ctrl+t")
         await until(pilot, lambda: "a column, peak" not in screen_text(app), what="the timeline to hide")
-        assert screen_text(app).splitlines()[0].split()[:5] == ["#", "Time", "Sev", "Node", "Message"]
+        top = screen_text(app).splitlines()[0].split()
+        assert top[:2] == ["#", "Time"] and {"Sev", "Node", "Message"} <= set(top)  # the table's header on top
         await pilot.press("ctrl+t", "S")
         await until(pilot, lambda: "Summary: 1,030 messages kept" in screen_text(app), what="the summary")
         text = screen_text(app)

@@ -29,11 +29,14 @@ from ...model.record import LogRecord
 from ...model.store import LogStore
 from ...model.storms import StormBadge
 from ...model.text import one_line
+from ...model.time_column import TimeFormat, column_title, format_info, time_cell
 from ...model.timefmt import clock_text, duration_text
 from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
 
 #: How a row is marked by the rules: None (plain), "highlight" or "dim".
 Decoration = str | None
+#: Where a search matches in a message as shown: (start, end) character spans.
+Spans = list[tuple[int, int]]
 
 
 class TableRows(Protocol):
@@ -46,6 +49,8 @@ class TableRows(Protocol):
     def row_of(self, seq: int) -> int: ...
 
     def count_before(self, seq: int) -> int: ...
+
+    def row_shown(self, seq: int) -> int | None: ...
 
 
 _SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
@@ -79,6 +84,8 @@ class LogTable(ScrollView, can_focus=True):
     | `log-table--highlight` | Rows a highlight rule marks. |
     | `log-table--dimmed` | The other rows while highlighting. |
     | `log-table--storm` | The count of a storm's row (``×120 until ...``). |
+    | `log-table--match` | Where a search matches, in the message. |
+    | `log-table--gutter` | The gutter's marks: ● a mark, » a search match. |
     """
 
     DEFAULT_CSS = """
@@ -105,6 +112,8 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
     LogTable > .log-table--storm { color: $text-accent; text-style: bold; }
+    LogTable > .log-table--match { background: $warning; color: $background; text-style: bold; }
+    LogTable > .log-table--gutter { color: $text-accent; text-style: bold; }
     """
 
     COMPONENT_CLASSES = {
@@ -117,6 +126,8 @@ class LogTable(ScrollView, can_focus=True):
         "log-table--highlight",
         "log-table--dimmed",
         "log-table--storm",
+        "log-table--match",
+        "log-table--gutter",
     }
 
     BINDINGS = [
@@ -161,6 +172,13 @@ class LogTable(ScrollView, can_focus=True):
         self.decoration_of: Callable[[int], Decoration] | None = None
         #: Storms hook: seq -> how its row is marked as a storm (``×N until ...``), or None.
         self.badge_of: Callable[[int], StormBadge | None] | None = None
+        #: Marks and search hook: seq -> one character for the gutter left of the row ("" for
+        #: none), or None: no gutter. Bump ``style_generation`` when its answers change.
+        self.gutter_of: Callable[[int], str] | None = None
+        #: Search hook: (seq, message as shown) -> the spans to mark in it.
+        self.match_spans: Callable[[int, str], Spans] | None = None
+        #: What the Time column shows (``t``), in local time or UTC.
+        self.time_format = TimeFormat.CLOCK
         self.style_generation = 0
         # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
         # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
@@ -191,6 +209,14 @@ class LogTable(ScrollView, can_focus=True):
         if 0 <= self.cursor_row < self.row_count:
             return self.view.seq_at(self.cursor_row)
         return None
+
+    @property
+    def cursor_last_seq(self) -> int | None:
+        """The last message the cursor's row shows: a collapsed storm's last repeat, else
+        the row's own (where a search down from the row starts)."""
+        seq = self.cursor_seq
+        badge = self.badge_of(seq) if seq is not None and self.badge_of is not None else None
+        return badge.last if badge is not None and badge.head and not badge.expanded else seq
 
     @property
     def new_while_paused(self) -> int:
@@ -332,6 +358,20 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
         self.post_message(self.StateChanged())
 
+    def jump_to_seq(self, seq: int) -> bool:
+        """Put the cursor on the row of ``seq`` (a third down the screen when it was off the
+        screen; a collapsed repeat's is its storm's row); False when no row shows it."""
+        row = self.view.row_shown(seq)
+        if row is None or row >= self.row_count:
+            return False
+        height = self._body_height
+        top = int(self.scroll_y)
+        if not top <= row < top + height:
+            self._stop_following()
+            self.set_scroll(None, max(min(row - height // 3, self.row_count - height), 0))
+        self.move_cursor(row)
+        return True
+
     def _end_top(self) -> int:
         """The top row when the last row is at the bottom of the screen."""
         return max(self.row_count + 1 - self.scrollable_content_region.height, 0)
@@ -416,6 +456,18 @@ class LogTable(ScrollView, can_focus=True):
 
     # -- columns --------------------------------------------------------------------------------
 
+    def set_time_format(self, fmt: TimeFormat, utc: bool) -> None:
+        """What the Time column shows, local time or UTC."""
+        self.time_format, self.utc = fmt, utc
+        self._forget_drawn_rows()
+        self.refresh()
+
+    def set_gutter(self, gutter_of: Callable[[int], str] | None) -> None:
+        """Show a gutter of marks left of the rows (or none)."""
+        if gutter_of is not self.gutter_of:
+            self.gutter_of = gutter_of
+            self.restyle()
+
     def set_column_shown(self, key: str, shown: bool) -> None:
         columns = set(self.shown_columns)
         (columns.add if shown else columns.discard)(key)
@@ -431,10 +483,12 @@ class LogTable(ScrollView, can_focus=True):
             self._nodes_measured = len(nodes)
             self._widest_node = max((cell_len(name) for name in nodes), default=8)
         node_width = max(min(self._widest_node, 28, max(width // 5, 12)), 6)
-        key = (width, self.shown_columns, node_width)
+        gutter = _GUTTER if self.gutter_of is not None else 0
+        key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc)
         if key != self._layout_key:
             self._layout_key = key
-            self._placed = layout_columns(width, self.shown_columns, node_width)
+            widths = {"time": format_info(self.time_format).width}
+            self._placed = layout_columns(width - gutter, self.shown_columns, node_width, widths)
             self._forget_drawn_rows()
         return self._placed
 
@@ -512,18 +566,35 @@ class LogTable(ScrollView, can_focus=True):
         selected = self.selection_anchor is not None and row in self.selected_rows()
         decoration = self.decoration_of(seq) if self.decoration_of is not None else None
         badge = self.badge_of(seq) if self.badge_of is not None else None
-        key = (seq, is_cursor, selected, decoration, self.style_generation, badge)
+        gutter = self.gutter_of(seq) if self.gutter_of is not None else None
+        relative = self._relative_time(row) if self.time_format.relative else None
+        key = (seq, is_cursor, selected, decoration, self.style_generation, badge, gutter, relative)
         strip = self._cache.get(key)
         if strip is None:
-            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, selected, decoration, badge)
+            record = self.store.get(seq)
+            strip = self._render_row(
+                record, placed, width, base, is_cursor, selected, decoration, badge, gutter, relative
+            )
             self._cache[key] = strip
         return strip
+
+    def _relative_time(self, row: int) -> int | None:
+        """The stamp a relative Time cell counts from: the first message's, the selected
+        row's, or the row above's (None for the first row)."""
+        fmt = self.time_format
+        if fmt is TimeFormat.DELTA:
+            return self.store.get(self.view.seq_at(row - 1)).stamp_ns if row > 0 else None
+        seq = self.store.first_seq if fmt is TimeFormat.SINCE_FIRST else self.cursor_seq
+        return self.store.get(seq).stamp_ns if seq is not None and seq in self.store else None
 
     def _header(self, placed: tuple[PlacedColumn, ...], width: int, base: Style) -> Strip:
         style = base + self._styles.get("log-table--header", Style())
         segments: list[Segment] = []
+        if self.gutter_of is not None:
+            segments.append(Segment(" " * _GUTTER, style))
         for place in placed:
-            segments.append(Segment(_fit(place.column.title, place.width, place.column.align) + " ", style))
+            title = column_title(self.time_format, self.utc) if place.column.key == "time" else place.column.title
+            segments.append(Segment(_fit(title, place.width, place.column.align) + " ", style))
         return Strip(segments).adjust_cell_length(width, style)
 
     def _render_row(
@@ -536,6 +607,8 @@ class LogTable(ScrollView, can_focus=True):
         selected: bool,
         decoration: Decoration,
         badge: StormBadge | None = None,
+        gutter: str | None = None,
+        relative: int | None = None,
     ) -> Strip:
         styles = self._styles
         name = _SEVERITY_CLASS.get(int(severity_bucket(record.level)), "info")
@@ -550,24 +623,44 @@ class LogTable(ScrollView, can_focus=True):
             row_style += styles.get("log-table--cursor", Style())
         muted = styles.get("log-table--dim-column", Style())
         segments: list[Segment] = []
+        if gutter is not None:
+            segments.append(Segment(_fit(gutter, 1), row_style + styles.get("log-table--gutter", Style())))
+            segments.append(Segment(" ", row_style))
         for place in placed:
             key = place.column.key
             if key == "message" and badge is not None:
                 mark = self._badge_text(badge, place.width)
                 segments.append(Segment(mark, row_style + styles.get("log-table--storm", Style())))
-                text = self._cell_text(record, key, place.width - len(mark))
-                segments.append(Segment(_fit(text, place.width - len(mark)), row_style))
+                room = place.width - len(mark)
+                text = self._cell_text(record, key, room)
+                segments.extend(self._message_segments(record.seq, text, _fit(text, room), row_style))
                 segments.append(Segment(" ", row_style))
                 continue
-            text = self._cell_text(record, key, place.width)
+            if key == "time":
+                text = time_cell(
+                    record.stamp_ns, self.time_format, utc=self.utc, origin_ns=relative, previous_ns=relative
+                )
+            else:
+                text = self._cell_text(record, key, place.width)
             style = row_style
             if key == "severity" and not is_cursor:
                 style = row_style + styles.get(f"log-table--severity-{name}", Style())
             elif key in ("seq", "time", "file", "function", "line", "source") and name != "debug" and not is_cursor:
                 style = row_style + muted
-            segments.append(Segment(_fit(text, place.width, place.column.align), style))
+            fitted = _fit(text, place.width, place.column.align)
+            if key == "message":
+                segments.extend(self._message_segments(record.seq, text, fitted, style))
+            else:
+                segments.append(Segment(fitted, style))
             segments.append(Segment(" ", row_style))
         return Strip(segments).adjust_cell_length(width, row_style).simplify()
+
+    def _message_segments(self, seq: int, text: str, fitted: str, style: Style) -> list[Segment]:
+        """The message cell, with where a search matches marked."""
+        spans = self.match_spans(seq, text) if self.match_spans else None
+        if spans:
+            return _marked(fitted, spans, len(text), style, style + self._styles.get("log-table--match", Style()))
+        return [Segment(fitted, style)]
 
     def _badge_text(self, badge: StormBadge, width: int) -> str:
         """``×120 until 12:00:31.200`` on a storm's row when the message keeps half the cell,
@@ -593,7 +686,7 @@ class LogTable(ScrollView, can_focus=True):
         if key == "seq":
             return str(record.seq + 1)
         if key == "time":
-            return clock_text(record.stamp_ns, utc=self.utc)
+            return time_cell(record.stamp_ns, self.time_format, utc=self.utc)
         if key == "severity":
             return severity_name(record.level)
         if key == "node":
@@ -607,6 +700,28 @@ class LogTable(ScrollView, can_focus=True):
         if key == "source":
             return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
         raise KeyError(key)
+
+
+def _marked(fitted: str, spans: Spans, length: int, style: Style, marked: Style) -> list[Segment]:
+    """``fitted`` (a cell's text cut or padded by ``_fit``) with ``spans`` of the text before
+    fitting (``length`` characters) in the ``marked`` style, as far as they are still shown."""
+    shown = length if len(fitted) >= length and not fitted[length:].strip() else max(len(fitted) - 1, 0)
+    segments: list[Segment] = []
+    at = 0
+    for start, end in spans:
+        start, end = max(start, at), min(end, shown)
+        if start >= end:
+            continue
+        if start > at:
+            segments.append(Segment(fitted[at:start], style))
+        segments.append(Segment(fitted[start:end], marked))
+        at = end
+    segments.append(Segment(fitted[at:], style))
+    return segments
+
+
+#: Cells of the gutter (a mark, and a space).
+_GUTTER = 2
 
 
 def _fit(text: str, width: int, align: str = "left") -> str:
