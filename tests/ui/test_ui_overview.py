@@ -129,6 +129,25 @@ async def test_collapsing_off_shows_every_message():
         await until(pilot, lambda: "×10000" in screen_text(app), what="collapsing on again")
 
 
+async def test_jumps_land_on_a_storms_row_and_go_on_past_it():
+    app = storm_app()
+    app.store.extend([LogRecord(stamp_ns=BASE + 30 * S, level=30, node="planner", msg="after the storm")])
+    async with app.run_test(size=(100, 30)) as pilot:
+        await until(pilot, lambda: "×10000" in screen_text(app), what="the storm's row")
+
+        def selected() -> str:
+            return app.store.get(app.table.cursor_seq).msg
+
+        await pilot.press("home", "w")  # the next WARN: the storm's first message
+        await until(pilot, lambda: selected() == "Lookup would require extrapolation", what="the storm's row")
+        await pilot.press("w")  # the next WARN after the storm, not one of its repeats
+        await until(pilot, lambda: selected() == "after the storm", what="the WARN after the storm")
+        await pilot.press("W")  # up again: the storm's last repeat shows in its row
+        await until(pilot, lambda: selected() == "Lookup would require extrapolation", what="back to the storm")
+        assert app.table.cursor_seq == 5
+        line_with(app, "×10000")
+
+
 async def test_storms_count_repeats_as_they_arrive():
     app = storm_app()
     async with app.run_test(size=(100, 30)) as pilot:

@@ -241,3 +241,20 @@ def test_the_row_showing_a_collapsed_repeat_is_its_storms():
     view.set_rules(RuleSet((exclude(SeverityRule.of("debug")),)))
     rows.sync()
     assert rows.row_showing(4) == 3  # hidden: the row after it (there is none)
+
+
+def test_row_shown_is_the_storms_row_for_a_repeat_and_none_for_a_hidden_message():
+    store = LogStore()
+    store.extend([rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)])
+    view = LogView(store)
+    rows = StormRows(store, view)
+    rows.sync()
+    assert [rows.row_shown(seq) for seq in range(5)] == [0, 1, 0, 2, 3]
+    assert view.row_shown(2) == 2  # the view itself: every message its row
+    view.set_rules(RuleSet((exclude(SeverityRule.of("debug")),)))
+    while not view.refilter_step(0.01):
+        pass
+    rows.sync()
+    assert rows.row_shown(4) is None and view.row_shown(4) is None
+    rows.set_enabled(False)
+    assert [rows.row_shown(seq) for seq in range(4)] == [0, 1, 2, 3]
