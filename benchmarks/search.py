@@ -13,6 +13,8 @@ case and a regex:
 - next match: from ``n`` to the first frame with the cursor on the far match (the search
   walks a million messages to get there);
 - every match counted: from the last key typed to "match 2 of 2" being known;
+- the walk alone, without the app: CPU time to look at every record, and the longest slice
+  (the app gives the walk slices of 8 ms between frames);
 - longest event-loop stall while it all runs (the screen benchmark's probe: a task that sleeps
   1 ms at a time), beside the floor: the same app's longest stall while Down and Up are
   pressed every 1/8 s with nothing searched (drawing a frame is part of both).
@@ -134,6 +136,27 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
     }
 
 
+def walk_alone(count: int, text: str, message: str) -> dict[str, float]:
+    """The model's ``Search`` over the same records, from the first to the last, without the app."""
+    from console_tui.model.search import Search, parse_search
+    from console_tui.model.view import LogView
+
+    records = [synthetic_record(number) for number in range(count)]
+    records[NEAR].msg = message
+    records[count - FAR_BEFORE_END].msg = message.replace("42", "43")
+    store = LogStore(max_messages=count)
+    store.extend(records)
+    del records
+    gc.collect()
+    search = Search(LogView(store), parse_search(text), 0)
+    longest, began = 0.0, time.process_time()
+    while not search.complete:
+        start = time.perf_counter()
+        search.step(0.008, prefer=1)
+        longest = max(longest, time.perf_counter() - start)
+    return {"walk_cpu": (time.process_time() - began) * 1000, "walk_slice": longest * 1000}
+
+
 def key_of(character: str) -> str:
     from textual.keys import _character_to_key
 
@@ -148,7 +171,10 @@ def main() -> int:
     print(machine_line(), file=sys.stderr, flush=True)
     results: dict[str, dict[str, float]] = {}
     for title, text, message in KINDS:
-        runs = [asyncio.run(run(args.records, text, message)) for _ in range(args.repeat)]
+        runs = [
+            asyncio.run(run(args.records, text, message)) | walk_alone(args.records, text, message)
+            for _ in range(args.repeat)
+        ]
         results[title] = {key: statistics.median(run[key] for run in runs) for key in runs[0]}
         results[title]["ok"] = min(run["ok"] for run in runs)
         print(f"{title}: {results[title]}", file=sys.stderr, flush=True)
@@ -168,6 +194,8 @@ def main() -> int:
                 f"{result['first']:.0f}",
                 f"{result['next']:.0f}",
                 f"{result['every']:.0f}",
+                f"{result['walk_cpu']:.0f}",
+                f"{result['walk_slice']:.1f}",
                 f"{result['stall']:.1f}",
                 f"{result['floor']:.1f}",
             ]
@@ -177,6 +205,8 @@ def main() -> int:
         "first match ms",
         "n to the far match ms",
         "every match counted ms",
+        "walk alone, CPU ms",
+        "walk alone, longest slice ms",
         "longest stall ms",
         "idle floor ms",
     ]
