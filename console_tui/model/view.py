@@ -197,7 +197,11 @@ class LogView:
 
     def _refilter_piece(self, rows: int) -> int:
         hi = self._pending_hi
-        lo = max(self._pending_lo, self.store.first_seq, hi - rows)
+        lo = hi - rows
+        chunk_start = self.store.chunk_start(hi - 1)
+        if hi - chunk_start <= 4 * rows:  # pieces are a quarter of a step's budget: fits in one
+            lo = chunk_start  # the rest of the chunk: rules test whole chunks fastest (packed texts)
+        lo = max(self._pending_lo, self.store.first_seq, lo)
         front, marks = self._front, self._front_marks
         for span in self.store.spans(lo, hi, newest_first=True):
             seqs, highlighted = self._evaluate(span, descending=True)
@@ -351,6 +355,11 @@ class LogView:
     def count_before(self, seq: int) -> int:
         """How many rows show records older than ``seq``."""
         return self.row_of(seq)
+
+    def row_shown(self, seq: int) -> int | None:
+        """The row showing ``seq``; None when no row does (the rules hide it, or it is gone)."""
+        row = self.row_of(seq)
+        return row if row < len(self) and self.seq_at(row) == seq else None
 
     def decoration_of(self, seq: int) -> Decoration:
         """How the row of ``seq`` is marked: "highlight", "dim", or None (no highlight rules)."""
