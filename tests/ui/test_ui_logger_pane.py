@@ -82,21 +82,27 @@ async def test_nodes_marks_loggers_and_levels_as_shown():
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
         pane = await open_fed_pane(pilot)
-        nodes = lines(pane.node_list)
-        assert nodes[0].startswith("/count_and_log") and nodes[0].strip() == "/count_and_log"
-        assert "no logger services" in nodes[2] and "checking…" in nodes[3]
-        rows = {line.split()[0]: line for line in lines(pane.logger_list)}
+        await until(pilot, lambda: pane_says(app, "Loggers of /navigation/planner"), what="the fed pane")
+        shown = pane_text(app)
+        nodes = shown[1:5]
+        assert nodes[0] == "/count_and_log" and nodes[1] == "/navigation/planner"
+        assert nodes[2].startswith("/power/battery_monitor") and nodes[2].endswith("no logger services")
+        assert nodes[3].startswith("/sensors/lidar_driver") and nodes[3].endswith("checking…")
+        rows = {line.split()[0]: line for line in shown[shown.index("Loggers of /navigation/planner") + 1 :] if line}
         assert rows["navigation.planner"].endswith("DEBUG")
         assert rows[".costmap"].endswith("inherited (DEBUG)"), "a child logger seen in the records, inheriting"
         assert rows['""'].endswith("INFO") and '"" (default)' in rows['""']
         assert pane.highlighted_logger == "navigation.planner"
         # A node without the services: the hint; a node still being checked: says so.
         pane.select_node("/power/battery_monitor")
-        await pilot.pause()
-        assert pane.rows() == [] and ENABLE_LOGGER_SERVICE_HINT in notice(pane)
+        await until(pilot, lambda: pane_says(app, ENABLE_LOGGER_SERVICE_HINT), what="the hint on the screen")
+        assert pane.rows() == [] and not pane_says(app, "navigation.planner DEBUG")
         pane.select_node("/sensors/lidar_driver")
-        await pilot.pause()
-        assert "Checking whether /sensors/lidar_driver offers logger services" in notice(pane)
+        await until(
+            pilot,
+            lambda: pane_says(app, "Checking whether /sensors/lidar_driver offers logger services"),
+            what="the check on the screen",
+        )
         # A click on a node selects it.
         await pilot.click("#logger-nodes", offset=(2, 1))
         assert pane.selected == PLANNER
