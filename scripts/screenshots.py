@@ -60,6 +60,16 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await pilot.pause(1.0)
             await shot(pilot, "rules-pane")
             await pilot.press("escape", "r")
+            await pilot.press("ctrl+n")  # the node panel: counts per severity and rates
+            await pilot.pause(1.0)
+            await shot(pilot, "node-panel")
+            await pilot.press("escape", "ctrl+n", "end", "f")
+            pilot.app.search_bar.input.value = "failed"
+            await pilot.pause(0.5)
+            await pilot.press("enter", "N", "N")  # two matches up: the marks around it
+            await shot(pilot, "search")
+            await pilot.press("escape", "home", "t", "t", "t")  # the time since the first message
+            await shot(pilot, "time-since-first")
         narrow = ConsoleApp(store=app.store)
         async with narrow.run_test(size=(80, 24)) as pilot:
             await pilot.pause(1.0)

@@ -250,7 +250,14 @@ async def test_node_panel_solo_and_mute():
         await pilot.press("ctrl+n")
         await pilot.pause()
         line_with(app, "Nodes: 5")
-        line_with(app, "power.battery_monitor   30    0    0    0   30")
+        assert line_with(app, "power.battery_monitor")[1].split("▏")[1].split()[1:] == [
+            "30",
+            "0",
+            "0",
+            "0",
+            "30",
+            "1.5",
+        ]
         # The filter box, then solo the one node left.
         await pilot.press("slash")
         await type_text(pilot, "lidar")
