@@ -160,7 +160,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
         row = next(i for i in range(10) if app.store.get(i).node == "navigation.planner.costmap")
         app.table.move_cursor(row)
         await pilot.press("L")
-        assert pane.is_open and pane.selected == PLANNER
+        await until(pilot, lambda: pane_says(app, f"Loggers of {PLANNER}"), what="the pane on the row's node")
         assert pane.highlighted_logger == "navigation.planner.costmap" and pane.logger_list.has_focus
 
 
