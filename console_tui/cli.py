@@ -111,6 +111,9 @@ def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """The ``console-tui`` command. ``argv`` None: this process's command line, and a live
+    session ends the process itself once everything it started has stopped (see
+    ``launch.end_now``); with ``argv`` given (a caller in the same process), it returns."""
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS:
         module = importlib.import_module(f"{__package__}.commands.{args_list[0]}")
@@ -122,7 +125,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         add_latest_run(parser, args)
     from .launch import run_app
 
-    return run_app(args)
+    return run_app(args, end_process=argv is None)
 
 
 if __name__ == "__main__":

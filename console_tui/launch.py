@@ -14,8 +14,9 @@ from .sources.live import RosUnavailable, open_live
 from .sources.ros_version import ROS1, choose_ros
 
 
-def run_app(args: argparse.Namespace) -> int:
-    """Run the TUI as the arguments say; returns the process exit code."""
+def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
+    """Run the TUI as the arguments say; returns the process exit code. With ``end_process``,
+    a live session ends the process when the app is done (``end_now``)."""
     store = LogStore(max_messages=args.max_messages)
     queue = IntakeQueue()
     sources: list = []
@@ -44,7 +45,7 @@ def run_app(args: argparse.Namespace) -> int:
         remember_rules=True,
     )
     code = run_then_clean_up(app, cleanups)
-    if live:
+    if live and end_process:
         end_now(code)
     return code
 

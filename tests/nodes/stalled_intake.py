@@ -52,7 +52,11 @@ def main() -> None:
         time.sleep(0.05)
     time.sleep(0.5)
     received += len(queue.drain())
-    print(json.dumps({"event": "received", "count": received, "lost": source.status.lost}), flush=True)
+    status = source.status
+    print(
+        json.dumps({"event": "received", "count": received, "lost": status.lost, "lost_qos": status.lost_qos}),
+        flush=True,
+    )
     source.stop()
     runtime.shutdown()
 

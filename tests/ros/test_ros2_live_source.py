@@ -193,3 +193,32 @@ def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_
         status = source.status
     assert (status.lost, status.lost_qos) == (90, 90)
     assert status.loss_text() == "90 lost (90 in the middleware)"
+
+
+def test_a_node_that_logs_as_it_starts_beside_a_volatile_one_arrives_once(nodes):
+    """With a VOLATILE publisher on /rosout the second subscription hears every publisher.
+    A TRANSIENT_LOCAL node that logs the moment it starts is heard by both subscriptions
+    before the periodic look at the graph: its unknown publisher makes the source look at
+    the graph at once, and its messages arrive once (from the main subscription)."""
+    volatile = nodes.start("talker.py", "--name", "volatile_neighbour", "--volatile")
+    volatile.expect("ready")
+    with live_source() as source:
+        assert wait_until(lambda: source.status.publishers >= 1)
+        records: list[LogRecord] = []
+        for number in range(40):  # until the second subscription has matched the volatile node
+            volatile.send({"cmd": "log", "level": "warn", "msg": f"volatile {number}"})
+            volatile.expect_next("logged")
+            records += collect(source, lambda got: any(r.msg.startswith("volatile") for r in got), timeout=0.5)
+            if any(r.msg.startswith("volatile") for r in records):
+                break
+        assert any(r.msg.startswith("volatile") for r in records)
+        newcomer = nodes.start("talker.py", "--name", "eager_newcomer")
+        newcomer.expect("ready")
+        newcomer.send({"cmd": "log_all", "tag": "at once"})
+        sent = [m["msg"] for m in newcomer.expect("logged")["messages"] if m["level"] >= 20]
+        records += collect(source, lambda got: all(any(r.msg == m for r in got) for m in sent))
+        records += collect(source, lambda got: False, timeout=1.5)  # anything late, twice
+        status = source.status
+    got = [r.msg for r in records if r.node == "eager_newcomer"]
+    assert sorted(got) == sorted(sent), "every message of the new node once, none twice"
+    assert status.lost == 0 and status.publishers == 2

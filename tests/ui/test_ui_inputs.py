@@ -26,6 +26,11 @@ def own_config(tmp_path, monkeypatch):
     monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "config"))
 
 
+async def on_screen(pilot, text: str) -> None:
+    """Wait until ``text`` is painted (a key's effect can take a moment on a busy machine)."""
+    await until(pilot, lambda: text in screen_text(pilot.app), what=repr(text))
+
+
 async def type_into(pilot, text: str, *, clear: bool = False) -> None:
     """Type ``text`` into the focused box, key by key (after emptying it with ctrl+u)."""
     steady_cursors(pilot.app)
@@ -40,6 +45,7 @@ async def test_query_line_shows_the_typed_text_its_cursor_and_the_error_caret(si
     app = make_app()
     async with app.run_test(size=size) as pilot:
         await pilot.press("slash")
+        await on_screen(pilot, "closes")
         await type_into(pilot, "level>=warn node:nav*")
         y, line = line_with(app, "level>=warn node:nav*")
         rows = screen_text(app).splitlines()
@@ -68,8 +74,8 @@ async def test_open_dialog_shows_the_typed_paths(tmp_path):
     app = make_app()
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.press("o")
+        await on_screen(pilot, "Open log files")
         await type_into(pilot, "run1.bag saved.csv")
-        assert "Open log files" in screen_text(app)
         assert cursor_after(app, "run1.bag saved.csv")
 
 
@@ -77,6 +83,7 @@ async def test_save_dialog_shows_the_typed_path():
     app = make_app()
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.press("s")
+        await on_screen(pilot, "Save messages to")
         await type_into(pilot, "/tmp/typed-here.jsonl", clear=True)
         y, _ = line_with(app, "/tmp/typed-here.jsonl")
         assert "Save messages to" in "".join(screen_text(app).splitlines()[y - 3 : y])
@@ -87,9 +94,11 @@ async def test_save_dialog_shows_the_typed_path():
 async def test_rule_set_path_dialogs_show_the_typed_path(key, title):
     app = make_app()
     async with app.run_test(size=(100, 30)) as pilot:
-        await pilot.press("r", key)
+        await pilot.press("r")
+        await on_screen(pilot, "O open")
+        await pilot.press(key)
+        await on_screen(pilot, title)
         await type_into(pilot, "my-rules.toml", clear=True)
-        assert title in screen_text(app)
         line_with(app, "my-rules.toml")
         assert cursor_after(app, "my-rules.toml")
 
@@ -109,10 +118,15 @@ async def test_rule_set_path_dialogs_show_the_typed_path(key, title):
 async def test_rule_editor_boxes_show_the_typed_text(field, text):
     app = make_app()
     async with app.run_test(size=(120, 50)) as pilot:
-        await pilot.press("r", "a")
+        await pilot.press("r")
+        await on_screen(pilot, "O open")
+        await pilot.press("a")
+        await on_screen(pilot, "New rule")
         # The kind list: the last kind, custom, shows every field.
-        await pilot.press("enter", "end", "enter")
-        assert "Custom: all of the fields below" in screen_text(app)
+        await pilot.press("enter")
+        await on_screen(pilot, "Custom: all of the fields below")
+        await pilot.press("end", "enter")
+        await until(pilot, lambda: str(app.screen.query_one("#kind").value) == "custom", what="the custom kind")
         for _ in range(30):  # Tab to the box, as a person does
             if app.focused is not None and app.focused.id == field:
                 break
@@ -130,6 +144,7 @@ async def test_logger_pane_add_logger_box_shows_the_typed_name():
         feed_logger_pane(app.logger_pane)
         await pilot.pause()
         await pilot.press("a")
+        await until(pilot, lambda: app.logger_pane.name_input.has_focus, what="the logger name box")
         await type_into(pilot, "navigation.planner.extra")
         line_with(app, "navigation.planner.extra")
         assert cursor_after(app, "navigation.planner.extra")
@@ -140,6 +155,8 @@ async def test_temporary_level_seconds_box_shows_the_typed_number():
     async with app.run_test(size=(100, 30)) as pilot:
         app.push_screen(TemporaryLevelScreen("/n", "n", 30))
         await until(pilot, lambda: isinstance(app.screen, TemporaryLevelScreen))
+        await on_screen(pilot, "For how many seconds")
+        await until(pilot, lambda: app.focused is not None and app.focused.id == "temporary-seconds")
         await type_into(pilot, "45.25", clear=True)
         y, _ = line_with(app, "45.25")
         assert "seconds" in "\n".join(screen_text(app).splitlines()[y - 3 : y])

@@ -69,10 +69,18 @@ async def test_query_line_applies_and_replaces_its_rules():
         assert not app.query_bar.is_open and app.table.has_focus
         rows = shown(app)
         assert rows and all(r.level >= 30 and r.node.startswith("nav") for r in rows)
+        await pilot.pause()
+        assert f"{len(rows)}/300 shown" in screen_text(app) and "level>=warn node:nav*" not in screen_text(app)
+        painted = [screen_text(app).splitlines()[y] for y in table_rows(app).values()]
+        assert painted and all(line.split()[3].startswith("navigation") for line in painted)
+        assert all(line.split()[2] in ("WARN", "ERROR", "FATAL") for line in painted)
         await type_query(pilot, app, "-level:debug")
         await pilot.press("enter")
         assert len(app.rules.entries) == 1  # the previous query's rule was replaced
         assert all(r.level != 10 for r in shown(app)) and len(shown(app)) == 270
+        await pilot.pause()
+        assert "270/300 shown" in screen_text(app)
+        assert "DEBUG" not in {screen_text(app).splitlines()[y].split()[2] for y in table_rows(app).values()}
 
 
 async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
@@ -183,6 +191,10 @@ async def test_every_kind_of_rule_through_the_editor(kind, fill, check):
         assert len(app.rules.entries) == 1 and app.rules.entries[0].rule.kind == kind
         rows = shown(app)
         assert 0 < len(rows) < 300 and all(check(r) for r in rows)
+        await pilot.pause()
+        assert f"{len(rows)}/300 shown" in screen_text(app)
+        listed = app.rules.entries[0].describe()[:20]
+        assert listed in screen_text(app), f"the rules pane lists {listed!r}"
 
 
 async def test_an_invalid_regex_is_refused_in_the_editor_and_nothing_changes():
@@ -190,10 +202,12 @@ async def test_an_invalid_regex_is_refused_in_the_editor_and_nothing_changes():
     async with app.run_test(size=(160, 45)) as pilot:
         await add_rule(pilot, app, "message", {"message-text": "time(out", "message-regex": True})
         assert isinstance(app.screen, RuleEditor)
-        assert "regular expression" in str(app.screen.query_one("#rule-error").render())
+        error_row = line_with(app, "invalid regular expression 'time(out'")[1]
+        assert "missing )" in error_row
         assert not app.rules.entries and len(app.view) == 300
         await pilot.press("escape")
         assert not isinstance(app.screen, RuleEditor)
+        assert "300/300 shown" in screen_text(app) and "invalid regular expression" not in screen_text(app)
 
 
 async def test_rules_pane_switches_inverts_changes_role_edits_and_deletes():
@@ -226,6 +240,7 @@ async def test_quick_rules_from_a_row():
         await pilot.press("minus")
         assert isinstance(app.screen, QuickRuleScreen)
         await pilot.press("enter")  # the first choice: this node
+        await until(pilot, lambda: "240/300 shown" in screen_text(app), what="the rule in force")
         assert all(r.node != row.node for r in shown(app)) and len(app.view) == 240
         await pilot.press("plus", "down", "enter")  # highlight this severity
         assert app.rules.entries[-1].role is Role.HIGHLIGHT
@@ -257,8 +272,13 @@ async def test_highlighted_only_switch():
         assert len(app.view) == 300
         await pilot.press("H")
         assert app.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
+        await pilot.pause()
+        assert "60/300 shown" in screen_text(app)
+        assert {screen_text(app).splitlines()[y].split()[2] for y in table_rows(app).values()} == {"ERROR", "FATAL"}
         await pilot.press("H")
         assert len(app.view) == 300
+        await pilot.pause()
+        assert "300/300 shown" in screen_text(app)
 
 
 async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):

@@ -116,9 +116,17 @@ async def test_clear_empties_the_view_and_numbering_goes_on():
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.press("c")
         assert len(app.store) == 0 and app.table.row_count == 0
+        await pilot.pause()
+        assert "0/0 shown" in screen_text(app) and not any(
+            line.split()[:1] and line.split()[0].isdigit() for line in screen_text(app).splitlines()
+        ), "no row left on the screen"
         app.add_records(records(3, start=500))
         await pilot.pause()
         assert app.table.row_count == 3 and app.table.cursor_seq == 102
+        numbers = [
+            line.split()[0] for line in screen_text(app).splitlines() if line.split()[:1] and line.split()[0].isdigit()
+        ]
+        assert numbers == ["101", "102", "103"] and "3/3 shown" in screen_text(app), "numbering goes on after a clear"
 
 
 async def test_enter_opens_details_with_every_field_and_steps():

@@ -249,3 +249,68 @@ def test_a_cached_tail_is_read_per_byte_order():
     little = decoder.decode(encode_log(strings=(b"n", b"m", b"f", b"g"), line=1))
     big = decoder.decode(encode_log(strings=(b"n", b"m", b"f", b"g"), line=1, big=True))
     assert (little.file, little.function, little.line) == (big.file, big.function, big.line) == ("f", "g", 1)
+
+
+# -- what the errors say, and what a caller that takes refused messages gets -----------------------
+
+
+@pytest.mark.parametrize(
+    "field, lengths, expected",
+    [
+        ("name", (200, None, None, None), "Log message field 'name' claims 200 bytes, only 44 left"),
+        ("msg", (None, 200, None, None), "Log message field 'msg' claims 200 bytes, only 32 left"),
+        ("file", (None, None, 200, None), "Log message field 'file' claims 200 bytes, only 20 left"),
+        ("function", (None, None, None, 200), "Log message field 'function' claims 200 bytes, only 8 left"),
+    ],
+)
+def test_a_length_past_the_end_names_the_field_and_what_is_left(field, lengths, expected):
+    with pytest.raises(CdrError) as error:
+        LogDecoder().decode(encode_log(lengths=lengths))
+    assert str(error.value) == expected
+
+
+@pytest.mark.parametrize("field, start", [(0, 20), (1, 32), (2, 44), (3, 56)])
+def test_a_string_up_to_the_last_byte_is_read_and_what_should_follow_is_missing(field, start):
+    """A string may reach the very end of the bytes; what must follow it (the other
+    strings, the line) is then missing: the message is truncated, not over-long."""
+    size = len(encode_log())
+    lengths = [None] * 4
+    lengths[field] = size - start
+    with pytest.raises(CdrError) as error:
+        LogDecoder().decode(encode_log(lengths=tuple(lengths)))
+    assert str(error.value) == f"Log message truncated: {size} bytes"
+
+
+def test_unknown_encapsulation_and_truncation_messages():
+    with pytest.raises(CdrError) as error:
+        LogDecoder().decode(b"")
+    assert str(error.value) == "not a CDR Log message: encapsulation missing"
+    with pytest.raises(CdrError) as error:
+        LogDecoder().decode(b"\x12\x34" + encode_log()[2:])
+    assert str(error.value) == "not a CDR Log message: encapsulation 1234"
+    with pytest.raises(CdrError) as error:
+        LogDecoder().decode(encode_log()[:10])
+    assert str(error.value) == "Log message truncated: 10 bytes"
+
+
+def test_refused_messages_go_to_the_callback_whose_records_take_their_place():
+    good = [encode_log(strings=(b"n", f"m{i}".encode(), b"f", b"g")) for i in range(3)]
+    bad = [b"\x00\x01junk", encode_log()[:9]]
+    seen: list[tuple[bytes, str]] = []
+
+    def refused(data: bytes, error: CdrError) -> LogRecord | None:
+        seen.append((data, str(error)))
+        return LogRecord(0, 40, "stand-in", "in place of a bad one") if data == bad[0] else None
+
+    records = LogDecoder().decode_many([good[0], bad[0], good[1], bad[1], good[2]], "/rosout", refused)
+    assert [r.msg for r in records] == ["m0", "in place of a bad one", "m1", "m2"]
+    assert [data for data, _ in seen] == bad
+    assert seen[1][1] == "Log message truncated: 9 bytes"
+    assert [r.source for r in records if r.node == "n"] == ["/rosout"] * 3
+    assert LogDecoder().decode_many([good[0]])[0].source == "", "no source unless given"
+    assert LogDecoder().decode(good[0]).source == ""
+
+
+def test_a_message_with_several_nuls_ends_at_the_first():
+    data = encode_log(strings=(b"node", b"first\x00second\x00third", b"file.py", b"fn"))
+    assert LogDecoder().decode(data).msg == "first"

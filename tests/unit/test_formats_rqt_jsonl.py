@@ -183,3 +183,136 @@ def test_damaged_rqt_csv_keeps_the_row_before_each_bad_line():
         (3, "not a rqt_console CSV record: 'GARBAGE'"),
         (6, "not a rqt_console CSV record: 'more garbage' (and 1 more line up to line 7)"),
     ]
+
+
+def test_rqt_rows_apart_with_blank_lines_and_crlf_endings():
+    data = (
+        b"message;severity;node;stamp;location\r\n"
+        b'"one";"20";"n";"1.000000000";"f:g:1"\r\n'
+        b"\r\n"
+        b"\n"
+        b'"two";"30";"n";"2.000000005";"f:g:2"\n'
+        b"\n"
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "blank.csv")
+    assert list(problems) == []
+    assert [(r.msg, r.level, r.stamp_ns, r.line) for r in records] == [
+        ("one", 20, 1_000_000_000, 1),
+        ("two", 30, 2_000_000_005, 2),
+    ]
+
+
+def test_rqt_location_may_hold_the_field_separator_and_columns_may_be_missing():
+    data = b'message;severity;node;stamp;location\n"m";"40";"n";"3.000000000";"odd";"name.py:f:9"\n'
+    records, problems = read_text(data, RqtCsvFormat(), "odd.csv")
+    assert list(problems) == [] and (records[0].msg, records[0].node) == ("m", "n")
+    assert (records[0].file, records[0].function, records[0].line) == ('odd";"name.py', "f", 9)
+    records, problems = read_text(b'message\n""\n', RqtCsvFormat(), "empty.csv")
+    assert list(problems) == [] and [r.msg for r in records] == [""], "an empty message is a row"
+    records, problems = read_text(b'message;severity\n"just this";"30"\n', RqtCsvFormat(), "two.csv")
+    assert list(problems) == []
+    assert [(r.msg, r.level, r.stamp_ns, r.node, r.file, r.line) for r in records] == [("just this", 30, 0, "", "", 0)]
+    records, problems = read_text(b'message\n"only text"\n', RqtCsvFormat(), "one.csv")
+    assert list(problems) == [] and [(r.msg, r.level) for r in records] == [("only text", 20)]
+
+
+def test_rqt_bad_severities_name_the_value_and_the_expected_ones():
+    data = (
+        b"message;severity;node;stamp;topics;location\n"
+        b'"a";"3";"n";"1.000000000";"";"f:g:1"\n'
+        b'"b";"loud";"n";"1.000000000";"";"f:g:1"\n'
+        b'"c";"16";"n";"1.000000000";"";"f:g:1"\n'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "r1.csv")
+    assert [(r.msg, r.level) for r in records] == [("c", 50)]
+    assert [(p.line, p.what) for p in problems] == [
+        (2, "unknown ROS 1 severity 3 (expected 1, 2, 4, 8 or 16)"),
+        (3, "severity is not a number: 'loud'"),
+    ]
+
+
+def test_damaged_ros1_csv_keeps_the_row_and_its_ros1_severity():
+    data = b'message;severity;node;stamp;topics;location\n"warned";"4";"n";"1.000000000";"/rosout";"f:g:1"\nGARBAGE\n'
+    records, problems = read_text(data, RqtCsvFormat(), "r1.csv")
+    assert [(r.msg, r.level, r.source) for r in records] == [("warned", 30, "r1.csv")]
+    assert [(p.line, p.what) for p in problems] == [(3, "not a rqt_console CSV record: 'GARBAGE'")]
+
+
+def test_damaged_csv_tries_each_line_that_could_end_the_row():
+    """The message's first line ends with a quote (escaped, so not the row's end): the row
+    ends further down, and the stray line after it is reported on its own."""
+    data = (
+        b'message;severity;node;stamp;location\n"he said \\"hi\\"\nand left";"20";"n";"1.000000000";"f:g:1"\nGARBAGE\n'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "quote.csv")
+    assert [r.msg for r in records] == ['he said "hi"\nand left']
+    assert [(p.line, p.what) for p in problems] == [(4, "not a rqt_console CSV record: 'GARBAGE'")]
+
+
+@pytest.mark.parametrize("junk, found", [(999, True), (1_000, False)])
+def test_a_damaged_row_is_given_up_after_a_thousand_tries(junk, found):
+    """Recovery is bounded: of the lines that could end a damaged row, the first 1,000 are
+    tried; past them the group is one problem, and the row after it still loads."""
+    lines = [b'"start', *[b'junk "'] * junk, b'tail";"20";"n";"1.000000000";"f:g:1"', b"GARBAGE"]
+    data = b"message;severity;node;stamp;location\n" + b"\n".join(lines) + b"\n"
+    data += b'"after";"30";"n";"2.000000000";"f:g:2"\n'
+    records, problems = read_text(data, RqtCsvFormat(), "long.csv")
+    if found:  # the 1,000th try ends the row
+        assert [r.msg[-4:] for r in records] == ["tail", "fter"] and records[0].source == "long.csv"
+        assert [p.line for p in problems] == [junk + 4]
+    else:
+        assert [r.msg for r in records] == ["after"], "the 1,001st is never tried"
+        assert [p.line for p in problems] == [2]
+
+
+def test_damaged_csv_with_windows_line_endings_keeps_its_rows():
+    data = (
+        b"message;severity;node;stamp;location\r\n"
+        b'"one";"20";"n";"1.000000000";"f:g:1"\r\n'
+        b"GARBAGE\r\n"
+        b'"two";"30";"n";"2.000000000";"f:g:2"\r\n'
+    )
+    records, problems = read_text(data, RqtCsvFormat(), "crlf.csv")
+    assert [r.msg for r in records] == ["one", "two"]
+    assert [(p.line, p.what) for p in problems] == [(3, "not a rqt_console CSV record: 'GARBAGE\\r'")]
+
+
+def test_rqt_writer_names_and_writes_in_chunks_with_unencodable_text_replaced():
+    assert (RqtCsvWriter().name, RqtCsvWriter(ros1=True).name) == ("rqt", "rqt1")
+    records = [LogRecord(i, 20, "n", f"m{i}", "f", "g", 1, "") for i in range(10_001)]
+    records[5].msg = "lone \ud800 surrogate"
+    records[-1].msg = "last \udc80 one"
+    stream = io.BytesIO()
+    counts = list(RqtCsvWriter().write(records, stream))
+    assert counts == [10_000, 10_001]
+    lines = stream.getvalue().decode("utf-8").splitlines()
+    assert len(lines) == 10_002 and lines[0] == ";".join(("message", "severity", "node", "stamp", "location"))
+    assert lines[6].startswith('"lone ? surrogate";"20"') and lines[-1].startswith('"last ? one";')
+
+
+def test_rqt_header_forms():
+    from console_tui.model.formats.rqt_csv import parse_header
+
+    assert parse_header("message;severity;node;stamp;location\r") == (
+        "message",
+        "severity",
+        "node",
+        "stamp",
+        "location",
+    )
+    assert parse_header("message;severity;message") is None, "a column twice"
+    assert parse_header("message;colour") is None, "a column rqt_console has not"
+    assert parse_header("severity;node") is None, "no message column"
+    data = b"\n  \n" + b"message;severity\n" + b'"after blank lines";"40"\n'
+    records, problems = read_text(data, RqtCsvFormat(), "blank-first.csv")
+    assert list(problems) == [] and [r.msg for r in records] == ["after blank lines"]
+    long_line = "x" * 100
+    records, problems = read_text(long_line.encode() + b"\n", RqtCsvFormat(), "nohead.csv")
+    assert problems.items[0].what == (
+        "no rqt_console header (expected 'message;severity;node;stamp;location'), found " + repr("x" * 60)
+    )
+
+
+def test_split_location_without_a_function():
+    assert split_location("file.py:12") == ("file.py", "", 12)
+    assert split_location("C:\\src\\n.cpp:3") == ("C:\\src\\n.cpp", "", 3)

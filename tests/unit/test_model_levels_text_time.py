@@ -42,6 +42,17 @@ def test_to_ros1_rounds_levels_between_steps_down(level, ros1):
     assert levels.from_ros1(ros1) == levels.severity_bucket(level), "the step below, as severity rules count it"
 
 
+def test_ros1_levels_beyond_the_bits_and_parse_errors_list_the_names():
+    assert levels.from_ros1(32) == 50 and levels.from_ros1(1 << 20) == 50, "above FATAL: FATAL"
+    assert levels.from_ros1(3) == 20 and levels.from_ros1(-4) == 10
+    with pytest.raises(ValueError) as error:
+        levels.parse_severity("warm", allow_unset=True)
+    assert str(error.value) == "unknown level 'warm': use one of debug, info, warn, error, fatal, unset"
+    with pytest.raises(ValueError) as error:
+        levels.parse_severity("15")
+    assert str(error.value) == "unknown level '15': use one of debug, info, warn, error, fatal"
+
+
 def test_severity_names():
     assert levels.severity_name(30) == "WARN"
     assert levels.severity_name(33) == "33"

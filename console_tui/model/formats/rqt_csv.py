@@ -180,10 +180,8 @@ def _classify(line: str) -> LineKind:
 
 
 def _parse_row(text: str, columns: tuple[str, ...], ros1: bool, source: str) -> LogRecord:
-    # Blank lines after a row belong to no message: a row ends with its closing quote.
-    text = text.rstrip("\n")
-    if text.endswith("\r"):
-        text = text[:-1]
+    # Blank lines after a row (CRLF ones too) belong to no message: a row ends with its closing quote.
+    text = text.rstrip("\r\n")
     if len(text) < 2 or not text.endswith('"'):
         raise RecordError("row does not end with '\"' (truncated?)")
     values = text[1:-1].split('";"', len(columns) - 1)

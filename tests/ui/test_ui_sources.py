@@ -1,0 +1,92 @@
+"""The app with sources that misbehave: one that cannot start, one that fails to stop, one
+that reports losses and a problem. Each says so on the screen; none takes the app down."""
+
+from __future__ import annotations
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store import LogStore
+from console_tui.sources.status import SourceStatus
+from console_tui.ui.app import ConsoleApp
+
+from support.feed import records
+from support.ui import screen_text, until
+
+
+class Source:
+    """A source as the app sees one: ``start``, ``stop`` and a ``status`` snapshot."""
+
+    def __init__(self, status: SourceStatus | None = None, *, start_error: str = "", stop_error: str = "") -> None:
+        self.status = status or SourceStatus()
+        self.start_error = start_error
+        self.stop_error = stop_error
+        self.calls: list[str] = []
+
+    def start(self) -> None:
+        self.calls.append("start")
+        if self.start_error:
+            raise OSError(self.start_error)
+
+    def stop(self) -> None:
+        self.calls.append("stop")
+        if self.stop_error:
+            raise RuntimeError(self.stop_error)
+
+
+class CannotStart(Source):
+    pass
+
+
+def status_line(app: ConsoleApp) -> str:
+    return next(line for line in screen_text(app).splitlines() if " shown " in line)
+
+
+async def test_a_source_that_cannot_start_is_named_on_screen_and_the_rest_runs():
+    queue = IntakeQueue()
+    broken = CannotStart(start_error="no route to the robot")
+    good = Source(SourceStatus(topic="/rosout", publishers=2, path="raw+cdr", running=True))
+    app = ConsoleApp(store=LogStore(), queue=queue, sources=[broken, good], utc=True)
+    async with app.run_test(size=(140, 30), notifications=True) as pilot:
+        await until(pilot, lambda: "Could not start CannotStart" in screen_text(app), what="the notification")
+        assert "no route to the robot" in screen_text(app)
+        assert good.calls == ["start"], "the next source started all the same"
+        queue.put(records(3))
+        await until(pilot, lambda: "3/3 shown" in status_line(app), what="records from the queue")
+        assert "/rosout 2 pubs raw+cdr" in status_line(app)
+        await pilot.press("space")
+        assert "PAUSED" in status_line(app), "keys still work"
+    assert broken.calls == ["start", "stop"] and good.calls == ["start", "stop"]
+
+
+async def test_a_source_that_fails_to_stop_does_not_keep_the_others_running_or_the_app_alive():
+    first = Source(stop_error="stuck")
+    second = Source()
+    app = ConsoleApp(store=LogStore(), queue=IntakeQueue(), sources=[first, second])
+    async with app.run_test(size=(100, 24)) as pilot:
+        await until(pilot, lambda: second.calls == ["start"])
+        await pilot.press("q")
+    assert first.calls == ["start", "stop"] and second.calls == ["start", "stop"]
+    assert app.return_code in (None, 0)
+
+
+async def test_losses_and_a_problem_of_a_source_show_in_the_status_line():
+    status = SourceStatus(
+        topic="/rosout_agg",
+        publishers=1,
+        path="typed",
+        lost=12,
+        lost_qos=7,
+        lost_queue=5,
+        problem="1 publisher(s) on /rosout_agg offer a QoS no subscription can match",
+        running=True,
+    )
+    source = Source(status)
+    app = ConsoleApp(store=LogStore(), queue=IntakeQueue(), sources=[source])
+    async with app.run_test(size=(220, 24)) as pilot:
+        await until(pilot, lambda: "/rosout_agg" in status_line(app))
+        line = status_line(app)
+        assert "/rosout_agg 1 pub " in line
+        assert "12 lost (7 in the middleware, 5 UI behind)" in line
+        assert "offer a QoS no subscription can match" in line and line.rstrip().endswith("typed")
+        source.status = SourceStatus(topic="/rosout_agg", publishers=3, path="typed", running=True)
+        await until(pilot, lambda: "/rosout_agg 3 pubs typed" in status_line(app), what="the new status")
+        assert "lost" not in status_line(app)
