@@ -1,5 +1,6 @@
-"""The table at 80x24 as a person reads it: the time, the severity word, a node name that
-tells nodes apart, and the message; and with a side pane open, severity, node and message."""
+"""The table at 80x24 as a person reads it: the row number, the time, the severity word, a node
+name that tells nodes apart, and the message; and with a side pane open, severity, node and
+message."""
 
 from __future__ import annotations
 
@@ -16,23 +17,22 @@ def table_rows(app, left: int = 0) -> list[list[str]]:
     rows = []
     for line in screen_text(app).splitlines()[1:]:
         words = line[left:].split()
-        if len(words) > 3 and words[1] in SEVERITIES | {"INFO", "WARN"}:
+        if len(words) > 4 and words[2] in SEVERITIES:
             rows.append(words)
     return rows
 
 
-async def test_80x24_shows_time_severity_a_telling_node_name_and_the_message():
+async def test_80x24_shows_number_time_severity_a_telling_node_name_and_the_message():
     app = make_app(200)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.pause()
         header = screen_text(app).splitlines()[0].split()
-        assert header == ["Time", "Sev", "Node", "Message"]
+        assert header == ["#", "Time", "Sev", "Node", "Message"]
         rows = table_rows(app)
         assert len(rows) >= 15
         for words in rows:
-            assert words[1] in SEVERITIES
-            assert "…" not in words[2], f"a node name cut at its end: {words[2]}"
-        shown = {words[2] for words in rows}
+            assert "…" not in words[3], f"a node name cut at its end: {words[3]}"
+        shown = {words[3] for words in rows}
         # Five nodes, five names, each its own: the end that tells them apart is kept.
         assert shown == {
             "count_and_log",

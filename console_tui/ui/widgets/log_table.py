@@ -409,9 +409,9 @@ class LogTable(ScrollView, can_focus=True):
         if len(nodes) != self._nodes_measured:
             self._nodes_measured = len(nodes)
             self._widest_node = max((cell_len(name) for name in nodes), default=8)
-        # Wide enough for most names whole (20 of 80 columns, 24 at most); longer ones are
-        # shortened from the front, keeping the end that tells them apart (shorten_name).
-        node_width = max(min(self._widest_node, 24, max((width + 3) // 4, 12)), 6)
+        # Wide enough for most names whole (20 of 80 columns, 24 of 100, 32 of 160); longer
+        # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
+        node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
         key = (width, self.shown_columns, node_width)
         if key != self._layout_key:
             self._layout_key = key

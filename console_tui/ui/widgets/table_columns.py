@@ -18,12 +18,11 @@ class Column:
     shown_by_default: bool = True
 
 
-#: Narrow, the columns give way in this order (``drop_order``): the row number first (the
-#: status line counts rows; the details show a row's number), then function, line, file,
-#: source, and the time last: what a person needs at 80 columns is the time, the severity,
-#: a node name that tells nodes apart, and as much of the message as fits.
+#: Narrow, the columns give way in this order (``drop_order``): function, line, file, source,
+#: then the row number and the time last: what a person needs at 80 columns is the row number,
+#: the time, the severity, a node name that tells nodes apart, and as much of the message as fits.
 COLUMNS: tuple[Column, ...] = (
-    Column("seq", "#", 7, align="right", drop_order=0),
+    Column("seq", "#", 7, align="right", drop_order=5),
     Column("time", "Time", 12, drop_order=6),
     Column("severity", "Sev", 5),
     Column("node", "Node", 16),
