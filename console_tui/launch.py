@@ -11,6 +11,7 @@ from typing import Any
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
 from .sources.live import RosUnavailable, open_live
+from .sources.native_output import NativeOutput
 from .sources.ros_version import ROS1, choose_ros
 
 
@@ -24,26 +25,37 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     logger_control = None
     files = list(getattr(args, "files", None) or [])
     live = args.demo or getattr(args, "live", False) or not files
-    if live:
-        try:
+    # Native code (rcl, Fast DDS) prints to the terminal below Textual: caught as records.
+    native = NativeOutput(queue) if live and end_process and NativeOutput.possible() else None
+    if native is not None:
+        native.start()
+    try:
+        if live:
             logger_control = _start_live(args, queue, sources, cleanups)
-        except RosUnavailable as error:
+        from .ui.app import ConsoleApp
+
+        app = ConsoleApp(
+            store=store,
+            queue=queue,
+            sources=sources,
+            utc=args.utc,
+            files=files,
+            log_format=getattr(args, "log_format", None),
+            logger_control=logger_control,
+            rules=getattr(args, "rule_set", None),
+            query=getattr(args, "query", None) or "",
+            remember_rules=True,
+        )
+        app.native_output = native
+    except BaseException as error:
+        if native is not None:
+            native.stop()
+        if isinstance(error, RosUnavailable):
             print(f"console-tui: {error}", file=sys.stderr)
             return 2
-    from .ui.app import ConsoleApp
-
-    app = ConsoleApp(
-        store=store,
-        queue=queue,
-        sources=sources,
-        utc=args.utc,
-        files=files,
-        log_format=getattr(args, "log_format", None),
-        logger_control=logger_control,
-        rules=getattr(args, "rule_set", None),
-        query=getattr(args, "query", None) or "",
-        remember_rules=True,
-    )
+        raise
+    if native is not None:
+        cleanups.insert(0, native.stop)  # the last cleanup: the terminal back, what was caught on stderr
     code = run_then_clean_up(app, cleanups)
     if live and end_process:
         end_now(code)

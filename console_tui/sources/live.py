@@ -7,9 +7,10 @@ rclpy context of the process's own) and returns a ``LiveIntake`` whose ``source`
 sources' shape: ``start()``, ``stop()``, ``status`` (a ``SourceStatus``), feeding
 ``queue``. ``close()`` stops the source and shuts its ROS down.
 
-The ROS 2 stream is taken in a child process (``intake_process``), where nothing the app
-does can hold it up; this process keeps its rclpy context for the logger levels.
-``in_process=True`` takes it in a thread of this process instead (as ROS 1 still is).
+The stream, ROS 1's and ROS 2's alike, is taken in a child process (``intake_process``),
+where nothing the app does can hold it up; for ROS 2 this process keeps an rclpy context
+of its own for the logger levels. ``in_process=True`` takes it in threads of this process
+instead.
 """
 
 from __future__ import annotations
@@ -78,6 +79,12 @@ def open_live(
     Raises ``RosUnavailable`` (with what to do) when there is no ROS to read from.
     """
     if choose_ros(ros).version == ROS1:
+        if not in_process:
+            from .intake_process.parent import ProcessSource
+            from .ros1.environment import Ros1Environment
+
+            origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
+            return LiveIntake(ProcessSource(queue, "ros1", topic=topic, origin=origin))
         from .ros1.live_source import Ros1LiveSource
 
         return LiveIntake(Ros1LiveSource(queue, topic=topic))

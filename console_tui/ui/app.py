@@ -2,6 +2,8 @@
 
 The app's jobs live beside it, each mixed into ``ConsoleApp``: ``rule_actions`` (rules and
 filtering), ``file_actions`` (opening and saving files), ``pane_actions`` (the side panes),
+``search_actions`` (search, next / previous match), ``jump_actions`` (errors, warnings, marks,
+the source file), ``toggle_actions`` (level and node toggles, the node panel, time formats),
 ``commands`` (the command palette) and ``keys`` (the user's keymap, hints from bindings).
 A feature adds its keys to ``BINDINGS`` below and its work in a module of its own.
 """
@@ -11,20 +13,23 @@ from __future__ import annotations
 import threading
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
 from textual import events
 from textual.app import App, ComposeResult, SystemCommand
-from textual.binding import Binding
+from textual.binding import Binding, BindingType
 from textual.containers import Horizontal
 from textual.notifications import SeverityLevel
 from textual.screen import Screen
 from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
+from ..model.marks import Marks
+from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
 from ..model.record_batch import RecordColumns
 from ..model.rules.history import QueryHistory
@@ -41,17 +46,23 @@ from .exit_signals import ExitSignals
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
+from .jump_actions import JumpActions
 from .keys import binding_ids, keymap_path, load_keymap
 from .pane_actions import PaneActions
 from .rule_actions import RuleActions
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
+from .screens.marks import MarksScreen
+from .search_actions import SearchActions
+from .toggle_actions import ToggleActions
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
+from .widgets.node_pane import NodePane
 from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
+from .widgets.search_bar import SearchBar
 from .widgets.status_bar import StatusBar, StatusFacts
 from .widgets.table_columns import COLUMNS
 
@@ -75,6 +86,14 @@ def _stop_quietly(source: Source) -> None:
         pass
 
 
+class TerminalGuard(Protocol):
+    """Something holding the terminal's descriptors that lets go while the app is suspended."""
+
+    def pause(self) -> None: ...
+
+    def resume(self) -> None: ...
+
+
 class Source(Protocol):
     """A producer of records (the live stream, a file loader) the app starts and stops."""
 
@@ -85,7 +104,7 @@ class Source(Protocol):
     def stop(self) -> None: ...
 
 
-class ConsoleApp(RuleActions, FileActions, PaneActions):
+class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActions, ToggleActions):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
@@ -101,8 +120,10 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         Binding("s", "save", "Save", id="console.save"),
         Binding("x", "cancel_load", "Cancel load", id="console.cancel_load"),
         Binding("escape", "stop_filtering", "Stop a long filtering", show=False, id="console.stop_filtering"),
+        Binding("escape", "clear_search", "Clear the search", show=False, id="console.clear_search"),
         Binding("exclamation_mark", "problems", "Problems", show=False, id="console.problems"),
         Binding("slash", "query", "Query", id="console.query"),
+        *SearchActions.KEYS,
         Binding("r", "toggle_rules", "Rules", id="console.rules"),
         Binding("H", "toggle_highlighted_only", "Highlighted only", show=False, id="console.highlighted_only"),
         Binding("minus", "quick_rule('exclude')", "Hide like the selected rows", show=False, id="console.hide_like"),
@@ -115,10 +136,13 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         ),
         Binding("C", "columns", "Columns", id="console.columns"),
         Binding("l", "toggle_loggers", "Loggers", id="console.loggers"),
+        Binding("ctrl+n", "toggle_nodes", "Nodes", id="console.nodes"),
         Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False, id="console.loggers_for_row"),
         Binding("question_mark,f1", "help", "Help", id="console.help"),
         Binding("q", "quit", "Quit", id="console.quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
+        *JumpActions.KEYS,
+        *ToggleActions.KEYS,
     ]
 
     def __init__(
@@ -158,6 +182,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self.remember_rules_at_exit = remember_rules
         self.query_history = QueryHistory.load(query_history_path()) if remember_rules else QueryHistory()
         self.query_bar = QueryBar(self.query_history, utc=utc, id="query-bar")
+        self.search_bar = SearchBar(id="search-bar")
+        self.marks = Marks()
         self.rules_pane = RulesPane(id="rules-pane")
         self.load_bar = LoadBar(id="load-bar")
         self.file_queue = IntakeQueue()
@@ -169,6 +195,10 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
+        #: Messages per node and severity, and rates: the node panel shows them.
+        self.node_stats = NodeStats(self.store)
+        self.node_stats.update()
+        self.node_pane = NodePane(self.node_stats, self.node_toggles)
         self.exit_signals = ExitSignals(self._exit_on_signal)
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
@@ -191,6 +221,22 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         name files, nodes and errors from outside, which may hold markup or escapes."""
         super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
 
+    #: What catches native code's output while the app draws (``sources.native_output``): put
+    #: aside while the app is suspended (an editor has the terminal). Set by the launch.
+    native_output: TerminalGuard | None = None
+
+    @contextmanager
+    def suspend(self) -> Iterator[None]:
+        guard = self.native_output
+        if guard is not None:
+            guard.pause()
+        try:
+            with super().suspend():
+                yield
+        finally:
+            if guard is not None:
+                guard.resume()
+
     def copy_to_clipboard(self, text: str) -> None:
         """Copy with control characters made visible (newlines and tabs kept): pasted into a
         shell, a copied message can never carry escape sequences or a carriage return."""
@@ -203,7 +249,9 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
             yield self.rules_pane
             yield self.table
             yield self.logger_pane
+            yield self.node_pane
         yield self.query_bar
+        yield self.search_bar
         yield self.load_bar
         yield self.status_bar
         yield Footer()
@@ -303,6 +351,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         if self.view.switched_off:
             self.rules_changed()
         self._arrivals.append((self.clock(), added))
+        self.node_stats.update()
+        self.search_after_records()
         return added
 
     def receive_rate(self) -> float:
@@ -331,6 +381,9 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
             new_while_paused=table.new_while_paused,
             sources=statuses,
             note=self.rules_note(),
+            search=self.search_status(),
+            toggles=self.toggles_status(),
+            time=self.time_status(),
         )
         self.status_bar.show_facts(facts)
 
@@ -366,6 +419,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
             return self.loading
         if action == "stop_filtering":
             return self.view.refiltering
+        if action == "clear_search":
+            return self.search is not None and not self.view.refiltering
         return True
 
     # -- the table --------------------------------------------------------------------------------
@@ -378,7 +433,9 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
         self.table.follow()
 
     def action_clear(self) -> None:
+        self.marks.clear()
         self.store.clear()
+        self.node_stats.clear()
         self.view.rebuild()
         self.table.reset()
         self.update_status()
@@ -426,16 +483,29 @@ class ConsoleApp(RuleActions, FileActions, PaneActions):
 
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         """Every key, by where it works: the help screen, the keymap and the palette read these."""
+        nav = self.nav_bindings()
         return [
-            ("Table", list(LogTable.BINDINGS)),
-            ("Console", list(self.BINDINGS)),
-            ("Rules pane", list(RulesPane.BINDINGS)),
-            ("Query line", list(QueryBar.BINDINGS)),
-            ("Logger levels pane", list(LoggerPane.BINDINGS)),
-            ("Details", list(DetailScreen.BINDINGS)),
+            ("Table", _bindings(LogTable.BINDINGS)),
+            ("Console", [binding for binding in _bindings(ConsoleApp.BINDINGS) if binding not in nav]),
+            ("Find your way", nav),
+            ("Search line", _bindings(SearchBar.BINDINGS)),
+            ("Node panel", _bindings(NodePane.BINDINGS)),
+            ("Marks", _bindings(MarksScreen.BINDINGS)),
+            ("Rules pane", _bindings(RulesPane.BINDINGS)),
+            ("Query line", _bindings(QueryBar.BINDINGS)),
+            ("Logger levels pane", _bindings(LoggerPane.BINDINGS)),
+            ("Details", _bindings(DetailScreen.BINDINGS)),
             ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
         ]
+
+    def nav_bindings(self) -> list[Binding]:
+        """The keys that find your way: search, jumps, marks, levels, nodes, time."""
+        return _bindings([*SearchActions.KEYS, *JumpActions.KEYS, *ToggleActions.KEYS])
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # Textual's "Keys" opens its key panel; "Help: every key" (ours) says more.
         yield from (command for command in super().get_system_commands(screen) if command.title != "Keys")
+
+
+def _bindings(bindings: Iterable[BindingType]) -> list[Binding]:
+    return [binding for binding in bindings if isinstance(binding, Binding)]

@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING, cast
 
 from textual.command import DiscoveryHit, Hit, Hits, Provider
 
+from ..model.levels import MESSAGE_SEVERITIES
+from ..model.time_column import FORMATS, format_info
 from .keys import key_label, keymap_of
 from .widgets.table_columns import COLUMNS
 
@@ -84,7 +86,65 @@ def palette_commands() -> list[PaletteCommand]:
         C("Open rules", "Load a rule set from a TOML file", "load_rules"),
         C("Restore the last rules", "The rule set in force when console-tui last exited", "restore_rules"),
         C("Clear rules", "Remove every rule", "clear_rules"),
+        *navigation_commands(),
         C("Help: every key", "What console-tui shows, and every key (remap them in keys.toml)", "help", "console.help"),
+    ]
+
+
+def navigation_commands() -> list[PaletteCommand]:
+    """Search, jumps, marks, level and node toggles, time formats, the source file."""
+    C = PaletteCommand
+    return [
+        C("Find", "Search a text or /regex/ in the messages; the rows stay, matches are marked", "search", "nav.find"),
+        C("Next match", "The next row the search matches, below", "next_match", "nav.next_match"),
+        C("Previous match", "The previous row the search matches, above", "previous_match", "nav.previous_match"),
+        C("Clear the search", "No search: no marks, no counter", "clear_search", "console.clear_search"),
+        C("Next error", "The next ERROR or FATAL below", "next_level(40)", "nav.next_error"),
+        C("Previous error", "The previous ERROR or FATAL above", "previous_level(40)", "nav.previous_error"),
+        C("Next warning", "The next WARN or worse below", "next_level(30)", "nav.next_warning"),
+        C("Previous warning", "The previous WARN or worse above", "previous_level(30)", "nav.previous_warning"),
+        C("First message", "The oldest row", "first_row", "table.first"),
+        C("Last message", "The newest row, and follow", "last_row", "table.follow"),
+        C("Mark the row", "Put a mark on the selected row (or take it off)", "toggle_mark", "nav.mark"),
+        C("Next mark", "The next marked row below", "next_mark", "nav.next_mark"),
+        C("Previous mark", "The previous marked row above", "previous_mark", "nav.previous_mark"),
+        C("Marks", "Every marked row; go to one", "marks", "nav.marks"),
+        *(
+            C(
+                f"Show / hide {severity.name}",
+                f"Hide {severity.name} messages, or show them again (a rule underneath)",
+                f"toggle_level({int(severity)})",
+                f"levels.{severity.name.lower()}",
+            )
+            for severity in MESSAGE_SEVERITIES
+        ),
+        *(
+            C(f"Minimum level: {severity.name}", f"Show {severity.name} and worse", f"minimum_level({int(severity)})")
+            for severity in MESSAGE_SEVERITIES
+        ),
+        C("Minimum level up", "Hide the lowest level shown", "raise_minimum", "levels.up"),
+        C("Minimum level down", "Show one more level", "lower_minimum", "levels.down"),
+        C("Every level", "Show every level again", "all_levels", "levels.all"),
+        C("Nodes", "The node panel: every node, its counts and rate; solo, mute", "toggle_nodes", "console.nodes"),
+        C("Solo this row's node", "Show only the selected row's node (again: undo)", "solo_row_node"),
+        C("Mute this row's node", "Hide the selected row's node (again: undo)", "mute_row_node"),
+        C("Every node heard", "No node soloed or muted", "clear_node_toggles"),
+        *(
+            C(
+                f"Time: {format_info(fmt).name}",
+                f"The Time column shows the {format_info(fmt).name}",
+                f"time_format('{fmt.value}')",
+            )
+            for fmt in FORMATS
+        ),
+        C(
+            "Time format: the next one",
+            "Wall clock, date, stamp, since first, since row, delta",
+            "next_time_format",
+            "time.format",
+        ),
+        C("Time in UTC / local time", "The wall clock in UTC, or local time", "toggle_utc", "time.utc"),
+        C("Open the source file", "The row's file in $VISUAL / $EDITOR at its line", "open_source", "nav.source"),
     ]
 
 

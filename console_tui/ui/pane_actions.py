@@ -1,5 +1,5 @@
 """The app's side panes beside the table (the logger levels pane; the rules pane is in
-``rule_actions``): opening them, and what their messages ask of the app.
+``rule_actions``, the node panel in ``toggle_actions``): opening them, and what their messages ask of the app.
 
 A part of ``ConsoleApp`` (it mixes this in).
 """
@@ -14,6 +14,7 @@ from .focus import focus_now
 from .screens.temporary_level import TemporaryLevelScreen
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
+from .widgets.node_pane import NodePane
 from .widgets.side_pane import SidePane
 
 #: How long ``t`` sets a temporary level for unless told otherwise.
@@ -27,12 +28,16 @@ class PaneActions(App[None]):
     store: LogStore
     table: LogTable
     logger_pane: LoggerPane
+    node_pane: NodePane
 
     def action_toggle_loggers(self) -> None:
+        if not self.logger_pane.is_open:
+            self.node_pane.close()  # the two share the right side
         self.logger_pane.toggle()
 
     def action_loggers_for_row(self) -> None:
         """Open the logger levels pane on the node of the table's selected row."""
+        self.node_pane.close()
         seq = self.table.cursor_seq
         if seq is None or seq not in self.store:
             self.logger_pane.open()

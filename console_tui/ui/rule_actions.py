@@ -109,9 +109,14 @@ class RuleActions(App[None]):
 
     def rules_note(self) -> str:
         """What the status line says of the rules: ``2 rules, filtering 40%``."""
-        active = sum(1 for entry in self.rules.entries if entry.active)
+        # The level and node toggles' rules have words of their own in the status line.
+        entries = [entry for entry in self.rules.entries if not entry.toggle]
+        active = sum(1 for entry in entries if entry.active)
         if not active:
-            return "rules off" if self.rules.entries else ""
+            note = "rules off" if entries else ""
+            return note + (
+                f"{', ' if note else ''}filtering {self._refilter_percent()}%" if self.view.refiltering else ""
+            )
         note = plural(active, "rule")
         if self.rules.highlighted_only and self.rules.highlighting:
             note += ", highlighted only"

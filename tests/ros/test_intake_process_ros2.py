@@ -3,22 +3,13 @@ the pipe; and ``console-tui`` ends with ``q``, its intake process (and demo node
 
 from __future__ import annotations
 
-import fcntl
-import os
-import pty
-import select
-import struct
-import sys
-import termios
-import time
-from pathlib import Path
-
 import pytest
 from test_ros2_live_source import serialized_log
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.sources.intake_process.parent import ProcessSource
 
+from support.quit import run_and_quit
 from support.rosproc import pid_alive, wait_until
 
 pytestmark = pytest.mark.ros2
@@ -74,69 +65,9 @@ def test_every_field_and_the_loss_counts_come_through_the_pipe(nodes):
         assert source.pid is not None and not pid_alive(source.pid)
 
 
-def _children(pid: int) -> set[int]:
-    found = set()
-    for task in Path(f"/proc/{pid}/task").iterdir():
-        children = (task / "children").read_text().split()
-        found.update(int(child) for child in children)
-    return found
-
-
-def _intake_children(pid: int) -> set[int]:
-    return {
-        child
-        for child in _children(pid)
-        if b"intake_process" in Path(f"/proc/{child}/cmdline").read_bytes().replace(b"\0", b" ")
-    }
-
-
-def _run_and_quit(ros_env: dict[str, str], *args: str, others_expected: int = 0) -> tuple[set[int], set[int], int]:
-    """``console-tui ARGS`` in a terminal; once it shows its table and has started its intake
-    process (and ``others_expected`` other processes), ``q``. Returns the intake process(es)
-    and the other children seen while it ran, and its exit status."""
-    command = [str(Path(sys.executable).parent / "console-tui"), *args]
-    pid, fd = pty.fork()
-    if pid == 0:  # the child: becomes console-tui
-        os.execve(command[0], command, {**ros_env, "TERM": "xterm-256color"})
-    fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", 30, 120, 0, 0))
-    intake: set[int] = set()
-    others: set[int] = set()
-    seen = b""
-    try:
-        deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and not (intake and b"Message" in seen and len(others) >= others_expected):
-            if select.select([fd], [], [], 0.1)[0]:
-                seen += os.read(fd, 65536)
-            intake = _intake_children(pid)
-            others = _children(pid) - intake
-        assert intake, "no intake process seen"
-        time.sleep(1.0)
-        os.write(fd, b"q")
-        deadline = time.monotonic() + 20
-        status = None
-        while time.monotonic() < deadline:
-            done, status = os.waitpid(pid, os.WNOHANG)
-            if done:
-                break
-            if select.select([fd], [], [], 0.05)[0]:
-                try:
-                    os.read(fd, 65536)
-                except OSError:
-                    pass
-        assert status is not None, "console-tui did not end after q"
-    finally:
-        try:
-            os.kill(pid, 9)
-            os.waitpid(pid, 0)
-        except (ProcessLookupError, ChildProcessError):
-            pass
-        os.close(fd)
-    return intake, others, os.waitstatus_to_exitcode(status)
-
-
 @pytest.mark.parametrize("args", [(), ("--demo",)], ids=["live", "demo"])
 def test_q_ends_console_tui_and_its_intake_process(ros_env, args):
-    intake, others, code = _run_and_quit(ros_env, *args, others_expected=4 if args else 0)
+    intake, others, code = run_and_quit(ros_env, *args, others_expected=4 if args else 0)
     assert code == 0
     assert not any(pid_alive(pid) for pid in intake | others), "a child of console-tui outlived it"
     if args:

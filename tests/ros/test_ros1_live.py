@@ -235,7 +235,7 @@ def test_the_launch_picks_ros1_when_a_master_answers(roscore, monkeypatch):
 
     from console_tui.launch import _start_live
     from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.sources.ros1.live_source import Ros1LiveSource
+    from console_tui.sources.intake_process.parent import ProcessSource
     from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 
     monkeypatch.setenv("ROS_VERSION", "2")  # a sourced ROS 2 says so; an answering master still wins
@@ -244,7 +244,8 @@ def test_the_launch_picks_ros1_when_a_master_answers(roscore, monkeypatch):
     cleanups: list = []
     control = _start_live(args, IntakeQueue(), sources, cleanups)
     try:
-        assert [type(s) for s in sources] == [Ros1LiveSource] and isinstance(control, Ros1LoggerControl)
+        assert [(type(s), s.kind) for s in sources] == [(ProcessSource, "ros1")]
+        assert isinstance(control, Ros1LoggerControl)
     finally:
         for cleanup in cleanups:
             cleanup()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import os
 import struct
 import time
 
@@ -11,6 +12,7 @@ from nodes.stalled_intake import StalledQueue
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
+from console_tui.sources.ros2.runtime import uses_fast_dds_2
 
 from support.rosproc import wait_until
 
@@ -168,6 +170,10 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
         runtime.shutdown()
 
 
+@pytest.mark.skipif(
+    uses_fast_dds_2(os.environ),
+    reason="Jazzy's rclpy gives no publisher GID with a message: sequence gaps cannot be told apart by publisher",
+)
 def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_publisher_left(nodes, monkeypatch):
     """With the intake held up, a reader history of 10 keeps the last 10 of a burst of 100
     and Fast DDS reports nothing lost; the gaps in the publisher's sequence numbers do."""
@@ -187,7 +193,7 @@ def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_
         queue.release.set()
         records = collect(source, lambda got: any(r.msg == "burst 99" for r in got))
         assert [r.msg for r in records][-10:] == [f"burst {n}" for n in range(90, 100)]
-        assert wait_until(lambda: source.status.lost_qos == 90)
+        assert wait_until(lambda: source.status.lost_qos == 90), source.status
         talker.stop()
         assert wait_until(lambda: source.status.publishers == 0)
         status = source.status

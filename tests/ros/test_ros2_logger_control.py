@@ -85,7 +85,9 @@ def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
     listed = {n.fqn: n for n in control.nodes}
     assert set(listed) == {ALPHA, "/beta"}, "console-tui's own nodes are never listed"
     assert listed[ALPHA].logger_name == "ns.alpha"
-    assert any(isinstance(e, NodesChanged) and ALPHA in {n.fqn for n in e.nodes} for e in control.events)
+    assert wait_until(  # the graph watcher posts the change on its own time
+        lambda: any(isinstance(e, NodesChanged) and ALPHA in {n.fqn for n in e.nodes} for e in list(control.events))
+    )
     with pytest.raises(NoLoggerServices, match="enable_logger_service=True"):
         control.get_levels("/beta", ["beta"]).result(timeout=10)
 

@@ -1,6 +1,9 @@
 """The runtime's Fast DDS reader profile: used only when the user has none of their own."""
 
-from console_tui.sources.ros2.runtime import FASTDDS_PROFILE, reader_profile_environment
+import pytest
+
+from console_tui.sources.ros2.rclpy_loader import RosUnavailable
+from console_tui.sources.ros2.runtime import FASTDDS_PROFILE, check_domain_id, reader_profile_environment
 
 
 def test_profile_added_under_fast_dds_when_the_user_has_none(tmp_path):
@@ -44,7 +47,12 @@ def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp
     may not have reported yet (never more than were sent)."""
     profile = tmp_path / "defaults.xml"
     profile.write_text('<?xml version="1.0" encoding="UTF-8" ?><dds xmlns="http://www.eprosima.com"><profiles/></dds>')
-    nodes.env = {**nodes.env, "FASTDDS_DEFAULT_PROFILES_FILE": str(profile)}
+    # Kilted's Fast DDS 3 reads the first name, Jazzy's Fast DDS 2.14 the second.
+    nodes.env = {
+        **nodes.env,
+        "FASTDDS_DEFAULT_PROFILES_FILE": str(profile),
+        "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile),
+    }
     talker = nodes.start("talker.py", "--name", "burst_talker")
     talker.expect("ready")
     reader = nodes.start("stalled_intake.py", "10001")
@@ -58,3 +66,10 @@ def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp
     assert result["count"] < 10_001 and result["lost_qos"] > 0
     assert 10_001 - 10 <= result["count"] + result["lost_qos"] <= 10_001
     assert result["lost"] == result["lost_qos"], "nothing else lost: the queue kept up, all decoded"
+
+
+def test_a_domain_no_dds_can_use_is_refused_before_ros_starts():
+    for fine in ({}, {"ROS_DOMAIN_ID": "0"}, {"ROS_DOMAIN_ID": "232"}, {"ROS_DOMAIN_ID": "abc"}):
+        check_domain_id(fine)  # text is rcl's to refuse, with its own words
+    with pytest.raises(RosUnavailable, match=r"ROS_DOMAIN_ID=233 is out of range: DDS domains go from 0 to 232"):
+        check_domain_id({"ROS_DOMAIN_ID": "233"})

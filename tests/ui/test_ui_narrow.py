@@ -27,7 +27,7 @@ async def test_80x24_shows_number_time_severity_a_telling_node_name_and_the_mess
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.pause()
         header = screen_text(app).splitlines()[0].split()
-        assert header == ["#", "Time", "Sev", "Node", "Message"]
+        assert header == ["#", "Time", "UTC", "Sev", "Node", "Message"]  # times in UTC: its title says so
         rows = table_rows(app)
         assert len(rows) >= 15
         for words in rows:

@@ -47,8 +47,9 @@ class NodeRule(Rule):
         return not self.names
 
     def predicate(self):
-        exact = {logger_name(n) for n in self.names if not is_glob(n)}
-        globs = [translate(logger_name(n)) for n in self.names if is_glob(n)]
+        # A name as written too: ROS 1 loggers are node names (``/talker``).
+        exact = {form for n in self.names if not is_glob(n) for form in (n, logger_name(n))}
+        globs = [translate(form) for n in self.names if is_glob(n) for form in {n, logger_name(n)}]
         match = re.compile("|".join(globs)).match if globs else None
 
         def test_name(name: str) -> bool:

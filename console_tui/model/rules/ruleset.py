@@ -42,6 +42,8 @@ class Entry:
     inverted: bool = False
     #: Made by the query line (replaced when the next query is applied).
     from_query: bool = False
+    #: Made by a key that toggles it (``"levels"``, ``"solo"``, ``"mute"``: see ``model/toggles.py``), or "".
+    toggle: str = ""
 
     @property
     def active(self) -> bool:
@@ -213,7 +215,7 @@ def _entry_from_dict(item: Any, where: str) -> Entry:
             raise RuleError(f"{where}.{key}: expected true or false, got {value!r}")
         flags[key] = value
     rule = rule_from_dict({k: v for k, v in item.items() if k not in _ENTRY_KEYS}, where)
-    return Entry(rule, role, **flags)
+    return Entry(rule, role, enabled=flags["enabled"], inverted=flags["inverted"])
 
 
 def rule_from_dict(item: Any, where: str) -> Rule:

@@ -9,7 +9,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .rclpy_loader import load_rclpy
+from .rclpy_loader import RosUnavailable, load_rclpy
 
 FASTDDS_PROFILE = Path(__file__).with_name("fastdds_reader_profile.xml")
 _PROFILE_VARIABLES = ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE")
@@ -52,6 +52,21 @@ def uses_fast_dds_2(environ: Mapping[str, str]) -> bool:
     return major < 9
 
 
+#: The highest DDS domain: above it the ports a participant needs pass 65535 (Fast DDS ends
+#: the whole process there, with exit status 1 and no word to Python).
+MAX_DOMAIN_ID = 232
+
+
+def check_domain_id(environ: Mapping[str, str]) -> None:
+    """``RosUnavailable`` for a ``ROS_DOMAIN_ID`` no DDS can use (rcl itself refuses text)."""
+    value = environ.get("ROS_DOMAIN_ID", "").strip()
+    if value.isdigit() and int(value) > MAX_DOMAIN_ID:
+        raise RosUnavailable(
+            f"ROS_DOMAIN_ID={value} is out of range: DDS domains go from 0 to {MAX_DOMAIN_ID} "
+            "(ROS 2 advises 0 to 101). Set another and start again."
+        )
+
+
 class RosRuntime:
     """Owns an rclpy ``Context`` (not the global one) and the nodes made on it.
 
@@ -60,6 +75,7 @@ class RosRuntime:
     """
 
     def __init__(self, args: list[str] | None = None) -> None:
+        check_domain_id(os.environ)
         # Before the first participant of the process: Fast DDS reads its profiles once.
         os.environ.update(reader_profile_environment(os.environ))
         rclpy = load_rclpy()

@@ -28,12 +28,14 @@ from ...model.levels import severity_bucket, severity_name
 from ...model.record import LogRecord
 from ...model.store import LogStore
 from ...model.text import one_line, shorten_name
-from ...model.timefmt import clock_text
+from ...model.time_column import TimeFormat, column_title, format_info, time_cell
 from ...model.view import LogView
 from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
 
 #: How a row is marked by the rules: None (plain), "highlight" or "dim".
 Decoration = str | None
+#: Where a search matches in a message as shown: (start, end) character spans.
+Spans = list[tuple[int, int]]
 
 _SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
 _MESSAGE_LIMIT = 2000
@@ -65,6 +67,8 @@ class LogTable(ScrollView, can_focus=True):
     | `log-table--severity-debug` ... `log-table--severity-fatal` | The severity cell, by severity. |
     | `log-table--highlight` | Rows a highlight rule marks. |
     | `log-table--dimmed` | The other rows while highlighting. |
+    | `log-table--match` | Where a search matches, in the message. |
+    | `log-table--gutter` | The gutter's marks: ● a mark, » a search match. |
     """
 
     DEFAULT_CSS = """
@@ -90,6 +94,8 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--selected { background: $primary-muted; }
     LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
+    LogTable > .log-table--match { background: $warning; color: $background; text-style: bold; }
+    LogTable > .log-table--gutter { color: $text-accent; text-style: bold; }
     """
 
     COMPONENT_CLASSES = {
@@ -101,6 +107,8 @@ class LogTable(ScrollView, can_focus=True):
         *(f"log-table--severity-{name}" for name in _SEVERITY_CLASS.values()),
         "log-table--highlight",
         "log-table--dimmed",
+        "log-table--match",
+        "log-table--gutter",
     }
 
     BINDINGS = [
@@ -143,6 +151,13 @@ class LogTable(ScrollView, can_focus=True):
         self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
         #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
         self.decoration_of: Callable[[int], Decoration] | None = None
+        #: Marks and search hook: seq -> one character for the gutter left of the row ("" for
+        #: none), or None: no gutter. Bump ``style_generation`` when its answers change.
+        self.gutter_of: Callable[[int], str] | None = None
+        #: Search hook: (seq, message as shown) -> the spans to mark in it.
+        self.match_spans: Callable[[int, str], Spans] | None = None
+        #: What the Time column shows (``t``), in local time or UTC.
+        self.time_format = TimeFormat.CLOCK
         self.style_generation = 0
         # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
         # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
@@ -311,6 +326,20 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
         self.post_message(self.StateChanged())
 
+    def jump_to_seq(self, seq: int) -> bool:
+        """Put the cursor on the row of ``seq`` (a third down the screen when it was off the
+        screen); False when no row shows it."""
+        row = self.view.row_of(seq)
+        if row >= self.row_count or self.view.seq_at(row) != seq:
+            return False
+        height = self._body_height
+        top = int(self.scroll_y)
+        if not top <= row < top + height:
+            self._stop_following()
+            self.set_scroll(None, max(min(row - height // 3, self.row_count - height), 0))
+        self.move_cursor(row)
+        return True
+
     def _end_top(self) -> int:
         """The top row when the last row is at the bottom of the screen."""
         return max(self.row_count + 1 - self.scrollable_content_region.height, 0)
@@ -395,6 +424,18 @@ class LogTable(ScrollView, can_focus=True):
 
     # -- columns --------------------------------------------------------------------------------
 
+    def set_time_format(self, fmt: TimeFormat, utc: bool) -> None:
+        """What the Time column shows, local time or UTC."""
+        self.time_format, self.utc = fmt, utc
+        self._forget_drawn_rows()
+        self.refresh()
+
+    def set_gutter(self, gutter_of: Callable[[int], str] | None) -> None:
+        """Show a gutter of marks left of the rows (or none)."""
+        if gutter_of is not self.gutter_of:
+            self.gutter_of = gutter_of
+            self.restyle()
+
     def set_column_shown(self, key: str, shown: bool) -> None:
         columns = set(self.shown_columns)
         (columns.add if shown else columns.discard)(key)
@@ -412,10 +453,12 @@ class LogTable(ScrollView, can_focus=True):
         # Wide enough for most names whole (20 of 80 columns, 24 of 100, 32 of 160); longer
         # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
         node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
-        key = (width, self.shown_columns, node_width)
+        gutter = _GUTTER if self.gutter_of is not None else 0
+        key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc)
         if key != self._layout_key:
             self._layout_key = key
-            self._placed = layout_columns(width, self.shown_columns, node_width)
+            widths = {"time": format_info(self.time_format).width}
+            self._placed = layout_columns(width - gutter, self.shown_columns, node_width, widths)
             self._forget_drawn_rows()
         return self._placed
 
@@ -492,18 +535,33 @@ class LogTable(ScrollView, can_focus=True):
         is_cursor = row == self.cursor_row
         selected = self.selection_anchor is not None and row in self.selected_rows()
         decoration = self.decoration_of(seq) if self.decoration_of is not None else None
-        key = (seq, is_cursor, selected, decoration, self.style_generation)
+        gutter = self.gutter_of(seq) if self.gutter_of is not None else None
+        relative = self._relative_time(row) if self.time_format.relative else None
+        key = (seq, is_cursor, selected, decoration, self.style_generation, gutter, relative)
         strip = self._cache.get(key)
         if strip is None:
-            strip = self._render_row(self.store.get(seq), placed, width, base, is_cursor, selected, decoration)
+            record = self.store.get(seq)
+            strip = self._render_row(record, placed, width, base, is_cursor, selected, decoration, gutter, relative)
             self._cache[key] = strip
         return strip
+
+    def _relative_time(self, row: int) -> int | None:
+        """The stamp a relative Time cell counts from: the first message's, the selected
+        row's, or the row above's (None for the first row)."""
+        fmt = self.time_format
+        if fmt is TimeFormat.DELTA:
+            return self.store.get(self.view.seq_at(row - 1)).stamp_ns if row > 0 else None
+        seq = self.store.first_seq if fmt is TimeFormat.SINCE_FIRST else self.cursor_seq
+        return self.store.get(seq).stamp_ns if seq is not None and seq in self.store else None
 
     def _header(self, placed: tuple[PlacedColumn, ...], width: int, base: Style) -> Strip:
         style = base + self._styles.get("log-table--header", Style())
         segments: list[Segment] = []
+        if self.gutter_of is not None:
+            segments.append(Segment(" " * _GUTTER, style))
         for place in placed:
-            segments.append(Segment(_fit(place.column.title, place.width, place.column.align) + " ", style))
+            title = column_title(self.time_format, self.utc) if place.column.key == "time" else place.column.title
+            segments.append(Segment(_fit(title, place.width, place.column.align) + " ", style))
         return Strip(segments).adjust_cell_length(width, style)
 
     def _render_row(
@@ -515,6 +573,8 @@ class LogTable(ScrollView, can_focus=True):
         is_cursor: bool,
         selected: bool,
         decoration: Decoration,
+        gutter: str | None = None,
+        relative: int | None = None,
     ) -> Strip:
         styles = self._styles
         name = _SEVERITY_CLASS.get(int(severity_bucket(record.level)), "info")
@@ -529,15 +589,30 @@ class LogTable(ScrollView, can_focus=True):
             row_style += styles.get("log-table--cursor", Style())
         muted = styles.get("log-table--dim-column", Style())
         segments: list[Segment] = []
+        if gutter is not None:
+            segments.append(Segment(_fit(gutter, 1), row_style + styles.get("log-table--gutter", Style())))
+            segments.append(Segment(" ", row_style))
         for place in placed:
             key = place.column.key
-            text = self._cell_text(record, key, place.width)
+            if key == "time":
+                text = time_cell(
+                    record.stamp_ns, self.time_format, utc=self.utc, origin_ns=relative, previous_ns=relative
+                )
+            else:
+                text = self._cell_text(record, key, place.width)
             style = row_style
             if key == "severity" and not is_cursor:
                 style = row_style + styles.get(f"log-table--severity-{name}", Style())
             elif key in ("seq", "time", "file", "function", "line", "source") and name != "debug" and not is_cursor:
                 style = row_style + muted
-            segments.append(Segment(_fit(text, place.width, place.column.align), style))
+            fitted = _fit(text, place.width, place.column.align)
+            spans = self.match_spans(record.seq, text) if key == "message" and self.match_spans else None
+            if spans:
+                segments.extend(
+                    _marked(fitted, spans, len(text), style, style + styles.get("log-table--match", Style()))
+                )
+            else:
+                segments.append(Segment(fitted, style))
             segments.append(Segment(" ", row_style))
         return Strip(segments).adjust_cell_length(width, row_style).simplify()
 
@@ -547,7 +622,7 @@ class LogTable(ScrollView, can_focus=True):
         if key == "seq":
             return str(record.seq + 1)
         if key == "time":
-            return clock_text(record.stamp_ns, utc=self.utc)
+            return time_cell(record.stamp_ns, self.time_format, utc=self.utc)
         if key == "severity":
             return severity_name(record.level)
         if key == "node":
@@ -566,6 +641,28 @@ class LogTable(ScrollView, can_focus=True):
 @lru_cache(maxsize=4096)
 def _node_text(node: str, width: int) -> str:
     return shorten_name(one_line(node, 200), width)
+
+
+def _marked(fitted: str, spans: Spans, length: int, style: Style, marked: Style) -> list[Segment]:
+    """``fitted`` (a cell's text cut or padded by ``_fit``) with ``spans`` of the text before
+    fitting (``length`` characters) in the ``marked`` style, as far as they are still shown."""
+    shown = length if len(fitted) >= length and not fitted[length:].strip() else max(len(fitted) - 1, 0)
+    segments: list[Segment] = []
+    at = 0
+    for start, end in spans:
+        start, end = max(start, at), min(end, shown)
+        if start >= end:
+            continue
+        if start > at:
+            segments.append(Segment(fitted[at:start], style))
+        segments.append(Segment(fitted[start:end], marked))
+        at = end
+    segments.append(Segment(fitted[at:], style))
+    return segments
+
+
+#: Cells of the gutter (a mark, and a space).
+_GUTTER = 2
 
 
 def _fit(text: str, width: int, align: str = "left") -> str:

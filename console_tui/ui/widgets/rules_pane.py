@@ -30,6 +30,10 @@ _HINTS: list[Hint] = [
 ]
 
 
+#: How the pane names the rules the level and node keys make (``model/toggles.py``).
+_TOGGLE_NAMES = {"levels": "level keys", "solo": "solo", "mute": "mute"}
+
+
 def entry_text(entry: Entry, count: int | None) -> Table:
     """One entry of the list: on/off, role, the rule (wrapping when long), and at the right
     of its first line its count, or why it is inactive."""
@@ -43,6 +47,8 @@ def entry_text(entry: Entry, count: int | None) -> Table:
     text.append(description, style="" if entry.active else "dim strike" if not entry.enabled else "dim")
     if entry.from_query:
         text.append("  (query)", style="dim italic")
+    if entry.toggle:
+        text.append(f"  ({_TOGGLE_NAMES.get(entry.toggle, entry.toggle)})", style="dim italic")
     if count is None and entry.enabled and entry.rule.is_empty:
         text.append("  (empty: matches nothing)", style="dim italic")
     row = Table.grid(expand=True)

@@ -1,4 +1,5 @@
-"""The status line: rows shown of total, counts per severity, rate, state, source."""
+"""The status line: rows shown of total, the search, level and node toggles, counts per
+severity, rate, state, source, the rules and the time format."""
 
 from __future__ import annotations
 
@@ -33,6 +34,12 @@ class StatusFacts:
     new_while_paused: int = 0
     sources: list[SourceStatus] = field(default_factory=list)
     note: str = ""
+    #: The search: ``match 3 of 17 'timeout'``, or "".
+    search: str = ""
+    #: Level and node toggles in force: ``level≥WARN · solo navigation.planner``, or "".
+    toggles: str = ""
+    #: What the Time column shows when not the wall clock, and a sim time note, or "".
+    time: str = ""
 
 
 class StatusBar(Widget):
@@ -66,6 +73,12 @@ def render_status(facts: StatusFacts) -> Text:
     else:
         text.append(" SCROLL ", style="bold black on cyan")
     text.append(f"  {facts.shown:,}/{facts.total:,} shown  ")
+    if facts.search:
+        text.append(f"{one_line(facts.search, 120)}", style="bold black on yellow")
+        text.append("  ")
+    if facts.toggles:
+        text.append(f"{one_line(facts.toggles, 200)}", style="bold magenta")
+        text.append("  ")
     for severity in MESSAGE_SEVERITIES:
         letter, style = _SEVERITY_LETTER[int(severity)]
         text.append(letter, style=style)
@@ -85,4 +98,6 @@ def render_status(facts: StatusFacts) -> Text:
             text.append(f" {where}" if status.topic and not loss and not status.problem else f"  {where}", style="dim")
     if facts.note:
         text.append(f"  {facts.note}", style="italic")
+    if facts.time:
+        text.append(f"  {facts.time}", style="italic")
     return text

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 
@@ -53,12 +54,16 @@ class PlacedColumn:
     width: int
 
 
-def layout_columns(width: int, shown: frozenset[str], node_width: int) -> tuple[PlacedColumn, ...]:
+def layout_columns(
+    width: int, shown: frozenset[str], node_width: int, widths: Mapping[str, int] | None = None
+) -> tuple[PlacedColumn, ...]:
     """Place the shown columns in ``width`` cells, dropping optional ones while the
-    message column would be narrower than ``MESSAGE_MIN``; the message takes the rest."""
+    message column would be narrower than ``MESSAGE_MIN``; the message takes the rest.
+    ``widths`` overrides columns' widths (the Time column's follows its format)."""
+    widths = widths or {}
 
     def sized(column: Column) -> int:
-        return node_width if column.key == "node" else column.width
+        return node_width if column.key == "node" else widths.get(column.key, column.width)
 
     columns = [column for column in COLUMNS if column.key in shown]
     while True:

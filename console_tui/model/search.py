@@ -1,0 +1,293 @@
+"""Search: find a text or a regex in the messages without hiding any row.
+
+``parse_search`` reads what a person types: ``timeout`` (ignoring case unless it has a
+capital letter, as the query line does), ``/time(out|d out)/`` a regular expression,
+``/.../i`` ignoring case. It gives a ``TextMatch``, the same matcher the rules use, so a
+pattern means the same in both and a bad one is refused the same way.
+
+``Search`` finds every shown row whose message matches, walking out from an anchor (the
+selected row) in both directions, a time budget at a time: the match nearest the anchor in
+the direction asked for is known first, and "match 3 of 17" once the walk is complete. New
+records are walked as they arrive; a change of the rules needs a new ``Search`` (which rows
+are shown changed).
+
+Full chunks keep their messages joined in one string (``PackedTexts``): plain text is found
+there by ``str.find`` over the whole chunk, and a regex is run only on the messages holding
+the plain text every match must contain (``required_literal``); other messages are tested
+one by one by ``TextMatch``'s own mask. Either way under ``time_limit``.
+"""
+
+from __future__ import annotations
+
+import re
+from array import array
+from bisect import bisect_left, bisect_right
+from collections.abc import Iterator, Sequence
+from itertools import compress
+from operator import neg
+from time import perf_counter
+
+from .packed_texts import PackedTexts
+from .rules.text_match import TextMatch, required_literal
+from .rules.time_limit import MatchTimeout, time_limit
+from .seek import HITS_LIMIT_S, Hits, PieceSize, Walk, view_shows
+from .store import Chunk, LogStore
+from .view import LogView
+
+_SEPARATOR = "\0"
+
+
+def parse_search(text: str) -> TextMatch:
+    """What the search line's text looks for; ``RuleError`` for a bad regex."""
+    stripped = text.strip()
+    if len(stripped) >= 2 and stripped.startswith("/"):
+        if stripped.endswith("/i") and len(stripped) >= 3:
+            return TextMatch(stripped[1:-2], ignore_case=True, regex=True)
+        if stripped.endswith("/"):
+            return TextMatch(stripped[1:-1], regex=True)
+    return TextMatch(stripped, ignore_case=stripped == stripped.lower(), regex=False)
+
+
+def describe_search(match: TextMatch) -> str:
+    """How the status line names a search: ``'timeout'``, ``/time(out)/i``."""
+    if match.regex:
+        return f"/{match.text}/" + ("i" if match.ignore_case else "")
+    return repr(match.text)
+
+
+def display_pattern(match: TextMatch) -> re.Pattern[str]:
+    """A regex finding the matches in a row's text as shown, for marking them."""
+    if match.regex:
+        return match.pattern()
+    return re.compile(re.escape(match.text), re.IGNORECASE if match.ignore_case else 0)
+
+
+def _packed_rows(packed: PackedTexts, needle: str, lo: int, hi: int, *, lower: bool) -> list[int]:
+    """Texts ``lo..hi`` of ``packed`` that contain ``needle`` (in lower case, ``lower``)."""
+    starts = packed.starts
+    begin, end = starts[lo], starts[hi] - 1
+    if lower:
+        hay, shift = packed.text[begin:end].lower(), begin
+        begin, end = 0, end - begin
+    else:
+        hay, shift = packed.text, 0
+    find = hay.find
+    rows: list[int] = []
+    at = find(needle, begin, end)
+    while at != -1:
+        row = bisect_right(starts, at + shift) - 1
+        rows.append(row)
+        at = find(needle, starts[row + 1] - shift, end)
+    return rows
+
+
+def text_hits(match: TextMatch) -> Hits:
+    """The ``Hits`` of a ``TextMatch`` over messages (see the module's docstring)."""
+    masker = match.mask_function()
+    needle, lower, verify = "", False, None
+    if match.regex:
+        pattern = match.pattern()
+        literal = required_literal(pattern).text
+        if match.ignore_case:
+            literal = literal.lower() if literal.isascii() else ""
+        needle, lower, verify = literal, match.ignore_case, pattern.search
+    elif match.ignore_case:
+        folded = match.text.casefold()
+        # Casefolding ASCII text is lowering it, and gives ASCII: a needle that is not ASCII
+        # then is in no ASCII text.
+        needle, lower = folded, True
+    else:
+        needle = match.text
+    usable = bool(needle) and _SEPARATOR not in needle
+
+    def hits(chunk: Chunk, lo: int, hi: int) -> Sequence[int]:
+        msgs = chunk.msgs
+        if usable and isinstance(msgs, PackedTexts) and (not lower or msgs.text.isascii()):
+            if lower and not needle.isascii():
+                return []
+            rows = _packed_rows(msgs, needle, lo, hi, lower=lower)
+            if verify is None:
+                return rows
+            return [row for row in rows if verify(msgs[row]) is not None]
+        return list(compress(range(lo, hi), masker(msgs[lo:hi])))
+
+    return hits
+
+
+#: ``Search.nearest`` when the answer is not known yet (the walk has not got there).
+PENDING = -1
+
+
+class Search:
+    """Every shown row matching ``match``, found from ``anchor`` outwards (see the module)."""
+
+    def __init__(self, view: LogView, match: TextMatch, anchor: int) -> None:
+        self.view = view
+        self.store: LogStore = view.store
+        self.match = match
+        self.hits = text_hits(match)
+        #: Only a regex can run long (plain text is found by ``str.find``).
+        self._limit_s = HITS_LIMIT_S if match.regex else None
+        self.up = Walk(self.store, anchor, forward=True)
+        self.down = Walk(self.store, anchor, forward=False)
+        #: Matches older than the anchor, newest first; then the anchor and newer, oldest first.
+        self._older = array("q")
+        self._newer = array("q")
+        #: Why the search stopped (too slow a regex), or "".
+        self.failed = ""
+        self._piece = PieceSize()
+
+    # -- walking ------------------------------------------------------------------------------
+
+    @property
+    def complete(self) -> bool:
+        """Every kept record was looked at (until more arrive)."""
+        return bool(self.failed) or (self.up.done and self.down.done)
+
+    @property
+    def older_done(self) -> bool:
+        return bool(self.failed) or self.down.done
+
+    @property
+    def newer_done(self) -> bool:
+        return bool(self.failed) or self.up.done
+
+    def step(self, budget_s: float = 0.008, prefer: int = 0) -> bool:
+        """Look on for about ``budget_s``: newer records first when ``prefer`` > 0, older
+        when < 0, else both in turn. True when complete."""
+        deadline = perf_counter() + budget_s
+        turn = 0
+        while not self.complete:
+            if prefer > 0 and not self.up.done:
+                walk = self.up
+            elif prefer < 0 and not self.down.done:
+                walk = self.down
+            else:
+                walk = (self.up, self.down)[turn % 2]
+                turn += 1
+                if walk.done:
+                    continue
+            began = perf_counter()
+            if not self._walk_piece(walk):
+                break
+            now = perf_counter()
+            self._piece.learn(self._last_rows, now - began, budget_s)
+            if now >= deadline:
+                break
+        self._trim()
+        return self.complete
+
+    _last_rows = 0
+
+    def _walk_piece(self, walk: Walk) -> bool:
+        span = walk.next_span(self._piece.rows)
+        if span is None:
+            return True
+        self._last_rows = span.hi - span.lo
+        try:
+            if self._limit_s is None:
+                offsets = self.hits(span.chunk, span.lo, span.hi)
+            else:
+                with time_limit(self._limit_s):
+                    offsets = self.hits(span.chunk, span.lo, span.hi)
+        except MatchTimeout:
+            self.failed = f"too slow: testing {span.hi - span.lo:,} messages took over {self._limit_s:g} s"
+            return False
+        base = span.seq - span.lo
+        view = self.view
+        seqs = [base + offset for offset in offsets]
+        if view.filtered:
+            seqs = [seq for seq in seqs if view_shows(view, seq)]
+        if walk.forward:
+            self._newer.extend(seqs)
+        else:
+            seqs.reverse()
+            self._older.extend(seqs)
+        return True
+
+    def _trim(self) -> None:
+        """Forget matches evicted from the store."""
+        first = self.store.first_seq
+        older = self._older
+        if older and older[-1] < first:
+            del older[bisect_right(older, -first, key=neg) :]
+        newer = self._newer
+        if newer and newer[0] < first:
+            del newer[: bisect_left(newer, first)]
+
+    # -- answers ------------------------------------------------------------------------------
+
+    def seqs(self) -> Iterator[int]:
+        """The matches found so far, oldest first."""
+        self._trim()
+        yield from reversed(self._older)
+        yield from self._newer
+
+    def count(self, limit: int | None = None) -> int:
+        """Matches found so far (those before seq ``limit`` only, when given)."""
+        self._trim()
+        older, newer = self._older, self._newer
+        if limit is None:
+            return len(older) + len(newer)
+        return len(older) - bisect_right(older, -limit, key=neg) + bisect_left(newer, limit)
+
+    def index(self, seq: int) -> int | None:
+        """1-based place of match ``seq`` among all matches, when known (it is a match and
+        every older record has been looked at); else None."""
+        self._trim()
+        if not self.older_done or not self.is_match(seq):
+            return None
+        older, newer = self._older, self._newer
+        if newer and seq >= newer[0]:
+            return len(older) + bisect_left(newer, seq) + 1
+        return len(older) - bisect_left(older, -seq, key=neg)
+
+    def is_match(self, seq: int) -> bool:
+        """Whether ``seq`` is among the matches found."""
+        older, newer = self._older, self._newer
+        if newer and seq >= newer[0]:
+            at = bisect_left(newer, seq)
+            return at < len(newer) and newer[at] == seq
+        at = bisect_left(older, -seq, key=neg)
+        return at < len(older) and older[at] == seq
+
+    def _first_from(self, bound: int) -> int | None:
+        """The oldest match found at ``bound`` or newer."""
+        older, newer = self._older, self._newer
+        at_least = bisect_right(older, -bound, key=neg)  # older (descending) holds these first
+        if at_least:
+            return older[at_least - 1]
+        at = bisect_left(newer, bound)
+        return newer[at] if at < len(newer) else None
+
+    def _last_before(self, bound: int) -> int | None:
+        """The newest match found older than ``bound``."""
+        older, newer = self._older, self._newer
+        at = bisect_left(newer, bound)
+        if at:
+            return newer[at - 1]
+        at_least = bisect_right(older, -bound, key=neg)
+        return older[at_least] if at_least < len(older) else None
+
+    def nearest(self, seq: int, *, forward: bool, inclusive: bool = False, limit: int | None = None) -> int | None:
+        """The match nearest ``seq`` in that direction (``seq`` itself too when
+        ``inclusive``), older than ``limit``; None when there is none; ``PENDING`` while
+        the walk has not looked that far yet."""
+        self._trim()
+        if forward:
+            bound = max(seq if inclusive else seq + 1, self.store.first_seq)
+            if bound < self.down.at and not self.older_done:
+                return PENDING  # records between ``seq`` and what was looked at
+            found = self._first_from(bound)
+            if found is not None:
+                return found if limit is None or found < limit else None
+            if self.newer_done or (limit is not None and self.up.at >= limit):
+                return None
+            return PENDING
+        bound = seq + 1 if inclusive else seq
+        if bound > self.up.at and not self.newer_done:
+            return PENDING
+        found = self._last_before(bound)
+        if found is not None:
+            return found
+        return None if self.older_done else PENDING

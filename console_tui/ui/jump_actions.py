@@ -1,0 +1,190 @@
+"""The app's jumps: next / previous error and warning, first / last message, marks, and
+opening a message's source file in the user's editor.
+
+A part of ``ConsoleApp`` (it mixes this in). A jump walks the history from the selected row
+with the model's ``Seeker``: a few milliseconds at a time on the event loop, so a jump a
+million rows away never freezes the screen.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import shlex
+import shutil
+import subprocess
+from collections.abc import Callable
+
+from textual import work
+from textual.app import App, SuspendNotSupported
+from textual.binding import Binding
+
+from ..model.levels import Severity
+from ..model.marks import Marks
+from ..model.seek import Hits, Seeker, level_hits, view_shows
+from ..model.store import LogStore
+from ..model.text import one_line
+from ..model.view import LogView
+from .screens.marks import MarksScreen
+from .widgets.log_table import LogTable
+
+#: A jump looks this long at once, then goes on in slices of the same length.
+SEEK_BUDGET_S = 0.008
+SEEK_PAUSE_S = 0.001
+
+
+class JumpActions(App[None]):
+    """Jumps to errors, warnings and marks; the source of a message in the editor."""
+
+    #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
+    KEYS = [
+        Binding("e", "next_level(40)", "Next ERROR or worse", show=False, id="nav.next_error"),
+        Binding("E", "previous_level(40)", "Previous ERROR or worse", show=False, id="nav.previous_error"),
+        Binding("w", "next_level(30)", "Next WARN or worse", show=False, id="nav.next_warning"),
+        Binding("W", "previous_level(30)", "Previous WARN or worse", show=False, id="nav.previous_warning"),
+        Binding("m", "toggle_mark", "Mark the row (or unmark it)", show=False, id="nav.mark"),
+        Binding("u", "next_mark", "Next mark", show=False, id="nav.next_mark"),
+        Binding("U", "previous_mark", "Previous mark", show=False, id="nav.previous_mark"),
+        Binding("M", "marks", "Marks: list them, jump to one", show=False, id="nav.marks"),
+        Binding("v", "open_source", "Open the row's source file in $VISUAL / $EDITOR", show=False, id="nav.source"),
+    ]
+
+    # What it uses of the app (``ConsoleApp`` sets them).
+    store: LogStore
+    view: LogView
+    table: LogTable
+    marks: Marks
+    update_status: Callable[[], None]
+    _show_search_marks: Callable[[], None]
+
+    # -- levels -----------------------------------------------------------------------------------
+
+    def action_next_level(self, level: int) -> None:
+        self._seek(level_hits(level), forward=True, what=f"{Severity(level).name} or worse")
+
+    def action_previous_level(self, level: int) -> None:
+        self._seek(level_hits(level), forward=False, what=f"{Severity(level).name} or worse")
+
+    def action_first_row(self) -> None:
+        self.table.action_first_row()
+
+    def action_last_row(self) -> None:
+        self.table.follow()
+
+    def _seek(self, hits: Hits, *, forward: bool, what: str) -> None:
+        seq = self.table.cursor_seq
+        if seq is None:
+            return
+        seeker = Seeker(self.view, hits, seq, forward=forward, limit=self.table.paused_end)
+        if seeker.step(SEEK_BUDGET_S):
+            self._sought(seeker, what)
+        else:
+            self._seek_in_background(seeker, what)
+
+    @work(exclusive=True, group="seek")
+    async def _seek_in_background(self, seeker: Seeker, what: str) -> None:
+        while not seeker.step(SEEK_BUDGET_S):
+            await asyncio.sleep(SEEK_PAUSE_S)
+        self._sought(seeker, what)
+
+    def _sought(self, seeker: Seeker, what: str) -> None:
+        if seeker.found is not None:
+            self.table.jump_to_seq(seeker.found)
+        else:
+            where = "below" if seeker.forward else "above"
+            self.notify(f"No {what} {where}{'' if not seeker.failed else ': ' + seeker.failed}", timeout=3)
+
+    # -- marks ------------------------------------------------------------------------------------
+
+    def action_toggle_mark(self) -> None:
+        seq = self.table.cursor_seq
+        if seq is None:
+            return
+        self.marks.trim(self.store.first_seq)
+        self.marks.toggle(seq)
+        self._show_search_marks()  # the gutter shows marks and matches
+        self.update_status()
+
+    def action_next_mark(self) -> None:
+        self._to_mark(forward=True)
+
+    def action_previous_mark(self) -> None:
+        self._to_mark(forward=False)
+
+    def _to_mark(self, forward: bool) -> None:
+        seq = self.table.cursor_seq
+        self.marks.trim(self.store.first_seq)
+        if seq is None or not len(self.marks):
+            self.notify("No marks: m marks the selected row.", timeout=3)
+            return
+        limit = self.table.paused_end
+        found = self.marks.nearest(
+            seq, forward=forward, shown=lambda s: view_shows(self.view, s) and (limit is None or s < limit)
+        )
+        if found is None:
+            self.notify(f"No mark {'below' if forward else 'above'} that the rules show.", timeout=3)
+        else:
+            self.table.jump_to_seq(found)
+
+    def action_marks(self) -> None:
+        self.marks.trim(self.store.first_seq)
+
+        def chosen(seq: int | None) -> None:
+            self._show_search_marks()
+            if seq is None:
+                return
+            if not self.table.jump_to_seq(seq):
+                self.notify("That row is hidden by the rules (r shows them).", timeout=4)
+
+        records = [self.store.get(seq) for seq in self.marks]
+        shown = {record.seq for record in records if view_shows(self.view, record.seq)}
+        self.push_screen(MarksScreen(records, shown, self.marks, utc=self.table.utc), chosen)
+
+    # -- the source file --------------------------------------------------------------------------
+
+    def action_open_source(self) -> None:
+        seq = self.table.cursor_seq
+        if seq is None or seq not in self.store:
+            return
+        record = self.store.get(seq)
+        path = record.file
+        if not path:
+            self.notify("This message names no source file.", timeout=4)
+            return
+        if not os.path.isfile(path):
+            self.notify(
+                f"{one_line(path, 300)} is not on this machine (logged elsewhere, on a robot?).",
+                severity="warning",
+                timeout=6,
+            )
+            return
+        command = editor_command(path, record.line)
+        if command is None:
+            self.notify("No editor: set $VISUAL or $EDITOR (vi is not installed either).", severity="error", timeout=8)
+            return
+        try:
+            try:
+                with self.suspend():  # the terminal is the editor's until it exits
+                    result = subprocess.run(command, check=False)
+            except SuspendNotSupported:  # no terminal to hand over (a headless run)
+                result = subprocess.run(command, check=False, stdin=subprocess.DEVNULL)
+        except OSError as error:
+            self.notify(f"Could not run the editor {one_line(command[0], 200)}: {error}", severity="error", timeout=8)
+            return
+        self.refresh()
+        if result.returncode:
+            self.notify(f"The editor exited with status {result.returncode}.", severity="warning", timeout=5)
+
+
+def editor_command(path: str, line: int) -> list[str] | None:
+    """``$VISUAL`` (else ``$EDITOR``, else ``vi``) at ``line`` of ``path``: ``vim +42 file``."""
+    editor = os.environ.get("VISUAL") or os.environ.get("EDITOR") or ""
+    try:
+        words = shlex.split(editor)
+    except ValueError:  # unbalanced quotes: the whole value names the editor
+        words = [editor.strip()]
+    if not words:
+        if shutil.which("vi") is None:
+            return None
+        words = ["vi"]
+    return [*words, *([f"+{line}"] if line > 0 else []), path]

@@ -1,0 +1,269 @@
+"""The app's search: the search line, next / previous match, the marks on matching rows.
+
+A part of ``ConsoleApp`` (it mixes this in). The search itself is the model's ``Search``:
+it walks the history in slices on the event loop (the screen never waits), newer or older
+first as the jump asked for needs, and the status line says "match 3 of 17".
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from textual import work
+from textual.app import App
+from textual.binding import Binding
+
+from ..model.marks import Marks
+from ..model.rules.time_limit import MatchTimeout, time_limit
+from ..model.search import PENDING, Search, describe_search, display_pattern, parse_search
+from ..model.store import LogStore
+from ..model.view import LogView
+from .focus import focus_now
+from .widgets.log_table import LogTable, Spans
+from .widgets.search_bar import SearchBar
+
+#: Slices of the search on the event loop, and the pause between them.
+SEARCH_BUDGET_S = 0.008
+SEARCH_PAUSE_S = 0.001
+#: How often the status line's count moves while searching.
+SEARCH_PROGRESS_PERIOD_S = 0.1
+#: Finding the matches in one row as shown (a regex) may take this long at most.
+ROW_MARK_LIMIT_S = 0.05
+MARK_GLYPH, MATCH_GLYPH = "●", "»"
+
+
+@dataclass
+class _Jump:
+    """A jump waiting for the search: from ``seq``, in that direction."""
+
+    seq: int
+    forward: bool
+    inclusive: bool = False
+    #: Nothing that way: try the other way (the first jump as you type).
+    either_way: bool = False
+
+
+class SearchActions(App[None]):
+    """Search without filtering: every match marked, n / N across the whole history."""
+
+    #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
+    KEYS = [
+        Binding("f,ctrl+f", "search", "Find", id="nav.find"),
+        Binding("n", "next_match", "Next match", show=False, id="nav.next_match"),
+        Binding("N", "previous_match", "Previous match", show=False, id="nav.previous_match"),
+    ]
+
+    # What it uses of the app (``ConsoleApp`` sets them).
+    store: LogStore
+    view: LogView
+    table: LogTable
+    search_bar: SearchBar
+    marks: Marks
+    update_status: Callable[[], None]
+    clock: Callable[[], float]
+
+    search: Search | None = None
+    _search_rules: object = None
+    _search_origin: tuple[int | None, bool] | None = None
+    _jump: _Jump | None = None
+    _search_text = ""
+
+    # -- the search line ----------------------------------------------------------------------
+
+    def action_search(self) -> None:
+        table = self.table
+        self._search_origin = (table.cursor_seq, table.following)
+        self.search_bar.open(self._search_text)
+
+    def on_search_bar_changed(self, message: SearchBar.Changed) -> None:
+        origin, following = self._search_origin or (self.table.cursor_seq, self.table.following)
+        if not message.text.strip():
+            self.clear_search()
+            self._go_back(origin, following)
+            return
+        self.start_search(message.text, origin, first_jump=True, newest_first=following)
+
+    def on_search_bar_done(self, message: SearchBar.Done) -> None:
+        if not message.keep:
+            origin, following = self._search_origin or (None, False)
+            self.clear_search()
+            self._go_back(origin, following)
+        focus_now(self.table)
+        self._search_origin = None
+
+    def _go_back(self, seq: int | None, following: bool) -> None:
+        if following:
+            self.table.follow()
+        elif seq is not None and seq in self.store:
+            self.table.jump_to_seq(seq)
+
+    # -- searching ----------------------------------------------------------------------------
+
+    def start_search(self, text: str, anchor: int | None = None, *, first_jump: bool, newest_first: bool) -> None:
+        """Search for ``text`` from ``anchor`` (the selected row); with ``first_jump`` go to the
+        match nearest it (the newest when ``newest_first``, else the next one down)."""
+        match = parse_search(text)
+        if anchor is None:
+            anchor = self.table.cursor_seq
+        start = anchor if anchor is not None else self.store.end_seq
+        self._search_text = text.strip()
+        self.search = Search(self.view, match, start)
+        self._search_rules = self.view.rules
+        self._jump = _Jump(start, forward=not newest_first, inclusive=True, either_way=True) if first_jump else None
+        self._show_search_marks()
+        self._search_on()
+
+    def clear_search(self) -> None:
+        self.search = None
+        self._jump = None
+        self._search_text = ""
+        self.workers.cancel_group(self, "search")
+        self._show_search_marks()
+        self.update_status()
+
+    def action_clear_search(self) -> None:
+        if self.search is not None:
+            self.clear_search()
+
+    def action_next_match(self) -> None:
+        self._jump_to_match(forward=True)
+
+    def action_previous_match(self) -> None:
+        self._jump_to_match(forward=False)
+
+    def _jump_to_match(self, forward: bool) -> None:
+        search = self._fresh_search()
+        if search is None:
+            self.notify("No search yet: f finds a text or a /regex/.", timeout=4)
+            return
+        seq = self.table.cursor_seq
+        if seq is None:
+            return
+        self._jump = _Jump(seq, forward)
+        if not self._try_jump():
+            self._search_on()
+
+    def _fresh_search(self) -> Search | None:
+        """The search, started again from the selected row when the rules changed (which
+        rows are shown changed with them)."""
+        search = self.search
+        if search is not None and self.view.rules is not self._search_rules:
+            anchor = self.table.cursor_seq
+            jump = self._jump
+            self.start_search(self._search_text, anchor, first_jump=False, newest_first=False)
+            self._jump = jump
+            search = self.search
+        return search
+
+    def _try_jump(self) -> bool:
+        """Go to the match the waiting jump asks for, if the search knows it; True when the
+        jump is done (gone there, or said there is none)."""
+        jump, search = self._jump, self.search
+        if jump is None or search is None:
+            return True
+        limit = self.table.paused_end
+        found = search.nearest(jump.seq, forward=jump.forward, inclusive=jump.inclusive, limit=limit)
+        if found == PENDING:
+            return False
+        if found is None and jump.either_way:
+            other = search.nearest(jump.seq, forward=not jump.forward, inclusive=jump.inclusive, limit=limit)
+            if other == PENDING:
+                return False
+            found = other
+        self._jump = None
+        if found is not None:
+            self.table.jump_to_seq(found)
+        elif not jump.either_way:
+            where = "below" if jump.forward else "above"
+            self.notify(f"No match {where} for {describe_search(search.match)}", timeout=3)
+        self.update_status()
+        return True
+
+    def _search_on(self) -> None:
+        """Keep the search walking in the background (when it has something to do)."""
+        search = self.search
+        busy = search is not None and (not search.complete or self._jump is not None)
+        if busy and not any(w.group == "search" and w.is_running for w in self.workers):
+            self._search_in_background()
+
+    @work(exclusive=True, group="search")
+    async def _search_in_background(self) -> None:
+        shown_at = self.clock()
+        while True:
+            search = self._fresh_search()
+            if search is None:
+                return
+            if not self.view.refiltering:  # the rows shown are known
+                jump = self._jump
+                prefer = 0 if jump is None else (1 if jump.forward else -1)
+                complete = search.step(SEARCH_BUDGET_S, prefer)
+                if search.failed:
+                    self.notify(f"Search stopped, {search.failed}: {describe_search(search.match)}", severity="error")
+                    self._jump = None
+                jumped = self._try_jump()
+                if self.clock() - shown_at >= SEARCH_PROGRESS_PERIOD_S or complete:
+                    shown_at = self.clock()
+                    self._show_search_marks()
+                    self.update_status()
+                if complete and jumped:
+                    return
+            await asyncio.sleep(SEARCH_PAUSE_S)
+
+    def search_after_records(self) -> None:
+        """New records arrived: they are searched too."""
+        if self.search is not None and not self.search.complete:
+            self._search_on()
+
+    # -- what the table and the status line show ------------------------------------------------
+
+    def _show_search_marks(self) -> None:
+        table = self.table
+        search = self.search
+        if search is not None:
+            pattern = display_pattern(search.match)
+            regex = search.match.regex
+
+            def spans(seq: int, text: str) -> Spans:
+                if not search.is_match(seq):
+                    return []
+                try:
+                    if regex:
+                        with time_limit(ROW_MARK_LIMIT_S):
+                            return [m.span() for m in pattern.finditer(text) if m.end() > m.start()]
+                    return [m.span() for m in pattern.finditer(text) if m.end() > m.start()]
+                except MatchTimeout:
+                    return []
+
+            table.match_spans = spans
+        else:
+            table.match_spans = None
+        table.set_gutter(self._gutter if search is not None or len(self.marks) else None)
+        table.restyle()
+
+    def _gutter(self, seq: int) -> str:
+        if seq in self.marks:
+            return MARK_GLYPH
+        search = self.search
+        return MATCH_GLYPH if search is not None and search.is_match(seq) else ""
+
+    def search_status(self) -> str:
+        """``match 3 of 17 'timeout'``, ``17 matches``, ``searching… 5 found``, or ""."""
+        search = self._fresh_search()
+        if search is None:
+            return ""
+        what = describe_search(search.match)
+        if search.failed:
+            return f"search stopped: {what}"
+        limit = self.table.paused_end
+        found = search.count(limit)
+        if not search.complete:
+            return f"searching {what}: {found:,} found"
+        if not found:
+            return f"no match {what}"
+        seq = self.table.cursor_seq
+        index = search.index(seq) if seq is not None else None
+        if index is not None:
+            return f"match {index:,} of {found:,} {what}"
+        return f"{found:,} match{'es' if found != 1 else ''} {what}"

@@ -1,0 +1,291 @@
+"""The node panel, beside the table: every node (logger) seen, its messages per severity and
+its rate (over the last minute of stamps); solo or mute a node with one key.
+
+It shares the right side with the logger levels pane (opening one closes the other). The
+counts are the model's ``NodeStats`` (of the messages kept, whatever the rules show; the app
+keeps them up to date), read again every second while the panel is open; solo and mute are
+rules (``model/toggles.py``), which the app applies when the panel asks (``Toggle``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from rich.table import Table
+from rich.text import Text
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding
+from textual.message import Message
+from textual.timer import Timer
+from textual.widget import Widget
+from textual.widgets import Input, OptionList, Static
+from textual.widgets.option_list import Option
+
+from ...model.node_stats import NodeCounts, NodeStats
+from ...model.text import one_line
+from ..focus import focus_now
+from ..keys import Hint, hint_line
+from .side_pane import SidePane
+
+REFRESH_S = 1.0
+
+_HINTS: list[Hint] = [
+    ("solo", "solo"),
+    ("mute", "mute"),
+    ("clear_toggles", "hear all"),
+    ("sort", "sort"),
+    ("filter", "filter"),
+    ("leave", "table"),
+]
+
+
+@dataclass(frozen=True)
+class Sort:
+    key: str
+    title: str
+    order: Callable[[NodeCounts], Any]
+
+
+def _errors(row: NodeCounts) -> int:
+    return row.counts[3] + row.counts[4]
+
+
+SORTS = (
+    Sort("name", "name", lambda row: row.node),
+    Sort("errors", "errors", lambda row: (-_errors(row), -row.counts[2], row.node)),
+    Sort("warnings", "warnings", lambda row: (-row.counts[2], -_errors(row), row.node)),
+    Sort("total", "messages", lambda row: (-row.total, row.node)),
+    Sort("rate", "rate", lambda row: (-row.rate, row.node)),
+)
+_LEVEL_STYLES = ("dim", "green", "yellow", "red", "bold red")
+
+
+def compact(number: int) -> str:
+    """At most 4 characters: ``9999``, ``12k``, ``1.2M``."""
+    if number < 10_000:
+        return str(number)
+    if number < 999_500:
+        return f"{number / 1000:.0f}k"
+    return f"{number / 1_000_000:.1f}M"
+
+
+def rate_text(rate: float) -> str:
+    if rate < 100:
+        return f"{rate:.1f}"
+    return compact(round(rate))
+
+
+def node_line(row: NodeCounts, state: str) -> Table:
+    """A node's line: S (solo) or M (mute), its name, its counts per severity, its rate."""
+    grid = Table.grid(expand=True)
+    grid.add_column(width=2, no_wrap=True)
+    grid.add_column(ratio=1, no_wrap=True, overflow="ellipsis")
+    for _ in range(5):
+        grid.add_column(width=5, justify="right", no_wrap=True)
+    grid.add_column(width=6, justify="right", no_wrap=True)
+    name_style = "dim strike" if state == "M" else "bold" if state == "S" else ""
+    counts = [
+        Text(compact(count), style=style if count else "dim")
+        for count, style in zip(row.counts, _LEVEL_STYLES, strict=True)
+    ]
+    grid.add_row(
+        Text(state, style="bold reverse" if state else ""),
+        Text(one_line(row.node, 200), style=name_style),
+        *counts,
+        Text(rate_text(row.rate), style="cyan"),
+    )
+    return grid
+
+
+def header_line(sort: Sort) -> Table:
+    grid = Table.grid(expand=True)
+    grid.add_column(width=2, no_wrap=True)
+    grid.add_column(ratio=1, no_wrap=True, overflow="ellipsis")
+    for _ in range(5):
+        grid.add_column(width=5, justify="right", no_wrap=True)
+    grid.add_column(width=6, justify="right", no_wrap=True)
+    titles = {"name": "node", "errors": "E", "warnings": "W", "rate": "/s"}
+    arrow = {key: f"{title}▼" if key == sort.key and key != "name" else title for key, title in titles.items()}
+    name = "node ▲" if sort.key == "name" else "node"
+    if sort.key == "total":
+        name += "  (by messages ▼)"
+    grid.add_row("", name, "D", "I", arrow["warnings"], arrow["errors"], "F", arrow["rate"])
+    return grid
+
+
+class NodeList(OptionList):
+    """The nodes; ``s``, ``m`` act on the highlighted one."""
+
+
+class NodePane(SidePane):
+    """Every node seen, its counts and rate; solo / mute with one key.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | s, enter | Solo the highlighted node (again: take it out of the solo). |
+    | m | Mute it (again: hear it). |
+    | x | Every node heard again: no solo, no mute. |
+    | o | Sort by name, errors, warnings, messages, rate. |
+    | slash | The filter box. |
+    | escape | Back to the table. |
+    """
+
+    DEFAULT_CSS = """
+    NodePane {
+        width: 56;
+        max-width: 55%;
+        height: 100%;
+        background: $surface;
+        border-left: vkey $border-blurred;
+        padding: 0 0 0 1;
+        &:focus-within { border-left: vkey $border; }
+        & > #nodes-title { text-style: bold; color: $text-primary; height: 1; }
+        & > Input { margin: 0; }
+        & > #nodes-header { height: 1; color: $text-muted; text-style: bold; }
+        & > NodeList { height: 1fr; }
+        & > NodeList:focus { background-tint: $foreground 5%; }
+        & > #nodes-keys { height: auto; color: $text-muted; }
+    }
+    """
+
+    BINDINGS = [
+        Binding("s,enter", "solo", "Solo the node", show=False, id="nodes.solo"),
+        Binding("m", "mute", "Mute the node", show=False, id="nodes.mute"),
+        Binding("x", "clear_toggles", "Every node heard again", show=False, id="nodes.clear"),
+        Binding("o", "sort", "Sort by name, errors, warnings, messages, rate", show=False, id="nodes.sort"),
+        Binding("slash", "filter", "Filter the nodes by name", show=False, id="nodes.filter"),
+        Binding("escape", "leave", "Back to the table", show=False, id="nodes.leave"),
+    ]
+
+    class Toggle(Message):
+        """Solo or mute ``node`` (``kind`` "solo", "mute"), or no solo and no mute ("clear")."""
+
+        def __init__(self, kind: str, node: str = "") -> None:
+            super().__init__()
+            self.kind = kind
+            self.node = node
+
+    def __init__(
+        self,
+        stats: NodeStats,
+        toggles: Callable[[], tuple[tuple[str, ...], tuple[str, ...]]],
+        *,
+        id: str | None = "node-pane",
+    ) -> None:
+        super().__init__(id=id)
+        self.stats = stats
+        #: The nodes soloed and muted now (the app's rules).
+        self.toggles = toggles
+        self.sort = SORTS[1]
+        self.filter_text = ""
+        self.rows: list[NodeCounts] = []
+        self._shown_key: tuple = ()
+        self._timer: Timer | None = None
+        self.node_list = NodeList(id="nodes-list", compact=True)
+        self.filter_input = Input(placeholder="filter nodes: part of a name", id="nodes-filter", compact=True)
+
+    def compose(self) -> ComposeResult:
+        yield Static("Nodes", id="nodes-title")
+        yield self.filter_input
+        yield Static(header_line(self.sort), id="nodes-header")
+        yield self.node_list
+        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="nodes-keys")
+
+    def focus_target(self) -> Widget:
+        return self.node_list
+
+    def when_opened(self) -> None:
+        self.update_counts()
+
+    def when_closed(self) -> None:
+        if self._timer is not None:
+            self._timer.stop()
+            self._timer = None
+
+    # -- counts ---------------------------------------------------------------------------------
+
+    def update_counts(self) -> None:
+        """Read the counts again and show them."""
+        if not self.is_open:
+            return
+        self.rows = self.stats.nodes()
+        self.show()
+        if self._timer is not None:
+            self._timer.stop()
+        self._timer = self.set_timer(REFRESH_S, self.update_counts)
+
+    def show(self) -> None:
+        """The rows as they are now, filtered and sorted, with the solo and mute marks."""
+        soloed, muted = self.toggles()
+        needle = self.filter_text.casefold()
+        rows = [row for row in self.rows if needle in row.node.casefold()] if needle else list(self.rows)
+        rows.sort(key=self.sort.order)
+        states = {name: "S" for name in soloed} | {name: "M" for name in muted}
+        key = (tuple(rows), tuple(sorted(states.items())), self.sort.key)
+        title = self.query_one("#nodes-title", Static)
+        parts = [f"Nodes: {len(self.rows)}"]
+        if needle:
+            parts.append(f"{len(rows)} shown")
+        if soloed:
+            parts.append(f"solo {len(soloed)}")
+        if muted:
+            parts.append(f"muted {len(muted)}")
+        title.update(" · ".join(parts))
+        if key == self._shown_key:
+            return
+        self._shown_key = key
+        self.query_one("#nodes-header", Static).update(header_line(self.sort))
+        options = self.node_list
+        highlighted = self.highlighted_node
+        with options.prevent(OptionList.OptionHighlighted):
+            options.clear_options()
+            options.add_options([Option(node_line(row, states.get(row.node, "")), id=row.node) for row in rows])
+            if rows:
+                names = [row.node for row in rows]
+                options.highlighted = names.index(highlighted) if highlighted in names else 0
+
+    @property
+    def highlighted_node(self) -> str | None:
+        option = self.node_list.highlighted_option
+        return None if option is None else option.id
+
+    # -- keys ---------------------------------------------------------------------------------
+
+    def action_solo(self) -> None:
+        node = self.highlighted_node
+        if node is not None:
+            self.post_message(self.Toggle("solo", node))
+
+    def action_mute(self) -> None:
+        node = self.highlighted_node
+        if node is not None:
+            self.post_message(self.Toggle("mute", node))
+
+    def action_clear_toggles(self) -> None:
+        self.post_message(self.Toggle("clear"))
+
+    def action_sort(self) -> None:
+        self.sort = SORTS[(SORTS.index(self.sort) + 1) % len(SORTS)]
+        self.show()
+
+    def action_filter(self) -> None:
+        focus_now(self.filter_input)
+
+    @on(OptionList.OptionSelected, "#nodes-list")
+    def _selected(self, event: OptionList.OptionSelected) -> None:
+        event.stop()
+        self.action_solo()
+
+    @on(Input.Changed, "#nodes-filter")
+    def _filter_changed(self, event: Input.Changed) -> None:
+        event.stop()
+        self.filter_text = event.value.strip()
+        self.show()
+
+    @on(Input.Submitted, "#nodes-filter")
+    def _filter_submitted(self, event: Input.Submitted) -> None:
+        event.stop()
+        focus_now(self.node_list)

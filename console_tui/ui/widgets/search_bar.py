@@ -1,0 +1,119 @@
+"""The search line: type a text or a /regex/; the table goes to the nearest match as you type."""
+
+from __future__ import annotations
+
+from textual import on
+from textual.app import ComposeResult
+from textual.binding import Binding, BindingType
+from textual.containers import Vertical
+from textual.message import Message
+from textual.widgets import Input, Static
+
+from ...model.rules.rule import RuleError
+from ...model.search import parse_search
+from ..focus import focus_now
+from ..keys import Hint, hint_line
+from ..plain import plain
+
+PLACEHOLDER = "text to find (smart case), or /regex/ or /regex/i: the rows stay, matches are marked"
+
+
+class SearchBar(Vertical):
+    """Hidden until opened. Posts ``Changed`` as the text changes and ``Done`` when closed.
+
+    | Key(s) | Description |
+    | :- | :- |
+    | escape | Cancel the search, the cursor back where it was. |
+    """
+
+    DEFAULT_CSS = """
+    SearchBar { height: auto; display: none; background: $panel; padding: 0 1; }
+    SearchBar.-open { display: block; }
+    SearchBar > Input, SearchBar > Input:focus { border: none; height: 1; padding: 0; background: $panel; }
+    SearchBar > #search-hint { color: $text-muted; height: auto; }
+    SearchBar > #search-hint.-error { color: $text-error; }
+    """
+
+    BINDINGS = [Binding("escape", "cancel", "Cancel the search", show=False, id="search.cancel")]
+
+    class Changed(Message):
+        """The text changed and reads as a search (or is empty)."""
+
+        def __init__(self, text: str) -> None:
+            super().__init__()
+            self.text = text
+
+    class Done(Message):
+        """Enter (``keep``: the search stays) or Escape (cancelled)."""
+
+        def __init__(self, keep: bool) -> None:
+            super().__init__()
+            self.keep = keep
+
+    def __init__(self, *, id: str | None = None) -> None:
+        super().__init__(id=id)
+        self.text = ""
+
+    def compose(self) -> ComposeResult:
+        yield Input(placeholder=PLACEHOLDER, id="search-input")
+        yield Static("", id="search-hint")
+
+    def on_mount(self) -> None:
+        self.show_hint()
+
+    def key_hints(self) -> str:
+        """``Enter keeps · Esc cancels · n/N next/previous``, from the bindings."""
+        app_bindings: list[BindingType] = getattr(self.app, "nav_bindings", list)()
+        hints: list[Hint] = [("submit", "keeps the search"), ("cancel", "cancels")]
+        line = hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], hints)
+        more = hint_line(self.app, app_bindings, [(("next_match", "previous_match"), "next/previous afterwards")])
+        return " · ".join(part for part in (line, more) if part)
+
+    def show_hint(self, problem: str = "") -> None:
+        hint = self.query_one("#search-hint", Static)
+        hint.set_class(bool(problem), "-error")
+        hint.update(plain(problem) if problem else self.key_hints())
+
+    @property
+    def input(self) -> Input:
+        return self.query_one(Input)
+
+    @property
+    def is_open(self) -> bool:
+        return self.has_class("-open")
+
+    def open(self, text: str = "") -> None:
+        self.add_class("-open")
+        self.input.value = text
+        self.input.cursor_position = len(text)
+        self.show_hint()
+        focus_now(self.input)
+
+    def close(self) -> None:
+        self.remove_class("-open")
+
+    def action_cancel(self) -> None:
+        self.close()
+        self.post_message(self.Done(keep=False))
+
+    @on(Input.Changed, "#search-input")
+    def changed(self, event: Input.Changed) -> None:
+        event.stop()
+        try:
+            parse_search(event.value)
+        except RuleError as error:
+            self.show_hint(error.message)
+            return
+        self.show_hint()
+        self.text = event.value
+        self.post_message(self.Changed(event.value))
+
+    @on(Input.Submitted, "#search-input")
+    def submitted(self, event: Input.Submitted) -> None:
+        event.stop()
+        try:
+            parse_search(event.value)
+        except RuleError:
+            return  # the problem is shown; Esc cancels
+        self.close()
+        self.post_message(self.Done(keep=True))

@@ -1,0 +1,126 @@
+"""The model behind finding your way: marks, level and node toggles (rules underneath),
+and the Time column's formats."""
+
+from __future__ import annotations
+
+import pytest
+
+from console_tui.model import toggles
+from console_tui.model.marks import Marks
+from console_tui.model.record import LogRecord
+from console_tui.model.rules.message import MessageRule
+from console_tui.model.rules.ruleset import RuleSet, exclude
+from console_tui.model.store import LogStore
+from console_tui.model.time_column import TimeFormat, duration_text, sim_time_note, time_cell
+from console_tui.model.view import LogView
+
+# -- marks ------------------------------------------------------------------------------------
+
+
+def test_marks_toggle_jump_and_trim():
+    marks = Marks()
+    for seq in (50, 10, 30):
+        assert marks.toggle(seq)
+    assert list(marks) == [10, 30, 50] and 30 in marks
+    assert not marks.toggle(30) and 30 not in marks
+    assert marks.nearest(10, forward=True, shown=lambda s: True) == 50
+    assert marks.nearest(50, forward=False, shown=lambda s: s != 10) is None
+    assert marks.nearest(0, forward=True, shown=lambda s: True) == 10
+    marks.trim(20)
+    assert list(marks) == [50]
+
+
+# -- level and node toggles -------------------------------------------------------------------
+
+
+def record(level: int, node: str = "talker") -> LogRecord:
+    return LogRecord(stamp_ns=0, level=level, node=node, msg="m")
+
+
+def shown_levels(rules: RuleSet) -> list[int]:
+    return [level for level in (10, 20, 30, 40, 50) if rules.verdict(record(level))[0]]
+
+
+def test_level_toggles_are_one_rule_in_the_rule_set():
+    rules = RuleSet((exclude(MessageRule("noise")),))
+    rules = toggles.toggle_level(rules, 20)
+    assert shown_levels(rules) == [10, 30, 40, 50]
+    assert toggles.levels_text(rules) == "hiding INFO"
+    rules = toggles.raise_minimum(toggles.raise_minimum(rules))
+    assert shown_levels(rules) == [30, 40, 50] and toggles.levels_text(rules) == "level≥WARN"
+    assert len(rules.entries) == 2 and rules.entries[1].toggle == toggles.LEVELS
+    assert rules.entries[1].describe() == "severity DEBUG, INFO"
+    rules = toggles.lower_minimum(rules)
+    assert toggles.levels_text(rules) == "level≥INFO"
+    for _ in range(6):
+        rules = toggles.raise_minimum(rules)
+    assert shown_levels(rules) == [50]
+    rules = toggles.with_hidden_levels(rules, frozenset())
+    assert toggles.levels_text(rules) == "" and len(rules.entries) == 1
+    # The rules pane switches the levels rule off: every level shows, and the keys go on from there.
+    rules = toggles.with_minimum(rules, 40)
+    rules = rules.with_enabled(1, False)
+    assert toggles.hidden_levels(rules) == frozenset() and shown_levels(rules) == [10, 20, 30, 40, 50]
+    rules = toggles.toggle_level(rules, 10)
+    assert shown_levels(rules) == [20, 30, 40, 50] and len(rules.entries) == 2
+
+
+def test_solo_and_mute_are_exact_and_exclusive():
+    rules = RuleSet()
+    rules = toggles.toggle_solo(rules, "nav.plan[1]*")
+    assert rules.verdict(record(20, "nav.plan[1]*"))[0]
+    assert not rules.verdict(record(20, "nav.plan1x"))[0]
+    assert toggles.nodes_text(rules) == "solo nav.plan[1]*"
+    rules = toggles.toggle_solo(rules, "/talker")  # a ROS 1 node name
+    assert rules.verdict(record(20, "/talker"))[0] and toggles.nodes_text(rules) == "solo 2 nodes"
+    rules = toggles.toggle_mute(rules, "/talker")
+    assert toggles.soloed(rules) == ("nav.plan[1]*",) and toggles.muted(rules) == ("/talker",)
+    assert toggles.nodes_text(rules) == "solo nav.plan[1]*, muted /talker"
+    rules = toggles.toggle_solo(rules, "nav.plan[1]*")
+    assert toggles.soloed(rules) == () and not rules.verdict(record(20, "/talker"))[0]
+    assert rules.verdict(record(20, "other"))[0]
+    assert toggles.without_node_toggles(rules).entries == ()
+
+
+# -- time formats -----------------------------------------------------------------------------
+
+STAMP = 1_700_000_000_123_456_789
+
+
+@pytest.mark.parametrize(
+    ("fmt", "expected"),
+    [
+        (TimeFormat.CLOCK, "22:13:20.123"),
+        (TimeFormat.DATE, "2023-11-14 22:13:20.123"),
+        (TimeFormat.STAMP, "1700000000.123456789"),
+        (TimeFormat.SINCE_FIRST, "+1:01:01.000"),
+        (TimeFormat.SINCE_ROW, "+1:01:01.000"),
+        (TimeFormat.DELTA, "+0.500"),
+    ],
+)
+def test_time_cells(fmt, expected):
+    origin = STAMP - 3_661_000_000_000
+    assert time_cell(STAMP, fmt, utc=True, origin_ns=origin, previous_ns=STAMP - 500_000_000) == expected
+
+
+def test_durations_and_sim_time():
+    assert duration_text(0) == "0.000"
+    assert duration_text(-1_500_000_000) == "-1.500"
+    assert duration_text(61_000_000_000) == "+1:01.000"
+    assert duration_text(2 * 86_400_000_000_000 + 5_000_000_000) == "+2d 00:00:05"
+    assert time_cell(STAMP, TimeFormat.DELTA, previous_ns=None) == ""
+    now = STAMP
+    assert "near 0" in sim_time_note(12_000_000_000, now, live=False)
+    assert sim_time_note(STAMP - 400 * 86_400 * 10**9, now, live=False) == ""  # an old file
+    assert "far" in sim_time_note(STAMP - 400 * 86_400 * 10**9, now, live=True)
+    assert "far" in sim_time_note(STAMP + 3 * 86_400 * 10**9, now, live=False)
+    assert sim_time_note(STAMP, now, live=True) == ""
+
+
+def test_view_shows_only_rows_the_rules_let_through():
+    from console_tui.model.seek import view_shows
+
+    store = LogStore()
+    store.extend([record(20), record(40), record(20)])
+    view = LogView(store, toggles.with_minimum(RuleSet(), 40))
+    assert [view_shows(view, seq) for seq in range(4)] == [False, True, False, False]
