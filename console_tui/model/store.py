@@ -273,6 +273,10 @@ class LogStore:
         for seq in range(max(start, self.first_seq), min(stop, self.end_seq)):
             yield self.get(seq)
 
+    def chunk_start(self, seq: int) -> int:
+        """The first seq of the chunk that holds (or would hold) ``seq``."""
+        return seq - (seq - self._base_seq) % CHUNK_SIZE
+
     def spans(self, start: int, stop: int, *, newest_first: bool = False) -> Iterator[ChunkSpan]:
         """The kept records of ``start:stop`` as per-chunk spans, for column-wise scans."""
         start, stop = max(start, self.first_seq), min(stop, self.end_seq)

@@ -197,7 +197,11 @@ class LogView:
 
     def _refilter_piece(self, rows: int) -> int:
         hi = self._pending_hi
-        lo = max(self._pending_lo, self.store.first_seq, hi - rows)
+        lo = hi - rows
+        chunk_start = self.store.chunk_start(hi - 1)
+        if hi - chunk_start <= 4 * rows:  # pieces are a quarter of a step's budget: fits in one
+            lo = chunk_start  # the rest of the chunk: rules test whole chunks fastest (packed texts)
+        lo = max(self._pending_lo, self.store.first_seq, lo)
         front, marks = self._front, self._front_marks
         for span in self.store.spans(lo, hi, newest_first=True):
             seqs, highlighted = self._evaluate(span, descending=True)

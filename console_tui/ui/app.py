@@ -200,6 +200,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.node_stats.update()
         self.node_pane = NodePane(self.node_stats, self.node_toggles)
         self.exit_signals = ExitSignals(self._exit_on_signal)
+        #: The threads stopping the sources, once quitting began.
+        self._stopping: list[threading.Thread] = []
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
@@ -306,17 +308,30 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
                 self.logger_control.close()
             except Exception:
                 pass
+        self.begin_stopping_sources()
         self.exit(return_code=128 + signum)
 
-    def stop_sources(self) -> None:
-        """Stop every source, all at once: each may wait a moment for a process of its own
-        (the intake process, demo nodes) to end, and the app should be gone within a second."""
+    def begin_stopping_sources(self) -> None:
+        """Start stopping every source, all at once, each in a thread of its own: each may
+        wait a moment for a process of its own (the intake process, demo nodes) to end, and
+        that runs while Textual takes the screens down, not after."""
         sources, self.sources = self.sources, []
-        stopping = [threading.Thread(target=_stop_quietly, args=(source,), daemon=True) for source in sources]
-        for thread in stopping:
+        for source in sources:
+            thread = threading.Thread(target=_stop_quietly, args=(source,), name="console-tui-stop", daemon=True)
             thread.start()
-        for thread in stopping:
-            thread.join(SOURCE_STOP_TIMEOUT_S)
+            self._stopping.append(thread)
+
+    def stop_sources(self) -> None:
+        """Stop every source (``begin_stopping_sources``) and wait until they have stopped
+        (``SOURCE_STOP_TIMEOUT_S`` at most): the app should be gone within a second of ``q``."""
+        self.begin_stopping_sources()
+        deadline = time.monotonic() + SOURCE_STOP_TIMEOUT_S
+        for thread in self._stopping:
+            thread.join(max(deadline - time.monotonic(), 0.0))
+
+    async def action_quit(self) -> None:
+        self.begin_stopping_sources()
+        self.exit()
 
     # -- records ----------------------------------------------------------------------------------
 

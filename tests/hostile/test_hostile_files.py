@@ -142,3 +142,35 @@ def test_opening_a_fifo_never_blocks_the_caller(tmp_path):
 
     threading.Thread(target=attempt, daemon=True).start()
     assert done.wait(10)
+
+
+def test_a_socket_a_device_and_a_path_through_a_file_are_refused_with_what_they_are(tmp_path):
+    import socket
+
+    sock_path = tmp_path / "talk.sock"
+    server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    server.bind(str(sock_path))
+    try:
+        with pytest.raises(FormatError, match=r"talk\.sock: a socket, not a file"):
+            open_log_file(sock_path)
+    finally:
+        server.close()
+    with pytest.raises(FormatError, match=r"null: a device, not a file"):
+        open_log_file("/dev/null")
+    plain = tmp_path / "plain.log"
+    plain.write_text("1.000000000 INFO /a [a.py:1(f)] [topics: /rosout] one\n")
+    with pytest.raises(FormatError, match=r"inside: cannot read: Not a directory"):
+        open_log_file(plain / "inside")
+
+
+def test_rotated_parts_none_of_which_can_be_read_name_the_first_failure(tmp_path):
+    from console_tui.sources.files.folders import LogPaths
+    from console_tui.sources.files.opener import open_log_paths
+
+    binary = tmp_path / "node.log.1"
+    binary.write_bytes(b"\x00\x01\x02 not text at all \xff\xfe" * 50)
+    missing = tmp_path / "node.log"  # listed, then gone before it was read
+    with pytest.raises(FormatError, match=r"^node\.log: node\.log\.1: "):
+        open_log_paths(LogPaths((binary, missing), "node.log"))
+    with pytest.raises(FormatError, match=r"^node\.log: node\.log: cannot read: No such file"):
+        open_log_paths(LogPaths((missing, binary), "node.log"))

@@ -12,7 +12,7 @@ from console_tui.model.intake_queue import IntakeQueue
 from console_tui.sources.live import LiveIntake, open_live
 from console_tui.ui.app import ConsoleApp
 
-from support.ui import until
+from support.ui import line_with, screen_text, until
 
 pytestmark = pytest.mark.ros2
 
@@ -125,15 +125,16 @@ async def test_topic_flag_picks_the_topic(nodes):
                 await asyncio.to_thread(talker.expect, "ready")
 
             def settled() -> bool:
-                status = app.sources[0].status
-                return status.topic != "/rosout" or status.publishers == 2
+                status = screen_text(app).splitlines()[-2]
+                return "/rosout_agg" in status or " /rosout 2 pubs" in status
 
-            await until(pilot, settled, what="the source to count both talkers")
-            assert app.sources[0].status.topic == "/rosout"
+            await until(pilot, settled, what="the status line to count both talkers")
+            assert "/rosout_agg" not in screen_text(app).splitlines()[-2]
             talkers[0].send({"cmd": "log", "level": "warn", "msg": "straight on /rosout"})
-            await until(pilot, lambda: any(r.msg == "straight on /rosout" for r in app.store))
+            await until(pilot, lambda: "straight on /rosout" in screen_text(app), what="the message on the screen")
+            assert " WARN " in line_with(app, "straight on /rosout")[1]
             assert [r.source for r in app.store if r.msg == "straight on /rosout"] == ["/rosout"]
-            assert app.sources[0].status.topic == "/rosout"
+            assert " /rosout 2 pubs" in screen_text(app).splitlines()[-2]
     finally:
         live.close()
 

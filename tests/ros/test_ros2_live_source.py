@@ -228,3 +228,92 @@ def test_a_node_that_logs_as_it_starts_beside_a_volatile_one_arrives_once(nodes)
     got = [r.msg for r in records if r.node == "eager_newcomer"]
     assert sorted(got) == sorted(sent), "every message of the new node once, none twice"
     assert status.lost == 0 and status.publishers == 2
+
+
+@contextlib.contextmanager
+def topic_reader(topic: str = "/rosout"):
+    """A ``_TopicReader`` on ``topic`` with a node of its own, and its loss counts."""
+    from rcl_interfaces.msg import Log
+
+    from console_tui.sources.ros2.live_source import LossCounts, _TopicReader
+    from console_tui.sources.ros2.runtime import RosRuntime
+
+    runtime = RosRuntime()
+    counts = LossCounts()
+    try:
+        node = runtime.create_node("reader")
+        reader = _TopicReader(node, Log, topic, counts)
+        yield node, reader, counts
+        reader.close()
+    finally:
+        runtime.shutdown()
+
+
+def publisher_gid(node, name: str) -> bytes:
+    """The GID of node ``name``'s ``/rosout`` publisher, once the graph shows it."""
+    from console_tui.sources.ros2.live_source import _gid_bytes
+
+    found: list[bytes] = []
+
+    def seen() -> bool:
+        found[:] = [
+            _gid_bytes(i.endpoint_gid) for i in node.get_publishers_info_by_topic("/rosout") if i.node_name == name
+        ]
+        return bool(found)
+
+    assert wait_until(seen, 15), f"{name}'s /rosout publisher never showed in the graph"
+    return found[0]
+
+
+def test_a_message_from_a_publisher_not_seen_yet_makes_the_reader_read_the_graph_again(nodes):
+    """The second (VOLATILE) subscription keeps a message only when its publisher is one the
+    main subscription cannot match. A publisher newer than the reader's last look at the
+    graph is looked up at once (at most every UNKNOWN_PUBLISHER_REFRESH_S)."""
+    talker = nodes.start("talker.py", "--name", "graph_newcomer")
+    talker.expect("ready")
+    with topic_reader() as (node, reader, _counts):
+        gid = publisher_gid(node, "graph_newcomer")  # in the graph; the reader has not looked yet
+        assert gid not in reader._covered and gid not in reader._uncovered
+        assert reader._keep_from_extra({"publisher_gid": gid}) is False, "the main subscription has it"
+        assert gid in reader._covered and reader.publisher_count >= 1, "the graph read again"
+        stranger = {"publisher_gid": b"\x01" * 16}
+        assert reader._keep_from_extra(stranger) is True, "a publisher nobody knows: kept, not lost"
+        looked_at = reader._unknown_refreshed_at
+        assert reader._keep_from_extra(stranger) is True
+        assert reader._unknown_refreshed_at == looked_at, "not read again within the refresh interval"
+
+
+def test_without_publisher_gids_messages_are_kept_by_the_node_that_owns_their_logger(nodes):
+    """An rclpy whose message info has no publisher GID (Jazzy): the second subscription's
+    messages are told apart by logger name, the node whose name is the longest prefix."""
+    talker = nodes.start("talker.py", "--name", "named_owner")
+    talker.expect("ready")
+    with topic_reader() as (node, reader, _counts):
+        publisher_gid(node, "named_owner")
+        assert reader._keep_from_extra({}) is True and reader._gidless
+        reader.refresh_graph()
+        assert reader._keep_record_from_extra(LogRecord(1, 20, "named_owner", "m")) is False
+        assert reader._keep_record_from_extra(LogRecord(1, 20, "named_owner.child.grandchild", "m")) is False
+        assert reader._keep_record_from_extra(LogRecord(1, 20, "named_owner_other", "m")) is True
+        assert reader._keep_record_from_extra(LogRecord(1, 20, "nobody.at.all", "m")) is True
+
+
+def test_middleware_losses_count_on_the_main_subscription_and_on_the_second_only_when_it_stands_alone(ros_env):
+    """Loss events as rclpy hands them (``total_count_change``): the main subscription's count;
+    the second one's only while no publisher is covered by the main one (it hears those too)."""
+    from types import SimpleNamespace
+
+    with topic_reader("/loss_events") as (_node, reader, counts):
+        reader._on_message_lost_main(SimpleNamespace(total_count_change=3))
+        assert counts.lost_qos == 3
+        reader._on_message_lost_extra(SimpleNamespace(total_count_change=2))
+        assert counts.lost_qos == 5, "nothing covered by the main subscription: its losses count"
+        reader._covered = {b"\x02" * 16}
+        reader._on_message_lost_extra(SimpleNamespace(total_count_change=4))
+        assert counts.lost_qos == 5, "not while the main subscription covers a publisher it hears"
+        reader._on_incompatible_extra(
+            SimpleNamespace(total_count_change=1, last_policy_kind=SimpleNamespace(name="DURABILITY"))
+        )
+        assert (counts.incompatible, counts.last_policy) == (1, "durability")
+        reader._on_incompatible_main(None)
+        assert reader.graph_changed

@@ -253,3 +253,26 @@ def test_sigterm_exits_cleanly_with_a_summary(aggregators):
     assert aggregator.stop(signal.SIGTERM) == 0
     err = aggregator.process.stderr.read().decode()
     assert re.search(r"\d+ messages? republished", err) and "Traceback" not in err
+
+
+def test_the_counts_are_reported_on_its_own_rosout_as_often_as_asked(aggregators, nodes):
+    aggregator = aggregators("agg", "--report-every", "0.5")
+    aggregator.wait_running()
+    talker = nodes.start("talker.py", "--name", "reported")
+    talker.expect("ready")
+    for number in range(3):
+        talker.send({"cmd": "log", "level": "info", "msg": f"counted {number}"})
+        talker.expect_next("logged")
+    report = re.compile(
+        r"[\d,]+ messages? from \d+ publishers?, [\d,]+ republished to \d+ subscribers?, "
+        r"[\d,]+ written to .*rosout\.log; lost 0$"
+    )
+
+    def reports() -> list[str]:
+        return [r.msg for r in aggregator.records() if r.node == "rosout" and report.match(r.msg)]
+
+    assert wait_until(lambda: b"counted 2" in aggregator.path.read_bytes(), 20)
+    before = len(reports())
+    assert wait_until(lambda: len(reports()) >= before + 2, 20), aggregator.path.read_text()[-2000:]
+    assert aggregator.stop() == 0
+    assert [r.msg for r in aggregator.records() if r.node == "reported"] == [f"counted {n}" for n in range(3)]

@@ -125,3 +125,23 @@ def type_ahead(app, text: str = "", keys: tuple[str, ...] = ()) -> None:
         app.post_message(events.Key(key, None))
     for char in text:
         app.post_message(events.Key(_key_name(char), char))
+
+
+def table_rows(app) -> dict[int, tuple[int, str]]:
+    """The table's rows on the screen: ``{number in the # column: (terminal row, its text)}``."""
+    region = app.table.region
+    rows = {}
+    for y, line in enumerate(screen_text(app).splitlines()):
+        words = line[region.x : region.right].split()
+        if region.y <= y < region.bottom and words and words[0].isdigit():
+            rows[int(words[0])] = (y, line)
+    return rows
+
+
+def cursor_number(app) -> int | None:
+    """The number of the table row drawn in the cursor's colours, or None when none is."""
+    cursor = app.table.get_component_rich_style("log-table--cursor").bgcolor
+    x = app.table.region.x + 1
+    drawn = [number for number, (y, _) in table_rows(app).items() if style_at(app, x, y).bgcolor == cursor]
+    assert len(drawn) <= 1, f"more than one row drawn as the cursor: {drawn}"
+    return drawn[0] if drawn else None

@@ -210,29 +210,42 @@ async def test_an_invalid_regex_is_refused_in_the_editor_and_nothing_changes():
         assert "300/300 shown" in screen_text(app) and "invalid regular expression" not in screen_text(app)
 
 
+def pane_rule(app: ConsoleApp) -> str:
+    """The rules pane's first rule as the screen shows it (the pane's column only)."""
+    return " ".join(line_with(app, "▊●" if "▊●" in screen_text(app) else "▊○")[1].split("▕")[0].split())
+
+
+def status(app: ConsoleApp) -> str:
+    return screen_text(app).splitlines()[-2]
+
+
 async def test_rules_pane_switches_inverts_changes_role_edits_and_deletes():
     app = make_app()
     async with app.run_test(size=(160, 45)) as pilot:
         await add_rule(pilot, app, "severity", {"severity-debug": True})
-        assert len(app.view) == 270
-        await until(pilot, lambda: "severity" in screen_text(app), what="the rule in the pane")
-        pane_part = line_with(app, "severity")[1].split("▎")[0]  # the pane's column, not the table's
-        assert pane_part.rstrip().endswith(" 30"), pane_part  # the count, at the right
+        await until(pilot, lambda: "270/300 shown" in status(app), what="the rule in force")
+        assert pane_rule(app) == "▊● hide severity DEBUG 30▎", "on, and the count at the right"
+        assert "1 rule" in status(app)
         await pilot.press("space")
-        assert not app.rules.entries[0].enabled and len(app.view) == 300
+        await until(pilot, lambda: "300/300 shown" in status(app), what="the rule switched off")
+        assert pane_rule(app).startswith("▊○ hide severity DEBUG") and "rules off" in status(app)
         await pilot.press("space", "i")
-        assert app.rules.entries[0].inverted and len(app.view) == 30
+        await until(pilot, lambda: "30/300 shown" in status(app), what="the rule inverted")
+        assert pane_rule(app).startswith("▊● hide not severity DEBUG")
         await pilot.press("i", "h")
-        assert app.rules.entries[0].role is Role.HIGHLIGHT and len(app.view) == 300
-        assert app.table.decoration_of is not None
+        await until(pilot, lambda: "mark severity DEBUG" in pane_rule(app), what="a highlight rule")
+        await until(pilot, lambda: "300/300 shown" in status(app), what="every row shown")
+        assert "1 rule" in status(app), "in force (highlighted rows on the screen: test_query_given_at_start)"
         await pilot.press("e")
-        assert isinstance(app.screen, RuleEditor)
-        app.screen.query_one("#severity-warn").value = True
-        app.screen.action_apply()
-        await pilot.pause()
-        assert app.rules.entries[0].rule.levels == frozenset({10, 30})
+        await until(pilot, lambda: "Edit rule" in screen_text(app), what="the rule editor")
+        await pilot.click("#severity-warn")
+        await pilot.press("ctrl+s")
+        await until(pilot, lambda: "Edit rule" not in screen_text(app), what="the editor closed")
+        await until(pilot, lambda: "WARN" in pane_rule(app), what="the changed rule in the pane")
+        assert "DEBUG" in pane_rule(app)
         await pilot.press("d")
-        assert not app.rules.entries and app.table.decoration_of is None
+        await until(pilot, lambda: "No rules." in screen_text(app), what="the rule deleted")
+        assert "rule" not in status(app).replace("Rules", "")
 
 
 async def test_quick_rules_from_a_row():

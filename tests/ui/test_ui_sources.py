@@ -90,3 +90,32 @@ async def test_losses_and_a_problem_of_a_source_show_in_the_status_line():
         source.status = SourceStatus(topic="/rosout_agg", publishers=3, path="typed", running=True)
         await until(pilot, lambda: "/rosout_agg 3 pubs typed" in status_line(app), what="the new status")
         assert "lost" not in status_line(app)
+
+
+async def test_q_starts_stopping_the_sources_at_once_and_the_app_waits_for_them():
+    """The sources' processes end while Textual takes the screen down, not after it; and
+    the app is not done before they have stopped."""
+    import threading
+
+    class SlowToStop(Source):
+        def __init__(self) -> None:
+            super().__init__()
+            self.began = threading.Event()
+            self.release = threading.Event()
+            self.stopped = threading.Event()
+
+        def stop(self) -> None:
+            super().stop()
+            self.began.set()
+            self.release.wait(5)
+            self.stopped.set()
+
+    source = SlowToStop()
+    app = ConsoleApp(store=LogStore(), queue=IntakeQueue(), sources=[source])
+    async with app.run_test(size=(100, 24)) as pilot:
+        await until(pilot, lambda: source.calls == ["start"])
+        await pilot.press("q")
+        assert source.began.wait(5), "q began stopping the source"
+        source.release.set()
+    assert source.stopped.is_set(), "the app waited for the source to stop"
+    assert source.calls == ["start", "stop"]

@@ -1,64 +1,50 @@
-"""Pilot tests of the table: follow, scroll, pause, resume, clear, details, help, columns."""
+"""Pilot tests of the table: follow, scroll, pause, resume, clear, details, help, columns.
+Keys are pressed as a person does and the screen is read back (``support.ui``)."""
 
 from __future__ import annotations
 
-import io
-
 import pytest
-from rich.console import Console
 
-from console_tui.ui.app import ConsoleApp
 from console_tui.ui.commands import palette_commands
-from console_tui.ui.screens.columns_dialog import ColumnsScreen
-from console_tui.ui.screens.detail import DetailScreen
-from console_tui.ui.screens.help import HelpScreen
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records
-from support.ui import make_app, screen_text
+from support.ui import cursor_number, line_with, make_app, screen_text, table_rows, type_text, until
 
 
-def line_text(table: LogTable, y: int) -> str:
-    return table.render_line(y).text
+def status_line(app) -> str:
+    """The status bar: the terminal's last row but one."""
+    return screen_text(app).splitlines()[-2]
 
 
-def status_text(app: ConsoleApp) -> str:
-    return rendered_text(app.status_bar.content)
-
-
-def rendered_text(renderable) -> str:
-    console = Console(width=200, record=True, file=io.StringIO())
-    console.print(renderable)
-    return console.export_text()
+def bottom_number(app) -> int:
+    return max(table_rows(app))
 
 
 async def test_follows_the_tail_as_records_arrive():
     app = make_app(100)
     async with app.run_test(size=(100, 24)) as pilot:
-        table = app.table
-        await pilot.pause()
-        assert table.following and table.cursor_row == 99
-        assert "100" in line_text(table, table.size.height - 1)
+        await until(pilot, lambda: cursor_number(app) == 100, what="the cursor on the last row")
+        assert bottom_number(app) == 100 and "FOLLOW" in status_line(app)
         app.add_records(records(50, start=100))
-        await pilot.pause()
-        assert table.cursor_seq == 149
-        assert table.scroll_y == table.max_scroll_y
-        assert "FOLLOW" in status_text(app)
+        await until(pilot, lambda: "150/150 shown" in status_line(app), what="the new records counted")
+        await until(pilot, lambda: cursor_number(app) == 150, what="the cursor following the tail")
+        assert bottom_number(app) == 150 and "FOLLOW" in status_line(app)
 
 
 async def test_moving_up_stops_following_and_keeps_the_rows_in_place():
     app = make_app(100)
     async with app.run_test(size=(100, 24)) as pilot:
-        table = app.table
         await pilot.press("up", "up", "up")
-        assert not table.following
-        cursor_seq, top = table.cursor_seq, table.scroll_y
+        await until(pilot, lambda: cursor_number(app) == 97 and "SCROLL" in status_line(app), what="SCROLL")
+        rows = {number: y for number, (y, _) in table_rows(app).items()}
         app.add_records(records(50, start=100))
-        await pilot.pause()
-        assert table.cursor_seq == cursor_seq and table.scroll_y == top
-        assert "SCROLL" in status_text(app)
+        await until(pilot, lambda: "150/150 shown" in status_line(app), what="the new records counted")
+        assert {number: y for number, (y, _) in table_rows(app).items()} == rows, "the same rows in the same places"
+        assert cursor_number(app) == 97 and "SCROLL" in status_line(app)
         await pilot.press("end")
-        assert table.following and table.cursor_seq == 149
+        await until(pilot, lambda: cursor_number(app) == 150, what="the cursor on the newest row")
+        assert bottom_number(app) == 150 and "FOLLOW" in status_line(app)
 
 
 async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
@@ -66,97 +52,106 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
     async with app.run_test(size=(100, 24)) as pilot:
         table = app.table
         await pilot.press("pageup")
-        await pilot.pause()
+        await until(pilot, lambda: "SCROLL" in status_line(app), what="SCROLL")
         drawn = []
         draw = table.render_line
         table.render_line = lambda y: drawn.append(y) or draw(y)
-        screen_before = [line_text(table, y) for y in range(table.size.height)]
+        rows_before = {number: line[:-2] for number, (_, line) in table_rows(app).items()}  # less the scrollbar
         drawn.clear()
         app.add_records(records(500, start=100))
+        await until(pilot, lambda: "600/600 shown" in status_line(app), what="the new records counted")
         await pilot.pause(0.3)  # the scrollbar follows within a tenth of a second
         assert drawn == []  # no row drawn again: the same rows, the same strips
-        assert [line_text(table, y) for y in range(table.size.height)] == screen_before
-        assert table.vertical_scrollbar.window_virtual_size == 601
+        assert {number: line[:-2] for number, (_, line) in table_rows(app).items()} == rows_before
         await pilot.press("end")
-        assert table.following and table.cursor_seq == 599
-        assert "600" in line_text(table, table.size.height - 1)
+        await until(pilot, lambda: cursor_number(app) == 600, what="the cursor on the newest row")
+        assert bottom_number(app) == 600 and "FOLLOW" in status_line(app)
 
 
 async def test_position_survives_eviction_at_the_bound():
     app = make_app(100, max_messages=120)
     async with app.run_test(size=(100, 24)) as pilot:
-        table = app.table
         await pilot.press("pageup")
-        cursor_seq = table.cursor_seq
+        await until(pilot, lambda: "SCROLL" in status_line(app), what="SCROLL")
+        cursor = cursor_number(app)
+        assert cursor is not None and cursor < 80
         app.add_records(records(30, start=100))
-        await pilot.pause()
-        assert app.store.first_seq == 10
-        assert table.cursor_seq == cursor_seq
-        assert str(cursor_seq + 1) in line_text(table, table.cursor_row - int(table.scroll_y) + 1)
+        await until(pilot, lambda: "120/120 shown" in status_line(app), what="the oldest 10 evicted")
+        assert cursor_number(app) == cursor, "the cursor stays on its record"
+        assert cursor + 1 in table_rows(app) and min(table_rows(app)) > 10
 
 
 async def test_pause_freezes_the_view_counts_new_and_resume_catches_up():
     app = make_app(100)
     async with app.run_test(size=(100, 24)) as pilot:
-        table = app.table
         await pilot.press("space")
+        await until(pilot, lambda: "PAUSED" in status_line(app), what="PAUSED")
         app.add_records(records(50, start=100))
-        await pilot.pause()
-        assert table.row_count == 100 and len(app.store) == 150
-        assert table.new_while_paused == 50
-        app.update_status()
-        assert "PAUSED" in status_text(app) and "+50 new" in status_text(app)
+        await until(pilot, lambda: "+50 new" in status_line(app), what="+50 new")
+        assert bottom_number(app) == 100 and cursor_number(app) == 100, "the view frozen"
+        assert "space Resume" in screen_text(app).splitlines()[-1]
         await pilot.press("space")
-        await pilot.pause()
-        assert table.row_count == 150 and table.cursor_seq == 149
+        await until(pilot, lambda: cursor_number(app) == 150, what="the view caught up")
+        assert bottom_number(app) == 150 and "PAUSED" not in status_line(app) and "150/150 shown" in status_line(app)
 
 
 async def test_clear_empties_the_view_and_numbering_goes_on():
     app = make_app(100)
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.press("c")
-        assert len(app.store) == 0 and app.table.row_count == 0
-        await pilot.pause()
-        assert "0/0 shown" in screen_text(app) and not any(
-            line.split()[:1] and line.split()[0].isdigit() for line in screen_text(app).splitlines()
-        ), "no row left on the screen"
+        await until(pilot, lambda: "0/0 shown" in status_line(app), what="the cleared view")
+        assert table_rows(app) == {}, "no row left on the screen"
         app.add_records(records(3, start=500))
-        await pilot.pause()
-        assert app.table.row_count == 3 and app.table.cursor_seq == 102
-        numbers = [
-            line.split()[0] for line in screen_text(app).splitlines() if line.split()[:1] and line.split()[0].isdigit()
-        ]
-        assert numbers == ["101", "102", "103"] and "3/3 shown" in screen_text(app), "numbering goes on after a clear"
+        await until(pilot, lambda: "3/3 shown" in status_line(app), what="three new rows")
+        assert list(table_rows(app)) == [101, 102, 103], "numbering goes on after a clear"
+        assert cursor_number(app) == 103
+
+
+def field(app, name: str) -> str:
+    """The value of one field of the details on the screen."""
+    line = line_with(app, f"█ {name} ")[1]
+    return line.split(f"█ {name} ", 1)[1].rstrip(" █").split("█")[0].strip()
 
 
 async def test_enter_opens_details_with_every_field_and_steps():
     app = make_app(20)
     async with app.run_test(size=(120, 40)) as pilot:
         await pilot.press("up", "up", "enter")
-        screen = app.screen
-        assert isinstance(screen, DetailScreen)
-        record = screen.record
-        assert record.seq == 17
-        fields = rendered_text(screen.query_one("#fields").content)
-        for value in (record.node, record.file, record.function, str(record.line), "1795000002.329000000"):
-            assert value in fields
+        await until(pilot, lambda: "n Next row" in screen_text(app), what="the details")
+        assert field(app, "#") == "18"
+        assert field(app, "Stamp") == "1795000002.329000000"
+        assert field(app, "Node") == "navigation.planner.costmap"
+        assert field(app, "File") == "/opt/robot/src/costmap.cpp"
+        assert field(app, "Function") == "on_timer" and field(app, "Line") == "159"
+        assert field(app, "Severity") == "INFO (20)" and field(app, "Source") == "/rosout"
+        assert "temperature: 41.2 C" in line_with(app, " 2    temperature")[1], "the message, line by line"
         await pilot.press("n")
-        assert screen.record.seq == 18 and app.table.cursor_seq == 18
+        await until(pilot, lambda: field(app, "#") == "19", what="the next row's details")
         await pilot.press("p", "p")
-        assert screen.record.seq == 16
+        await until(pilot, lambda: field(app, "#") == "17", what="two rows back")
         await pilot.press("escape")
-        assert not isinstance(app.screen, DetailScreen)
+        await until(pilot, lambda: "n Next row" not in screen_text(app), what="the details closed")
+        assert cursor_number(app) == 17, "the table's cursor went with the details"
 
 
 async def test_double_click_opens_details():
     app = make_app(10)
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.click(LogTable, offset=(20, 3), times=2)
-        assert isinstance(app.screen, DetailScreen)
-        assert app.screen.record.seq == 2
+        await until(pilot, lambda: "n Next row" in screen_text(app), what="the details")
+        assert field(app, "#") == "3", "the row clicked (the header is row 0)"
 
 
-def words_on_screen(app: ConsoleApp) -> list[str]:
+async def changes(pilot, condition, within: float = 1.0) -> bool:
+    """Whether ``condition()`` comes to hold within ``within`` seconds (a page that may not move)."""
+    try:
+        await until(pilot, condition, timeout=within)
+    except AssertionError:
+        return False
+    return True
+
+
+def words_on_screen(app) -> list[str]:
     """The screen's rows with each run of spaces (and the dialog's border) made one space."""
     return [" ".join(line.replace("█", " ").split()) for line in screen_text(app).splitlines()]
 
@@ -165,14 +160,12 @@ async def test_help_lists_keys_and_closes():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.press("question_mark")
-        assert isinstance(app.screen, HelpScreen)
-        await pilot.pause()
+        await until(pilot, lambda: any("space Pause" in line for line in words_on_screen(app)[:-1]), what="the help")
         first_page = words_on_screen(app)
         pages = [first_page]
         for _ in range(10):  # page down to the end, as a person reads it
             await pilot.press("pagedown")
-            await pilot.pause()
-            if words_on_screen(app) == pages[-1]:
+            if not await changes(pilot, lambda: words_on_screen(app) != pages[-1]):
                 break
             pages.append(words_on_screen(app))
         assert len(pages) > 1, "more keys than one screen: the help scrolls"
@@ -183,33 +176,46 @@ async def test_help_lists_keys_and_closes():
             assert any(row in line for line in seen), row
         assert any("space Pause" in line for line in first_page[:-1]), "the table's keys come first"
         await pilot.press("escape")
-        assert not isinstance(app.screen, HelpScreen)
-        assert not any("space Pause" in line for line in words_on_screen(app)[:-1]), "only the footer names keys"
+        await until(
+            pilot,
+            lambda: not any("space Pause" in line for line in words_on_screen(app)[:-1]),
+            what="the help closed: only the footer names keys",
+        )
+
+
+def header(app) -> str:
+    """The table's header row on the screen."""
+    return screen_text(app).splitlines()[app.table.region.y]
 
 
 async def test_columns_can_be_hidden_and_shown():
     app = make_app(5)
     async with app.run_test(size=(160, 30)) as pilot:
-        table = app.table
-        assert "Function" in line_text(table, 0)
+        await until(pilot, lambda: "Function" in header(app), what="the header")
+        assert "Source" not in header(app)
         await pilot.press("C")
-        assert isinstance(app.screen, ColumnsScreen)
-        await pilot.press("escape")
-        table.set_column_shown("function", False)
-        table.set_column_shown("source", True)
-        await pilot.pause()
-        header = line_text(table, 0)
-        assert "Function" not in header and "Source" in header
+        await until(pilot, lambda: "Columns shown" in screen_text(app), what="the columns dialog")
+        # The list ends: ..., Function, Line, Source.
+        await pilot.press("end", "space", "up", "up", "space", "enter")
+        await until(pilot, lambda: "Columns shown" not in screen_text(app), what="the dialog closed")
+        assert "Function" not in header(app) and "Source" in header(app)
+        assert table_rows(app)[1][1].split()[-1] == "rosout", "the Source column's values"
+        await pilot.press("C")
+        await until(pilot, lambda: "Columns shown" in screen_text(app), what="the columns dialog")
+        await pilot.press("end", "space", "escape")  # cancelled: nothing changes
+        await until(pilot, lambda: "Columns shown" not in screen_text(app), what="the dialog closed")
+        assert "Function" not in header(app) and "Source" in header(app)
 
 
 @pytest.mark.parametrize("width", [60, 80, 120, 200])
 async def test_narrow_terminals_keep_severity_node_and_message(width):
     app = make_app(5)
     async with app.run_test(size=(width, 20)) as pilot:
-        await pilot.pause()
-        header = line_text(app.table, 0)
+        await until(pilot, lambda: "5/5 shown" in status_line(app), what="the rows")
         for title in ("Sev", "Node", "Message"):
-            assert title in header
+            assert title in header(app)
+        row = screen_text(app).splitlines()[app.table.region.y + 3]
+        assert "WARN" in row and "navigation." in row and "planner failed" in row
 
 
 async def test_command_palette_offers_the_actions():
@@ -219,7 +225,7 @@ async def test_command_palette_offers_the_actions():
         for title in ("Pause / resume", "Follow tail", "Clear", "Details", "Columns"):
             assert title in titles
         await pilot.press("ctrl+p")
-        await pilot.press(*"pause")
+        await type_text(pilot, "pause")
+        await until(pilot, lambda: "Pause / resume" in screen_text(app), what="the palette offering Pause")
         await pilot.press("enter")
-        await pilot.pause()
-        assert app.table.paused_end is not None
+        await until(pilot, lambda: "PAUSED" in status_line(app), what="PAUSED")

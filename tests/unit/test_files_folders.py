@@ -144,6 +144,17 @@ def test_rotated_files_name_their_own_file_and_line_in_problems(tmp_path):
     assert sorted(p.name for p in opened.skipped) == ["empty.log", "notes.txt"]
 
 
+def test_a_rotated_part_cut_before_its_last_newline_ends_its_record_there(tmp_path):
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "rosout.log.1").write_bytes(b"1.000000000 INFO /a [a.py:1(f)] [topics: /rosout] one, cut")
+    (run / "rosout.log").write_bytes(b"2.000000000 INFO /a [a.py:1(f)] [topics: /rosout] two\nnul \x00 here\n")
+    records, opened = _merged([run])
+    assert [r.msg for r in records] == ["one, cut", "two\nnul \x00 here"], "not run together into one record"
+    (problem,) = opened.files[0].problems
+    assert (problem.source, problem.line) == ("rosout.log", 2), "the line counted in its own file"
+
+
 def test_an_empty_folder_says_so(tmp_path):
     (tmp_path / "nothing").mkdir()
     (tmp_path / "nothing" / "params.yaml").write_text("a: 1\n")

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import os
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from console_tui.model.formats import Ros2RosoutLogFormat, RosoutLogFormat, text_formats
+from console_tui.model.formats import Ros2RosoutLogFormat, RosoutLogFormat, rotating_file, text_formats
 from console_tui.model.formats.ros2_log_msg import LogDecoder, LogEncoder
 from console_tui.model.formats.rosout_log import ROS2_HEADER, rosout_log_text
 from console_tui.model.formats.rotating_file import RotatingFile
@@ -160,3 +161,59 @@ def test_encoder_any_strings(texts, level, line):
     data = LogEncoder().encode(record)
     assert len(data) % 4 == 0
     assert LogDecoder().decode(data, "/rosout") == record
+
+
+def test_sizes_that_cannot_work_are_refused(tmp_path):
+    for max_bytes, keep in ((0, 1), (1000, -1)):
+        with pytest.raises(ValueError, match="max_bytes must be at least 1"):
+            RotatingFile(tmp_path / "rosout.log", max_bytes=max_bytes, keep=keep)
+
+
+def test_a_file_that_cannot_be_opened_is_tried_again_after_a_while(tmp_path, monkeypatch):
+    blocker = tmp_path / "logs"
+    blocker.write_text("a file where the directory should be")
+    path = blocker / "rosout.log"
+    log = RotatingFile(path, max_bytes=10_000, keep=1, header=ROS2_HEADER)
+    assert str(path) in log.error
+    log.write(lines(2))  # before the retry time: counted, not tried
+    assert log.lost == 2
+    monkeypatch.setattr(rotating_file, "RETRY_S", 0.0)
+    log._failed(OSError(5, "Input/output error"))
+    log.write(lines(3))  # tried again, fails again
+    assert log.lost == 5 and "File exists" in log.error
+    blocker.unlink()
+    log.write(lines(1, 7))  # the directory can be made now
+    log.close()
+    assert log.error == "" and log.lost == 5
+    back, problems = read_text(path.read_bytes(), Ros2RosoutLogFormat())
+    assert list(problems) == [] and [r.stamp_ns for r in back] == [7]
+
+
+def test_a_full_disk_loses_lines_counted_in_write_flush_and_close():
+    # /dev/full takes the open and fails every write with ENOSPC, as a full disk does.
+    big = RotatingFile("/dev/full", max_bytes=10**9, keep=1)
+    big.write(lines(400))  # more than the write buffer: written (and refused) at once
+    assert big.lost == 400 and "No space left" in big.error
+    big.write(lines(1))  # no file until the retry time
+    assert big.lost == 401
+    flushed = RotatingFile("/dev/full", max_bytes=10**9, keep=1)
+    flushed.write(lines(1))  # buffered
+    flushed.flush()
+    assert "No space left" in flushed.error
+    closed = RotatingFile("/dev/full", max_bytes=10**9, keep=1)
+    closed.write(lines(1))
+    closed.close()
+    assert "No space left" in closed.error
+
+
+def test_a_rotation_that_cannot_move_the_files_counts_the_lines(tmp_path):
+    path = tmp_path / "rosout.log"
+    (tmp_path / "rosout.log.1").mkdir()  # in the way of the oldest kept file
+    (tmp_path / "rosout.log.1" / "something").write_text("kept")
+    log = RotatingFile(path, max_bytes=600, keep=1, header=ROS2_HEADER)
+    for number in range(20):
+        log.write(lines(1, number))
+    log.close()
+    assert log.lost > 0 and "Is a directory" in log.error and log.rotations == 0
+    back, problems = read_text(path.read_bytes(), Ros2RosoutLogFormat())
+    assert list(problems) == [] and len(back) + log.lost == 20, "every line written or counted"

@@ -99,6 +99,39 @@ def test_a_source_that_cannot_start_says_why():
     assert "intake" in source.status.problem and not source.status.running
 
 
+def test_a_source_that_raises_as_it_starts_sends_why_and_exits_2():
+    """rclpy refuses a ROS_DOMAIN_ID that is not a number: the intake process says so in a
+    status frame (the app shows it) and ends with 2, rather than dying without a word."""
+    child = subprocess.run(
+        [sys.executable, "-m", "console_tui.sources.intake_process.child", "ros2"],
+        env={**os.environ, "ROS_DOMAIN_ID": "not a number"},
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        timeout=60,
+    )
+    assert child.returncode == 2, child.stderr.decode()[-2000:]
+    read, write = os.pipe()
+    os.write(write, child.stdout)
+    os.close(write)
+    frames = list(read_frames(read))
+    os.close(read)
+    assert [kind for kind, _ in frames] == [STATUS]
+    status = status_from(frames[0][1])
+    assert status.problem.startswith("the live intake could not start: ") and not status.running
+
+
+def test_an_intake_process_whose_app_is_already_gone_ends_at_once():
+    gone = subprocess.Popen([sys.executable, "-c", "pass"])
+    gone.wait()
+    child = subprocess.run(
+        [sys.executable, "-m", "console_tui.sources.intake_process.child", "synthetic", "--parent", str(gone.pid)],
+        stdin=subprocess.PIPE,
+        capture_output=True,
+        timeout=60,
+    )
+    assert (child.returncode, child.stdout) == (0, b""), "no frame, no record: the app is not there to read them"
+
+
 @pytest.mark.parametrize("how", ["SIGKILL", "SIGTERM", "exit"])
 def test_the_process_ends_when_the_app_ends_however_it_ends(how):
     script = textwrap.dedent(

@@ -67,6 +67,8 @@ def test_issue_example():
         ("level<=WARNING", (only(SeverityRule.of("debug", "info", "warn")),)),
         ("-level:debug", (exclude(SeverityRule.of("debug")),)),
         ("+node:nav*,/ns/x", (highlight(NodeRule(("nav*", "/ns/x"))),)),
+        ("node:/talker", (only(NodeRule(("/talker",))),)),  # a ROS (1) node name, not a regex
+        ("-node:/ns/*,/rosout", (exclude(NodeRule(("/ns/*", "/rosout"))),)),
         ("+error +node:a", (highlight(MessageRule("error", ignore_case=True)), highlight(NodeRule(("a",))))),
         ("-(node:a level:info)", (exclude(CustomRule((NodeRule(("a",)), SeverityRule.of("info")))),)),
         (
@@ -101,7 +103,6 @@ def test_queries(text, entries):
         ("level>fatal", 6, "matches no severity"),
         ("level>=warn,error", 7, "takes one level"),
         ("node>=x", 0, "only works with level"),
-        ("node:/x/", 5, "not a regular expression"),
         ("line:abc", 5, "expected a line number"),
         ("since:yesterday", 6, "not a time"),
         ("time:5", 5, "expected FROM..TO"),
@@ -155,3 +156,21 @@ def test_history_walks_back_and_forth_and_keeps_the_draft(tmp_path):
     assert QueryHistory.load(path).items == ["a", "c", "d"]
     assert QueryHistory.load(tmp_path / "missing").items == []
     assert QueryHistory().previous("x") is None
+
+
+def test_ros1_node_names_on_the_query_line():
+    """ROS 1 loggers are node names (``/talker``): ``node:/talker`` names one, as does a
+    glob over a namespace; the ROS 2 logger of the same node (``talker``) matches too."""
+    rules = RuleSet().with_query(q("node:/talker,/ns/*"))
+
+    def shown(node: str) -> bool:
+        return rules.verdict(LogRecord(stamp_ns=0, level=20, node=node, msg="m"))[0]
+
+    assert [shown(n) for n in ("/talker", "talker", "/ns/cam", "ns.cam", "/other", "/talker2")] == [
+        True,
+        True,
+        True,
+        True,
+        False,
+        False,
+    ]

@@ -8,7 +8,7 @@ from itertools import compress
 from typing import Any
 
 from ..store import Chunk, LogStore
-from .message import MessageRule
+from .message import MessageRule, messages_test
 from .rule import Rule, RuleError, SpanTest, all_of, mask_and
 
 
@@ -34,17 +34,19 @@ class CustomRule(Rule):
         """Column tests first; message text last, and then only on the records still in."""
         parts = [part for part in self.parts if not part.is_empty]
         columns = [part.compile(store) for part in parts if not isinstance(part, MessageRule)]
-        texts = [part.match.mask_function() for part in parts if isinstance(part, MessageRule)]
+        texts = [
+            (part.match.mask_function(), messages_test(part.match)) for part in parts if isinstance(part, MessageRule)
+        ]
 
         def test(chunk: Chunk, lo: int, hi: int) -> bytes:
             size = hi - lo
             mask = all_of((part(chunk, lo, hi) for part in columns), size)
-            for mask_of in texts:
+            for mask_of, span_test in texts:
                 candidates = mask.count(1)
                 if candidates == 0:
                     break
                 if candidates * 4 > size:
-                    mask = mask_and(mask, mask_of(chunk.msgs[lo:hi]))
+                    mask = mask_and(mask, span_test(chunk, lo, hi))
                     continue
                 rows = list(compress(range(size), mask))
                 msgs = chunk.msgs

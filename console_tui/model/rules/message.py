@@ -6,10 +6,37 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from ..packed_texts import PackedTexts
 from ..store import Chunk, LogStore
 from .fields import read_bool, read_str
 from .rule import Rule, SpanTest
 from .text_match import TextMatch
+
+#: Spans tested message by message after the packed way could not answer one.
+SKIP_AFTER_MISS = 8
+
+
+def messages_test(match: TextMatch) -> SpanTest:
+    """``match`` over the messages of a span: on the packed text of a full chunk all at once
+    where the match allows (``packed_match``), else message by message."""
+    mask_of = match.mask_function()
+    packed = match.packed_matcher()
+    skip = 0
+
+    def test(chunk: Chunk, lo: int, hi: int) -> bytes:
+        nonlocal skip
+        msgs = chunk.msgs
+        if packed is not None and isinstance(msgs, PackedTexts):
+            if skip:
+                skip -= 1
+            else:
+                mask = packed(msgs, lo, hi)
+                if mask is not None:
+                    return mask
+                skip = SKIP_AFTER_MISS  # the next chunks are likely alike: don't try for a while
+        return mask_of(msgs[lo:hi])
+
+    return test
 
 
 @dataclass(frozen=True)
@@ -34,12 +61,7 @@ class MessageRule(Rule):
         return self.text == ""
 
     def compile(self, store: LogStore) -> SpanTest:
-        mask_of = self.match.mask_function()
-
-        def test(chunk: Chunk, lo: int, hi: int) -> bytes:
-            return mask_of(chunk.msgs[lo:hi])
-
-        return test
+        return messages_test(self.match)
 
     def describe(self) -> str:
         return f"message {self.match.describe()}"

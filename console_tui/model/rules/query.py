@@ -116,12 +116,14 @@ class _Parser:
             self.pos += 1
         raise QueryError(f"unterminated {what}", start)
 
-    def value(self) -> _Value:
+    def value(self, *, names: bool = False) -> _Value:
+        """A quoted text, a ``/regex/`` (not for ``names``: ROS names start with ``/``), or
+        a word."""
         text, start = self.text, self.pos
         if start < len(text) and text[start] == '"':
             self.pos += 1
             return _Value(self.delimited('"', "quote"), start + 1, quoted=True)
-        if start < len(text) and text[start] == "/":
+        if start < len(text) and text[start] == "/" and not names:
             self.pos += 1
             pattern = self.delimited("/", "regular expression (no closing /)")
             flags_start = self.pos
@@ -185,7 +187,7 @@ class _Parser:
         key = _KEY_RE.match(self.text, self.pos)
         if key and key.group(1).lower() in _KEYS:
             self.pos = key.end()
-            value = self.value()
+            value = self.value(names=_KEYS[key.group(1).lower()] == "node")  # node:/talker is a name
             if value.text == "" and not value.quoted:
                 raise QueryError(f"{key.group(1)}{key.group(2)} needs a value", self.pos)
             return self.keyed(_KEYS[key.group(1).lower()], key.group(2), value, start)
@@ -204,8 +206,6 @@ class _Parser:
         if key in ("file", "function"):
             return self.text_rule(value, LocationRule, field=key)
         if key == "node":
-            if value.regex:
-                raise QueryError("node: takes names or globs (node:nav*), not a regular expression", value.start - 1)
             names = [n for n in value.text.split(",") if n]
             if not names:
                 raise QueryError("node: needs a name", value.start)

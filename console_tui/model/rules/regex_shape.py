@@ -156,3 +156,74 @@ def _uses_context(items: list) -> bool:
         if isinstance(data, list):
             stack.append(data)
     return False
+
+
+_SAFE_CATEGORIES = frozenset({"CATEGORY_DIGIT", "CATEGORY_SPACE", "CATEGORY_WORD"})
+_BOUNDARIES = frozenset({"AT_BOUNDARY", "AT_NON_BOUNDARY"})
+
+
+@dataclass(frozen=True)
+class RowSafety:
+    """Whether a regex can be run on texts joined by NUL (``PackedTexts``) as on each alone.
+
+    ``bounded``: searched between a text's start and end (``search(joined, start, end)``),
+    it finds what it finds in that text alone: nothing looks before the text's start
+    (``^``, ``\\A``, lookbehind) or past the match (lookahead; ``\\b`` and ``\\B`` see a NUL or
+    the end, alike). ``nul_free`` besides: no match can hold a NUL, so a match in the joined
+    texts lies inside one of them (``.``, ``[^...]``, ``\\D``, ``\\W``, ``\\S`` can hold one).
+    """
+
+    bounded: bool = False
+    nul_free: bool = False
+
+
+def row_safety(pattern: re.Pattern[str]) -> RowSafety:
+    try:
+        items = list(_parse(pattern))
+        bounded, nul_free = _walk(items)
+    except Exception:  # a parser internal changed, a pattern nested too deep: not safe
+        return RowSafety()
+    return RowSafety(bounded, bounded and nul_free)
+
+
+def _walk(items: list) -> tuple[bool, bool]:
+    """(only \\b / \\B look outside the match, no op can match a NUL) for parsed ``items``."""
+    bounded = nul_free = True
+    stack: list[Any] = [items]
+    while stack:
+        for op, argument in stack.pop():
+            name = str(op)
+            if name == "LITERAL":
+                nul_free = nul_free and argument != 0
+            elif name == "IN":
+                nul_free = nul_free and _class_nul_free(argument)
+            elif name in ("NOT_LITERAL", "ANY"):
+                nul_free = False
+            elif name == "AT":
+                bounded = bounded and str(argument) in _BOUNDARIES
+            elif name in ("SUBPATTERN",):
+                stack.append(list(argument[3]))
+            elif name in ("MAX_REPEAT", "MIN_REPEAT", "POSSESSIVE_REPEAT"):
+                stack.append(list(argument[2]))
+            elif name == "ATOMIC_GROUP":
+                stack.append(list(argument))
+            elif name == "BRANCH":
+                stack.extend(list(branch) for branch in argument[1])
+            elif name == "GROUPREF_EXISTS":
+                stack.extend(list(part) for part in argument[1:] if part is not None)
+            elif name != "GROUPREF":  # a backreference repeats text matched already
+                return False, False  # lookarounds, and whatever this version adds
+    return bounded, nul_free
+
+
+def _class_nul_free(items: list) -> bool:
+    for op, argument in items:
+        name = str(op)
+        if name == "LITERAL" and argument != 0:
+            continue
+        if name == "RANGE" and argument[0] > 0:
+            continue
+        if name == "CATEGORY" and str(argument) in _SAFE_CATEGORIES:
+            continue
+        return False  # NEGATE, NUL itself, other categories
+    return True

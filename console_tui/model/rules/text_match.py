@@ -21,7 +21,8 @@ from dataclasses import dataclass, replace
 from itertools import chain, compress, repeat
 from operator import add, contains, is_, ne, sub
 
-from .regex_shape import RequiredLiteral, literal_alternatives, required_literal
+from .packed_match import PackedMatcher, alternatives_matcher, literal_matcher, substring_matcher
+from .regex_shape import RequiredLiteral, literal_alternatives, required_literal, row_safety
 from .rule import RuleError, mask_and, mask_not, mask_of_rows
 from .time_limit import MatchTimeout, time_limit
 
@@ -83,6 +84,19 @@ class TextMatch:
         text = self.text
         return lambda strings: bytes(map(contains, strings, repeat(text)))
 
+    def packed_matcher(self) -> PackedMatcher | None:
+        """``(texts, lo, hi) -> mask or None`` over messages packed in one string, all at once
+        (``packed_match``); None when this match cannot be run that way at all."""
+        if not self.regex:
+            return substring_matcher(self.text, self.ignore_case)
+        if not self.text:
+            return None
+        pattern = self.pattern()
+        masker = _RegexMasker(pattern)
+        if masker.alternatives is not None:
+            return alternatives_matcher(masker.alternatives, masker.ignore_case)
+        return literal_matcher(pattern, masker.literal, row_safety(pattern))
+
     def mask(self, strings: list[str], limit_s: float = MATCH_LIMIT_S) -> bytes:
         """One byte per string, 1 where it matches; ``MatchTimeout`` after ``limit_s``."""
         with time_limit(limit_s):
@@ -107,15 +121,15 @@ class _RegexMasker:
     other strings are searched whole.
     """
 
-    __slots__ = ("_ignore_case", "alternatives", "literal", "match", "search")
+    __slots__ = ("alternatives", "ignore_case", "literal", "match", "search")
 
     def __init__(self, pattern: re.Pattern[str]) -> None:
         self.search = pattern.search
         self.match = pattern.match
-        self._ignore_case = bool(pattern.flags & re.IGNORECASE)
+        self.ignore_case = bool(pattern.flags & re.IGNORECASE)
         literal = required_literal(pattern)
         alternatives = literal_alternatives(pattern)
-        if self._ignore_case:
+        if self.ignore_case:
             literal = replace(literal, text=literal.text.lower()) if literal.text.isascii() else RequiredLiteral()
             if alternatives is not None:
                 alternatives = tuple({a.lower() for a in alternatives}) if all(map(str.isascii, alternatives)) else None
@@ -127,7 +141,7 @@ class _RegexMasker:
         haystacks = strings
         usable: bytes | None = None  # which strings may use the literals (None: all)
         searched_whole: list[int] = []
-        if self._ignore_case and (self.alternatives is not None or self.literal.text):
+        if self.ignore_case and (self.alternatives is not None or self.literal.text):
             haystacks, usable = folded(strings), ascii_only(strings)
             if usable.count(0):
                 searched_whole = list(compress(everything, mask_not(usable)))
