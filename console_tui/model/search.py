@@ -11,10 +11,9 @@ the direction asked for is known first, and "match 3 of 17" once the walk is com
 records are walked as they arrive; a change of the rules needs a new ``Search`` (which rows
 are shown changed).
 
-Full chunks keep their messages joined in one string (``PackedTexts``): plain text is found
-there by ``str.find`` over the whole chunk, and a regex is run only on the messages holding
-the plain text every match must contain (``required_literal``); other messages are tested
-one by one by ``TextMatch``'s own mask. Either way under ``time_limit``.
+Messages are tested as the message rule tests them (``rules/message.py``): on a full chunk's
+packed text all at once where the match allows (``rules/packed_match.py``), else one by one;
+a regex under ``time_limit``.
 """
 
 from __future__ import annotations
@@ -27,14 +26,12 @@ from itertools import compress
 from operator import neg
 from time import perf_counter
 
-from .packed_texts import PackedTexts
-from .rules.text_match import TextMatch, required_literal
+from .rules.message import messages_test
+from .rules.text_match import TextMatch
 from .rules.time_limit import MatchTimeout, time_limit
 from .seek import HITS_LIMIT_S, Hits, PieceSize, Walk, view_shows
 from .store import Chunk, LogStore
 from .view import LogView
-
-_SEPARATOR = "\0"
 
 
 def parse_search(text: str) -> TextMatch:
@@ -62,54 +59,13 @@ def display_pattern(match: TextMatch) -> re.Pattern[str]:
     return re.compile(re.escape(match.text), re.IGNORECASE if match.ignore_case else 0)
 
 
-def _packed_rows(packed: PackedTexts, needle: str, lo: int, hi: int, *, lower: bool) -> list[int]:
-    """Texts ``lo..hi`` of ``packed`` that contain ``needle`` (in lower case, ``lower``)."""
-    starts = packed.starts
-    begin, end = starts[lo], starts[hi] - 1
-    if lower:
-        hay, shift = packed.text[begin:end].lower(), begin
-        begin, end = 0, end - begin
-    else:
-        hay, shift = packed.text, 0
-    find = hay.find
-    rows: list[int] = []
-    at = find(needle, begin, end)
-    while at != -1:
-        row = bisect_right(starts, at + shift) - 1
-        rows.append(row)
-        at = find(needle, starts[row + 1] - shift, end)
-    return rows
-
-
 def text_hits(match: TextMatch) -> Hits:
-    """The ``Hits`` of a ``TextMatch`` over messages (see the module's docstring)."""
-    masker = match.mask_function()
-    needle, lower, verify = "", False, None
-    if match.regex:
-        pattern = match.pattern()
-        literal = required_literal(pattern).text
-        if match.ignore_case:
-            literal = literal.lower() if literal.isascii() else ""
-        needle, lower, verify = literal, match.ignore_case, pattern.search
-    elif match.ignore_case:
-        folded = match.text.casefold()
-        # Casefolding ASCII text is lowering it, and gives ASCII: a needle that is not ASCII
-        # then is in no ASCII text.
-        needle, lower = folded, True
-    else:
-        needle = match.text
-    usable = bool(needle) and _SEPARATOR not in needle
+    """The ``Hits`` of a ``TextMatch`` over messages: the message rule's own test (on a full
+    chunk's packed text all at once where the match allows), as offsets."""
+    test = messages_test(match)
 
     def hits(chunk: Chunk, lo: int, hi: int) -> Sequence[int]:
-        msgs = chunk.msgs
-        if usable and isinstance(msgs, PackedTexts) and (not lower or msgs.text.isascii()):
-            if lower and not needle.isascii():
-                return []
-            rows = _packed_rows(msgs, needle, lo, hi, lower=lower)
-            if verify is None:
-                return rows
-            return [row for row in rows if verify(msgs[row]) is not None]
-        return list(compress(range(lo, hi), masker(msgs[lo:hi])))
+        return list(compress(range(lo, hi), test(chunk, lo, hi)))
 
     return hits
 

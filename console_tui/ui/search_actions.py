@@ -19,6 +19,7 @@ from ..model.marks import Marks
 from ..model.rules.time_limit import MatchTimeout, time_limit
 from ..model.search import PENDING, Search, describe_search, display_pattern, parse_search
 from ..model.store import LogStore
+from ..model.text import plural
 from ..model.view import LogView
 from .focus import focus_now
 from .widgets.log_table import LogTable, Spans
@@ -138,7 +139,7 @@ class SearchActions(App[None]):
         if search is None:
             self.notify("No search yet: f finds a text or a /regex/.", timeout=4)
             return
-        seq = self.table.cursor_seq
+        seq = self.table.cursor_last_seq if forward else self.table.cursor_seq
         if seq is None:
             return
         self._jump = _Jump(seq, forward)
@@ -191,6 +192,7 @@ class SearchActions(App[None]):
     @work(exclusive=True, group="search")
     async def _search_in_background(self) -> None:
         shown_at = self.clock()
+        marked = -1
         while True:
             search = self._fresh_search()
             if search is None:
@@ -205,7 +207,10 @@ class SearchActions(App[None]):
                 jumped = self._try_jump()
                 if self.clock() - shown_at >= SEARCH_PROGRESS_PERIOD_S or complete:
                     shown_at = self.clock()
-                    self._show_search_marks()
+                    found = search.count()
+                    if found != marked:  # new matches may be on screen: draw their marks
+                        marked = found
+                        self._show_search_marks()
                     self.update_status()
                 if complete and jumped:
                     return
@@ -266,4 +271,4 @@ class SearchActions(App[None]):
         index = search.index(seq) if seq is not None else None
         if index is not None:
             return f"match {index:,} of {found:,} {what}"
-        return f"{found:,} match{'es' if found != 1 else ''} {what}"
+        return f"{plural(found, 'match', 'matches')} {what}"

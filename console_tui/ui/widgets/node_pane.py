@@ -9,7 +9,7 @@ rules (``model/toggles.py``), which the app applies when the panel asks (``Toggl
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -78,14 +78,33 @@ def rate_text(rate: float) -> str:
     return compact(round(rate))
 
 
-def node_line(row: NodeCounts, state: str) -> Table:
-    """A node's line: S (solo) or M (mute), its name, its counts per severity, its rate."""
+#: Widths of the count columns (D, I, W, E, F) and of the rate, when no rows say otherwise.
+_NARROWEST = (4, 4, 4, 4, 4, 5)
+
+
+def column_widths(rows: Sequence[NodeCounts]) -> tuple[int, ...]:
+    """Each count column as wide as its widest number (its title and a space at least), and
+    the rate's: the names get the rest of a narrow pane."""
+    widths = list(_NARROWEST)
+    for row in rows:
+        for at, count in enumerate(row.counts):
+            widths[at] = max(widths[at], len(compact(count)) + 1)
+        widths[5] = max(widths[5], len(rate_text(row.rate)) + 1)
+    return tuple(widths)
+
+
+def _grid(widths: Sequence[int]) -> Table:
     grid = Table.grid(expand=True)
     grid.add_column(width=2, no_wrap=True)
     grid.add_column(ratio=1, no_wrap=True, overflow="ellipsis")
-    for _ in range(5):
-        grid.add_column(width=5, justify="right", no_wrap=True)
-    grid.add_column(width=6, justify="right", no_wrap=True)
+    for width in widths:
+        grid.add_column(width=width, justify="right", no_wrap=True)
+    return grid
+
+
+def node_line(row: NodeCounts, state: str, widths: Sequence[int] = _NARROWEST) -> Table:
+    """A node's line: S (solo) or M (mute), its name, its counts per severity, its rate."""
+    grid = _grid(widths)
     name_style = "dim strike" if state == "M" else "bold" if state == "S" else ""
     counts = [
         Text(compact(count), style=style if count else "dim")
@@ -100,13 +119,8 @@ def node_line(row: NodeCounts, state: str) -> Table:
     return grid
 
 
-def header_line(sort: Sort) -> Table:
-    grid = Table.grid(expand=True)
-    grid.add_column(width=2, no_wrap=True)
-    grid.add_column(ratio=1, no_wrap=True, overflow="ellipsis")
-    for _ in range(5):
-        grid.add_column(width=5, justify="right", no_wrap=True)
-    grid.add_column(width=6, justify="right", no_wrap=True)
+def header_line(sort: Sort, widths: Sequence[int] = _NARROWEST) -> Table:
+    grid = _grid(widths)
     titles = {"name": "node", "errors": "E", "warnings": "W", "rate": "/s"}
     arrow = {key: f"{title}▼" if key == sort.key and key != "name" else title for key, title in titles.items()}
     name = "node ▲" if sort.key == "name" else "node"
@@ -237,12 +251,13 @@ class NodePane(SidePane):
         if key == self._shown_key:
             return
         self._shown_key = key
-        self.query_one("#nodes-header", Static).update(header_line(self.sort))
+        widths = column_widths(rows)
+        self.query_one("#nodes-header", Static).update(header_line(self.sort, widths))
         options = self.node_list
         highlighted = self.highlighted_node
         with options.prevent(OptionList.OptionHighlighted):
             options.clear_options()
-            options.add_options([Option(node_line(row, states.get(row.node, "")), id=row.node) for row in rows])
+            options.add_options([Option(node_line(row, states.get(row.node, ""), widths), id=row.node) for row in rows])
             if rows:
                 names = [row.node for row in rows]
                 options.highlighted = names.index(highlighted) if highlighted in names else 0
