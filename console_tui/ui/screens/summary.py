@@ -27,8 +27,9 @@ from ..keys import hint_line
 from ..widgets.timeline_strip import span_text
 
 _NAME_WIDTH = 28
-#: The dialog's room for text: its width less the border, the padding and the scrollbar.
-_FRAME = 6
+#: The dialog's room for text: its width less its border and padding, the list's border,
+#: an option's padding and the scrollbar.
+_FRAME = 10
 _STYLES = ("dim", "green", "yellow", "red", "bold red")
 
 
@@ -137,7 +138,7 @@ class SummaryScreen(ModalScreen[int | None]):
         if not busiest:
             options.append(_heading("  none"))
         for entry in busiest:
-            line = Text(f"  {one_line(entry.node, name_width):<{name_width}}", style="bold")
+            line = Text(f"  {_name(entry.node, name_width):<{name_width}}", style="bold")
             line.append(f"{entry.rate:>12,.1f}/s")
             options.append(self._target_option(line, f"node:{entry.node_id}"))
         options.append(_heading(""))
@@ -148,7 +149,7 @@ class SummaryScreen(ModalScreen[int | None]):
         )
         options.append(_heading(header))
         for entry in stats.nodes():
-            line = Text(f"  {one_line(entry.node, name_width):<{name_width}}")
+            line = Text(f"  {_name(entry.node, name_width):<{name_width}}")
             for slot, number in enumerate(entry.counts):
                 line.append(f"{number:>{count_width},}", style=_STYLES[slot] if number else "dim")
             line.append(f"{entry.total:>{count_width + 1},}", style="bold")
@@ -186,6 +187,11 @@ class SummaryScreen(ModalScreen[int | None]):
 
     def action_close(self) -> None:
         self.dismiss(None)
+
+
+def _name(node: str, width: int) -> str:
+    """A node's name in ``width`` cells, cut with ``…`` when longer."""
+    return one_line(node, width) if len(node) <= width else one_line(node, width - 1) + "…"
 
 
 def _heading(text: str) -> Option:
