@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from functools import lru_cache
 from typing import Protocol
 
 from rich.cells import cell_len, set_cell_size
@@ -28,7 +29,7 @@ from ...model.levels import severity_bucket, severity_name
 from ...model.record import LogRecord
 from ...model.store import LogStore
 from ...model.storms import StormBadge
-from ...model.text import one_line
+from ...model.text import one_line, shorten_name
 from ...model.time_column import TimeFormat, column_title, format_info, time_cell
 from ...model.timefmt import clock_text, duration_text
 from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
@@ -482,7 +483,9 @@ class LogTable(ScrollView, can_focus=True):
         if len(nodes) != self._nodes_measured:
             self._nodes_measured = len(nodes)
             self._widest_node = max((cell_len(name) for name in nodes), default=8)
-        node_width = max(min(self._widest_node, 28, max(width // 5, 12)), 6)
+        # Wide enough for most names whole (20 of 80 columns, 24 of 100, 32 of 160); longer
+        # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
+        node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
         gutter = _GUTTER if self.gutter_of is not None else 0
         key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc)
         if key != self._layout_key:
@@ -690,7 +693,7 @@ class LogTable(ScrollView, can_focus=True):
         if key == "severity":
             return severity_name(record.level)
         if key == "node":
-            return one_line(record.node, 200)
+            return _node_text(record.node, width)
         if key == "file":
             return one_line(os.path.basename(record.file), 200)
         if key == "function":
@@ -700,6 +703,11 @@ class LogTable(ScrollView, can_focus=True):
         if key == "source":
             return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
         raise KeyError(key)
+
+
+@lru_cache(maxsize=4096)
+def _node_text(node: str, width: int) -> str:
+    return shorten_name(one_line(node, 200), width)
 
 
 def _marked(fitted: str, spans: Spans, length: int, style: Style, marked: Style) -> list[Segment]:
