@@ -107,17 +107,126 @@ async def capture_folder(out: Path) -> list[Path]:
     return [path]
 
 
+def overview_records() -> list:
+    """Ten minutes of a robot's log (no ROS): five nodes at their own rates, a WARN now and
+    then, an ERROR burst at 6 min (the motor driver times out), and in the last half minute
+    tf_listener repeating one warning 3,000 times. Fixed, so the shots are the same each time."""
+    import random
+
+    from console_tui.model.record import LogRecord
+
+    second = 1_000_000_000
+    start = 1_795_000_000 * second  # 11:06:40 UTC
+    rng = random.Random(16)
+    made: list[LogRecord] = []
+    every = {  # node: (messages a second, what it says)
+        "navigation.planner": (
+            4,
+            lambda i: f"Planned path to ({i % 40 / 4:.2f}, {-(i % 17) / 4:.2f}): {i % 90 + 10} poses",
+        ),
+        "sensors.lidar_driver": (10, lambda i: f"scan {i}: 720 points, {0.4 + (i % 7) / 10:.1f} ms"),
+        "power.battery_monitor": (1, lambda i: f"battery {25.2 - i / 600:.1f} V, {90 - i // 20}%"),
+        "control.base_controller": (20, lambda i: f"cmd_vel {i % 50 / 100:.2f} m/s, wheels ok"),
+    }
+    for node, (rate, text) in every.items():
+        for i in range(600 * rate):
+            stamp = start + i * second // rate + rng.randrange(second // rate // 2)
+            level = 30 if rng.random() < 0.0004 else 20
+            message = text(i) if level == 20 else f"{node.rpartition('.')[2]}: late by {rng.randint(5, 90)} ms"
+            name = node.rpartition(".")[2]
+            made.append(LogRecord(stamp, level, node, message, file=f"{name}.cpp", function="spin_once", line=120))
+    for i in range(40):  # the burst: the motor driver stops answering for 2 s
+        stamp = start + 360 * second + i * second // 20
+        made.append(
+            LogRecord(
+                stamp,
+                40,
+                "control.base_controller",
+                f"motor driver timeout on /dev/ttyACM0 (try {i + 1})",
+                file="base_controller.cpp",
+                function="write_command",
+                line=311,
+            )
+        )
+    made.append(
+        LogRecord(
+            start + 362 * second,
+            30,
+            "control.base_controller",
+            "motor driver back after 2.0 s",
+            file="base_controller.cpp",
+            function="write_command",
+            line=318,
+        )
+    )
+    for i in range(3000):  # the storm: one warning, a hundred a second
+        stamp = start + 572 * second + i * second // 100  # from a column's start (4 s columns at 160)
+        made.append(
+            LogRecord(
+                stamp,
+                30,
+                "tf_listener",
+                "Lookup would require extrapolation into the future. Requested time 1795000572.000 but the latest data is at 1795000571.950",
+                file="buffer_core.cpp",
+                function="lookupTransform",
+                line=226,
+            )
+        )
+    made.sort(key=lambda record: record.stamp_ns)
+    return made
+
+
+async def capture_overview(out: Path) -> list[Path]:
+    """The overview on ``overview_records``: the timeline with its ERROR burst and the storm
+    collapsed, a jump from the burst's column, the summary. No ROS."""
+    from console_tui.model.store import LogStore
+    from console_tui.ui.app import ConsoleApp
+
+    store = LogStore()
+    store.extend(overview_records())
+    app = ConsoleApp(store=store, utc=True)
+    saved: list[Path] = []
+
+    async def shot(pilot, name: str) -> None:
+        await pilot.pause(0.5)
+        path = out / f"{name}.svg"
+        app.save_screenshot(filename=path.name, path=str(path.parent))
+        saved.append(path)
+
+    async with app.run_test(size=(160, 36)) as pilot:
+        while app.storms.behind or app.timeline.behind or not app.storms.storm_count:
+            await pilot.pause(0.1)
+        # A click on the column where the rate jumps: the table there, the storm one row.
+        columns = app.timeline.columns(app.timeline_strip.size.width)
+        storm = next(column for column, counts in enumerate(columns.counts) if counts[2] > 100)
+        await pilot.click("#timeline", offset=(storm, 2))
+        await shot(pilot, "overview")
+        await pilot.press("escape", "T", "home")  # back to the table, then a column picked by key
+        strip = app.timeline_strip
+        columns = app.timeline.columns(strip.size.width)
+        burst = next(column for column, counts in enumerate(columns.counts) if counts[3])
+        await pilot.press(*["right"] * burst)
+        await pilot.press("enter")  # the strip keeps the focus: the picked column shows
+        await shot(pilot, "overview-jump")
+        await pilot.press("escape", "end", "S")
+        await shot(pilot, "summary")
+    return saved
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "screenshots")
     parser.add_argument("--seconds", type=float, default=8.0, help="how long the demo runs before the first shot")
-    parser.add_argument("--folder-only", action="store_true", help="only the merged run folder (no ROS needed)")
+    parser.add_argument(
+        "--no-ros", action="store_true", help="only the shots that need no ROS (the run folder, the overview)"
+    )
     args = parser.parse_args()
     os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
     os.environ.setdefault("ROS_DOMAIN_ID", "87")
     args.out.mkdir(parents=True, exist_ok=True)
-    saved = [] if args.folder_only else asyncio.run(capture(args.out, args.seconds))
+    saved = [] if args.no_ros else asyncio.run(capture(args.out, args.seconds))
     saved += asyncio.run(capture_folder(args.out))
+    saved += asyncio.run(capture_overview(args.out))
     for path in saved:
         print(path.relative_to(ROOT) if path.is_relative_to(ROOT) else path)
     return 0

@@ -2,8 +2,9 @@
 
 A **storm** is a run of one node's consecutive shown messages with the same severity and
 the same text (or, with ``mask_digits``, the same text once every run of digits reads
-``#``): messages of other nodes in between do not break it, a message of the same node
-with another text does. It shows as one row, at its first message, with its count and
+``#``), from the same source (the same message in two files of a run is no repeat):
+messages of other nodes in between do not break it, a message of the same node with
+another text does. It shows as one row, at its first message, with its count and
 the time of its last one; its other messages are no rows while it is collapsed.
 Expanding it (``expand``) makes them rows again where they are, between the others.
 
@@ -33,6 +34,8 @@ from .store import LogStore
 from .view import LogView
 
 _DIGITS = re.compile(r"[0-9]+")
+#: Rows looked through for a collapsed repeat's storm (other nodes' rows in between).
+_LOOK_BACK = 200_000
 
 
 def mask_digits(text: str) -> str:
@@ -43,14 +46,15 @@ def mask_digits(text: str) -> str:
 class Storm:
     """A run of one node's repeats: its first and last seq, and how many shown messages."""
 
-    __slots__ = ("count", "expanded", "head", "key", "last", "level", "members", "node")
+    __slots__ = ("count", "expanded", "head", "key", "last", "level", "members", "node", "source")
 
-    def __init__(self, head: int, node: int, level: int, key: str) -> None:
+    def __init__(self, head: int, node: int, level: int, source: int, key: str) -> None:
         self.head = head
         self.last = head
         self.count = 1
         self.node = node
         self.level = level
+        self.source = source
         self.key = key
         self.expanded = False
         #: While expanded: the seqs after the head, which are rows then.
@@ -61,6 +65,7 @@ class StormBadge(NamedTuple):
     """What a row shows of its storm: ``head`` rows carry the count and the last seq."""
 
     repeats: int
+    first: int
     last: int
     expanded: bool
     head: bool
@@ -105,18 +110,20 @@ class StormRows(ShownFollower):
             lo, hi = offsets.start, offsets.stop
             nodes: Sequence[int] = chunk.nodes[lo:hi]
             levels: Sequence[int] = chunk.levels[lo:hi]
+            sources: Sequence[int] = chunk.sources[lo:hi]
             texts: Sequence[str] = chunk.msgs[lo:hi]
         elif len(offsets) == 1:
-            nodes, levels, texts = [chunk.nodes[offsets[0]]], [chunk.levels[offsets[0]]], [chunk.msgs[offsets[0]]]
+            at = offsets[0]
+            nodes, levels, sources, texts = [chunk.nodes[at]], [chunk.levels[at]], [chunk.sources[at]], [chunk.msgs[at]]
         else:
             pick = itemgetter(*offsets)
-            nodes, levels, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.msgs)
+            nodes, levels, sources, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.sources), pick(chunk.msgs)
         if self.mask_digits:
             texts = [_DIGITS.sub("#", text) for text in texts]
         runs, storms, rows = self._runs, self._storms, self._rows
-        for seq, node, level, key in zip(piece.seqs(), nodes, levels, texts, strict=False):
+        for seq, node, level, source, key in zip(piece.seqs(), nodes, levels, sources, texts, strict=False):
             run = runs.get(node)
-            if run is not None and run.key == key and run.level == level:
+            if run is not None and run.key == key and run.level == level and run.source == source:
                 run.count += 1
                 run.last = seq
                 if run.count == 2:
@@ -126,7 +133,7 @@ class StormRows(ShownFollower):
                     run.members.append(seq)  # type: ignore[union-attr]  # expanded: it has members
             else:
                 rows.append(seq)
-                runs[node] = Storm(seq, node, level, key)
+                runs[node] = Storm(seq, node, level, source, key)
 
     def forget(self, piece: ShownPiece) -> None:
         leaving, going, storms, runs = self._leaving, self._going, self._storms, self._runs
@@ -245,6 +252,34 @@ class StormRows(ShownFollower):
     def count_before(self, seq: int) -> int:
         return self.row_of(seq)
 
+    def row_showing(self, seq: int) -> int:
+        """The row that shows ``seq``: its own, or its storm's when it is a collapsed repeat;
+        for a record that is no row (hidden by the rules), the row of the next one shown."""
+        row = self.row_of(seq)
+        if not self.enabled or seq >= self.done_to or seq not in self.store:
+            return row
+        if row < len(self) and self.seq_at(row) == seq:
+            return row
+        view = self.view
+        if view.filtered and not (view.row_of(seq) < len(view) and view.seq_at(view.row_of(seq)) == seq):
+            return row  # hidden by the rules
+        # A collapsed repeat: its storm's row is the nearest row before it of the same node.
+        store, node = self.store, self.store.node_id_of(seq)
+        for earlier in range(row - 1, max(row - _LOOK_BACK, 0) - 1, -1):
+            head = self.seq_at(earlier)
+            if store.node_id_of(head) == node:
+                storm = self._storms.get(head)
+                return earlier if storm is not None and storm.last >= seq else row
+        return row
+
+    def row_shown(self, seq: int) -> int | None:
+        """The row that shows ``seq`` (its storm's for a collapsed repeat); None when no row
+        does (the rules hide it, or it is gone)."""
+        row = self.row_showing(seq)
+        if not 0 <= row < len(self):
+            return None
+        return row if self.seq_at(row) <= seq else None  # a row after it: it is no row
+
     # -- storms -----------------------------------------------------------------------------------
 
     def storm_of(self, seq: int) -> Storm | None:
@@ -267,7 +302,7 @@ class StormRows(ShownFollower):
         storm = self.storm_of(seq)
         if storm is None:
             return None
-        return StormBadge(storm.count, storm.last, storm.expanded, storm.head == seq)
+        return StormBadge(storm.count, storm.head, storm.last, storm.expanded, storm.head == seq)
 
     def expand(self, storm: Storm) -> None:
         """Show every message of the storm as a row (each where it is)."""

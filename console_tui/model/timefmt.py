@@ -49,3 +49,17 @@ def full_text(stamp_ns: int, *, utc: bool = False) -> str:
     except (OverflowError, OSError, ValueError):
         return stamp_text(stamp_ns)
     return f"{moment:%Y-%m-%d %H:%M:%S}.{nsec:09d} {moment:%z}"
+
+
+def duration_text(ns: int) -> str:
+    """A duration in its unit, three digits at most: ``250 ms``, ``2.8 s``, ``5 min``, ``3 h``, ``2 days``."""
+    seconds = ns / NS_PER_S
+    if seconds < 1:
+        return f"{seconds * 1000:.3g} ms"
+    if seconds < 60:
+        return f"{seconds:.3g} s"
+    if seconds < 3600:
+        return f"{seconds / 60:.3g} min"
+    if seconds < 86_400:
+        return f"{seconds / 3600:.3g} h"
+    return f"{seconds / 86_400:.3g} days"

@@ -16,10 +16,12 @@ change it counts again from the oldest record in the background, and meanwhile
 
 from __future__ import annotations
 
+from bisect import bisect_left
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
-from operator import itemgetter
+from itertools import islice
+from operator import itemgetter, le
 
 from .levels import MESSAGE_SEVERITIES, severity_bucket
 from .shown_follower import ShownFollower
@@ -75,11 +77,13 @@ class TimelineColumns:
 class _Histogram:
     """Counts per bucket of one width: ``buckets[index] = [5 counts..., first seq]``."""
 
-    __slots__ = ("buckets", "level", "total")
+    __slots__ = ("buckets", "high", "level", "low", "total")
 
     def __init__(self) -> None:
         self.level = 0
         self.buckets: dict[int, list[int]] = {}
+        #: The lowest and highest bucket index there has been (at this width).
+        self.low, self.high = 0, -1
         self.total = 0
 
     @property
@@ -87,17 +91,28 @@ class _Histogram:
         return LADDER_NS[self.level]
 
     def add(self, stamps: Sequence[int], levels: Sequence[int], seqs: Sequence[int]) -> None:
+        if not stamps:
+            return
+        in_order = all(map(le, stamps, islice(stamps, 1, None)))
+        first, last = (stamps[0], stamps[-1]) if in_order else (min(stamps), max(stamps))
         width = LADDER_NS[self.level]
-        indexes = [stamp // width for stamp in stamps]
-        low, high = min(indexes), max(indexes)
+        low, high = first // width, last // width
+        if not self.low <= low <= high <= self.high:
+            if self.buckets:
+                low, high = min(low, self.low), max(high, self.high)
+            if high - low >= MAX_BUCKETS and self.level < len(LADDER_NS) - 1:
+                self._widen(low, high)
+                width = LADDER_NS[self.level]
+                low, high = first // width, last // width
+                if self.buckets:
+                    low, high = min(low, self.low), max(high, self.high)
+            self.low, self.high = low, high
+        self.total += len(stamps)
+        if in_order:
+            self._add_in_order(stamps, levels, seqs, width)
+            return
         buckets = self.buckets
-        if buckets:
-            low, high = min(low, min(buckets)), max(high, max(buckets))
-        if high - low >= MAX_BUCKETS and self.level < len(LADDER_NS) - 1:
-            self._widen(low, high)
-            buckets = self.buckets
-            width = LADDER_NS[self.level]
-            indexes = [stamp // width for stamp in stamps]
+        indexes = [stamp // width for stamp in stamps]
         slot = _SLOT
         for (index, level), number in Counter(zip(indexes, levels, strict=False)).items():
             bucket = buckets.get(index)
@@ -109,7 +124,22 @@ class _Histogram:
             bucket = buckets[index]
             if seq < bucket[_FIRST]:
                 bucket[_FIRST] = seq
-        self.total += len(indexes)
+
+    def _add_in_order(self, stamps: Sequence[int], levels: Sequence[int], seqs: Sequence[int], width: int) -> None:
+        """Stamps in order (as they mostly arrive): each bucket's records are a slice, found by bisection."""
+        buckets, slot = self.buckets, _SLOT
+        start, end = 0, len(stamps)
+        while start < end:
+            index = stamps[start] // width
+            stop = bisect_left(stamps, (index + 1) * width, start, end)
+            bucket = buckets.get(index)
+            if bucket is None:
+                bucket = buckets[index] = [0] * SLOTS + [_NO_SEQ]
+            for level, number in Counter(levels[start:stop]).items():
+                bucket[slot[level]] += number
+            if seqs[start] < bucket[_FIRST]:
+                bucket[_FIRST] = seqs[start]
+            start = stop
 
     def remove(self, stamps: Sequence[int], levels: Sequence[int], new_first: int) -> None:
         width = LADDER_NS[self.level]
@@ -122,6 +152,10 @@ class _Histogram:
             bucket[slot[level]] -= number
             if not any(bucket[:SLOTS]):
                 del buckets[index]
+                if not buckets:
+                    self.low, self.high = 0, -1
+                elif index in (self.low, self.high):
+                    self.low, self.high = min(buckets), max(buckets)
             elif bucket[_FIRST] < new_first:
                 bucket[_FIRST] = new_first  # its first record goes; the next kept is at or after this
         self.total -= len(stamps)
@@ -147,13 +181,15 @@ class _Histogram:
                 into[_FIRST] = min(into[_FIRST], bucket[_FIRST])
         self.buckets = merged
         self.level = level
+        if merged:
+            self.low, self.high = min(merged), max(merged)
 
     def columns(self, width: int) -> TimelineColumns | None:
         buckets = self.buckets
         if not buckets or width < 1:
             return None
         bucket_ns = LADDER_NS[self.level]
-        low, high = min(buckets), max(buckets)
+        low, high = self.low, self.high
         oldest, newest = low * bucket_ns, (high + 1) * bucket_ns
         # As many buckets a column as it takes to fit the width: the strip fills it.
         per_column = -(-(high + 1 - low) // width)
@@ -162,13 +198,19 @@ class _Histogram:
         number = -(-(high + 1 - low) // per_column)
         counts = [[0] * SLOTS for _ in range(number)]
         firsts = [_NO_SEQ] * number
-        for index, bucket in buckets.items():
-            column = min((index * bucket_ns - start) // step, number - 1)
+        last = number - 1
+        for index, (debug, info, warn, error, fatal, first) in buckets.items():
+            column = (index - low) // per_column
+            if column > last:
+                column = last
             into = counts[column]
-            for slot in range(SLOTS):
-                into[slot] += bucket[slot]
-            if bucket[_FIRST] < firsts[column]:
-                firsts[column] = bucket[_FIRST]
+            into[0] += debug
+            into[1] += info
+            into[2] += warn
+            into[3] += error
+            into[4] += fatal
+            if first < firsts[column]:
+                firsts[column] = first
         return TimelineColumns(
             start_ns=start,
             step_ns=step,

@@ -356,6 +356,11 @@ class LogView:
         """How many rows show records older than ``seq``."""
         return self.row_of(seq)
 
+    def row_shown(self, seq: int) -> int | None:
+        """The row showing ``seq``; None when no row does (the rules hide it, or it is gone)."""
+        row = self.row_of(seq)
+        return row if row < len(self) and self.seq_at(row) == seq else None
+
     def decoration_of(self, seq: int) -> Decoration:
         """How the row of ``seq`` is marked: "highlight", "dim", or None (no highlight rules)."""
         if not self._indexed or not self.rules.highlighting:

@@ -48,12 +48,14 @@ from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .jump_actions import JumpActions
 from .keys import binding_ids, keymap_path, load_keymap
+from .overview_actions import OverviewActions
 from .pane_actions import PaneActions
 from .rule_actions import RuleActions
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
 from .screens.marks import MarksScreen
+from .screens.summary import SummaryScreen
 from .search_actions import SearchActions
 from .toggle_actions import ToggleActions
 from .widgets.load_bar import LoadBar
@@ -65,6 +67,7 @@ from .widgets.rules_pane import RulesPane
 from .widgets.search_bar import SearchBar
 from .widgets.status_bar import StatusBar, StatusFacts
 from .widgets.table_columns import COLUMNS
+from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
     from ..sources.logger_control import LoggerControl
@@ -104,7 +107,7 @@ class Source(Protocol):
     def stop(self) -> None: ...
 
 
-class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActions, ToggleActions):
+class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActions, ToggleActions, OverviewActions):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
@@ -138,6 +141,11 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         Binding("l", "toggle_loggers", "Loggers", id="console.loggers"),
         Binding("ctrl+n", "toggle_nodes", "Nodes", id="console.nodes"),
         Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False, id="console.loggers_for_row"),
+        Binding("T", "timeline", "Timeline: pick a time to show", show=False, id="overview.timeline"),
+        Binding("ctrl+t", "toggle_timeline", "Show / hide the timeline", show=False, id="overview.toggle_timeline"),
+        Binding("z", "toggle_storm", "Expand / collapse the row's storm", show=False, id="overview.storm"),
+        Binding("Z", "toggle_storms", "Storms collapsed on / off", show=False, id="overview.storms"),
+        Binding("S", "summary", "Summary of the run", show=False, id="overview.summary"),
         Binding("question_mark,f1", "help", "Help", id="console.help"),
         Binding("q", "quit", "Quit", id="console.quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
@@ -174,7 +182,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self._rate = 0.0
         self._rate_at = 0.0
         self.collection_policy = CollectionPolicy()
-        self.table = LogTable(self.store, self.view, utc=self.utc, id="log-table")
+        rows = self.make_overview(self.store, self.view, utc)
+        self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
         self._initial_query = query
@@ -247,6 +256,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
     # -- layout -------------------------------------------------------------------------------
 
     def compose(self) -> ComposeResult:
+        yield self.timeline_strip
         with Horizontal(id="main"):
             yield self.rules_pane
             yield self.table
@@ -265,6 +275,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
             listed = "\n".join(self._keymap_problems[:5])
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
         focus_now(self.table)
+        self.start_overview()
         self.set_interval(self.drain_interval, self.drain_intake)
         self.apply_initial_rules(self._initial_rules, self._initial_query)
         self.update_status()
@@ -350,6 +361,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
+        self.show_overview()
         self.collection_policy.tick(arrived)
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
@@ -363,6 +375,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
             for batch in batches:
                 added += len(self.store.extend(batch))
             self.view.update()
+            self.follow_overview()
         if self.view.switched_off:
             self.rules_changed()
         self._arrivals.append((self.clock(), added))
@@ -386,8 +399,10 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
     def update_status(self) -> None:
         table = self.table
         statuses = [source.status for source in self.sources]
+        paused_end = table.paused_end
         facts = StatusFacts(
-            shown=table.row_count,
+            # Messages, not rows: a storm's row shows many.
+            shown=len(self.view) if paused_end is None else self.view.count_before(paused_end),
             total=len(self.store),
             counts=dict(self.store.counts),
             rate=self.receive_rate(),
@@ -395,7 +410,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
-            note=self.rules_note(),
+            note=", ".join(note for note in (self.rules_note(), self.storms_note()) if note),
             search=self.search_status(),
             toggles=self.toggles_status(),
             time=self.time_status(),
@@ -404,6 +419,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
+        self.show_overview(force=True)
         paused = self.table.paused_end is not None
         if paused != self._shown_paused:
             self._shown_paused = paused
@@ -452,6 +468,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.store.clear()
         self.node_stats.clear()
         self.view.rebuild()
+        self.clear_overview()
         self.table.reset()
         self.update_status()
 
@@ -483,11 +500,11 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
     def _step_record(self, seq: int, delta: int) -> LogRecord | None:
         """The record ``delta`` rows away from ``seq`` in the table, moving the cursor too."""
         table = self.table
-        row = self.view.row_of(seq) + delta
+        row = table.view.row_of(seq) + delta
         if not 0 <= row < table.row_count:
             return None
         table.move_cursor(row)
-        return self.store.get(self.view.seq_at(row))
+        return self.store.get(table.view.seq_at(row))
 
     # -- help and the command palette -------------------------------------------------------------
 
@@ -509,6 +526,8 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
             ("Rules pane", _bindings(RulesPane.BINDINGS)),
             ("Query line", _bindings(QueryBar.BINDINGS)),
             ("Logger levels pane", _bindings(LoggerPane.BINDINGS)),
+            ("Timeline", _bindings(TimelineStrip.BINDINGS)),
+            ("Summary", _bindings(SummaryScreen.BINDINGS)),
             ("Details", _bindings(DetailScreen.BINDINGS)),
             ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
         ]

@@ -87,6 +87,37 @@ def palette_commands() -> list[PaletteCommand]:
         C("Restore the last rules", "The rule set in force when console-tui last exited", "restore_rules"),
         C("Clear rules", "Remove every rule", "clear_rules"),
         *navigation_commands(),
+        C(
+            "Timeline: pick a time",
+            "The rate by severity over the whole history; Enter shows a time",
+            "timeline",
+            "overview.timeline",
+        ),
+        C(
+            "Show / hide the timeline",
+            "The strip of the message rate above the table",
+            "toggle_timeline",
+            "overview.toggle_timeline",
+        ),
+        C(
+            "Expand / collapse this storm",
+            "The repeats of the selected row's message, each a row",
+            "toggle_storm",
+            "overview.storm",
+        ),
+        C(
+            "Storms collapsed on / off",
+            "A node's repeats of one message as one row (×N), or every message a row",
+            "toggle_storms",
+            "overview.storms",
+        ),
+        C("Storms: digits count as the same", "'took 12 ms' repeats 'took 9 ms' (on / off)", "toggle_mask_digits"),
+        C(
+            "Summary",
+            "Counts per severity and node, the busiest nodes, the first ERROR and FATAL",
+            "summary",
+            "overview.summary",
+        ),
         C("Help: every key", "What console-tui shows, and every key (remap them in keys.toml)", "help", "console.help"),
     ]
 

@@ -72,7 +72,7 @@ class JumpActions(App[None]):
         self.table.follow()
 
     def _seek(self, hits: Hits, *, forward: bool, what: str) -> None:
-        seq = self.table.cursor_seq
+        seq = self.table.cursor_last_seq if forward else self.table.cursor_seq
         if seq is None:
             return
         seeker = Seeker(self.view, hits, seq, forward=forward, limit=self.table.paused_end)
@@ -112,7 +112,7 @@ class JumpActions(App[None]):
         self._to_mark(forward=False)
 
     def _to_mark(self, forward: bool) -> None:
-        seq = self.table.cursor_seq
+        seq = self.table.cursor_last_seq if forward else self.table.cursor_seq
         self.marks.trim(self.store.first_seq)
         if seq is None or not len(self.marks):
             self.notify("No marks: m marks the selected row.", timeout=3)

@@ -139,7 +139,7 @@ class SearchActions(App[None]):
         if search is None:
             self.notify("No search yet: f finds a text or a /regex/.", timeout=4)
             return
-        seq = self.table.cursor_seq
+        seq = self.table.cursor_last_seq if forward else self.table.cursor_seq
         if seq is None:
             return
         self._jump = _Jump(seq, forward)

@@ -13,7 +13,7 @@ def own_config(tmp_path, monkeypatch):
 
 
 def header(app) -> str:
-    return screen_text(app).splitlines()[0]
+    return screen_text(app).splitlines()[app.table.region.y]
 
 
 @pytest.mark.parametrize("size", [(100, 30), (80, 24)])

@@ -230,7 +230,8 @@ async def test_level_keys_hide_levels_and_say_so_in_the_status_line():
         await pilot.press("greater_than_sign")
         await pilot.pause()
         assert "level≥WARN" in status_line(app)
-        severities = {line.split()[2] for line in screen_text(app).splitlines()[1:-3] if line.split()[:1] != []}
+        rows = screen_text(app).splitlines()[app.table.region.y + 1 : -3]  # below the timeline and the header
+        severities = {line.split()[2] for line in rows if line.split()[:1] != []}
         assert severities <= {"WARN", "ERROR", "FATAL"}, severities
         await pilot.press("4")  # hide ERROR too
         await pilot.pause()
@@ -357,7 +358,9 @@ async def test_every_time_format_on_a_fixed_data_set():
 
 async def test_sim_time_is_said():
     store = LogStore()
-    store.extend(LogRecord(stamp_ns=12_500_000_000 + i * 10**8, level=20, node="sim", msg="tick") for i in range(50))
+    store.extend(
+        LogRecord(stamp_ns=12_500_000_000 + i * 10**8, level=20, node="sim", msg=f"tick {i}") for i in range(50)
+    )
     app = ConsoleApp(store=store, utc=True)
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.pause()

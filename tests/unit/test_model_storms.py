@@ -11,8 +11,8 @@ from console_tui.model.storms import StormRows, mask_digits
 from console_tui.model.view import LogView
 
 
-def rec(i, node="a", msg="same", level=20):
-    return LogRecord(stamp_ns=1_000_000_000 * i, level=level, node=node, msg=msg)
+def rec(i, node="a", msg="same", level=20, source=""):
+    return LogRecord(stamp_ns=1_000_000_000 * i, level=level, node=node, msg=msg, source=source)
 
 
 def rows_of(rows):
@@ -28,7 +28,7 @@ def expected(store, view, masked=False, expanded_heads=()):
     out = []
     for seq in shown:
         record = store.get(seq)
-        key = (record.level, mask_digits(record.msg) if masked else record.msg)
+        key = (record.level, record.source, mask_digits(record.msg) if masked else record.msg)
         run = runs.get(record.node)
         if run is not None and run[1] == key:
             heads[run[0]][0] += 1
@@ -78,18 +78,18 @@ def test_other_nodes_between_do_not_break_a_storm_another_text_does():
     rows = StormRows(store, view)
     assert rows.sync()
     assert rows_of(rows) == [0, 1, 3, 5]
-    assert rows.badge(0) == (3, 4, False, True)
+    assert rows.badge(0) == (3, 0, 4, False, True)
     assert rows.badge(1) is None  # y then z: two messages on their own
     # A collapsed repeat shows in its storm's row: the row of seq 2 is the next row after it.
     assert rows.row_of(2) == 2
 
 
-def test_severity_is_part_of_a_storm():
+def test_severity_and_source_are_part_of_a_storm():
     store = LogStore()
-    store.extend([rec(0, level=20), rec(1, level=30), rec(2, level=30)])
+    store.extend([rec(0, level=20), rec(1, level=30), rec(2, level=30), rec(3, level=30, source="rosout.log")])
     rows = StormRows(store, LogView(store))
     assert rows.sync()
-    assert rows_of(rows) == [0, 1]
+    assert rows_of(rows) == [0, 1, 3]
 
 
 def test_digits_masked_on_request():
@@ -127,8 +127,8 @@ def test_expand_and_collapse():
     assert storm is not None
     rows.expand(storm)
     assert rows_of(rows) == [0, 1, 2, 3, 4]
-    assert rows.badge(0) == (3, 4, True, True)
-    assert rows.badge(2) == (3, 4, True, False)
+    assert rows.badge(0) == (3, 0, 4, True, True)
+    assert rows.badge(2) == (3, 0, 4, True, False)
     # New repeats of an expanded storm are rows too.
     store.extend([rec(5, "a", "x")])
     view.update()
@@ -137,7 +137,7 @@ def test_expand_and_collapse():
     assert rows.storm_of(4) is storm
     rows.collapse(storm)
     assert rows_of(rows) == [0, 1, 3]
-    assert rows.badge(0) == (4, 5, False, True)
+    assert rows.badge(0) == (4, 0, 5, False, True)
 
 
 def test_off_shows_the_view():
@@ -198,7 +198,8 @@ def test_random_histories_against_brute_force():
                 burst = rng.random() < 0.7
                 node = "a" if burst else rng.choice(nodes)
                 text = "x" if burst else rng.choice(texts)
-                batch.append(rec(seq, node, text, level=rng.choice([10, 20, 20, 30])))
+                source = "b.log" if rng.random() < 0.05 else ""
+                batch.append(rec(seq, node, text, level=rng.choice([10, 20, 20, 30]), source=source))
                 seq += 1
             store.extend(batch)
             view.update()
@@ -226,3 +227,34 @@ def test_random_histories_against_brute_force():
             rows.sync()
             rows.collapse(storm)
             check(store, view, rows, masked=masked)
+
+
+def test_the_row_showing_a_collapsed_repeat_is_its_storms():
+    store = LogStore()
+    store.extend([rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)])
+    view = LogView(store)
+    rows = StormRows(store, view)
+    rows.sync()
+    assert rows_of(rows) == [0, 1, 3, 4]
+    assert rows.row_showing(2) == 0  # a's repeat: the storm's row
+    assert rows.row_showing(3) == 2
+    view.set_rules(RuleSet((exclude(SeverityRule.of("debug")),)))
+    rows.sync()
+    assert rows.row_showing(4) == 3  # hidden: the row after it (there is none)
+
+
+def test_row_shown_is_the_storms_row_for_a_repeat_and_none_for_a_hidden_message():
+    store = LogStore()
+    store.extend([rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)])
+    view = LogView(store)
+    rows = StormRows(store, view)
+    rows.sync()
+    assert [rows.row_shown(seq) for seq in range(5)] == [0, 1, 0, 2, 3]
+    assert view.row_shown(2) == 2  # the view itself: every message its row
+    view.set_rules(RuleSet((exclude(SeverityRule.of("debug")),)))
+    while not view.refilter_step(0.01):
+        pass
+    rows.sync()
+    assert rows.row_shown(4) is None and view.row_shown(4) is None
+    rows.set_enabled(False)
+    assert [rows.row_shown(seq) for seq in range(4)] == [0, 1, 2, 3]

@@ -105,11 +105,29 @@ def test_live_tail_and_eviction_against_brute_force():
                 assert columns is None
                 continue
             assert 1 <= len(columns) <= width
+            # The columns span the records counted: the first and the last have some.
+            assert columns.totals()[0] and columns.totals()[-1]
             counts, firsts = brute_columns(store, view, columns)
             assert counts == list(columns.counts)
             if store.evicted == 0:
                 assert firsts == list(columns.first_seqs)
         assert len(timeline._histogram.buckets) <= MAX_BUCKETS
+
+
+def test_the_span_starts_again_when_every_record_counted_went():
+    store = LogStore(max_messages=100)
+    view = LogView(store)
+    timeline = Timeline(store, view)
+    store.extend(rec(i * 10 * S) for i in range(100))  # 0 to 990 s
+    view.update()
+    timeline.sync()
+    store.extend(rec(500 * S + i * S // 10) for i in range(100))  # every record before goes
+    view.update()
+    timeline.sync()
+    columns = timeline.columns(100)
+    assert sum(columns.totals()) == 100
+    assert columns.oldest_ns >= 499 * S and columns.newest_ns <= 511 * S
+    assert columns.totals()[0] and columns.totals()[-1]
 
 
 def test_a_long_history_widens_its_buckets():

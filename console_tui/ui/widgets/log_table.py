@@ -10,6 +10,8 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from functools import lru_cache
+from typing import Protocol
 
 from rich.cells import cell_len, set_cell_size
 from rich.segment import Segment
@@ -26,15 +28,31 @@ from textual.strip import Strip
 from ...model.levels import severity_bucket, severity_name
 from ...model.record import LogRecord
 from ...model.store import LogStore
-from ...model.text import one_line
+from ...model.storms import StormBadge
+from ...model.text import one_line, shorten_name
 from ...model.time_column import TimeFormat, column_title, format_info, time_cell
-from ...model.view import LogView
+from ...model.timefmt import clock_text, duration_text
 from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
 
 #: How a row is marked by the rules: None (plain), "highlight" or "dim".
 Decoration = str | None
 #: Where a search matches in a message as shown: (start, end) character spans.
 Spans = list[tuple[int, int]]
+
+
+class TableRows(Protocol):
+    """What the table reads its rows from: a ``LogView``, or ``StormRows`` over one."""
+
+    def __len__(self) -> int: ...
+
+    def seq_at(self, row: int) -> int: ...
+
+    def row_of(self, seq: int) -> int: ...
+
+    def count_before(self, seq: int) -> int: ...
+
+    def row_shown(self, seq: int) -> int | None: ...
+
 
 _SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
 _MESSAGE_LIMIT = 2000
@@ -44,7 +62,7 @@ _QUIET_SCROLLBAR_PERIOD = 0.1
 
 
 class LogTable(ScrollView, can_focus=True):
-    """Rows of a ``LogView``; follows the tail until the user moves away or pauses.
+    """Rows of a ``LogView`` (or ``StormRows``); follows the tail until the user moves away or pauses.
 
     | Key(s) | Description |
     | :- | :- |
@@ -66,6 +84,7 @@ class LogTable(ScrollView, can_focus=True):
     | `log-table--severity-debug` ... `log-table--severity-fatal` | The severity cell, by severity. |
     | `log-table--highlight` | Rows a highlight rule marks. |
     | `log-table--dimmed` | The other rows while highlighting. |
+    | `log-table--storm` | The count of a storm's row (``×120 until ...``). |
     | `log-table--match` | Where a search matches, in the message. |
     | `log-table--gutter` | The gutter's marks: ● a mark, » a search match. |
     """
@@ -93,6 +112,7 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--selected { background: $primary-muted; }
     LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
+    LogTable > .log-table--storm { color: $text-accent; text-style: bold; }
     LogTable > .log-table--match { background: $warning; color: $background; text-style: bold; }
     LogTable > .log-table--gutter { color: $text-accent; text-style: bold; }
     """
@@ -106,6 +126,7 @@ class LogTable(ScrollView, can_focus=True):
         *(f"log-table--severity-{name}" for name in _SEVERITY_CLASS.values()),
         "log-table--highlight",
         "log-table--dimmed",
+        "log-table--storm",
         "log-table--match",
         "log-table--gutter",
     }
@@ -136,7 +157,7 @@ class LogTable(ScrollView, can_focus=True):
         def can_replace(self, message: Message) -> bool:
             return isinstance(message, LogTable.StateChanged)  # it says nothing but "look again"
 
-    def __init__(self, store: LogStore, view: LogView, *, utc: bool = False, id: str | None = None) -> None:
+    def __init__(self, store: LogStore, view: TableRows, *, utc: bool = False, id: str | None = None) -> None:
         super().__init__(id=id)
         self.store = store
         self.view = view
@@ -150,6 +171,8 @@ class LogTable(ScrollView, can_focus=True):
         self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
         #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
         self.decoration_of: Callable[[int], Decoration] | None = None
+        #: Storms hook: seq -> how its row is marked as a storm (``×N until ...``), or None.
+        self.badge_of: Callable[[int], StormBadge | None] | None = None
         #: Marks and search hook: seq -> one character for the gutter left of the row ("" for
         #: none), or None: no gutter. Bump ``style_generation`` when its answers change.
         self.gutter_of: Callable[[int], str] | None = None
@@ -187,6 +210,14 @@ class LogTable(ScrollView, can_focus=True):
         if 0 <= self.cursor_row < self.row_count:
             return self.view.seq_at(self.cursor_row)
         return None
+
+    @property
+    def cursor_last_seq(self) -> int | None:
+        """The last message the cursor's row shows: a collapsed storm's last repeat, else
+        the row's own (where a search down from the row starts)."""
+        seq = self.cursor_seq
+        badge = self.badge_of(seq) if seq is not None and self.badge_of is not None else None
+        return badge.last if badge is not None and badge.head and not badge.expanded else seq
 
     @property
     def new_while_paused(self) -> int:
@@ -235,11 +266,14 @@ class LogTable(ScrollView, can_focus=True):
         self.refresh()
         self.post_message(self.StateChanged())
 
-    def _shown_seqs(self, top: int) -> tuple[int | None, ...]:
+    def _shown_seqs(self, top: int) -> tuple[object, ...]:
         """The cursor's seq and those of the rows on screen with ``top`` as the first row."""
         seq_at = self.view.seq_at
         end = min(top + self._body_height, self.row_count)
-        return (self.cursor_seq, *(seq_at(row) for row in range(max(top, 0), end)))
+        seqs = [seq_at(row) for row in range(max(top, 0), end)]
+        if self.badge_of is not None:  # a storm's count changes its row
+            return (self.cursor_seq, *seqs, *map(self.badge_of, seqs))
+        return (self.cursor_seq, *seqs)
 
     def reset(self) -> None:
         """After a clear or a new filter: back to the tail."""
@@ -327,9 +361,9 @@ class LogTable(ScrollView, can_focus=True):
 
     def jump_to_seq(self, seq: int) -> bool:
         """Put the cursor on the row of ``seq`` (a third down the screen when it was off the
-        screen); False when no row shows it."""
-        row = self.view.row_of(seq)
-        if row >= self.row_count or self.view.seq_at(row) != seq:
+        screen; a collapsed repeat's is its storm's row); False when no row shows it."""
+        row = self.view.row_shown(seq)
+        if row is None or row >= self.row_count:
             return False
         height = self._body_height
         top = int(self.scroll_y)
@@ -449,7 +483,9 @@ class LogTable(ScrollView, can_focus=True):
         if len(nodes) != self._nodes_measured:
             self._nodes_measured = len(nodes)
             self._widest_node = max((cell_len(name) for name in nodes), default=8)
-        node_width = max(min(self._widest_node, 28, max(width // 5, 12)), 6)
+        # Wide enough for most names whole (20 of 80 columns, 24 of 100, 32 of 160); longer
+        # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
+        node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
         gutter = _GUTTER if self.gutter_of is not None else 0
         key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc)
         if key != self._layout_key:
@@ -532,13 +568,16 @@ class LogTable(ScrollView, can_focus=True):
         is_cursor = row == self.cursor_row
         selected = self.selection_anchor is not None and row in self.selected_rows()
         decoration = self.decoration_of(seq) if self.decoration_of is not None else None
+        badge = self.badge_of(seq) if self.badge_of is not None else None
         gutter = self.gutter_of(seq) if self.gutter_of is not None else None
         relative = self._relative_time(row) if self.time_format.relative else None
-        key = (seq, is_cursor, selected, decoration, self.style_generation, gutter, relative)
+        key = (seq, is_cursor, selected, decoration, self.style_generation, badge, gutter, relative)
         strip = self._cache.get(key)
         if strip is None:
             record = self.store.get(seq)
-            strip = self._render_row(record, placed, width, base, is_cursor, selected, decoration, gutter, relative)
+            strip = self._render_row(
+                record, placed, width, base, is_cursor, selected, decoration, badge, gutter, relative
+            )
             self._cache[key] = strip
         return strip
 
@@ -570,6 +609,7 @@ class LogTable(ScrollView, can_focus=True):
         is_cursor: bool,
         selected: bool,
         decoration: Decoration,
+        badge: StormBadge | None = None,
         gutter: str | None = None,
         relative: int | None = None,
     ) -> Strip:
@@ -591,6 +631,14 @@ class LogTable(ScrollView, can_focus=True):
             segments.append(Segment(" ", row_style))
         for place in placed:
             key = place.column.key
+            if key == "message" and badge is not None:
+                mark = self._badge_text(badge, place.width)
+                segments.append(Segment(mark, row_style + styles.get("log-table--storm", Style())))
+                room = place.width - len(mark)
+                text = self._cell_text(record, key, room)
+                segments.extend(self._message_segments(record.seq, text, _fit(text, room), row_style))
+                segments.append(Segment(" ", row_style))
+                continue
             if key == "time":
                 text = time_cell(
                     record.stamp_ns, self.time_format, utc=self.utc, origin_ns=relative, previous_ns=relative
@@ -603,15 +651,37 @@ class LogTable(ScrollView, can_focus=True):
             elif key in ("seq", "time", "file", "function", "line", "source") and name != "debug" and not is_cursor:
                 style = row_style + muted
             fitted = _fit(text, place.width, place.column.align)
-            spans = self.match_spans(record.seq, text) if key == "message" and self.match_spans else None
-            if spans:
-                segments.extend(
-                    _marked(fitted, spans, len(text), style, style + styles.get("log-table--match", Style()))
-                )
+            if key == "message":
+                segments.extend(self._message_segments(record.seq, text, fitted, style))
             else:
                 segments.append(Segment(fitted, style))
             segments.append(Segment(" ", row_style))
         return Strip(segments).adjust_cell_length(width, row_style).simplify()
+
+    def _message_segments(self, seq: int, text: str, fitted: str, style: Style) -> list[Segment]:
+        """The message cell, with where a search matches marked."""
+        spans = self.match_spans(seq, text) if self.match_spans else None
+        if spans:
+            return _marked(fitted, spans, len(text), style, style + self._styles.get("log-table--match", Style()))
+        return [Segment(fitted, style)]
+
+    def _badge_text(self, badge: StormBadge, width: int) -> str:
+        """``×120 until 12:00:31.200`` on a storm's row when the message keeps half the cell,
+        else ``×120 +30.1 s`` (the time from its first message to its last) when it keeps 8
+        cells, else ``×120``; ``┆`` on the rows of an expanded storm."""
+        if not badge.head:
+            return "  ┆ "
+        count = f"{'▾' if badge.expanded else ''}×{badge.repeats} "
+        last, first = badge.last, badge.first
+        if last in self.store:
+            last_ns = self.store.stamp_of(last)
+            marks = [(f"{count}until {clock_text(last_ns, utc=self.utc)}  ", max(12, width // 2))]
+            if first in self.store:
+                marks.append((f"{count}+{duration_text(max(last_ns - self.store.stamp_of(first), 0))} ", 8))
+            for mark, room in marks:
+                if width - len(mark) >= room:
+                    return mark
+        return count[: max(width - 1, 0)]
 
     def _cell_text(self, record: LogRecord, key: str, width: int) -> str:
         if key == "message":
@@ -623,7 +693,7 @@ class LogTable(ScrollView, can_focus=True):
         if key == "severity":
             return severity_name(record.level)
         if key == "node":
-            return one_line(record.node, 200)
+            return _node_text(record.node, width)
         if key == "file":
             return one_line(os.path.basename(record.file), 200)
         if key == "function":
@@ -633,6 +703,11 @@ class LogTable(ScrollView, can_focus=True):
         if key == "source":
             return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
         raise KeyError(key)
+
+
+@lru_cache(maxsize=4096)
+def _node_text(node: str, width: int) -> str:
+    return shorten_name(one_line(node, 200), width)
 
 
 def _marked(fitted: str, spans: Spans, length: int, style: Style, marked: Style) -> list[Segment]:
