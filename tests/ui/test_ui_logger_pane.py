@@ -160,7 +160,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
         row = next(i for i in range(10) if app.store.get(i).node == "navigation.planner.costmap")
         app.table.move_cursor(row)
         await pilot.press("L")
-        assert pane.is_open and pane.selected == PLANNER
+        await until(pilot, lambda: pane_says(app, f"Loggers of {PLANNER}"), what="the pane on the row's node")
         assert pane.highlighted_logger == "navigation.planner.costmap" and pane.logger_list.has_focus
 
 
@@ -184,19 +184,22 @@ async def test_temporary_level_dialog():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
         results: list = []
+        title = "Temporary level for n on /n"
         app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
-        await pilot.pause()
+        await until(pilot, lambda: title in screen_text(app), what="the dialog")
         await pilot.press("enter")
-        assert results == [(10, 30.0)]
+        await until(pilot, lambda: results == [(10, 30.0)], what="DEBUG for 30 s chosen")
+        assert title not in screen_text(app)
         app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
-        await pilot.pause()
+        await until(pilot, lambda: title in screen_text(app), what="the dialog")
         await pilot.press("down", "down", "0", "enter")
-        screen = app.screen
-        assert isinstance(screen, TemporaryLevelScreen), "0 s is refused"
-        assert "above 0" in str(screen.query_one("#temporary-error").content)
+        await until(pilot, lambda: "above 0" in screen_text(app), what="0 s refused, on the screen")
+        assert title in screen_text(app) and len(results) == 1, "the dialog stays open"
         await pilot.press("backspace", "1", ".", "5", "enter")
-        assert results[-1] == (30, 1.5)
+        await until(pilot, lambda: results[-1] == (30, 1.5), what="WARN for 1.5 s chosen")
+        assert title not in screen_text(app)
         app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
-        await pilot.pause()
+        await until(pilot, lambda: title in screen_text(app), what="the dialog")
         await pilot.press("escape")
+        await until(pilot, lambda: title not in screen_text(app), what="the dialog cancelled")
         assert results[-1] is None
