@@ -181,6 +181,9 @@ class LogTable(ScrollView, can_focus=True):
         #: What the Time column shows (``t``), in local time or UTC.
         self.time_format = TimeFormat.CLOCK
         self.style_generation = 0
+        #: Said in the empty table (``show_hint``): what the console waits for, or that rules
+        #: hide every message.
+        self.empty_hint = ""
         # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
         # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
         # about a fifth more per full collection than 192).
@@ -196,6 +199,12 @@ class LogTable(ScrollView, can_focus=True):
         self._scrollbar_sync_due = False
         #: The last strips ``render_lines`` returned, and what they were drawn from.
         self._frame: tuple[tuple, list[Strip]] | None = None
+
+    def show_hint(self, hint: str) -> None:
+        """Say ``hint`` in the table while it has no row (redrawn only when it changes)."""
+        if hint != self.empty_hint:
+            self.empty_hint = hint
+            self.refresh()
 
     # -- rows --------------------------------------------------------------------------------
 
@@ -539,6 +548,7 @@ class LogTable(ScrollView, can_focus=True):
             self._styles_key,
             self._layout_key,
             background,
+            self.empty_hint if not self.row_count else "",
             *map(id, filters),
         )
         if self._frame is not None and self._frame[0] == frame_key:
@@ -563,6 +573,9 @@ class LogTable(ScrollView, can_focus=True):
             return self._header(placed, width, base)
         row = int(self.scroll_y) + y - 1
         if row >= self.row_count:
+            if y == 2 and not self.row_count and self.empty_hint:
+                style = base + self._styles.get("log-table--dim-column", Style())
+                return Strip([Segment(_fit("  " + one_line(self.empty_hint, 400), width), style)], width)
             return Strip.blank(width, base)
         seq = self.view.seq_at(row)
         is_cursor = row == self.cursor_row
