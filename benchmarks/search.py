@@ -208,7 +208,7 @@ def main() -> int:
         "walk alone, CPU ms",
         "walk alone, longest slice ms",
         "longest stall ms",
-        "idle floor ms",
+        "floor ms (Down / Up drawn)",
     ]
     print(table(headers, rows))
     print("\nTargets:")

@@ -125,3 +125,23 @@ def plural(count: int, word: str, words: str | None = None) -> str:
     ``plural(1, "line")`` is ``1 line``, ``plural(1200, "line")`` is ``1,200 lines``;
     ``words`` is the plural when it is not ``word + "s"`` (``plural(2, "entry", "entries")``)."""
     return f"{count:,} {word if count == 1 else (words or word + 's')}"
+
+
+def shorten_name(name: str, width: int) -> str:
+    """A dotted name (a logger name) in ``width`` characters, keeping what tells names apart,
+    their end: the leading segments shrink to their first letter, from the left
+    (``navigation.planner.costmap`` → ``n.planner.costmap`` → ``n.p.costmap``), and when that
+    is not enough the middle gives way to ``…`` (``p.batt…monitor``)."""
+    if len(name) <= width:
+        return name
+    if width <= 1:
+        return "…"[:width]
+    parts = name.split(".")
+    for index in range(len(parts) - 1):
+        parts[index] = parts[index][:1]
+        shortened = ".".join(parts)
+        if len(shortened) <= width:
+            return shortened
+    shortened = ".".join(parts)
+    head = (width - 1) // 3
+    return shortened[:head] + "…" + shortened[len(shortened) - (width - 1 - head) :]

@@ -65,7 +65,7 @@ from .widgets.node_pane import NodePane
 from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 from .widgets.search_bar import SearchBar
-from .widgets.status_bar import StatusBar, StatusFacts
+from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
 from .widgets.table_columns import COLUMNS
 from .widgets.timeline_strip import TimelineStrip
 
@@ -416,6 +416,7 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
             time=self.time_status(),
         )
         self.status_bar.show_facts(facts)
+        table.show_hint(empty_hint(facts, self.view.refiltering))
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()

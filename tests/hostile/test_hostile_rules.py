@@ -24,9 +24,11 @@ HOSTILE = "a" * 30 + "b"  # /(a+)+$/ backtracks 2**30 ways on each of these
 
 
 def hostile_app(count: int) -> ConsoleApp:
+    """``count`` hostile messages, every one its own row (two texts in turn: no storm collapses them)."""
     store = LogStore()
     store.extend(
-        LogRecord(stamp_ns=1_795_000_000_000_000_000 + i, level=20, node="n", msg=HOSTILE) for i in range(count)
+        LogRecord(stamp_ns=1_795_000_000_000_000_000 + i, level=20, node="n", msg=HOSTILE + "b" * (i % 2))
+        for i in range(count)
     )
     return ConsoleApp(store=store, utc=True)
 

@@ -12,7 +12,7 @@ from console_tui.ui.screens.files import OpenScreen, SaveScreen
 from console_tui.ui.screens.problems import ProblemsScreen
 
 from support.feed import records
-from support.ui import line_with, screen_text, type_text, until
+from support.ui import line_with, screen_text, table_rows, type_text, until
 
 
 def write_jsonl(path: Path, count: int, start: int = 0) -> list:
@@ -21,19 +21,33 @@ def write_jsonl(path: Path, count: int, start: int = 0) -> list:
     return rows
 
 
+def source_of(line: str) -> str:
+    """The last column of a table row on the screen (the scrollbar's glyphs left out)."""
+    return line.translate({ord(c): " " for c in "▁▂▃▄▅▆▇█"}).split()[-1]
+
+
 async def test_files_given_at_start_load_merged_with_their_source(tmp_path):
     first = write_jsonl(tmp_path / "a.jsonl", 50, start=0)
     second_rows = records(50, start=25)
     save_records(second_rows, tmp_path / "b.csv", "rqt")
     app = ConsoleApp(files=[str(tmp_path / "a.jsonl"), str(tmp_path / "b.csv")], utc=True)
     async with app.run_test(size=(160, 30)) as pilot:
-        await until(pilot, lambda: len(app.store) == 100 and not app.loading)
-        stamps = [r.stamp_ns for r in app.store]
-        assert stamps == sorted(stamps)
-        assert {r.source for r in app.store} == {"/rosout", "b.csv"}  # JSON Lines keeps the recorded source
-        await pilot.pause()
-        assert "Source" in app.table.render_line(0).text
-        assert first[0].msg in {r.msg for r in app.store}
+        await until(pilot, lambda: "100/100 shown" in screen_text(app) and not app.loading, what="both files")
+        await pilot.press("home")  # the oldest rows: the first file's alone, then both files' overlap
+        await until(pilot, lambda: 1 in table_rows(app), what="the first rows")
+        header = screen_text(app).splitlines()[app.table.region.y]
+        assert "Source" in header, "files of different sources: the Source column is shown"
+        rows = [line for _, (_, line) in sorted(table_rows(app).items())]
+        times = [line.split()[1] for line in rows]
+        assert times == sorted(times), "merged in time order"
+        assert source_of(rows[0]) == "rosout", "JSON Lines keeps the recorded source"
+        assert first[0].msg[:30] in rows[0]
+        await pilot.press("end")
+        await until(pilot, lambda: 100 in table_rows(app), what="the newest rows")
+        rows = [line for _, (_, line) in sorted(table_rows(app).items())]
+        assert {source_of(line) for line in rows} == {"rosout", "b.csv"}, "rows of both files"
+        times = [line.split()[1] for line in rows]
+        assert times == sorted(times)
 
 
 async def test_open_dialog_loads_and_reports_problems(tmp_path):
@@ -152,9 +166,12 @@ async def test_with_live_records_waiting_the_files_come_first(tmp_path):
     live.put(records(5, start=10_000))  # newer than every file record, already waiting
     app = ConsoleApp(queue=live, files=[str(tmp_path / "old.jsonl")])
     async with app.run_test(size=(120, 30)) as pilot:
-        await until(pilot, lambda: len(app.store) == 505)
+        await until(pilot, lambda: "505/505 shown" in screen_text(app), what="the file and the live records")
         stamps = [r.stamp_ns for r in app.store]
         assert stamps == sorted(stamps)
+        rows = [line for _, (_, line) in sorted(table_rows(app).items())]
+        times = [line.split()[1] for line in rows]
+        assert max(table_rows(app)) == 505 and times == sorted(times), "the live records after the file's"
 
 
 async def test_the_detail_view_says_when_a_file_gave_local_times(monkeypatch):

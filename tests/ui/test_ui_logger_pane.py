@@ -10,12 +10,12 @@ from functools import partial
 
 from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
 from console_tui.ui.commands import palette_commands
-from console_tui.ui.screens.help import HelpScreen
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 from console_tui.ui.widgets.logger_pane import NO_ROS_TEXT, LoggerPane
 
 from support import ui
 from support.feed import GRAPH, PLANNER, feed_logger_pane, records
+from support.ui import cursor_number, screen_text, table_rows, type_text, until
 
 make_app = partial(ui.make_app, clock=lambda: 100.0)  # nodes include navigation.planner and its costmap
 
@@ -37,56 +37,72 @@ def notice(pane: LoggerPane) -> str:
     return str(pane.notice_line.content)
 
 
+def pane_text(app) -> list[str]:
+    """The logger pane's part of each terminal row, as the screen shows it."""
+    x = app.logger_pane.region.x
+    return [line[x:].lstrip("▏").strip() for line in screen_text(app).splitlines()[:-2]]
+
+
+def pane_says(app, text: str) -> bool:
+    """Whether the pane shows ``text``, wrapped over its rows or not."""
+    return text in " ".join(" ".join(pane_text(app)).split())
+
+
 async def test_l_toggles_the_pane_escape_gives_the_table_the_keys_and_the_table_follows():
     app = make_app()
     async with app.run_test(size=(120, 30)) as pilot:
-        pane = app.logger_pane
-        assert not pane.is_open and app.table.has_focus
+        await until(pilot, lambda: cursor_number(app) == 100, what="the table")
+        assert "Logger levels" not in screen_text(app)
         await pilot.press("l")
-        assert pane.is_open and pane.display and pane.node_list.has_focus
+        await until(pilot, lambda: pane_says(app, "Logger levels · nodes"), what="the pane")
         app.add_records(records(20, start=100))
-        await pilot.pause()
-        assert app.table.following and app.table.cursor_seq == 119
-        await pilot.press("escape")
-        assert app.table.has_focus and pane.is_open
-        await pilot.press("space")  # the table's keys work with the pane open
-        assert app.table.paused_end is not None
+        await until(pilot, lambda: max(table_rows(app)) == 120, what="the table following with the pane open")
+        await pilot.press("escape", "space")  # the table's keys work with the pane open
+        await until(pilot, lambda: "PAUSED" in screen_text(app).splitlines()[-2], what="the table paused")
+        assert pane_says(app, "Logger levels · nodes")
         await pilot.press("l")
-        assert not pane.is_open and app.table.has_focus
+        await until(pilot, lambda: "Logger levels" not in screen_text(app), what="the pane closed")
+        await pilot.press("space")  # the table has the keys again
+        await until(pilot, lambda: "PAUSED" not in screen_text(app).splitlines()[-2], what="the table resumed")
 
 
 async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
     app = make_app()
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("l")
-        pane = app.logger_pane
-        assert notice(pane) == NO_ROS_TEXT
+        await until(pilot, lambda: pane_says(app, NO_ROS_TEXT), what="the pane saying there is no ROS")
         await pilot.press("d", "t", "x")
-        assert notice(pane) == NO_ROS_TEXT and pane.view.notice_is_error
-        assert not isinstance(app.screen, TemporaryLevelScreen)
         await pilot.press("L")
-        assert "No node in the ROS graph logs as" in notice(pane)
+        await until(pilot, lambda: pane_says(app, "No node in the ROS graph logs as"), what="the pane's answer to L")
+        assert "Temporary level for" not in screen_text(app), "t opened no dialog"
+        assert app.logger_pane.view.notice_is_error
 
 
 async def test_nodes_marks_loggers_and_levels_as_shown():
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
         pane = await open_fed_pane(pilot)
-        nodes = lines(pane.node_list)
-        assert nodes[0].startswith("/count_and_log") and nodes[0].strip() == "/count_and_log"
-        assert "no logger services" in nodes[2] and "checking…" in nodes[3]
-        rows = {line.split()[0]: line for line in lines(pane.logger_list)}
+        await until(pilot, lambda: pane_says(app, "Loggers of /navigation/planner"), what="the fed pane")
+        shown = pane_text(app)
+        nodes = shown[1:5]
+        assert nodes[0] == "/count_and_log" and nodes[1] == "/navigation/planner"
+        assert nodes[2].startswith("/power/battery_monitor") and nodes[2].endswith("no logger services")
+        assert nodes[3].startswith("/sensors/lidar_driver") and nodes[3].endswith("checking…")
+        rows = {line.split()[0]: line for line in shown[shown.index("Loggers of /navigation/planner") + 1 :] if line}
         assert rows["navigation.planner"].endswith("DEBUG")
         assert rows[".costmap"].endswith("inherited (DEBUG)"), "a child logger seen in the records, inheriting"
         assert rows['""'].endswith("INFO") and '"" (default)' in rows['""']
         assert pane.highlighted_logger == "navigation.planner"
         # A node without the services: the hint; a node still being checked: says so.
         pane.select_node("/power/battery_monitor")
-        await pilot.pause()
-        assert pane.rows() == [] and ENABLE_LOGGER_SERVICE_HINT in notice(pane)
+        await until(pilot, lambda: pane_says(app, ENABLE_LOGGER_SERVICE_HINT), what="the hint on the screen")
+        assert pane.rows() == [] and not pane_says(app, "navigation.planner DEBUG")
         pane.select_node("/sensors/lidar_driver")
-        await pilot.pause()
-        assert "Checking whether /sensors/lidar_driver offers logger services" in notice(pane)
+        await until(
+            pilot,
+            lambda: pane_says(app, "Checking whether /sensors/lidar_driver offers logger services"),
+            what="the check on the screen",
+        )
         # A click on a node selects it.
         await pilot.click("#logger-nodes", offset=(2, 1))
         assert pane.selected == PLANNER
@@ -144,7 +160,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
         row = next(i for i in range(10) if app.store.get(i).node == "navigation.planner.costmap")
         app.table.move_cursor(row)
         await pilot.press("L")
-        assert pane.is_open and pane.selected == PLANNER
+        await until(pilot, lambda: pane_says(app, f"Loggers of {PLANNER}"), what="the pane on the row's node")
         assert pane.highlighted_logger == "navigation.planner.costmap" and pane.logger_list.has_focus
 
 
@@ -156,29 +172,34 @@ async def test_help_and_command_palette_offer_the_pane():
         groups = dict(app.binding_groups())
         assert any(b.action == "set_level(10)" for b in groups["Logger levels pane"])
         await pilot.press("question_mark")
-        assert isinstance(app.screen, HelpScreen)
-        await pilot.press("escape", "ctrl+p", *"logger levels", "enter")
-        await pilot.pause()
-        assert app.logger_pane.is_open
+        await until(pilot, lambda: "Change keys in" in screen_text(app), what="the help")
+        await pilot.press("escape", "ctrl+p")
+        await type_text(pilot, "logger levels")
+        await until(pilot, lambda: "Logger levels of this row's node" in screen_text(app), what="the palette")
+        await pilot.press("enter")
+        await until(pilot, lambda: pane_says(app, "Logger levels · nodes"), what="the pane")
 
 
 async def test_temporary_level_dialog():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
         results: list = []
+        title = "Temporary level for n on /n"
         app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
-        await pilot.pause()
+        await until(pilot, lambda: title in screen_text(app), what="the dialog")
         await pilot.press("enter")
-        assert results == [(10, 30.0)]
+        await until(pilot, lambda: results == [(10, 30.0)], what="DEBUG for 30 s chosen")
+        assert title not in screen_text(app)
         app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
-        await pilot.pause()
+        await until(pilot, lambda: title in screen_text(app), what="the dialog")
         await pilot.press("down", "down", "0", "enter")
-        screen = app.screen
-        assert isinstance(screen, TemporaryLevelScreen), "0 s is refused"
-        assert "above 0" in str(screen.query_one("#temporary-error").content)
+        await until(pilot, lambda: "above 0" in screen_text(app), what="0 s refused, on the screen")
+        assert title in screen_text(app) and len(results) == 1, "the dialog stays open"
         await pilot.press("backspace", "1", ".", "5", "enter")
-        assert results[-1] == (30, 1.5)
+        await until(pilot, lambda: results[-1] == (30, 1.5), what="WARN for 1.5 s chosen")
+        assert title not in screen_text(app)
         app.push_screen(TemporaryLevelScreen("/n", "n", 30), results.append)
-        await pilot.pause()
+        await until(pilot, lambda: title in screen_text(app), what="the dialog")
         await pilot.press("escape")
+        await until(pilot, lambda: title not in screen_text(app), what="the dialog cancelled")
         assert results[-1] is None

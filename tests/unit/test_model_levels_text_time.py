@@ -123,3 +123,21 @@ def test_clock_text_utc():
 )
 def test_plural_agrees_with_the_count(count, words, expected):
     assert text.plural(count, *words) == expected
+
+
+@pytest.mark.parametrize(
+    ("name", "width", "shown"),
+    [
+        ("talker", 16, "talker"),
+        ("sensors.lidar_driver", 20, "sensors.lidar_driver"),
+        ("sensors.lidar_driver", 16, "s.lidar_driver"),
+        ("navigation.planner.costmap", 20, "n.planner.costmap"),
+        ("navigation.planner.costmap", 12, "n.p.costmap"),
+        ("navigation.planner", 12, "n.planner"),
+        ("power.battery_monitor", 15, "p.ba…ry_monitor"),
+        ("a_very_long_node_name_without_dots", 10, "a_v…t_dots"),
+    ],
+)
+def test_shorten_name_keeps_the_distinguishing_end(name, width, shown):
+    assert text.shorten_name(name, width) == shown
+    assert len(text.shorten_name(name, width)) <= width

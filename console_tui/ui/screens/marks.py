@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import cast
+
 from rich.table import Table
 from rich.text import Text
 from textual.app import ComposeResult
@@ -14,9 +16,9 @@ from textual.widgets.option_list import Option
 from ...model.levels import severity_name
 from ...model.marks import Marks
 from ...model.record import LogRecord
-from ...model.text import one_line
+from ...model.text import one_line, plural
 from ...model.timefmt import clock_text
-from ..keys import Hint, hint_line
+from ..keys import Hint, KeyDisplay, hint_line, key_label, keymap_of
 
 _HINTS: list[Hint] = [("go", "goes to it"), ("unmark", "takes the mark off"), ("close", "closes")]
 
@@ -38,8 +40,18 @@ def mark_line(record: LogRecord, shown: bool, utc: bool) -> Table:
     return grid
 
 
-def marks_title(count: int) -> str:
-    return f"{count} mark{'s' if count != 1 else ''}" if count else "No marks: m on a row marks it."
+def marks_title(count: int, mark_key: str = "m") -> str:
+    return plural(count, "mark") if count else f"No marks: {mark_key} on a row marks it."
+
+
+def mark_key(app: object) -> str:
+    """The key that marks a row, as the keymap has it (``ConsoleApp.binding_groups``)."""
+    groups = getattr(app, "binding_groups", None)
+    for _title, bindings in groups() if callable(groups) else ():
+        for binding in bindings:
+            if binding.id == "nav.mark":
+                return key_label(binding, cast(KeyDisplay, app), keymap_of(app), first_only=True)
+    return "m"
 
 
 class MarksScreen(ModalScreen[int | None]):
@@ -54,8 +66,10 @@ class MarksScreen(ModalScreen[int | None]):
 
     DEFAULT_CSS = """
     MarksScreen { align: center middle; }
-    MarksScreen > Vertical { width: 90%; height: 70%; border: thick $primary; background: $surface; padding: 0 1; }
-    MarksScreen OptionList { height: 1fr; border: none; }
+    MarksScreen > Vertical {
+        width: 90%; height: auto; max-height: 80%; border: thick $primary; background: $surface; padding: 0 1;
+    }
+    MarksScreen OptionList { height: auto; max-height: 60vh; border: none; }
     MarksScreen #marks-hint { color: $text-muted; height: auto; }
     """
     BINDINGS = [
@@ -73,7 +87,7 @@ class MarksScreen(ModalScreen[int | None]):
 
     def compose(self) -> ComposeResult:
         with Vertical():
-            yield Label(marks_title(len(self.records)))
+            yield Label(marks_title(len(self.records), mark_key(self.app)))
             yield OptionList(
                 *(Option(mark_line(r, r.seq in self.shown, self.utc), id=str(r.seq)) for r in self.records),
                 id="marks-list",
@@ -101,7 +115,7 @@ class MarksScreen(ModalScreen[int | None]):
         self.marks.discard(seq)
         options = self.query_one(OptionList)
         options.remove_option(str(seq))
-        self.query_one(Label).update(marks_title(len(self.marks)))
+        self.query_one(Label).update(marks_title(len(self.marks), mark_key(self.app)))
 
     def action_close(self) -> None:
         self.dismiss(None)

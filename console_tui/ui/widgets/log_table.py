@@ -10,6 +10,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from functools import lru_cache
 from typing import Protocol
 
 from rich.cells import cell_len, set_cell_size
@@ -28,7 +29,7 @@ from ...model.levels import severity_level, severity_name
 from ...model.record import LogRecord
 from ...model.store import LogStore
 from ...model.storms import StormBadge
-from ...model.text import one_line
+from ...model.text import one_line, shorten_name
 from ...model.time_column import TimeFormat, column_title, format_info, time_cell
 from ...model.timefmt import clock_text, duration_text
 from ..severity_styles import severity_classes, severity_css
@@ -174,6 +175,9 @@ class LogTable(ScrollView, can_focus=True):
         #: What the Time column shows (``t``), in local time or UTC.
         self.time_format = TimeFormat.CLOCK
         self.style_generation = 0
+        #: Said in the empty table (``show_hint``): what the console waits for, or that rules
+        #: hide every message.
+        self.empty_hint = ""
         # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
         # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
         # about a fifth more per full collection than 192).
@@ -189,6 +193,12 @@ class LogTable(ScrollView, can_focus=True):
         self._scrollbar_sync_due = False
         #: The last strips ``render_lines`` returned, and what they were drawn from.
         self._frame: tuple[tuple, list[Strip]] | None = None
+
+    def show_hint(self, hint: str) -> None:
+        """Say ``hint`` in the table while it has no row (redrawn only when it changes)."""
+        if hint != self.empty_hint:
+            self.empty_hint = hint
+            self.refresh()
 
     # -- rows --------------------------------------------------------------------------------
 
@@ -476,7 +486,9 @@ class LogTable(ScrollView, can_focus=True):
         if len(nodes) != self._nodes_measured:
             self._nodes_measured = len(nodes)
             self._widest_node = max((cell_len(name) for name in nodes), default=8)
-        node_width = max(min(self._widest_node, 28, max(width // 5, 12)), 6)
+        # Wide enough for most names whole (20 of 80 columns, 24 of 100, 32 of 160); longer
+        # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
+        node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
         gutter = _GUTTER if self.gutter_of is not None else 0
         key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc)
         if key != self._layout_key:
@@ -530,6 +542,7 @@ class LogTable(ScrollView, can_focus=True):
             self._styles_key,
             self._layout_key,
             background,
+            self.empty_hint if not self.row_count else "",
             *map(id, filters),
         )
         if self._frame is not None and self._frame[0] == frame_key:
@@ -554,6 +567,9 @@ class LogTable(ScrollView, can_focus=True):
             return self._header(placed, width, base)
         row = int(self.scroll_y) + y - 1
         if row >= self.row_count:
+            if y == 2 and not self.row_count and self.empty_hint:
+                style = base + self._styles.get("log-table--dim-column", Style())
+                return Strip([Segment(_fit("  " + one_line(self.empty_hint, 400), width), style)], width)
             return Strip.blank(width, base)
         seq = self.view.seq_at(row)
         is_cursor = row == self.cursor_row
@@ -684,7 +700,7 @@ class LogTable(ScrollView, can_focus=True):
         if key == "severity":
             return severity_name(record.level)
         if key == "node":
-            return one_line(record.node, 200)
+            return _node_text(record.node, width)
         if key == "file":
             return one_line(os.path.basename(record.file), 200)
         if key == "function":
@@ -694,6 +710,11 @@ class LogTable(ScrollView, can_focus=True):
         if key == "source":
             return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
         raise KeyError(key)
+
+
+@lru_cache(maxsize=4096)
+def _node_text(node: str, width: int) -> str:
+    return shorten_name(one_line(node, 200), width)
 
 
 def _marked(fitted: str, spans: Spans, length: int, style: Style, marked: Style) -> list[Segment]:

@@ -114,6 +114,29 @@ class StatusBar(Widget):
         return self.content
 
 
+def empty_hint(facts: StatusFacts, filtering: bool = False) -> str:
+    """What the table says while it shows no row: what the console is waiting for, or that
+    rules hide every message; "" when rows are shown (or paused: the status says so)."""
+    if facts.shown or facts.paused:
+        return ""
+    if facts.total:
+        if filtering:
+            return "filtering…"
+        return f"nothing matches: {plural(facts.total, 'message')} hidden by rules"
+    for status in facts.sources:
+        where = f" on {one_line(status.origin, 120)}" if status.origin else ""
+        # No topic yet: the source takes /rosout_agg when something publishes it, else /rosout.
+        topic = one_line(status.topic, 120) or "/rosout or /rosout_agg"
+        if status.problem:
+            return one_line(status.problem, 300)
+        if status.path == "starting":
+            return f"starting{where}…"
+        if not status.publishers:
+            return f"waiting for {topic} publishers{where}…"
+        return f"{plural(status.publishers, 'publisher')} of {topic}{where}: waiting for the first message…"
+    return ""
+
+
 def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None) -> Text:
     """The status line's text; ``styles`` are the component classes' (plain text without them)."""
     look = (lambda name: styles.get(f"status-bar--{name}", _PLAIN)) if styles else (lambda name: _PLAIN)
