@@ -62,6 +62,7 @@ def test_what_fast_dds_prints_is_a_row_and_never_raw(ros_env, tmp_path):
         "LINES": "30",
         "XDG_CONFIG_HOME": str(tmp_path),
         "FASTDDS_DEFAULT_PROFILES_FILE": str(tmp_path / "missing.xml"),
+        "FASTRTPS_DEFAULT_PROFILES_FILE": str(tmp_path / "missing.xml"),  # Jazzy's Fast DDS 2.14 reads this one
     }
     console = Terminal([sys.executable, "-m", "console_tui.cli", "--topic", "/rosout"], env)
     assert console.read_until(b"XMLPARSER Error"), console.output[-2000:]

@@ -139,7 +139,8 @@ def table_rows(app) -> dict[int, tuple[int, str]]:
 
 
 def cursor_number(app) -> int | None:
-    """The number of the table row drawn in the cursor's colours, or None when none is."""
+    """The number of the table row drawn in the cursor's colours, or None when none is.
+    While the table has the focus only: a blurred cursor's colour is blended on the screen."""
     cursor = app.table.get_component_rich_style("log-table--cursor").bgcolor
     x = app.table.region.x + 1
     drawn = [number for number, (y, _) in table_rows(app).items() if style_at(app, x, y).bgcolor == cursor]

@@ -71,10 +71,11 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
 async def test_position_survives_eviction_at_the_bound():
     app = make_app(100, max_messages=120)
     async with app.run_test(size=(100, 24)) as pilot:
-        await pilot.press("pageup", "pageup")
+        await pilot.press("pageup", "pageup")  # past the first screen (the timeline takes rows)
         await until(pilot, lambda: "SCROLL" in status_line(app), what="SCROLL")
-        await until(pilot, lambda: (cursor_number(app) or 100) < 80, what="two pages up")
+        await until(pilot, lambda: (cursor_number(app) or 100) < 80, what="the cursor two pages up")
         cursor = cursor_number(app)
+        assert cursor is not None and cursor > 10
         app.add_records(records(30, start=100))
         await until(pilot, lambda: "120/120 shown" in status_line(app), what="the oldest 10 evicted")
         assert cursor_number(app) == cursor, "the cursor stays on its record"

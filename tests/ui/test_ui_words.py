@@ -63,3 +63,15 @@ async def test_the_query_line_counts_its_rules(count, words):
         await pilot.press("slash")
         await type_text(pilot, "level>=warn" if count == 1 else "level>=warn -node:x")
         await until(pilot, lambda: words in screen_text(app), what=words)
+
+
+async def test_the_palette_offers_one_entry_for_the_keys():
+    """Textual's own "Keys" entry gave way to the help screen: typing "key" finds one entry."""
+    app = make_app(5)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press("ctrl+p")
+        await type_text(pilot, "key")
+        await until(pilot, lambda: "Help: every key" in screen_text(app), what="the help entry")
+        lines = [line.strip() for line in screen_text(app).splitlines()]
+        entries = [line for line in lines if line.startswith(("Help", "Keys"))]
+        assert entries == ["Help: every key"], entries
