@@ -117,7 +117,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS:
         module = importlib.import_module(f"{__package__}.commands.{args_list[0]}")
-        return module.main(args_list[1:])
+        status: int = module.main(args_list[1:])
+        return status
     parser = build_parser()
     args = parser.parse_args(args_list)
     check_rule_arguments(parser, args)

@@ -11,7 +11,7 @@ import json
 import signal
 import sys
 import threading
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
@@ -213,7 +213,7 @@ def _level_request(rest: list[str]) -> tuple[str | None, int]:
 
 
 @contextmanager
-def _ros_control(args: argparse.Namespace, runtime: Any):
+def _ros_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
     from ..sources.ros_version import ROS1, choose_ros
 
     if runtime is None and choose_ros(getattr(args, "ros", None)).version == ROS1:
@@ -233,7 +233,7 @@ def _ros_control(args: argparse.Namespace, runtime: Any):
 
 
 @contextmanager
-def _ros2_control(args: argparse.Namespace, runtime: Any):
+def _ros2_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
     from ..sources.ros2.logger_control import Ros2LoggerControl
     from ..sources.ros2.rclpy_loader import RosUnavailable
     from ..sources.ros2.runtime import RosRuntime
@@ -257,7 +257,7 @@ def _ros2_control(args: argparse.Namespace, runtime: Any):
 
 
 @contextmanager
-def _interruptible():
+def _interruptible() -> Iterator[None]:
     """SIGTERM ends the command like Ctrl+C does, so that temporary levels are put back."""
 
     def on_term(_signum: int, _frame: Any) -> None:
@@ -275,7 +275,7 @@ def _interruptible():
 
 
 def _find_node(control: Any, query: str, wait: float) -> GraphNode:
-    matches = control.find_node(query, wait)
+    matches: list[GraphNode] = control.find_node(query, wait)
     if not matches and control.problem:
         raise CommandError(control.problem, EXIT_ERROR)
     if not matches:

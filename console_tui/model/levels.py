@@ -1,7 +1,9 @@
-"""Severity levels: ROS 2 numbers, ROS 1 numbers, names, and parsing."""
+"""Severity levels: one table of their ROS 2 numbers, ROS 1 bits, names, letters and style
+names; parsing."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from enum import IntEnum
 
 
@@ -16,28 +18,51 @@ class Severity(IntEnum):
     FATAL = 50
 
 
-#: The severities a log message can have, lowest first.
-MESSAGE_SEVERITIES: tuple[Severity, ...] = (
-    Severity.DEBUG,
-    Severity.INFO,
-    Severity.WARN,
-    Severity.ERROR,
-    Severity.FATAL,
+@dataclass(frozen=True)
+class SeverityLevel:
+    """One message severity, as every part of console-tui names and draws it."""
+
+    #: The ROS 2 number (``rcl_interfaces/msg/Log``), the one console-tui keeps.
+    severity: Severity
+    #: The word shown and written: ``WARN``.
+    name: str
+    #: The ROS 1 level bit (``rosgraph_msgs/Log``).
+    ros1: int
+    #: The status line's letter.
+    letter: str
+    #: The style name: component classes end with it (``log-table--severity-warn``); the
+    #: theme gives the colours (``ui/severity_styles.py``).
+    style: str
+    #: The colour ROS's own console prints it in (rcutils, rosconsole): an SGR escape, or "".
+    ansi: str
+
+
+#: The severities a message can have, lowest first: the one table of them.
+SEVERITY_TABLE: tuple[SeverityLevel, ...] = (
+    SeverityLevel(Severity.DEBUG, "DEBUG", 1, "D", "debug", "\x1b[32m"),
+    SeverityLevel(Severity.INFO, "INFO", 2, "I", "info", ""),
+    SeverityLevel(Severity.WARN, "WARN", 4, "W", "warn", "\x1b[33m"),
+    SeverityLevel(Severity.ERROR, "ERROR", 8, "E", "error", "\x1b[31m"),
+    SeverityLevel(Severity.FATAL, "FATAL", 16, "F", "fatal", "\x1b[31m"),
 )
 
-#: ROS 1 (``rosgraph_msgs/Log``) level bits to ROS 2 severities.
-ROS1_TO_ROS2: dict[int, int] = {1: 10, 2: 20, 4: 30, 8: 40, 16: 50}
+#: The severities a log message can have, lowest first.
+MESSAGE_SEVERITIES: tuple[Severity, ...] = tuple(level.severity for level in SEVERITY_TABLE)
+
+#: ROS 1 (``rosgraph_msgs/Log``) level bits to ROS 2 severities, and back.
+ROS1_TO_ROS2: dict[int, int] = {level.ros1: int(level.severity) for level in SEVERITY_TABLE}
 ROS2_TO_ROS1: dict[int, int] = {v: k for k, v in ROS1_TO_ROS2.items()}
 
-_ALIASES: dict[str, Severity] = {
+#: The severity words of log lines (ROS consoles, Python logging) to ROS 2 numbers.
+SEVERITY_WORDS: dict[str, int] = {level.name: int(level.severity) for level in SEVERITY_TABLE} | {
+    "WARNING": int(Severity.WARN),
+    "CRITICAL": int(Severity.FATAL),
+}
+
+_ALIASES: dict[str, Severity] = {level.name.lower(): level.severity for level in SEVERITY_TABLE} | {
     "unset": Severity.UNSET,
-    "debug": Severity.DEBUG,
-    "info": Severity.INFO,
-    "warn": Severity.WARN,
     "warning": Severity.WARN,
-    "error": Severity.ERROR,
     "err": Severity.ERROR,
-    "fatal": Severity.FATAL,
 }
 
 
@@ -88,9 +113,17 @@ def to_ros1(level: int) -> int:
     return ROS2_TO_ROS1[int(Severity.DEBUG)]
 
 
+def severity_level(level: int) -> SeverityLevel:
+    """The table's row for a message of ``level`` (levels between steps round down)."""
+    return _BY_SEVERITY[severity_bucket(level)]
+
+
 def severity_bucket(level: int) -> Severity:
     """The message severity a level counts under (levels between steps round down)."""
     for severity in reversed(MESSAGE_SEVERITIES):
         if level >= severity:
             return severity
     return Severity.DEBUG
+
+
+_BY_SEVERITY: dict[Severity, SeverityLevel] = {level.severity: level for level in SEVERITY_TABLE}

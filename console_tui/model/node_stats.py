@@ -10,6 +10,7 @@ it is shorter.
 
 from __future__ import annotations
 
+from array import array
 from collections import Counter
 from dataclasses import dataclass
 
@@ -74,7 +75,7 @@ class NodeStats:
         self._oldest_second = None  # found again when asked
         self._seen_to = max(self._seen_to, new_first)
 
-    def _count(self, nodes, levels, stamps, sign: int) -> None:
+    def _count(self, nodes: array, levels: array, stamps: array, sign: int) -> None:
         counts = self._counts
         slot = _SLOT
         for (node, level), number in Counter(zip(nodes, levels, strict=False)).items():

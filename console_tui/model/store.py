@@ -64,6 +64,9 @@ class StringTable:
     def __iter__(self) -> Iterator[str]:
         return iter(self._strings)
 
+    def __contains__(self, text: object) -> bool:
+        return text in self._ids
+
 
 class Chunk:
     """Up to ``CHUNK_SIZE`` consecutive records, one array or sequence per field.

@@ -75,8 +75,9 @@ class NativeOutput:
         read, self._write = os.pipe()
         self._terminal = (os.dup(1), os.dup(2))
         self._streams = (sys.__stdout__, sys.__stderr__)
-        sys.__stdout__ = _terminal_stream(self._terminal[0], sys.__stdout__)
-        sys.__stderr__ = _terminal_stream(self._terminal[1], sys.__stderr__)
+        # The interpreter's own streams are replaced on purpose (typeshed calls them final).
+        sys.__stdout__ = _terminal_stream(self._terminal[0], sys.__stdout__)  # type: ignore[misc,assignment]
+        sys.__stderr__ = _terminal_stream(self._terminal[1], sys.__stderr__)  # type: ignore[misc,assignment]
         self._catch()
         self._reader = threading.Thread(target=self._read, args=(read,), name="console-tui-native-output", daemon=True)
         self._reader.start()
@@ -97,7 +98,7 @@ class NativeOutput:
         if self._terminal is None:
             return
         self.pause()
-        sys.__stdout__, sys.__stderr__ = self._streams
+        sys.__stdout__, sys.__stderr__ = self._streams  # type: ignore[misc]
         for fd in (*self._terminal, self._write):
             os.close(fd)
         self._terminal, self._write = None, -1

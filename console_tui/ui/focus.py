@@ -20,6 +20,7 @@ not ready for them yet, then lets them through in order.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 from textual import events
 from textual.app import App
@@ -65,7 +66,7 @@ class KeyGate:
     """Holds keys while the screen on top is not ready for them (a dialog just opened, the app
     still starting), and lets them through in the order they came once it is."""
 
-    def __init__(self, app: App, clock=time.monotonic) -> None:
+    def __init__(self, app: App, clock: Callable[[], float] = time.monotonic) -> None:
         self.app = app
         self.clock = clock
         self.held: list[events.Key] = []

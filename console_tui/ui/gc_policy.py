@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import gc
 import time
+from collections.abc import Callable
 
 NO_AUTOMATIC_FULL_COLLECTIONS = 1_000_000_000
 FULL_COLLECTION_PERIOD_S = 2.0
@@ -29,7 +30,7 @@ FULL_COLLECTION_PERIOD_S = 2.0
 class CollectionPolicy:
     """Call ``start`` once the app is up and ``tick`` on every drain of the intake."""
 
-    def __init__(self, clock=time.monotonic, period: float = FULL_COLLECTION_PERIOD_S) -> None:
+    def __init__(self, clock: Callable[[], float] = time.monotonic, period: float = FULL_COLLECTION_PERIOD_S) -> None:
         self.clock = clock
         self.period = period
         self.last_full = clock()

@@ -95,21 +95,13 @@ def binding_keys(binding: Binding, keymap: Mapping[str, str]) -> list[str]:
     return [key.strip() for key in keys.split(",") if key.strip()]
 
 
-#: Keys a hint line spells as words (the footer draws ⏎ for Enter; a sentence reads better with the word).
-_WORDS = {"enter": "Enter", "escape": "Esc", "space": "Space", "tab": "Tab"}
-
-
-def key_label(
-    binding: Binding, app: KeyDisplay, keymap: Mapping[str, str], *, first_only: bool = False, words: bool = False
-) -> str:
-    """How the binding's keys read on screen, as the footer writes them: ``?, f1``; with
-    ``words``, Enter and Esc as words."""
+def key_label(binding: Binding, app: KeyDisplay, keymap: Mapping[str, str], *, first_only: bool = False) -> str:
+    """How the binding's keys read on screen, as the footer writes them: ``?, f1``, ``⏎``, ``esc``
+    (a key reads the same in the footer, the hints and the help)."""
     keys = binding_keys(binding, keymap)
     if first_only:
         keys = keys[:1]
-    return ", ".join(
-        (_WORDS.get(key) if words else None) or app.get_key_display(Binding(key, binding.action)) for key in keys
-    )
+    return ", ".join(app.get_key_display(Binding(key, binding.action)) for key in keys)
 
 
 #: One part of a hint line: the action(s) whose keys are shown, and a few words.
@@ -117,7 +109,7 @@ Hint = tuple[str | tuple[str, ...], str]
 
 
 def hint_line(app: KeyDisplay, bindings: Iterable[BindingType], hints: Sequence[Hint]) -> str:
-    """``Enter applies · Esc closes · ↑/↓ history``: each action's first key, then what it does.
+    """``⏎ applies · esc closes · ↑/↓ history``: each action's first key, then what it does.
 
     Actions are looked up in ``bindings``; an action with no binding there is left out (a key
     is never written by hand)."""
@@ -126,7 +118,7 @@ def hint_line(app: KeyDisplay, bindings: Iterable[BindingType], hints: Sequence[
     parts = []
     for actions, words in hints:
         labels = [
-            key_label(by_action[action], app, keymap, first_only=True, words=True)
+            key_label(by_action[action], app, keymap, first_only=True)
             for action in ((actions,) if isinstance(actions, str) else actions)
             if action in by_action
         ]

@@ -56,7 +56,7 @@ async def test_pane_lists_ros1_nodes_reads_on_enter_and_sets_debug(live, ros1_no
 
         # Highlighting a node reads nothing (get_loggers can crash roscpp): the pane says how to.
         assert pane.selected == "/cpp_talker"
-        await until(pilot, lambda: "Enter/r read its loggers" in screen_text(app), what="the hint")
+        await until(pilot, lambda: "⏎/r read its loggers" in screen_text(app), what="the hint")
         assert pane.rows() == []
 
         # roscpp: set by typed name, no get_loggers, DEBUG rows appear.

@@ -25,9 +25,10 @@ from __future__ import annotations
 
 import re
 
+from ..levels import SEVERITY_WORDS
 from .mixed_output import LineParser, MixedOutputFormat, Plain, Start, decimal_ns, process_of_file, strip_colour
 
-_LEVELS = {"DEBUG": 10, "INFO": 20, "WARNING": 30, "WARN": 30, "ERROR": 40, "CRITICAL": 50, "FATAL": 50}
+_LEVELS = SEVERITY_WORDS
 _CREATED = r"(?:(?P<created>\d{1,20}\.\d{1,9}) )?"
 _OWN = re.compile(
     _CREATED + r"\[(?P<level>DEBUG|INFO|WARNING|ERROR|CRITICAL)\] \[(?P<logger>[^\]\n]+)\]: ?(?P<msg>.*)\Z",

@@ -26,7 +26,7 @@ import re
 from collections.abc import Callable
 from datetime import datetime, timezone
 
-from ..levels import severity_bucket, severity_name
+from ..levels import severity_level, severity_name
 from ..record import LogRecord
 from ..text import inert_json, multi_line, one_line
 from ..timefmt import split_stamp, stamp_text
@@ -37,7 +37,6 @@ _ROS1_TOKEN = re.compile(r"\$\{([A-Za-z_]+)(?::([^}]*))?\}")
 _RCUTILS_TOKEN = re.compile(r"\{([a-z_]+)\}")
 ROS1_TOKENS = ("severity", "time", "walltime", "node", "logger", "message", "file", "function", "line")
 
-_COLOURS = {10: "\x1b[32m", 30: "\x1b[33m", 40: "\x1b[31m", 50: "\x1b[31m"}
 _RESET = "\x1b[0m"
 _DECORATIONS = {"highlight": "\x1b[1m", "dim": "\x1b[2m"}
 
@@ -154,7 +153,7 @@ class PrintFormat:
         line = "".join(part if isinstance(part, str) else part(record) for part in self._parts)
         if not self.color:
             return line
-        start = _DECORATIONS.get(decoration or "", "") + _COLOURS.get(severity_bucket(record.level), "")
+        start = _DECORATIONS.get(decoration or "", "") + severity_level(record.level).ansi
         return f"{start}{line}{_RESET}" if start else line
 
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import re
 
+from ..levels import SEVERITY_WORDS
 from .mixed_output import (
     LineParser,
     MixedOutputFormat,
@@ -29,7 +30,7 @@ from .mixed_output import (
     rospy_node_name,
 )
 
-_LEVELS = {"DEBUG": 10, "INFO": 20, "WARNING": 30, "WARN": 30, "ERROR": 40, "CRITICAL": 50, "FATAL": 50}
+_LEVELS = SEVERITY_WORDS
 _START = re.compile(
     r"\[(?P<logger>[^\]\n]*)\]\[(?P<level>DEBUG|INFO|WARNING|WARN|ERROR|CRITICAL|FATAL)\] "
     r"(?P<date>\d{4}-\d\d-\d\d \d\d:\d\d:\d\d),(?P<ms>\d{3}): ?(?P<msg>.*)\Z",

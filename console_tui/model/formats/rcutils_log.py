@@ -18,7 +18,7 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from ..levels import Severity
+from ..levels import SEVERITY_WORDS, Severity
 from ..record import LogRecord
 from .problems import Problems, RecordError
 from .text_format import TextFormat
@@ -26,7 +26,7 @@ from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_p
 
 DEFAULT_TEMPLATE = "[{severity}] [{time}] [{name}]: {message}"
 
-_SEVERITIES = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50, "UNSET": 0}
+_SEVERITIES = SEVERITY_WORDS | {"UNSET": int(Severity.UNSET)}
 
 #: token -> (pattern inside a record, pattern while finding where records start)
 _TOKEN_PATTERNS: dict[str, str] = {

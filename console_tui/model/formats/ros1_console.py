@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import re
 
+from ..levels import SEVERITY_WORDS
 from ..text import plural
 from .mixed_output import (
     LineParser,
@@ -33,7 +34,7 @@ from .mixed_output import (
     strip_colour,
 )
 
-_LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
+_LEVELS = SEVERITY_WORDS
 _LINE = re.compile(
     r"\[ ?(?P<level>DEBUG|INFO|WARN|ERROR|FATAL)\] \[(?P<wall>\d{1,20}\.\d{1,9})(?:, (?P<sim>-?\d{1,20}\.\d{1,9}))?\]: ?(?P<msg>.*)\Z",
     re.DOTALL,

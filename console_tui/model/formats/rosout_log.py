@@ -42,14 +42,15 @@ import re
 from collections.abc import Iterator
 from urllib.parse import unquote
 
-from ..levels import from_ros1
+from ..levels import SEVERITY_TABLE, SEVERITY_WORDS, from_ros1
 from ..record import LogRecord
 from .problems import Problems, RecordError
 from .text_format import TextFormat
 from .textlines import LineKind, TextLines, group_lines, stray_text_problem
 
-_LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "ERROR": 40, "FATAL": 50}
-_LEVEL_NAMES = {number: name for name, number in _LEVELS.items()}
+_LEVELS = SEVERITY_WORDS
+#: Message severities by name; any other level is written as its number.
+_LEVEL_NAMES = {int(level.severity): level.name for level in SEVERITY_TABLE}
 _START = re.compile(r"\d+\.\d{9} (?:FATAL|ERROR|WARN|INFO|DEBUG|\d{1,9}) ")
 _STARTUP = re.compile(r"\d+\.\d{9}  Node Startup\s*\Z")
 _RECORD = re.compile(

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from fnmatch import translate
 from typing import Any
@@ -46,7 +46,7 @@ class NodeRule(Rule):
     def is_empty(self) -> bool:
         return not self.names
 
-    def predicate(self):
+    def predicate(self) -> Callable[[str], bool]:
         # A name as written too: ROS 1 loggers are node names (``/talker``).
         exact = {form for n in self.names if not is_glob(n) for form in (n, logger_name(n))}
         globs = [translate(form) for n in self.names if is_glob(n) for form in {n, logger_name(n)}]

@@ -43,6 +43,8 @@ from .time_range import TimeRangeRule
 class QueryError(RuleError):
     """A query that cannot be compiled; ``position`` is where in the text the problem is."""
 
+    position: int
+
     def __init__(self, message: str, position: int) -> None:
         super().__init__(f"{message} (at {position + 1})", position)
         self.reason = message
@@ -194,7 +196,7 @@ class _Parser:
         if key and self.text.find("://", start, key.end() + 2) < 0:
             names = ", ".join(sorted(set(_KEYS) - {"severity", "function", "message", "sev"}))
             raise QueryError(f"unknown key {key.group(1)!r} (keys: {names}; quote text that has a colon)", start)
-        return self.text_rule(self.value(), MessageRule)
+        return self.text_rule(self.value())
 
     def keyed(self, key: str, op: str, value: _Value, start: int) -> Rule:
         if op != ":" and op != "=" and key != "level":
@@ -202,9 +204,9 @@ class _Parser:
         if key == "level":
             return self.level(op, value)
         if key == "msg":
-            return self.text_rule(value, MessageRule)
+            return self.text_rule(value)
         if key in ("file", "function"):
-            return self.text_rule(value, LocationRule, field=key)
+            return self.text_rule(value, field=key)
         if key == "node":
             names = [n for n in value.text.split(",") if n]
             if not names:
@@ -230,7 +232,8 @@ class _Parser:
             value.start,
         )
 
-    def text_rule(self, value: _Value, cls: type, field: str | None = None) -> Rule:
+    def text_rule(self, value: _Value, field: str | None = None) -> Rule:
+        """The message's text, or with ``field`` the location's ``file`` or ``function``."""
         ignore_case = value.ignore_case if value.regex else value.text == value.text.lower()
         if value.regex:
             try:
@@ -239,8 +242,10 @@ class _Parser:
                 where = value.start + (error.position or 0)
                 raise QueryError(error.message.split(": ", 1)[-1].rsplit(" at position", 1)[0], where) from None
         if field is None:
-            return cls(value.text, ignore_case, value.regex)
-        return cls(**{field: value.text}, regex=value.regex, ignore_case=ignore_case)
+            return MessageRule(value.text, ignore_case, value.regex)
+        if field == "file":
+            return LocationRule(file=value.text, regex=value.regex, ignore_case=ignore_case)
+        return LocationRule(function=value.text, regex=value.regex, ignore_case=ignore_case)
 
     def level(self, op: str, value: _Value) -> Rule:
         names = value.text.split(",")

@@ -18,7 +18,7 @@ from typing import Any
 try:
     from re import _parser as parser  # type: ignore[attr-defined]  # Python 3.11+
 except ImportError:  # pragma: no cover - Python 3.10
-    import sre_parse as parser  # type: ignore[no-redef]
+    import sre_parse as parser
 
 _MAX_WIDTH = 10_000
 _CONTEXT_OPS = frozenset({"AT", "ASSERT", "ASSERT_NOT"})

@@ -59,6 +59,8 @@ class Rule:
     kind: ClassVar[str] = ""
     #: Rule classes by ``kind``, for reading rule files.
     kinds: ClassVar[dict[str, type[Rule]]] = {}
+    #: Each kind's fields (every kind is a dataclass).
+    __dataclass_fields__: ClassVar[dict[str, Any]]
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)

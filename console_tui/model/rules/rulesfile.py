@@ -23,6 +23,7 @@ booleans, whole numbers, lists of text and nested rule tables).
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -31,10 +32,10 @@ from ..timefmt import full_text
 from .rule import RuleError
 from .ruleset import RuleSet
 
-try:
+if sys.version_info >= (3, 11):
     import tomllib
-except ModuleNotFoundError:  # Python 3.10
-    import tomli as tomllib  # type: ignore[no-redef]
+else:  # Python 3.10
+    import tomli as tomllib
 
 APP_DIR = "console-tui"
 

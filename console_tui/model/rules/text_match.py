@@ -203,7 +203,8 @@ class _RegexMasker:
             hays = list(compress(hays, misses))
             at = list(map(str.find, hays, repeat(text), map(add, compress(at, misses), repeat(1))))
             more = bytes(map(ne, at, repeat(-1)))
-            pending, texts, hays, at = (list(compress(seq, more)) for seq in (pending, texts, hays, at))
+            pending, texts = list(compress(pending, more)), list(compress(texts, more))
+            hays, at = list(compress(hays, more)), list(compress(at, more))
             if not pending:
                 break
         else:

@@ -92,4 +92,5 @@ def _message_decompressor(mode: str | None) -> Callable[[bytes], bytes] | None:
         from compression import zstd  # Python 3.14
     except ImportError:
         from backports import zstd  # what rosbags installs before 3.14
-    return zstd.decompress
+    decompress: Callable[[bytes], bytes] = zstd.decompress
+    return decompress

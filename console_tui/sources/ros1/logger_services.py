@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import struct
 
-from ...model.levels import Severity
+from ...model.levels import SEVERITY_TABLE, Severity
 
 GET_LOGGERS = "get_loggers"
 SET_LOGGER_LEVEL = "set_logger_level"
@@ -18,13 +18,7 @@ GET_LOGGERS_MD5 = "32e97e85527d4678a8f9279894bb64b0"
 SET_LOGGER_LEVEL_MD5 = "51da076440d78ca1684d36c868df61ea"
 
 #: The words ROS 1 nodes use for each level, by the app's (ROS 2) number.
-LEVEL_WORDS = {
-    int(Severity.DEBUG): "DEBUG",
-    int(Severity.INFO): "INFO",
-    int(Severity.WARN): "WARN",
-    int(Severity.ERROR): "ERROR",
-    int(Severity.FATAL): "FATAL",
-}
+LEVEL_WORDS = {int(level.severity): level.name for level in SEVERITY_TABLE}
 _LEVELS_BY_WORD = {word: level for level, word in LEVEL_WORDS.items()} | {"WARNING": int(Severity.WARN)}
 _U32 = struct.Struct("<I")
 

@@ -230,7 +230,9 @@ class LiveLogSource:
                 self._set_status(topic=reader.topic, publishers=reader.publisher_count)
             subs, events = reader.handles(), reader.event_handlers()
             if wait_set is None or (subs, events) != wait_set_entities:
-                wait_set = _rclpy.WaitSet(len(subs), 1, 0, 0, 0, len(events), self.runtime.context.handle)
+                context = self.runtime.context.handle
+                assert context is not None  # the runtime's context lives as long as the source
+                wait_set = _rclpy.WaitSet(len(subs), 1, 0, 0, 0, len(events), context)
                 wait_set_entities = (subs, events)
             wait_set.clear_entities()
             for handle in subs:
@@ -324,7 +326,8 @@ class _TopicChoice:
 
 
 def _has_publishers(node: Any, topic: str) -> bool:
-    return node.count_publishers(topic) > 0
+    count: int = node.count_publishers(topic)
+    return count > 0
 
 
 def _gid_bytes(gid: Any) -> bytes:
@@ -546,7 +549,7 @@ class _TopicReader:
             try:
                 taken = take(msg_type, raw)
             except Exception as error:
-                if not raw:  # a message rclpy took but could not deserialize: it is gone
+                if decoder is None:  # a message rclpy took but could not deserialize: it is gone
                     self.counts.lost_undecodable += 1
                     count += 1
                     continue
@@ -562,7 +565,7 @@ class _TopicReader:
             if keep is None or keep(info):
                 append(taken[0])
                 see(info)
-        if raw:
+        if decoder is not None:
             batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
         else:
             topic = self.topic

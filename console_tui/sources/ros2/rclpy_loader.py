@@ -6,6 +6,7 @@ import importlib
 import importlib.util
 import sys
 from pathlib import Path
+from types import ModuleType
 
 HOW_TO_GET_ROS2 = (
     "  - On a robot: source your ROS 2 install first, and use a virtual environment that sees\n"
@@ -22,7 +23,7 @@ class RosUnavailable(RuntimeError):
     """rclpy cannot be imported; the message says what failed and how to fix it."""
 
 
-def load_rclpy():
+def load_rclpy() -> ModuleType:
     """Import and return ``rclpy``, or raise ``RosUnavailable`` saying what failed."""
     try:
         rclpy = importlib.import_module("rclpy")

@@ -32,7 +32,7 @@ def keymap_note() -> str:
 
 def bindings_table(groups: list[tuple[str, list[Binding]]], app: KeyDisplay, keymap: Mapping[str, str]) -> Table:
     table = Table.grid(padding=(0, 2))
-    table.add_column(style="bold cyan", no_wrap=True)
+    table.add_column(style="bold", no_wrap=True)
     table.add_column()
     table.add_column(style="dim", no_wrap=True)
     for title, bindings in groups:

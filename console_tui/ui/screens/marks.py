@@ -50,7 +50,7 @@ def mark_key(app: object) -> str:
     for _title, bindings in groups() if callable(groups) else ():
         for binding in bindings:
             if binding.id == "nav.mark":
-                return key_label(binding, cast(KeyDisplay, app), keymap_of(app), first_only=True, words=True)
+                return key_label(binding, cast(KeyDisplay, app), keymap_of(app), first_only=True)
     return "m"
 
 

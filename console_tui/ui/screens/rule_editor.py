@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TypeVar
+
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -47,6 +49,15 @@ def _parts(rule: Rule) -> dict[str, Rule]:
     return {part.kind: part for part in parts}
 
 
+_Part = TypeVar("_Part", bound=Rule)
+
+
+def _part(parts: dict[str, Rule], kind: type[_Part]) -> _Part:
+    """The part of that kind, or an empty one."""
+    part = parts.get(kind.kind)
+    return part if isinstance(part, kind) else kind()
+
+
 class RuleEditor(ModalScreen[Entry | None]):
     """Returns the new entry, or None when cancelled. A rule that cannot be made (a bad
     regex, a bad time) says why here, and nothing changes until it is fixed.
@@ -80,11 +91,11 @@ class RuleEditor(ModalScreen[Entry | None]):
 
     def compose(self) -> ComposeResult:
         parts = _parts(self.entry.rule) if self.entry is not None else {}
-        message = parts.get("message", MessageRule())
-        severity = parts.get("severity", SeverityRule())
-        node = parts.get("node", NodeRule())
-        location = parts.get("location", LocationRule())
-        period = parts.get("time", TimeRangeRule())
+        message = _part(parts, MessageRule)
+        severity = _part(parts, SeverityRule)
+        node = _part(parts, NodeRule)
+        location = _part(parts, LocationRule)
+        period = _part(parts, TimeRangeRule)
         with Vertical():
             yield Label("Edit rule" if self.entry is not None else "New rule", classes="title")
             yield Select([(title, key) for key, title in KINDS.items()], value=self.kind, allow_blank=False, id="kind")

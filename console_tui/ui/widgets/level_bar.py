@@ -5,7 +5,7 @@ from __future__ import annotations
 from textual.message import Message
 from textual.widgets import Static
 
-from ...model.levels import MESSAGE_SEVERITIES, Severity
+from ...model.levels import SEVERITY_TABLE, Severity
 
 #: The level ``Chosen`` carries for "temporary": ask for a level and a duration.
 TEMPORARY = -1
@@ -22,7 +22,7 @@ class LevelBar(Static):
             self.level = level
 
     def on_mount(self) -> None:
-        parts = [f"[@click=choose({int(s)})]{s.name}[/]" for s in MESSAGE_SEVERITIES]
+        parts = [f"[@click=choose({int(level.severity)})]{level.name}[/]" for level in SEVERITY_TABLE]
         parts.append(f"[@click=choose({int(Severity.UNSET)})]unset[/]")
         parts.append("[@click=temporary]temporary[/]")
         self.update(" ".join(parts))

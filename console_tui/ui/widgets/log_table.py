@@ -25,13 +25,14 @@ from textual.message import Message
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
-from ...model.levels import severity_bucket, severity_name
+from ...model.levels import severity_level, severity_name
 from ...model.record import LogRecord
 from ...model.store import LogStore
 from ...model.storms import StormBadge
 from ...model.text import one_line, shorten_name
 from ...model.time_column import TimeFormat, column_title, format_info, time_cell
 from ...model.timefmt import clock_text, duration_text
+from ..severity_styles import severity_classes, severity_css
 from .table_columns import BY_KEY, COLUMNS, PlacedColumn, layout_columns
 
 #: How a row is marked by the rules: None (plain), "highlight" or "dim".
@@ -54,7 +55,6 @@ class TableRows(Protocol):
     def row_shown(self, seq: int) -> int | None: ...
 
 
-_SEVERITY_CLASS = {10: "debug", 20: "info", 30: "warn", 40: "error", 50: "fatal"}
 _MESSAGE_LIMIT = 2000
 _NO_SPACING = Spacing(0, 0, 0, 0)
 #: How often the scrollbar follows changes that leave the rows on screen as they were (s).
@@ -89,7 +89,8 @@ class LogTable(ScrollView, can_focus=True):
     | `log-table--gutter` | The gutter's marks: ● a mark, » a search match. |
     """
 
-    DEFAULT_CSS = """
+    DEFAULT_CSS = (
+        """
     LogTable {
         background: $surface;
         color: $foreground;
@@ -99,16 +100,6 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--cursor { background: $block-cursor-blurred-background; }
     LogTable:focus > .log-table--cursor { background: $block-cursor-background; color: $block-cursor-foreground; }
     LogTable > .log-table--dim-column { color: $foreground-muted; }
-    LogTable > .log-table--row-debug { color: $foreground-muted; }
-    LogTable > .log-table--row-info { }
-    LogTable > .log-table--row-warn { color: $text-warning; }
-    LogTable > .log-table--row-error { color: $text-error; }
-    LogTable > .log-table--row-fatal { color: $text-error; text-style: bold; }
-    LogTable > .log-table--severity-debug { color: $foreground-muted; }
-    LogTable > .log-table--severity-info { color: $text-success; }
-    LogTable > .log-table--severity-warn { color: $warning; text-style: bold; }
-    LogTable > .log-table--severity-error { color: $error; text-style: bold; }
-    LogTable > .log-table--severity-fatal { background: $error; color: $text; text-style: bold reverse; }
     LogTable > .log-table--selected { background: $primary-muted; }
     LogTable > .log-table--highlight { background: $accent-muted; }
     LogTable > .log-table--dimmed { text-style: dim; }
@@ -116,14 +107,17 @@ class LogTable(ScrollView, can_focus=True):
     LogTable > .log-table--match { background: $warning; color: $background; text-style: bold; }
     LogTable > .log-table--gutter { color: $text-accent; text-style: bold; }
     """
+        + severity_css("LogTable", "log-table--row", row=True)
+        + severity_css("LogTable", "log-table--severity")
+    )
 
     COMPONENT_CLASSES = {
         "log-table--header",
         "log-table--cursor",
         "log-table--selected",
         "log-table--dim-column",
-        *(f"log-table--row-{name}" for name in _SEVERITY_CLASS.values()),
-        *(f"log-table--severity-{name}" for name in _SEVERITY_CLASS.values()),
+        *severity_classes("log-table--row"),
+        *severity_classes("log-table--severity"),
         "log-table--highlight",
         "log-table--dimmed",
         "log-table--storm",
@@ -627,7 +621,7 @@ class LogTable(ScrollView, can_focus=True):
         relative: int | None = None,
     ) -> Strip:
         styles = self._styles
-        name = _SEVERITY_CLASS.get(int(severity_bucket(record.level)), "info")
+        name = severity_level(record.level).style
         row_style = base + styles.get(f"log-table--row-{name}", Style())
         if decoration == "highlight":
             row_style += styles.get("log-table--highlight", Style())

@@ -2,24 +2,40 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
+from rich.style import Style
 from rich.table import Table
 from rich.text import Text
 from textual.widgets import OptionList
 from textual.widgets.option_list import Option
 
-from ...model.levels import Severity, severity_name
+from ...model.levels import severity_level, severity_name
 from ...model.logger_levels import GraphNode, LoggerRow, LoggerSource, format_remaining
 from ..plain import plain
+from ..severity_styles import severity_classes, severity_css
 
-_LEVEL_STYLE = {10: "dim", 20: "green", 30: "yellow", 40: "red", 50: "bold red"}
 _OPTION_PREFIX = "logger:"
 
 
 class NodeList(OptionList):
-    """The graph's nodes; the highlighted one is the pane's selected node."""
+    """The graph's nodes; the highlighted one is the pane's selected node.
+
+    | Class | Description |
+    | :- | :- |
+    | `node-list--checking` | "checking…": the node's logger services may yet appear. |
+    | `node-list--no-services` | "no logger services". |
+    """
+
+    DEFAULT_CSS = """
+    NodeList > .node-list--checking { color: $foreground-muted; text-style: italic; }
+    NodeList > .node-list--no-services { color: $text-warning; }
+    """
+    COMPONENT_CLASSES = {"node-list--checking", "node-list--no-services"}
 
     def show(self, nodes: tuple[GraphNode, ...], checking: frozenset[str], selected: str | None) -> None:
-        options = [Option(node_prompt(node, node.fqn in checking), id=node.fqn) for node in nodes]
+        styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
+        options = [Option(node_prompt(node, node.fqn in checking, styles), id=node.fqn) for node in nodes]
         with self.prevent(OptionList.OptionHighlighted):
             self.set_options(options)
             if selected is not None:
@@ -27,7 +43,20 @@ class NodeList(OptionList):
 
 
 class LoggerList(OptionList):
-    """The selected node's loggers and their levels; level keys act on the highlighted one."""
+    """The selected node's loggers and their levels; level keys act on the highlighted one.
+
+    | Class | Description |
+    | :- | :- |
+    | `logger-list--severity-debug` ... `logger-list--severity-fatal` | A logger's level. |
+    | `logger-list--inherited` | A logger with no level of its own. |
+    | `logger-list--countdown` | The time left of a temporary level. |
+    """
+
+    DEFAULT_CSS = """
+    LoggerList > .logger-list--inherited { color: $foreground-muted; text-style: italic; }
+    LoggerList > .logger-list--countdown { text-style: bold; }
+    """ + severity_css("LoggerList", "logger-list--severity")
+    COMPONENT_CLASSES = {*severity_classes("logger-list--severity"), "logger-list--inherited", "logger-list--countdown"}
 
     @property
     def highlighted_logger(self) -> str | None:
@@ -38,8 +67,9 @@ class LoggerList(OptionList):
         """These rows, keeping the highlight on ``highlight`` (or where it was)."""
         if highlight is None:
             highlight = self.highlighted_logger
+        styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
         options = [
-            Option(_two_columns(plain(logger_label(row, own)), level_cell(row, now)), id=option_id(row.name))
+            Option(_two_columns(plain(logger_label(row, own)), level_cell(row, now, styles)), id=option_id(row.name))
             for row in rows
         ]
         names = [row.name for row in rows]
@@ -55,13 +85,13 @@ class LoggerList(OptionList):
             self.highlighted = 0
 
 
-def node_prompt(node: GraphNode, checking: bool) -> Table:
+def node_prompt(node: GraphNode, checking: bool, styles: Mapping[str, Style]) -> Table:
     if node.has_logger_services:
         marker = Text("")
     elif checking:
-        marker = Text("checking…", style="dim italic")
+        marker = Text("checking…", style=styles.get("node-list--checking", ""))
     else:
-        marker = Text("no logger services", style="yellow")
+        marker = Text("no logger services", style=styles.get("node-list--no-services", ""))
     return _two_columns(plain(node.fqn), marker)
 
 
@@ -74,17 +104,21 @@ def logger_label(row: LoggerRow, own: str) -> str:
     return row.name
 
 
-def level_cell(row: LoggerRow, now: float) -> Text:
+def level_cell(row: LoggerRow, now: float, styles: Mapping[str, Style]) -> Text:
     """A logger's level: ``DEBUG``, ``inherited (INFO)``, ``?``, or ``DEBUG for 25s`` while temporary."""
+
+    def level_style(level: int | None) -> Style | str:
+        if not level:
+            return styles.get("logger-list--inherited", "")
+        return styles.get(f"logger-list--severity-{severity_level(level).style}", "")
+
     if row.temporary is not None:
         temporary = row.temporary
-        text = Text(severity_name(temporary.level), style=_LEVEL_STYLE.get(temporary.level, ""))
+        text = Text(severity_name(temporary.level), style=level_style(temporary.level))
         text.append(" for ")
-        text.append(format_remaining(temporary.remaining(now)), style="bold")
+        text.append(format_remaining(temporary.remaining(now)), style=styles.get("logger-list--countdown", ""))
         return text
-    if row.level == Severity.UNSET:
-        return Text(row.level_text, style="italic dim")
-    return Text(row.level_text, style=_LEVEL_STYLE.get(row.level or 0, "dim"))
+    return Text(row.level_text, style=level_style(row.level))
 
 
 def _two_columns(left: Text | str, right: Text | str) -> Table:

@@ -9,10 +9,11 @@ rules (``model/toggles.py``), which the app applies when the panel asks (``Toggl
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from rich.style import Style
 from rich.table import Table
 from rich.text import Text
 from textual import on
@@ -24,10 +25,12 @@ from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
+from ...model.levels import SEVERITY_TABLE
 from ...model.node_stats import NodeCounts, NodeStats
 from ...model.text import one_line
 from ..focus import focus_now
 from ..keys import Hint, hint_line
+from ..severity_styles import severity_classes, severity_css
 from .side_pane import SidePane
 
 REFRESH_S = 1.0
@@ -60,7 +63,7 @@ SORTS = (
     Sort("total", "messages", lambda row: (-row.total, row.node)),
     Sort("rate", "rate", lambda row: (-row.rate, row.node)),
 )
-_LEVEL_STYLES = ("dim", "green", "yellow", "red", "bold red")
+_PLAIN = Style()
 
 
 def compact(number: int) -> str:
@@ -102,19 +105,26 @@ def _grid(widths: Sequence[int]) -> Table:
     return grid
 
 
-def node_line(row: NodeCounts, state: str, widths: Sequence[int] = _NARROWEST) -> Table:
-    """A node's line: S (solo) or M (mute), its name, its counts per severity, its rate."""
+def node_line(
+    row: NodeCounts, state: str, widths: Sequence[int] = _NARROWEST, styles: Mapping[str, Style] | None = None
+) -> Table:
+    """A node's line: S (solo) or M (mute), its name, its counts per severity, its rate;
+    ``styles`` are the pane's component classes."""
+
+    def look(name: str) -> Style:
+        return (styles or {}).get(f"node-pane--{name}", _PLAIN)
+
     grid = _grid(widths)
     name_style = "dim strike" if state == "M" else "bold" if state == "S" else ""
     counts = [
-        Text(compact(count), style=style if count else "dim")
-        for count, style in zip(row.counts, _LEVEL_STYLES, strict=True)
+        Text(compact(count), style=look(f"severity-{level.style}" if count else "none"))
+        for count, level in zip(row.counts, SEVERITY_TABLE, strict=True)
     ]
     grid.add_row(
         Text(state, style="bold reverse" if state else ""),
         Text(one_line(row.node, 200), style=name_style),
         *counts,
-        Text(rate_text(row.rate), style="cyan"),
+        Text(rate_text(row.rate), style=look("rate")),
     )
     return grid
 
@@ -126,7 +136,8 @@ def header_line(sort: Sort, widths: Sequence[int] = _NARROWEST) -> Table:
     name = "node ▲" if sort.key == "name" else "node"
     if sort.key == "total":
         name += "  (by messages ▼)"
-    grid.add_row("", name, "D", "I", arrow["warnings"], arrow["errors"], "F", arrow["rate"])
+    letters = {level.letter: level.letter for level in SEVERITY_TABLE} | {"W": arrow["warnings"], "E": arrow["errors"]}
+    grid.add_row("", name, *letters.values(), arrow["rate"])
     return grid
 
 
@@ -145,9 +156,19 @@ class NodePane(SidePane):
     | o | Sort by name, errors, warnings, messages, rate. |
     | slash | The filter box. |
     | escape | Back to the table. |
+
+    | Class | Description |
+    | :- | :- |
+    | `node-pane--severity-debug` ... `node-pane--severity-fatal` | A node's count of a severity. |
+    | `node-pane--none` | A count of none. |
+    | `node-pane--rate` | A node's messages per second. |
     """
 
+    COMPONENT_CLASSES = {*severity_classes("node-pane--severity"), "node-pane--none", "node-pane--rate"}
+
     DEFAULT_CSS = """
+    NodePane > .node-pane--none { color: $foreground-muted; text-style: dim; }
+    NodePane > .node-pane--rate { color: $text-primary; }
     NodePane {
         width: 56;
         max-width: 55%;
@@ -163,7 +184,7 @@ class NodePane(SidePane):
         & > NodeList:focus { background-tint: $foreground 5%; }
         & > #nodes-keys { height: auto; color: $text-muted; }
     }
-    """
+    """ + severity_css("NodePane", "node-pane--severity")
 
     BINDINGS = [
         Binding("s,enter", "solo", "Solo the node", show=False, id="nodes.solo"),
@@ -257,7 +278,10 @@ class NodePane(SidePane):
         highlighted = self.highlighted_node
         with options.prevent(OptionList.OptionHighlighted):
             options.clear_options()
-            options.add_options([Option(node_line(row, states.get(row.node, ""), widths), id=row.node) for row in rows])
+            styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
+            options.add_options(
+                [Option(node_line(row, states.get(row.node, ""), widths, styles), id=row.node) for row in rows]
+            )
             if rows:
                 names = [row.node for row in rows]
                 options.highlighted = names.index(highlighted) if highlighted in names else 0

@@ -67,7 +67,7 @@ class QueryBar(Vertical):
         yield Static(f"{self.key_hints()} · -term excludes, +term highlights", id="query-problem", classes="-ok")
 
     def key_hints(self) -> str:
-        """``Enter applies · Esc closes · ↑/↓ history``, from the bindings."""
+        """``⏎ applies · esc closes · ↑/↓ history``, from the bindings."""
         return hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], _HINTS)
 
     @property

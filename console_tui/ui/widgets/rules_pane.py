@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
+from rich.style import Style
 from rich.table import Table
 from rich.text import Text
 from textual.app import ComposeResult
@@ -34,28 +37,35 @@ _HINTS: list[Hint] = [
 _TOGGLE_NAMES = {"levels": "level keys", "solo": "solo", "mute": "mute"}
 
 
-def entry_text(entry: Entry, count: int | None) -> Table:
+def entry_text(entry: Entry, count: int | None, styles: Mapping[str, Style] | None = None) -> Table:
     """One entry of the list: on/off, role, the rule (wrapping when long), and at the right
-    of its first line its count, or why it is inactive."""
+    of its first line its count, or why it is inactive; ``styles`` are the pane's component classes."""
+
+    def look(name: str) -> Style:
+        return (styles or {}).get(f"rules-pane--{name}", _PLAIN)
+
     text = Text()
-    text.append("● " if entry.enabled else "○ ", style="bold green" if entry.enabled else "dim")
+    text.append("● " if entry.enabled else "○ ", style=look("on" if entry.enabled else "off"))
     if entry.role is Role.EXCLUDE:
-        text.append("hide ", style="bold red")
+        text.append("hide ", style=look("hide"))
     else:
-        text.append("mark ", style="bold yellow")
+        text.append("mark ", style=look("mark"))
     description = one_line(entry.describe(), 200)
-    text.append(description, style="" if entry.active else "dim strike" if not entry.enabled else "dim")
+    text.append(description, style=_PLAIN if entry.active else look("inactive" if entry.enabled else "off-rule"))
     if entry.from_query:
-        text.append("  (query)", style="dim italic")
+        text.append("  (query)", style=look("aside"))
     if entry.toggle:
-        text.append(f"  ({_TOGGLE_NAMES.get(entry.toggle, entry.toggle)})", style="dim italic")
+        text.append(f"  ({_TOGGLE_NAMES.get(entry.toggle, entry.toggle)})", style=look("aside"))
     if count is None and entry.enabled and entry.rule.is_empty:
-        text.append("  (empty: matches nothing)", style="dim italic")
+        text.append("  (empty: matches nothing)", style=look("aside"))
     row = Table.grid(expand=True)
     row.add_column(ratio=1, overflow="fold")
     row.add_column(justify="right", no_wrap=True)
-    row.add_row(text, Text(f" {count:,}", style="bold cyan") if count is not None else "")
+    row.add_row(text, Text(f" {count:,}", style=look("count")) if count is not None else "")
     return row
+
+
+_PLAIN = Style()
 
 
 class RulesPane(SidePane):
@@ -71,9 +81,37 @@ class RulesPane(SidePane):
     | a | Add a rule (``EditRequested``). |
     | S / O | Save the rule set / open one (``FileRequested``). |
     | escape | Back to the table. |
+
+    | Class | Description |
+    | :- | :- |
+    | `rules-pane--on` / `rules-pane--off` | The mark of a rule switched on / off. |
+    | `rules-pane--hide` / `rules-pane--mark` | An exclude / a highlight rule's role. |
+    | `rules-pane--inactive` | A rule switched on that does nothing yet. |
+    | `rules-pane--off-rule` | A rule switched off. |
+    | `rules-pane--count` | How many messages a rule matches. |
+    | `rules-pane--aside` | "(query)", "(empty: matches nothing)". |
     """
 
+    COMPONENT_CLASSES = {
+        "rules-pane--on",
+        "rules-pane--off",
+        "rules-pane--hide",
+        "rules-pane--mark",
+        "rules-pane--inactive",
+        "rules-pane--off-rule",
+        "rules-pane--count",
+        "rules-pane--aside",
+    }
+
     DEFAULT_CSS = """
+    RulesPane > .rules-pane--on { color: $text-success; text-style: bold; }
+    RulesPane > .rules-pane--off { color: $foreground-muted; }
+    RulesPane > .rules-pane--hide { color: $text-error; text-style: bold; }
+    RulesPane > .rules-pane--mark { color: $text-warning; text-style: bold; }
+    RulesPane > .rules-pane--inactive { color: $foreground-muted; }
+    RulesPane > .rules-pane--off-rule { color: $foreground-muted; text-style: strike; }
+    RulesPane > .rules-pane--count { color: $text-accent; text-style: bold; }
+    RulesPane > .rules-pane--aside { color: $foreground-muted; text-style: italic; }
     RulesPane { dock: left; width: 52; max-width: 50%; border-right: vkey $primary; padding: 0 1; background: $surface; }
     RulesPane > .title { text-style: bold; color: $accent; }
     RulesPane > OptionList { height: 1fr; border: none; padding: 0; background: $surface; }
@@ -147,12 +185,13 @@ class RulesPane(SidePane):
         self._drawn = True
         rules, counts, progress = self.rules, self.counts, self.progress
         options = self.query_one(OptionList)
+        styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
         highlighted = options.highlighted
         options.clear_options()
         if rules.entries:
             options.add_options(
                 [
-                    Option(entry_text(entry, counts[i] if i < len(counts) else None), id=str(i))
+                    Option(entry_text(entry, counts[i] if i < len(counts) else None, styles), id=str(i))
                     for i, entry in enumerate(rules.entries)
                 ]
             )
