@@ -31,7 +31,7 @@ async def test_files_given_at_start_load_merged_with_their_source(tmp_path):
     second_rows = records(50, start=25)
     save_records(second_rows, tmp_path / "b.csv", "rqt")
     app = ConsoleApp(files=[str(tmp_path / "a.jsonl"), str(tmp_path / "b.csv")], utc=True)
-    async with app.run_test(size=(160, 30)) as pilot:
+    async with app.run_test(size=(160, 40)) as pilot:  # the newest rows reach back to the first file's
         await until(pilot, lambda: "100/100 shown" in screen_text(app) and not app.loading, what="both files")
         await pilot.press("home")  # the oldest rows: the first file's alone, then both files' overlap
         await until(pilot, lambda: 1 in table_rows(app), what="the first rows")

@@ -39,8 +39,9 @@ def notice(pane: LoggerPane) -> str:
 
 def pane_text(app) -> list[str]:
     """The logger pane's part of each terminal row, as the screen shows it."""
-    x = app.logger_pane.region.x
-    return [line[x:].lstrip("▏").strip() for line in screen_text(app).splitlines()[:-2]]
+    region = app.logger_pane.region
+    lines = screen_text(app).splitlines()[region.y : region.bottom]  # below the timeline
+    return [line[region.x :].lstrip("▏").strip() for line in lines]
 
 
 def pane_says(app, text: str) -> bool:
