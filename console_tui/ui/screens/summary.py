@@ -18,19 +18,19 @@ from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
-from ...model.levels import MESSAGE_SEVERITIES
+from ...model.levels import MESSAGE_SEVERITIES, severity_level
 from ...model.node_stats import NodeStats
 from ...model.store import LogStore
 from ...model.text import one_line
 from ...model.timefmt import clock_text, duration_text
 from ..keys import hint_line
+from ..severity_styles import severity_classes, severity_css
 from ..widgets.timeline_strip import span_text
 
 _NAME_WIDTH = 28
 #: The dialog's room for text: its width less its border and padding, the list's border,
 #: an option's padding and the scrollbar.
 _FRAME = 10
-_STYLES = ("dim", "green", "yellow", "red", "bold red")
 
 
 @dataclass(frozen=True)
@@ -60,7 +60,8 @@ class SummaryScreen(ModalScreen[int | None]):
     SummaryScreen #summary-title { text-style: bold; width: 1fr; }
     SummaryScreen #summary-keys { color: $text-muted; width: 1fr; }
     SummaryScreen OptionList { height: 1fr; border: none; padding: 0; }
-    """
+    """ + severity_css("SummaryScreen", "summary--severity")
+    COMPONENT_CLASSES = severity_classes("summary--severity")
     BINDINGS = [
         Binding("enter", "jump", "Show it in the table", show=False, id="summary.jump"),
         Binding("escape,q,S", "close", "Close", show=False, id="summary.close"),
@@ -121,10 +122,15 @@ class SummaryScreen(ModalScreen[int | None]):
         name_width, count_width = self._widths()
         options: list[Option] = [_heading("Severity       count   first")]
         counts = store.counts
+        #: The severities drawn as everywhere else (the theme's, and by weight without colour).
+        styles = [
+            self.get_component_rich_style(f"summary--severity-{severity_level(level).style}", partial=True)
+            for level in MESSAGE_SEVERITIES
+        ]
         for slot, severity in enumerate(MESSAGE_SEVERITIES):
             number = counts.get(int(severity), 0)
             first = stats.first_of(int(severity)) if number else None
-            line = Text(f"  {severity.name:<7}", style=_STYLES[slot])
+            line = Text(f"  {severity.name:<7}", style=styles[slot])
             line.append(f"{number:>11,}")
             if first is not None:
                 record = store.get(first)
@@ -151,7 +157,7 @@ class SummaryScreen(ModalScreen[int | None]):
         for entry in stats.nodes():
             line = Text(f"  {_name(entry.node, name_width):<{name_width}}")
             for slot, number in enumerate(entry.counts):
-                line.append(f"{number:>{count_width},}", style=_STYLES[slot] if number else "dim")
+                line.append(f"{number:>{count_width},}", style=styles[slot] if number else "dim")
             line.append(f"{entry.total:>{count_width + 1},}", style="bold")
             options.append(self._target_option(line, f"node:{entry.node_id}"))
         return options

@@ -166,8 +166,8 @@ class TimelineStrip(Widget, can_focus=True):
     TimelineStrip { height: 4; background: $surface; }
     TimelineStrip.-hidden { display: none; }
     TimelineStrip > .timeline--debug { color: $foreground-muted; }
-    TimelineStrip > .timeline--info { color: $success; }
-    TimelineStrip > .timeline--warn { color: $warning; }
+    TimelineStrip > .timeline--info { color: $text-success; }
+    TimelineStrip > .timeline--warn { color: $text-warning; }
     TimelineStrip > .timeline--error { color: $error; }
     TimelineStrip > .timeline--fatal { color: $accent; }
     TimelineStrip > .timeline--label { color: $foreground-muted; }
