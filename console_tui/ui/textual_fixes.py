@@ -5,13 +5,19 @@
   highlighted, but no size yet (the command palette's while its results come in), it ends
   in ``KeyError: 0`` and the app exits. Here such a page move goes to the first or last
   option instead. Seen with Textual 8.2.8 (Ctrl+P, then PageUp).
+- ``BindingsMap.apply_keymap`` moves every binding a keymap gives a new key to the end of
+  the map, so the footer, which follows that order, shows it last, and cut off on most
+  terminals (``console.pause = "p"``: no Pause in the footer at 120 columns). Here a rebound
+  binding keeps the place its old key had. Seen with Textual 8.2.8.
 """
 
 from __future__ import annotations
 
+from textual.binding import BindingsMap, Keymap, KeymapApplyResult
 from textual.widgets import OptionList
 
 _original_move_page = OptionList._move_page
+_original_apply_keymap = BindingsMap.apply_keymap
 
 
 def _move_page(self: OptionList, direction: int) -> None:
@@ -24,6 +30,30 @@ def _move_page(self: OptionList, direction: int) -> None:
             self.action_last()
 
 
+def _apply_keymap(self: BindingsMap, keymap: Keymap) -> KeymapApplyResult:
+    places: dict[str, int] = {}
+    by_id: dict[str, int] = {}
+    for place, (key, bindings) in enumerate(self.key_to_bindings.items()):
+        places[key] = place
+        for binding in bindings:
+            if binding.id is not None:
+                by_id.setdefault(binding.id, place)
+    result = _original_apply_keymap(self, keymap)
+    ending = len(places)
+
+    def place_of(item: tuple[str, list]) -> int:
+        key, bindings = item
+        if key in places:
+            return places[key]
+        return min((by_id[b.id] for b in bindings if b.id in by_id), default=ending)
+
+    ordered = sorted(self.key_to_bindings.items(), key=place_of)
+    self.key_to_bindings.clear()
+    self.key_to_bindings.update(ordered)
+    return result
+
+
 def apply() -> None:
     """Install the work-arounds (idempotent)."""
     OptionList._move_page = _move_page  # type: ignore[method-assign]
+    BindingsMap.apply_keymap = _apply_keymap  # type: ignore[method-assign]

@@ -34,7 +34,9 @@ async def test_a_remapped_pause_key_resumes_too(tmp_path, monkeypatch):
     (tmp_path / "console-tui").mkdir()
     (tmp_path / "console-tui" / "keys.toml").write_text('[console]\npause = "p"\n')
     app = make_app(20, keymap_file=str(tmp_path / "console-tui" / "keys.toml"))
-    async with app.run_test(size=(160, 30)) as pilot:  # a remapped key goes to the footer's end
+    async with app.run_test(size=(100, 30)) as pilot:
+        await until(pilot, lambda: "p Pause" in footer(app), what="the footer to name the remapped key")
+        assert footer(app).index("⏎ Details") < footer(app).index("p Pause") < footer(app).index("c Clear")  # in place
         await pilot.press("p")
         await until(pilot, lambda: "p Resume" in footer(app), what="the footer to say Resume")
         await pilot.press("p")
