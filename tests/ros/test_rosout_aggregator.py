@@ -129,7 +129,12 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
         app = ConsoleApp(queue=queue, sources=[live.source], utc=True)
         try:
             async with app.run_test(size=(160, 40)) as pilot:
-                await until(pilot, lambda: any(r.msg == "3 is divisible by 3" for r in app.store), timeout=30)
+                await until(
+                    pilot,
+                    lambda: any(r.msg == "3 is divisible by 3" for r in app.store),
+                    timeout=30,
+                    what=lambda: f"the first message (status {live.source.status}, {len(app.store)} records)",
+                )
                 await pilot.pause(1.0)
                 shown = [r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
                 assert live.source.status.topic == "/rosout_agg"

@@ -24,12 +24,15 @@ def make_app(count: int = 100, *, max_messages: int = DEFAULT_MAX_MESSAGES, **op
     return ConsoleApp(store=store, **options)
 
 
-async def until(pilot, condition: Callable[[], object], timeout: float = 20.0, what: str = "the app") -> None:
-    """Let the app run until ``condition()`` holds; fail after ``timeout`` seconds."""
+async def until(
+    pilot, condition: Callable[[], object], timeout: float = 20.0, what: str | Callable[[], str] = "the app"
+) -> None:
+    """Let the app run until ``condition()`` holds; fail after ``timeout`` seconds, saying
+    ``what`` was awaited (a callable: what it says at that moment)."""
     deadline = time.monotonic() + timeout
     while not condition():
         if time.monotonic() > deadline:
-            raise AssertionError(f"timed out waiting for {what}")
+            raise AssertionError(f"timed out waiting for {what() if callable(what) else what}")
         await pilot.pause(0.02)
 
 

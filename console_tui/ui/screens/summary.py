@@ -50,6 +50,10 @@ class SummaryScreen(ModalScreen[int | None]):
     | :- | :- |
     | enter | Show the line's message (the first of a severity, of a node) in the table. |
     | escape, q, S | Close. |
+
+    | Class | Description |
+    | :- | :- |
+    | `summary--severity-debug` ... `summary--severity-fatal` | A severity's name and counts. |
     """
 
     DEFAULT_CSS = """
