@@ -10,7 +10,7 @@ else:  # pragma: no cover
 from support.formats import DATA
 
 #: The lowest the floor may ever be; raise both together, never lower them.
-LOWEST_FLOOR = 92.0
+LOWEST_FLOOR = 93.0
 
 
 def test_the_coverage_floor_is_set_and_never_lowered():
