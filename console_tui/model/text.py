@@ -145,3 +145,12 @@ def shorten_name(name: str, width: int) -> str:
     shortened = ".".join(parts)
     head = (width - 1) // 3
     return shortened[:head] + "…" + shortened[len(shortened) - (width - 1 - head) :]
+
+
+_COLOUR = re.compile(r"\x1b\[[0-9;]*m")
+
+
+def strip_colour(text: str) -> str:
+    """Text without the colour codes (``ESC [ ... m``) a terminal logger adds: style, not
+    content. Any other escape sequence stays (``one_line`` makes it visible)."""
+    return _COLOUR.sub("", text) if "\x1b" in text else text

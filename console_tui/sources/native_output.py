@@ -24,7 +24,7 @@ from typing import IO, Any
 from ..model.intake_queue import IntakeQueue
 from ..model.levels import Severity
 from ..model.record import LogRecord
-from ..model.text import one_line
+from ..model.text import one_line, strip_colour
 
 #: The node and source the caught lines are shown under.
 NODE = "console-tui"
@@ -36,9 +36,6 @@ LINE_LIMIT = 4096
 
 _ERROR = re.compile(r"\b(error|fatal|critical)\b", re.IGNORECASE)
 _WARN = re.compile(r"\bwarn(ing)?\b", re.IGNORECASE)
-#: Colour codes (Fast DDS colours its lines even into a pipe): style, not content. Any
-#: other escape sequence stays, made visible by ``one_line``.
-_COLOUR = re.compile(r"\x1b\[[0-9;]*m")
 
 
 def level_of(line: str) -> int:
@@ -138,7 +135,8 @@ class NativeOutput:
             os.close(read)
 
     def _take(self, lines: list[bytes]) -> None:
-        texts = [one_line(_COLOUR.sub("", line.decode("utf-8", "replace")).rstrip("\r"), LINE_LIMIT) for line in lines]
+        # Fast DDS colours its lines even into a pipe.
+        texts = [one_line(strip_colour(line.decode("utf-8", "replace")).rstrip("\r"), LINE_LIMIT) for line in lines]
         texts = [text for text in texts if text.strip()]
         if not texts:
             return

@@ -26,7 +26,8 @@ from __future__ import annotations
 import re
 
 from ..levels import SEVERITY_WORDS
-from .mixed_output import LineParser, MixedOutputFormat, Plain, Start, decimal_ns, process_of_file, strip_colour
+from ..text import strip_colour
+from .mixed_output import LineParser, MixedOutputFormat, Plain, Start, decimal_ns, process_of_file
 
 _LEVELS = SEVERITY_WORDS
 _CREATED = r"(?:(?P<created>\d{1,20}\.\d{1,9}) )?"

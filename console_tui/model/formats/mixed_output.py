@@ -38,7 +38,6 @@ from .textlines import TextLines
 #: Most records without a time held back waiting for the first time in a file; beyond
 #: it they are given the file's modification time.
 MAX_UNTIMED_AT_START = 10_000
-_ANSI_COLOUR = re.compile(r"\x1b\[[0-9;]*m")
 _ROTATION = re.compile(r"\.\d+\Z")
 _ROS1_PROCESS = re.compile(r"(?P<name>[A-Za-z_][A-Za-z0-9_]*(?:-[A-Za-z_][A-Za-z0-9_]*)*)-\d+\Z")
 _INIT_NODE = re.compile(r"init_node, name\[(?P<name>[^\]\s]+)\]")
@@ -234,11 +233,6 @@ def _record(building: _Building, source: str) -> LogRecord:
         msg="\n".join(building.lines),
         source=source,
     )
-
-
-def strip_colour(text: str) -> str:
-    """Text without the colour codes (``ESC [ ... m``) a terminal logger adds."""
-    return _ANSI_COLOUR.sub("", text) if "\x1b" in text else text
 
 
 def decimal_ns(text: str) -> int:

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 from ..levels import SEVERITY_WORDS, Severity
 from ..record import LogRecord
+from ..text import strip_colour
 from .problems import Problems, RecordError
 from .text_format import TextFormat
 from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
@@ -43,7 +44,6 @@ _TOKEN_PATTERNS: dict[str, str] = {
 #: The tokens rcutils knows in a format.
 TOKENS: tuple[str, ...] = tuple(_TOKEN_PATTERNS)
 _ESCAPES = {"a": "\a", "b": "\b", "n": "\n", "r": "\r", "t": "\t"}
-_ANSI = re.compile(r"\x1b\[[0-9;]*m")
 
 
 def decode_template(template: str) -> str:
@@ -117,7 +117,7 @@ class LogLineTemplate:
     def is_record_start(self, line: str) -> bool:
         if self.start_re is None:
             return True
-        return self.start_re.match(_strip_colour(line)) is not None
+        return self.start_re.match(strip_colour(line)) is not None
 
 
 def _head_and_tail(parts: list[tuple[bool, str]]) -> tuple[list[tuple[bool, str]], list[tuple[bool, str]]]:
@@ -142,10 +142,6 @@ def _head_and_tail(parts: list[tuple[bool, str]]) -> tuple[list[tuple[bool, str]
 
 def _line_pattern(parts: list[tuple[bool, str]]) -> str:
     return "".join(re.escape(text) if not is_token else f"(?:{_TOKEN_PATTERNS[text]})" for is_token, text in parts)
-
-
-def _strip_colour(text: str) -> str:
-    return _ANSI.sub("", text) if "\x1b" in text else text
 
 
 def _date_to_ns(text: str) -> int:
@@ -177,7 +173,7 @@ class RcutilsLogFormat(TextFormat):
         self.template = LogLineTemplate.compile(template)
 
     def looks_like(self, first_line: str) -> bool:
-        line = _strip_colour(first_line)
+        line = strip_colour(first_line)
         if self.template.start_re is not None:
             return self.template.start_re.match(line) is not None
         return self.template.record_re.match(line) is not None
@@ -194,7 +190,7 @@ class RcutilsLogFormat(TextFormat):
                 match = start.match
 
                 def classify(line: str) -> LineKind:
-                    if match(line) is not None or ("\x1b" in line and match(_strip_colour(line))):
+                    if match(line) is not None or ("\x1b" in line and match(strip_colour(line))):
                         return LineKind.START
                     return LineKind.MORE
 
@@ -210,7 +206,7 @@ class RcutilsLogFormat(TextFormat):
 
     def parse_record(self, text: str, source: str) -> LogRecord:
         """One record's text (its lines joined by ``\\n``) as a record."""
-        text = _strip_colour(text)
+        text = strip_colour(text)
         match = self.template.record_re.match(text)
         if match is None:
             raise RecordError(f"does not match the log format {self.template.template!r}: {text[:60]!r}")
@@ -243,7 +239,7 @@ def _groups_by_end(lines: TextLines, end_re: re.Pattern[str]) -> Iterator[LineGr
         if group is None:
             group = LineGroup(number, [], True)
         group.lines.append(text)
-        if end_re.search(_strip_colour(text)):
+        if end_re.search(strip_colour(text)):
             yield group
             group = None
     if group is not None:

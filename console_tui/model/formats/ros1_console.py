@@ -22,7 +22,7 @@ from __future__ import annotations
 import re
 
 from ..levels import SEVERITY_WORDS
-from ..text import plural
+from ..text import plural, strip_colour
 from .mixed_output import (
     LineParser,
     MixedOutputFormat,
@@ -31,7 +31,6 @@ from .mixed_output import (
     decimal_ns,
     process_of_file,
     ros1_node_of_process,
-    strip_colour,
 )
 
 _LEVELS = SEVERITY_WORDS
