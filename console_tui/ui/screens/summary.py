@@ -21,7 +21,7 @@ from textual.widgets.option_list import Option
 from ...model.levels import MESSAGE_SEVERITIES, severity_level
 from ...model.node_stats import NodeStats
 from ...model.store import LogStore
-from ...model.text import one_line
+from ...model.text import one_line, shorten_name
 from ...model.timefmt import clock_text, duration_text
 from ..keys import hint_line
 from ..severity_styles import severity_classes, severity_css
@@ -200,8 +200,9 @@ class SummaryScreen(ModalScreen[int | None]):
 
 
 def _name(node: str, width: int) -> str:
-    """A node's name in ``width`` cells, cut with ``…`` when longer."""
-    return one_line(node, width) if len(node) <= width else one_line(node, width - 1) + "…"
+    """A node's name in ``width`` cells, shortened as the table does (its end kept: that is
+    what tells ``navigation.planner`` from ``navigation.planner.costmap``)."""
+    return shorten_name(one_line(node, 200), width)
 
 
 def _heading(text: str) -> Option:
