@@ -62,8 +62,8 @@ class Console:
                 return status
             self.drain(0.05) if self.fd >= 0 else time.sleep(0.05)
         os.kill(self.pid, signal.SIGKILL)
-        os.waitpid(self.pid, 0)
-        raise AssertionError("the console did not exit")
+        _, self.status = os.waitpid(self.pid, 0)  # reaped: close() has nothing left to kill
+        raise AssertionError(f"the console did not exit within {timeout} s")
 
     def levels_left(self) -> dict[str, int] | None:
         lines = [line for line in self.result.read_text().splitlines() if line.startswith("{")]
@@ -76,7 +76,7 @@ class Console:
             try:
                 os.kill(self.pid, signal.SIGKILL)
                 os.waitpid(self.pid, 0)
-            except ChildProcessError:
+            except (ChildProcessError, ProcessLookupError):
                 pass
 
 
