@@ -53,7 +53,7 @@ class Console:
         os.close(self.fd)
         self.fd = -1
 
-    def wait(self, timeout: float = 20) -> int:
+    def wait(self, timeout: float = 40) -> int:  # loaded CI with coverage: once over 20 s
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             pid, status = os.waitpid(self.pid, os.WNOHANG)
