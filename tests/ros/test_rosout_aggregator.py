@@ -142,7 +142,12 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
                     what=lambda: f"the first message (status {live.source.status}, {len(app.store)} records)",
                 )
                 await pilot.pause(1.0)
-                shown = [r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
+                # In time order: when discovery finds the aggregator only after the console
+                # began showing /rosout (a loaded machine), its older history comes after.
+                shown = sorted(
+                    (r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns),
+                    key=lambda r: r.stamp_ns,
+                )
                 assert live.source.status.topic == "/rosout_agg"
         finally:
             live.close()

@@ -276,13 +276,17 @@ class _TopicChoice:
       messages are dropped (its history has them, and older ones) and the stream starts
       from ``/rosout_agg``, in time order. Otherwise they go out when the time is up.
     - When one shows up later, its history is delivered without what ``/rosout`` already
-      gave: for each logger name, only messages newer than the newest one seen from it.
+      gave: for each logger name, the messages outside the span of time ``/rosout`` covered
+      for it. Those older than that span (``/rosout`` keeps only its last 10 s) come after
+      newer ones then, since records are shown in arrival order, but none is lost.
     """
 
     def __init__(self, start: float) -> None:
         self.start = start
         self.deadline = start + AUTO_TOPIC_MAX_S
         self.held: list[LogRecord] = []
+        #: Per logger name, the oldest and newest stamps ``/rosout`` gave.
+        self.oldest: dict[str, int] = {}
         self.newest: dict[str, int] = {}
         self.dedupe_until = 0.0
         self._publishers = 0
@@ -301,6 +305,7 @@ class _TopicChoice:
     def switched(self, now: float) -> None:
         if self.holding(now):
             self.held.clear()
+            self.oldest.clear()
             self.newest.clear()
         else:
             self.dedupe_until = now + SWITCH_DEDUPE_S
@@ -308,8 +313,9 @@ class _TopicChoice:
 
     def filter(self, batch: list[LogRecord], topic: str, now: float) -> list[LogRecord]:
         if topic == ROSOUT:
-            newest = self.newest
+            oldest, newest = self.oldest, self.newest
             for record in batch:
+                oldest.setdefault(record.node, record.stamp_ns)
                 newest[record.node] = record.stamp_ns
             if self.holding(now):
                 self.held.extend(batch)
@@ -318,10 +324,12 @@ class _TopicChoice:
                 batch, self.held = self.held + batch, []
             return batch
         if now < self.dedupe_until:
-            seen = self.newest
-            return [r for r in batch if r.stamp_ns > seen.get(r.node, r.stamp_ns - 1)]
+            oldest, newest = self.oldest, self.newest
+            return [
+                r for r in batch if r.node not in newest or not oldest[r.node] <= r.stamp_ns <= newest[r.node]
+            ]
         if self.newest:
-            self.newest = {}
+            self.oldest, self.newest = {}, {}
         return batch
 
 
