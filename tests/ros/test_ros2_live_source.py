@@ -155,12 +155,13 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
 
     from rcl_interfaces.msg import Log
 
-    from console_tui.sources.ros2.live_source import LossCounts, _TopicReader
+    from console_tui.sources.ros2.loss_counts import LossCounts
     from console_tui.sources.ros2.runtime import RosRuntime
+    from console_tui.sources.ros2.topic_reader import TopicReader
 
     runtime = RosRuntime()
     try:
-        reader = _TopicReader(runtime.create_node("fallback"), Log, "/fallback_log", LossCounts())
+        reader = TopicReader(runtime.create_node("fallback"), Log, "/fallback_log", LossCounts())
         assert reader.path == "raw+cdr"
         reader.close()
         reader.main = SimpleNamespace(handle=_OldRclpyHandle([Log(name="n", msg="one"), Log(name="n", msg="two")]))
@@ -177,7 +178,7 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
 def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_publisher_left(nodes, monkeypatch):
     """With the intake held up, a reader history of 10 keeps the last 10 of a burst of 100
     and Fast DDS reports nothing lost; the gaps in the publisher's sequence numbers do."""
-    from console_tui.sources.ros2 import live_source as module
+    from console_tui.sources.ros2 import topic_reader as module
 
     monkeypatch.setattr(module, "QUEUE_DEPTH", 10)
     talker = nodes.start("talker.py", "--name", "gap_talker")
@@ -237,17 +238,18 @@ def test_a_node_that_logs_as_it_starts_beside_a_volatile_one_arrives_once(nodes)
 
 @contextlib.contextmanager
 def topic_reader(topic: str = "/rosout"):
-    """A ``_TopicReader`` on ``topic`` with a node of its own, and its loss counts."""
+    """A ``TopicReader`` on ``topic`` with a node of its own, and its loss counts."""
     from rcl_interfaces.msg import Log
 
-    from console_tui.sources.ros2.live_source import LossCounts, _TopicReader
+    from console_tui.sources.ros2.loss_counts import LossCounts
     from console_tui.sources.ros2.runtime import RosRuntime
+    from console_tui.sources.ros2.topic_reader import TopicReader
 
     runtime = RosRuntime()
     counts = LossCounts()
     try:
         node = runtime.create_node("reader")
-        reader = _TopicReader(node, Log, topic, counts)
+        reader = TopicReader(node, Log, topic, counts)
         yield node, reader, counts
         reader.close()
     finally:
@@ -256,13 +258,13 @@ def topic_reader(topic: str = "/rosout"):
 
 def publisher_gid(node, name: str) -> bytes:
     """The GID of node ``name``'s ``/rosout`` publisher, once the graph shows it."""
-    from console_tui.sources.ros2.live_source import _gid_bytes
+    from console_tui.sources.ros2.topic_reader import gid_bytes
 
     found: list[bytes] = []
 
     def seen() -> bool:
         found[:] = [
-            _gid_bytes(i.endpoint_gid) for i in node.get_publishers_info_by_topic("/rosout") if i.node_name == name
+            gid_bytes(i.endpoint_gid) for i in node.get_publishers_info_by_topic("/rosout") if i.node_name == name
         ]
         return bool(found)
 

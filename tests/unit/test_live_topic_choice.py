@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from console_tui.model.record import LogRecord
-from console_tui.sources.ros2.live_source import AUTO_TOPIC_MAX_S, SWITCH_DEDUPE_S, _TopicChoice
+from console_tui.sources.ros2.topic_choice import AUTO_TOPIC_MAX_S, SWITCH_DEDUPE_S, TopicChoice
 
 
 def records(node: str, *stamps: int) -> list[LogRecord]:
@@ -11,7 +11,7 @@ def records(node: str, *stamps: int) -> list[LogRecord]:
 
 
 def test_held_at_start_then_released_in_order_without_an_aggregator():
-    choice = _TopicChoice(0.0)
+    choice = TopicChoice(0.0)
     assert choice.filter(records("a", 1, 2), "/rosout", 0.1) == []
     assert choice.filter(records("a", 3), "/rosout", 1.0) == []
     released = choice.filter([], "/rosout", AUTO_TOPIC_MAX_S + 0.1)
@@ -20,7 +20,7 @@ def test_held_at_start_then_released_in_order_without_an_aggregator():
 
 
 def test_aggregator_found_at_start_drops_what_was_held():
-    choice = _TopicChoice(0.0)
+    choice = TopicChoice(0.0)
     choice.filter(records("a", 5, 6), "/rosout", 0.5)
     choice.switched(1.0)
     history = records("a", 1, 2, 3, 4, 5, 6)
@@ -28,7 +28,7 @@ def test_aggregator_found_at_start_drops_what_was_held():
 
 
 def test_aggregator_found_later_gives_only_what_was_not_seen():
-    choice = _TopicChoice(0.0)
+    choice = TopicChoice(0.0)
     choice.filter(records("a", 1), "/rosout", 0.1)
     assert [r.stamp_ns for r in choice.filter(records("a", 2) + records("b", 7), "/rosout", 5.0)] == [1, 2, 7]
     choice.switched(10.0)
@@ -41,7 +41,7 @@ def test_aggregator_found_later_gives_only_what_was_not_seen():
 
 
 def test_holding_ends_once_the_publishers_found_have_settled():
-    choice = _TopicChoice(0.0)
+    choice = TopicChoice(0.0)
     choice.publishers(0, 0.2)
     assert choice.holding(0.9)
     choice.publishers(2, 0.9)  # found two
@@ -52,7 +52,7 @@ def test_holding_ends_once_the_publishers_found_have_settled():
     assert choice.holding(2.6)
     choice.publishers(3, 2.8)  # unchanged for a second
     assert not choice.holding(2.8)
-    nothing = _TopicChoice(0.0)
+    nothing = TopicChoice(0.0)
     for step in range(50):
         nothing.publishers(0, step * 0.1)
     assert nothing.holding(4.9) and not nothing.holding(AUTO_TOPIC_MAX_S)
