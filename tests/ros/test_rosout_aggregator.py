@@ -18,7 +18,6 @@ import pytest
 
 from console_tui.model.formats.rosout_log import ROS2_HEADER
 from console_tui.sources.files import load_records, open_files
-from console_tui.sources.ros2.runtime import uses_fast_dds_2
 
 from support.rosproc import wait_until
 
@@ -103,11 +102,6 @@ def counted(ticks: range) -> list[tuple[int, str]]:
     return out
 
 
-@pytest.mark.skipif(
-    uses_fast_dds_2(os.environ),
-    reason="Jazzy (Fast DDS 2.14): a console started late got only the newest ~100 of the aggregator's "
-    "TRANSIENT_LOCAL history here, not understood yet (README, known limits); the rosout.log has everything",
-)
 async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches(aggregators, ros_env, tmp_path):
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.sources.live import open_live
