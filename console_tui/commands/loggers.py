@@ -18,7 +18,7 @@ from typing import Any
 from ..model.levels import Severity, parse_severity, severity_name
 from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from ..model.text import plural
-from ..sources.logger_control import GRAPH_MIN_S, GRAPH_QUIET_S
+from ..sources.logger_graph import GRAPH_MIN_S, GRAPH_QUIET_S
 from .arguments import add_ros_version_arguments
 
 EXIT_OK = 0
@@ -407,7 +407,7 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
 
 def _result(future: Any) -> Any:
     """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
-    from ..sources.logger_control import LoggerCallError, NodeNotFound, NoLoggerServices
+    from ..sources.logger_errors import LoggerCallError, NodeNotFound, NoLoggerServices
 
     try:
         return future.result()

@@ -12,6 +12,9 @@ FATAL, 0 = unset, the logger inherits). Temporary levels are restored by the log
 when their time is up, whatever the UI does. ``close`` restores the ones still running before
 it returns (each restore waits up to the call timeout); a process killed outright leaves them set.
 
+Beside it: ``logger_errors.py`` (how a call fails), ``logger_graph.py`` (the graph as watched,
+and waiting until it has settled), ``logger_calls.py`` (one call as the loggers thread moves it on).
+
 A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``).
 The subclass provides, called on the loggers thread unless said otherwise:
 
@@ -43,92 +46,33 @@ import time
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from ..model.levels import Severity
-from ..model.logger_levels import (
-    DEFAULT_LOGGER,
-    OWN_NODE_PREFIX,
-    GraphNode,
-    TemporaryLevel,
-    TemporaryLevels,
-    match_nodes,
-)
+from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, TemporaryLevel, TemporaryLevels
 from .futures import done_future, failed_future, settle, then
+from .logger_calls import Call
+from .logger_errors import (
+    CallTimedOut,
+    ControlClosed,
+    LevelRefused,
+    LoggerCallError,
+    NodeGone,
+    NoLoggerServices,
+    call_error,
+)
+from .logger_graph import GRAPH_MIN_S, GRAPH_PERIOD_S, GRAPH_QUIET_S, GraphSnapshot, GraphWait, GraphWatch
 
 CALL_TIMEOUT_S = 2.0
-GRAPH_PERIOD_S = 0.5
 #: Discovery is busiest just after start: look at the graph more often then.
 STARTUP_GRAPH_PERIOD_S = 0.1
 STARTUP_S = 3.0
-#: Services are discovered a little after their node: a node is taken to have no logger
-#: services once it has been seen this long and shows other services (parameters), or
-#: three times as long when it shows none at all.
-NO_SERVICES_GRACE_S = 1.5
-#: A graph is taken as complete once it has been watched this long and no node has come, gone
-#: or changed for the quiet time. Fast DDS repeats its discovery every 3 s: on this project's
-#: shared 2-core machines, under load, a node missed by the first round was seen up to 4.6 s
-#: after start, and up to 2.5 s after the node seen before it.
-GRAPH_MIN_S = 5.0
-GRAPH_QUIET_S = 2.0
 RESTORE_ATTEMPTS = 3
 RESTORE_RETRY_S = 1.0
 MAX_IDLE_S = 0.1
 
-GET = "get"
-SET = "set"
-
-
-# -- failures and events --------------------------------------------------------------------
-
-
-class LoggerCallError(Exception):
-    """A logger-level call that failed; ``str()`` is the message to show."""
-
-    def __init__(self, node: str, message: str) -> None:
-        super().__init__(message)
-        self.node = node
-
-
-class NodeNotFound(LoggerCallError):
-    """No node of that name is in the graph."""
-
-    def __init__(self, node: str) -> None:
-        super().__init__(node, f"{node}: no such node in the ROS graph")
-
-
-class NoLoggerServices(LoggerCallError):
-    """The node is there but offers no logger services; ``hint`` says how to give it them."""
-
-    def __init__(self, node: str, hint: str = "") -> None:
-        super().__init__(node, f"{node} has no logger services" + (f": {hint}" if hint else ""))
-
-
-class CallTimedOut(LoggerCallError):
-    def __init__(self, node: str, seconds: float) -> None:
-        super().__init__(node, f"{node} did not answer within {seconds:g} s (busy, or gone)")
-
-
-class NodeGone(LoggerCallError):
-    def __init__(self, node: str) -> None:
-        super().__init__(node, f"{node} went away during the call")
-
-
-class LevelRefused(LoggerCallError):
-    """The node refused some levels; ``refused`` maps each logger name to the node's reason."""
-
-    def __init__(self, node: str, refused: Mapping[str, str]) -> None:
-        self.refused = dict(refused)
-        details = "; ".join(
-            f"{name or '(default)'}: {reason or 'no reason given'}" for name, reason in self.refused.items()
-        )
-        super().__init__(node, f"{node} refused the level: {details}")
-
-
-class ControlClosed(LoggerCallError):
-    def __init__(self, node: str) -> None:
-        super().__init__(node, "logger control is closed")
+# -- events ------------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True)
@@ -147,58 +91,6 @@ class TemporaryEnded:
 
 
 LoggerEvent = NodesChanged | TemporaryEnded
-
-
-# -- the control --------------------------------------------------------------------------
-
-
-@dataclass
-class Call:
-    """A call submitted to a node's logger service, as the loggers thread moves it on."""
-
-    node: str
-    #: ``GET`` or ``SET``.
-    service: str
-    request: Any
-    deadline: float
-    future: Future[Any]
-    #: Puts a temporary level back: still sent while closing.
-    restore: bool = False
-    #: The subclass's own state for the call (its client, say).
-    handle: Any = None
-    #: What ``_send`` returned: the reply to come.
-    sent: Any = None
-
-
-@dataclass(frozen=True)
-class GraphWait:
-    """What ``wait_for_graph`` saw: the nodes, how long it waited, and whether the graph had
-    settled (no change for the quiet time, every node's logger services known) or the deadline
-    came first."""
-
-    nodes: tuple[GraphNode, ...]
-    waited_s: float
-    settled: bool
-
-
-@dataclass
-class _Graph:
-    nodes: tuple[GraphNode, ...] = ()
-    by_fqn: dict[str, GraphNode] = field(default_factory=dict)
-    first_seen: dict[str, float] = field(default_factory=dict)
-    #: Nodes that show at least one service of any kind.
-    with_services: frozenset[str] = frozenset()
-    refreshes: int = 0
-    #: When the nodes last changed (the first look counts as a change).
-    changed_at: float = 0.0
-
-    def settled(self, node: GraphNode, now: float) -> bool:
-        """Whether what the graph says of the node's logger services can be believed."""
-        if node.has_logger_services:
-            return True
-        seen_for = now - self.first_seen.get(node.fqn, now)
-        grace = NO_SERVICES_GRACE_S if node.fqn in self.with_services else 3 * NO_SERVICES_GRACE_S
-        return seen_for >= grace
 
 
 class LoggerControl(ABC):
@@ -229,11 +121,11 @@ class LoggerControl(ABC):
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
         self.call_timeout = call_timeout
-        self.include_hidden = include_hidden
         self.clock = clock
         self._lock = threading.Lock()
-        self._graph_changed = threading.Condition(self._lock)
-        self._graph = _Graph()
+        self._graph = GraphWatch(
+            clock, include_hidden=include_hidden, halted=lambda: self._stop.is_set(), problem=lambda: self.problem
+        )
         self._temporaries = TemporaryLevels(clock)
         self._submitted: list[Call] = []
         self._listeners: list[Callable[[LoggerEvent], None]] = []
@@ -274,10 +166,10 @@ class LoggerControl(ABC):
     @property
     def nodes(self) -> tuple[GraphNode, ...]:
         """The graph's nodes as last seen, sorted by name (console-tui's own never included)."""
-        return self._graph.nodes
+        return self._graph.snapshot.nodes
 
     def node(self, fqn: str) -> GraphNode | None:
-        return self._graph.by_fqn.get(fqn)
+        return self._graph.snapshot.by_fqn.get(fqn)
 
     def is_settled(self, fqn: str) -> bool:
         """Whether ``has_logger_services`` of that node can be believed yet.
@@ -285,53 +177,18 @@ class LoggerControl(ABC):
         Services are discovered a little after their node: show an unsettled node without
         them as "checking", not as "no logger services".
         """
-        graph = self._graph
+        graph = self._graph.snapshot
         node = graph.by_fqn.get(fqn)
         return node is not None and graph.settled(node, self.clock())
 
     def find_node(self, query: str, wait: float) -> list[GraphNode]:
-        """Blocking: the nodes ``query`` names (see ``match_nodes``), waiting up to ``wait`` s.
-
-        Returns as soon as a match offers logger services, or has been seen for long enough
-        to be sure it has none; at the deadline returns what matches (maybe nothing).
-        """
-        deadline = self.clock() + wait
-        with self._graph_changed:
-            while True:
-                graph = self._graph
-                matches = match_nodes(query, graph.nodes)
-                now = self.clock()
-                settled = any(graph.settled(node, now) for node in matches)
-                if settled or now >= deadline or self._stop.is_set() or (graph.refreshes and self.problem):
-                    return matches
-                self._graph_changed.wait(min(deadline - now, GRAPH_PERIOD_S))
+        """Blocking: the nodes ``query`` names, waiting up to ``wait`` s (``GraphWatch.find_node``)."""
+        return self._graph.find_node(query, wait)
 
     def wait_for_graph(self, deadline: float) -> GraphWait:
-        """Blocking: the nodes once the graph has settled, or at the latest after ``deadline`` s.
-
-        Settled: watched for ``graph_min_s`` at least, at least one node, none came, went or
-        changed for ``graph_quiet_s``, and what each says of its logger services can be
-        believed (``is_settled``). At least one look at the graph is always taken, even with a
-        deadline of 0.
-        """
-        started = self.clock()
-        end = started + deadline
-        with self._graph_changed:
-            while True:
-                graph, now = self._graph, self.clock()
-                looked = graph.refreshes > 0
-                quiet_until = max(graph.changed_at + self.graph_quiet_s, started + self.graph_min_s)
-                settled = (
-                    looked
-                    and bool(graph.nodes)
-                    and now >= quiet_until
-                    and all(graph.settled(node, now) for node in graph.nodes)
-                )
-                # A problem (the ROS 1 master does not answer, the control stopped): say it now.
-                if settled or (looked and (now >= end or self.problem)) or self._stop.is_set():
-                    return GraphWait(graph.nodes, now - started, settled)
-                wake = min(end, quiet_until) if graph.nodes and now < quiet_until else end
-                self._graph_changed.wait(max(0.01, min(wake - now, GRAPH_PERIOD_S)))
+        """Blocking: the nodes once the graph has settled (watched for ``graph_min_s``, then
+        unchanged for ``graph_quiet_s``), or at the latest after ``deadline`` s."""
+        return self._graph.wait_for_graph(deadline, self.graph_min_s, self.graph_quiet_s)
 
     # -- calls ---------------------------------------------------------------------------------
 
@@ -465,12 +322,13 @@ class LoggerControl(ABC):
                     self._refresh_graph(now)
                 with self._lock:
                     new, self._submitted = self._submitted, []
-                if any(call.node not in self._graph.by_fqn for call in new):
+                if any(call.node not in self._graph.snapshot.by_fqn for call in new):
                     self._refresh_graph(now)
                 calls.extend(new)
                 if self._stop.is_set() and not self._closed:
                     calls = self._begin_closing(calls)
-                calls = [call for call in calls if not self._advance(call, now)]
+                graph = self._graph.snapshot
+                calls = [call for call in calls if not self._advance(call, now, graph)]
                 if self._stop.is_set():
                     if not calls and not self._submitted:
                         break
@@ -499,50 +357,19 @@ class LoggerControl(ABC):
 
     def _refresh_graph(self, now: float) -> None:
         looked, with_services = self._look()
-        found = {
-            node.fqn: node
-            for node in looked
-            if not node.name.startswith(OWN_NODE_PREFIX) and (self.include_hidden or not node.hidden)
-        }
-        nodes = tuple(sorted(found.values(), key=lambda n: n.fqn))
-        with self._graph_changed:
-            old = self._graph
-            first_seen = {fqn: old.first_seen.get(fqn, now) for fqn in found}
-            changed_at = now if nodes != old.nodes or not old.refreshes else old.changed_at
-            self._graph = _Graph(nodes, found, first_seen, with_services, old.refreshes + 1, changed_at)
-            self._graph_changed.notify_all()
-        if nodes != old.nodes:
-            self._emit(NodesChanged(nodes))
+        if self._graph.update(looked, with_services, now):
+            self._emit(NodesChanged(self._graph.snapshot.nodes))
 
-    def _advance(self, call: Call, now: float) -> bool:
-        """Move one call on; True once its future is settled."""
-        if call.future.done():
-            return True
-        graph_node = self._graph.by_fqn.get(call.node)
-        if call.sent is None:
-            if graph_node is None:
-                return settle(call.future, error=NodeNotFound(call.node))
-            if not graph_node.has_logger_services and (self._graph.settled(graph_node, now) or now >= call.deadline):
-                return settle(call.future, error=self.no_services(call.node))
-            if graph_node.has_logger_services:
-                call.sent = self._send(call)
-                if call.sent is not None:
-                    return False
-            if now >= call.deadline:
-                return settle(call.future, error=CallTimedOut(call.node, self.call_timeout))
-            return False
-        if call.sent.done():
-            error = call.sent.exception()
-            if error is not None:
-                return settle(call.future, error=_call_error(call.node, error))
-            return settle(call.future, result=call.sent.result())
-        if graph_node is None or self._lost(call):
-            self._drop(call)
-            return settle(call.future, error=NodeGone(call.node))
-        if now >= call.deadline:
-            self._drop(call)
-            return settle(call.future, error=CallTimedOut(call.node, self.call_timeout))
-        return False
+    def _advance(self, call: Call, now: float, graph: GraphSnapshot) -> bool:
+        return call.advance(
+            now,
+            graph,
+            send=self._send,
+            drop=self._drop,
+            lost=self._lost,
+            no_services=self.no_services,
+            timeout=self.call_timeout,
+        )
 
     def _restore_due(self) -> None:
         with self._lock:
@@ -561,10 +388,10 @@ class LoggerControl(ABC):
             with self._lock:
                 self._temporaries.retry_later(entry, RESTORE_RETRY_S)
             return
-        self._emit(TemporaryEnded(entry, _call_error(entry.node, error)))
+        self._emit(TemporaryEnded(entry, call_error(entry.node, error)))
 
     def _restored_closing(self, entry: TemporaryLevel, future: Future[Any]) -> None:
-        self._emit(TemporaryEnded(entry, _call_error(entry.node, future.exception())))
+        self._emit(TemporaryEnded(entry, call_error(entry.node, future.exception())))
 
     def _begin_closing(self, calls: list[Call]) -> list[Call]:
         """Fail the calls under way, and put every temporary level back; returns the calls left."""
@@ -593,9 +420,3 @@ class LoggerControl(ABC):
 
 def _is_level_number(level: Any) -> bool:
     return isinstance(level, int) and 0 <= level < 2**32
-
-
-def _call_error(node: str, error: BaseException | None) -> LoggerCallError | None:
-    if error is None or isinstance(error, LoggerCallError):
-        return error
-    return LoggerCallError(node, f"{node}: {error}")

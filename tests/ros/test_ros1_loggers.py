@@ -8,7 +8,8 @@ import time
 import pytest
 
 from console_tui.commands.loggers import main as loggers_main
-from console_tui.sources.logger_control import SET, LevelRefused
+from console_tui.sources.logger_calls import SET
+from console_tui.sources.logger_errors import LevelRefused
 
 from support.ros1 import ROSCPP_LOGGER
 from support.ros1_source import Collected

@@ -75,7 +75,8 @@ def log_all(process, tag, **extra):
 
 
 def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
-    from console_tui.sources.logger_control import NodesChanged, NoLoggerServices
+    from console_tui.sources.logger_control import NodesChanged
+    from console_tui.sources.logger_errors import NoLoggerServices
 
     start_alpha(nodes, ["--name", "beta", "--no-logger-service"])
     ready(control)
@@ -93,7 +94,7 @@ def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
 
 
 def test_get_and_set_round_trip_and_a_refused_level(nodes, control):
-    from console_tui.sources.logger_control import LevelRefused, NodeNotFound
+    from console_tui.sources.logger_errors import LevelRefused, NodeNotFound
 
     start_alpha(nodes)
     ready(control)
@@ -183,7 +184,7 @@ def test_close_puts_temporary_levels_back(nodes, ros_runtime):
 
 
 def test_a_node_killed_during_a_call_gives_a_clear_failure(nodes, control):
-    from console_tui.sources.logger_control import CallTimedOut, NodeGone
+    from console_tui.sources.logger_errors import CallTimedOut, NodeGone
 
     alpha = start_alpha(nodes, ["--name", "gamma"])
     ready(control)
@@ -203,7 +204,7 @@ def test_a_node_killed_during_a_call_gives_a_clear_failure(nodes, control):
 
 
 def test_a_node_that_exits_leaves_the_list(nodes, control):
-    from console_tui.sources.logger_control import NodeNotFound
+    from console_tui.sources.logger_errors import NodeNotFound
 
     alpha = start_alpha(nodes)
     ready(control)

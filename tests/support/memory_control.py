@@ -9,7 +9,9 @@ from concurrent.futures import Future
 
 from console_tui.model.logger_levels import GraphNode, split_fqn
 from console_tui.sources.futures import done_future, failed_future, then
-from console_tui.sources.logger_control import GET, SET, LevelRefused, LoggerControl
+from console_tui.sources.logger_calls import GET, SET
+from console_tui.sources.logger_control import LoggerControl
+from console_tui.sources.logger_errors import LevelRefused
 
 
 class MemoryNode:

@@ -25,7 +25,9 @@ from typing import Any
 from ...model.levels import Severity
 from ...model.logger_levels import GraphNode, effective_level, split_fqn
 from ..futures import failed_future, then
-from ..logger_control import CALL_TIMEOUT_S, GET, SET, Call, LevelRefused, LoggerCallError, LoggerControl
+from ..logger_calls import GET, SET, Call
+from ..logger_control import CALL_TIMEOUT_S, LoggerControl
+from ..logger_errors import LevelRefused, LoggerCallError
 from .environment import NODE_PREFIX, Ros1Environment, new_node_name
 from .logger_services import (
     GET_LOGGERS,

@@ -14,7 +14,9 @@ from typing import Any
 
 from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode
 from ..futures import then
-from ..logger_control import CALL_TIMEOUT_S, GET, SET, Call, LevelRefused, LoggerControl
+from ..logger_calls import GET, SET, Call
+from ..logger_control import CALL_TIMEOUT_S, LoggerControl
+from ..logger_errors import LevelRefused
 from .runtime import RosRuntime
 
 _SERVICES = {GET: "get_logger_levels", SET: "set_logger_levels"}
