@@ -115,3 +115,24 @@ def add_ros_version_arguments(parser: argparse.ArgumentParser) -> None:
         help="ROS 1: talk to the master at ROS_MASTER_URI (default: ROS 1 when ROS_VERSION=1 or a master answers there, else ROS 2)",
     )
     group.add_argument("--ros2", dest="ros", action="store_const", const=ROS2, help="ROS 2, through rclpy")
+
+
+def add_subcommand(
+    commands: argparse._SubParsersAction,
+    name: str,
+    help_text: str,
+    *,
+    epilog: str,
+    description: str | None = None,
+    usage: str | None = None,
+) -> argparse.ArgumentParser:
+    """A sub-command (``check``, ``list``...) whose help ends with ``epilog`` as written (exit statuses)."""
+    sub: argparse.ArgumentParser = commands.add_parser(
+        name,
+        help=help_text,
+        description=help_text if description is None else description,
+        epilog=epilog,
+        usage=usage,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    return sub

@@ -19,7 +19,7 @@ from pathlib import Path
 from ..model.rules.query import QueryError, parse_time
 from ..model.text import plural
 from ..sources.log_dir import LogRun, UnsafeRemoval, dangling_links, remove_run, ros_log_dir, scan_runs
-from .arguments import parse_size, size_text
+from .arguments import add_subcommand, parse_size, size_text
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -48,24 +48,24 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="{check,purge}")
-    check = commands.add_parser(
+    check = add_subcommand(
+        commands,
         "check",
-        help="size of the log directory and its largest runs",
+        "size of the log directory and its largest runs",
         description="Print the size of the ROS log directory and its largest runs.",
         epilog=EXIT_CODES,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     check.add_argument("--top", type=int, default=DEFAULT_TOP, metavar="N", help=f"runs listed (default {DEFAULT_TOP})")
-    purge = commands.add_parser(
+    purge = add_subcommand(
+        commands,
         "purge",
-        help="remove runs: all, --older-than AGE, or the oldest down to --keep-size SIZE",
+        "remove runs: all, --older-than AGE, or the oldest down to --keep-size SIZE",
         description=textwrap.fill(
             "Remove runs from the ROS log directory: all of them, or those last written before "
             "--older-than, and/or the oldest ones until what is left fits in --keep-size. Lists what "
             "it will remove and asks first, unless --yes."
         ),
         epilog=EXIT_CODES,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     purge.add_argument(
         "--older-than",

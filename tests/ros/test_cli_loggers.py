@@ -9,7 +9,8 @@ import sys
 
 import pytest
 
-from console_tui.commands.loggers import EXIT_FAILED, EXIT_NOT_FOUND, EXIT_OK, EXIT_USAGE, main, parse_level
+from console_tui.commands.loggers import main
+from console_tui.commands.loggers_arguments import EXIT_FAILED, EXIT_NOT_FOUND, EXIT_OK, EXIT_USAGE, parse_level
 
 from support.rosproc import BusyProcesses
 

@@ -28,7 +28,6 @@ import queue
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
 from typing import Any
 
 from ...model.formats.ros1_log_msg import MD5SUM, TYPE
@@ -39,32 +38,16 @@ from .environment import Ros1Environment, new_node_name
 from .intake import Connection, Ros1Intake
 from .master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
 from .slave_server import SlaveServer
+from .subscribed_topic import SubscribedTopic
 from .tcpros import TcprosError, open_subscription
 
 GRAPH_PERIOD_S = 1.0
 MASTER_RETRY_S = 1.0
-RETRY_FIRST_S = 0.5
-RETRY_MAX_S = 10.0
 #: How long both topics are read when moving between /rosout and /rosout_agg, at most.
 OVERLAP_S = 2.0
 CONNECT_WORKERS = 4
 UNREGISTER_TIMEOUT_S = 1.0
 PATH = "tcpros"
-
-
-@dataclass
-class _Topic:
-    """One subscribed topic: its publishers as the master lists them, and our connections."""
-
-    name: str
-    publishers: set[str] = field(default_factory=set)
-    connected: set[str] = field(default_factory=set)
-    connecting: set[str] = field(default_factory=set)
-    retry_at: dict[str, float] = field(default_factory=dict)
-    attempts: dict[str, int] = field(default_factory=dict)
-    #: Publishers that answered our header with an error, and what they said.
-    refused: dict[str, str] = field(default_factory=dict)
-    registered: bool = False
 
 
 class Ros1LiveSource:
@@ -90,7 +73,7 @@ class Ros1LiveSource:
         self._events: queue.Queue[tuple[Any, ...]] = queue.Queue()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
-        self._topics: dict[str, _Topic] = {}
+        self._topics: dict[str, SubscribedTopic] = {}
         self._topic_names: tuple[str, ...] = ()
         self._current = topic or ""
         self._retiring: tuple[str, float] | None = None
@@ -237,7 +220,7 @@ class Ros1LiveSource:
         """``/rosout_agg`` while a reachable rosout node publishes it, else ``/rosout``."""
         nodes = frozenset(agg_publishers)
         agg = self._topics.get(ROSOUT_AGG)
-        if self._current == ROSOUT_AGG and agg is not None and agg.registered and _unreachable(agg):
+        if self._current == ROSOUT_AGG and agg is not None and agg.registered and agg.unreachable():
             self._dead_agg = nodes  # killed, still registered: read the nodes directly meanwhile
         if nodes != self._dead_agg:
             self._dead_agg = frozenset()
@@ -251,17 +234,17 @@ class Ros1LiveSource:
             self._retiring = (old, time.monotonic() + OVERLAP_S)
         self._subscribe(wanted)
 
-    def _subscribe(self, name: str) -> _Topic:
+    def _subscribe(self, name: str) -> SubscribedTopic:
         topic = self._topics.get(name)
         if topic is None:
-            topic = self._topics[name] = _Topic(name)
+            topic = self._topics[name] = SubscribedTopic(name)
             self._topic_names = tuple(self._topics)
         return topic
 
-    def _register(self, topic: _Topic) -> None:
+    def _register(self, topic: SubscribedTopic) -> None:
         publishers = self._master.register_subscriber(topic.name, TYPE, self.slave_uri)
         topic.registered = True
-        self._set_publishers(topic, publishers)
+        topic.set_publishers(publishers)
 
     def _unregister(self, name: str) -> None:
         topic = self._topics.pop(name, None)
@@ -289,27 +272,12 @@ class Ros1LiveSource:
 
     # -- publishers -----------------------------------------------------------------------------
 
-    def _set_publishers(self, topic: _Topic, publishers: list[str]) -> None:
-        topic.publishers = set(publishers)
-        for uri in list(topic.retry_at):
-            if uri not in topic.publishers:
-                del topic.retry_at[uri]
-                topic.attempts.pop(uri, None)
-                topic.refused.pop(uri, None)
-        now = time.monotonic()
-        for uri in topic.publishers - topic.connected - topic.connecting:
-            topic.retry_at.setdefault(uri, now)
-
     def _connect_due(self) -> None:
         now = time.monotonic()
         for topic in self._topics.values():
-            for uri, when in list(topic.retry_at.items()):
-                if when <= now and uri not in topic.connecting and uri not in topic.connected:
-                    del topic.retry_at[uri]
-                    topic.connecting.add(uri)
-                    topic.attempts[uri] = topic.attempts.get(uri, 0) + 1
-                    assert self._pool is not None
-                    self._pool.submit(self._connect, topic.name, uri)
+            for uri in topic.due(now):
+                assert self._pool is not None
+                self._pool.submit(self._connect, topic.name, uri)
 
     def _next_retry(self) -> float:
         times = [when for topic in self._topics.values() for when in topic.retry_at.values()]
@@ -345,43 +313,28 @@ class Ros1LiveSource:
             _, name, publishers = event
             topic = self._topics.get(name)
             if topic is not None:
-                self._set_publishers(topic, publishers)
+                topic.set_publishers(publishers)
         elif kind == "connected":
             _, name, uri, sock, header = event
             topic = self._topics.get(name)
             if topic is None or self._intake is None or self._stop.is_set():
                 sock.close()
                 return
-            topic.connecting.discard(uri)
-            topic.connected.add(uri)
-            topic.attempts.pop(uri, None)
-            topic.refused.pop(uri, None)
+            topic.on_connected(uri)
             self._intake.add(Connection(sock, name, uri, header.get("callerid", uri)))
         elif kind == "failed":
             _, name, uri, reason, refused = event
             topic = self._topics.get(name)
-            if topic is None:
-                return
-            topic.connecting.discard(uri)
-            if refused:
-                topic.refused[uri] = reason
-            self._retry_later(topic, uri)
+            if topic is not None:
+                topic.on_failed(uri, reason, refused)
         elif kind == "closed":
             _, name, uri, _reason = event
             topic = self._topics.get(name)
             if topic is not None:
-                topic.connected.discard(uri)
-                topic.attempts[uri] = 0
-                self._retry_later(topic, uri)
+                topic.on_closed(uri)
         elif kind == "shutdown":
             _, caller, reason = event
             self._ended = f"ROS 1 intake stopped by {caller}" + (f": {reason}" if reason else "")
-
-    def _retry_later(self, topic: _Topic, uri: str) -> None:
-        if uri in topic.publishers and uri not in topic.connected:
-            attempts = topic.attempts.get(uri, 0)
-            delay = min(RETRY_FIRST_S * (2 ** max(attempts - 1, 0)), RETRY_MAX_S)
-            topic.retry_at[uri] = time.monotonic() + delay
 
     # -- status and the end --------------------------------------------------------------------
 
@@ -424,14 +377,3 @@ class Ros1LiveSource:
                 break
             if event[0] == "connected":
                 event[3].close()
-
-
-def _unreachable(topic: _Topic) -> bool:
-    """Every publisher the master lists for ``topic`` was tried and none could be reached."""
-    return (
-        bool(topic.publishers)
-        and not topic.connected
-        and not topic.connecting
-        and all(topic.attempts.get(uri, 0) >= 1 for uri in topic.publishers)
-        and not topic.refused
-    )

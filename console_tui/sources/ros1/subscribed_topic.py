@@ -1,0 +1,85 @@
+"""One ROS 1 topic the live source subscribes to: its publishers, our connections, the retries.
+
+The master lists a topic's publishers (at registration, then by ``publisherUpdate``); the
+live source connects to each. One that cannot be reached, or whose connection ends, is tried
+again, backing off from ``RETRY_FIRST_S`` to ``RETRY_MAX_S``, while the master lists it.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+RETRY_FIRST_S = 0.5
+RETRY_MAX_S = 10.0
+
+
+@dataclass
+class SubscribedTopic:
+    """One subscribed topic: its publishers as the master lists them, and our connections."""
+
+    name: str
+    publishers: set[str] = field(default_factory=set)
+    connected: set[str] = field(default_factory=set)
+    connecting: set[str] = field(default_factory=set)
+    retry_at: dict[str, float] = field(default_factory=dict)
+    attempts: dict[str, int] = field(default_factory=dict)
+    #: Publishers that answered our header with an error, and what they said.
+    refused: dict[str, str] = field(default_factory=dict)
+    registered: bool = False
+
+    def set_publishers(self, publishers: list[str]) -> None:
+        """The master's list of publishers now: forget the others, connect to the new ones."""
+        self.publishers = set(publishers)
+        for uri in list(self.retry_at):
+            if uri not in self.publishers:
+                del self.retry_at[uri]
+                self.attempts.pop(uri, None)
+                self.refused.pop(uri, None)
+        now = time.monotonic()
+        for uri in self.publishers - self.connected - self.connecting:
+            self.retry_at.setdefault(uri, now)
+
+    def due(self, now: float) -> list[str]:
+        """The publishers to connect to now, each marked as connecting."""
+        uris = []
+        for uri, when in list(self.retry_at.items()):
+            if when <= now and uri not in self.connecting and uri not in self.connected:
+                del self.retry_at[uri]
+                self.connecting.add(uri)
+                self.attempts[uri] = self.attempts.get(uri, 0) + 1
+                uris.append(uri)
+        return uris
+
+    def on_connected(self, uri: str) -> None:
+        self.connecting.discard(uri)
+        self.connected.add(uri)
+        self.attempts.pop(uri, None)
+        self.refused.pop(uri, None)
+
+    def on_failed(self, uri: str, reason: str, refused: bool) -> None:
+        self.connecting.discard(uri)
+        if refused:
+            self.refused[uri] = reason
+        self.retry_later(uri)
+
+    def on_closed(self, uri: str) -> None:
+        self.connected.discard(uri)
+        self.attempts[uri] = 0
+        self.retry_later(uri)
+
+    def retry_later(self, uri: str) -> None:
+        if uri in self.publishers and uri not in self.connected:
+            attempts = self.attempts.get(uri, 0)
+            delay = min(RETRY_FIRST_S * (2 ** max(attempts - 1, 0)), RETRY_MAX_S)
+            self.retry_at[uri] = time.monotonic() + delay
+
+    def unreachable(self) -> bool:
+        """Every publisher the master lists was tried and none could be reached."""
+        return (
+            bool(self.publishers)
+            and not self.connected
+            and not self.connecting
+            and all(self.attempts.get(uri, 0) >= 1 for uri in self.publishers)
+            and not self.refused
+        )
