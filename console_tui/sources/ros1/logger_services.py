@@ -11,6 +11,7 @@ from __future__ import annotations
 import struct
 
 from ...model.levels import SEVERITY_TABLE, Severity
+from .tcpros import prefixed, read_prefixed
 
 GET_LOGGERS = "get_loggers"
 SET_LOGGER_LEVEL = "set_logger_level"
@@ -38,15 +39,8 @@ def decode_loggers(body: bytes) -> list[tuple[str, str]]:
 
     def text() -> str:
         nonlocal pos
-        if pos + 4 > len(body):
-            raise ReplyError("GetLoggers reply cut short")
-        (length,) = _U32.unpack_from(body, pos)
-        pos += 4
-        if pos + length > len(body):
-            raise ReplyError("GetLoggers reply: a name runs past the end")
-        value = body[pos : pos + length].decode("utf-8", "replace")
-        pos += length
-        return value
+        value, pos = read_prefixed(body, pos, "GetLoggers reply", "name", ReplyError)
+        return value.decode("utf-8", "replace")
 
     if len(body) < 4:
         raise ReplyError("GetLoggers reply cut short")
@@ -68,5 +62,4 @@ def encode_set_level(logger: str, word: str) -> bytes:
 
 
 def _string(text: str) -> bytes:
-    data = text.encode("utf-8")
-    return _U32.pack(len(data)) + data
+    return prefixed(text.encode("utf-8"))

@@ -15,7 +15,7 @@ from __future__ import annotations
 import socket
 import struct
 import time
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from urllib.parse import urlsplit
 
 CONNECT_TIMEOUT_S = 2.0
@@ -35,9 +35,27 @@ class TcprosError(Exception):
         self.refused_by_peer = refused_by_peer
 
 
+def prefixed(data: bytes) -> bytes:
+    """``data`` after its uint32 length: how TCPROS writes header fields, bodies and strings."""
+    return _U32.pack(len(data)) + data
+
+
+def read_prefixed(
+    body: bytes, pos: int, what: str, item: str, error: Callable[[str], Exception] = TcprosError
+) -> tuple[bytes, int]:
+    """The length-prefixed bytes at ``pos`` in ``body`` and the position after them; raises
+    ``error("<what> cut short")`` or ``error("<what>: a <item> runs past the end")``."""
+    if pos + 4 > len(body):
+        raise error(f"{what} cut short")
+    (length,) = _U32.unpack_from(body, pos)
+    pos += 4
+    if pos + length > len(body):
+        raise error(f"{what}: a {item} runs past the end")
+    return body[pos : pos + length], pos + length
+
+
 def encode_header(fields: Mapping[str, str]) -> bytes:
-    body = b"".join(_U32.pack(len(item)) + item for item in (f"{k}={v}".encode() for k, v in fields.items()))
-    return _U32.pack(len(body)) + body
+    return prefixed(b"".join(prefixed(f"{k}={v}".encode()) for k, v in fields.items()))
 
 
 def decode_header(body: bytes) -> dict[str, str]:
@@ -45,17 +63,11 @@ def decode_header(body: bytes) -> dict[str, str]:
     fields: dict[str, str] = {}
     pos = 0
     while pos < len(body):
-        if pos + 4 > len(body):
-            raise TcprosError("connection header cut short")
-        (length,) = _U32.unpack_from(body, pos)
-        pos += 4
-        if pos + length > len(body):
-            raise TcprosError("connection header field runs past its end")
-        key, sep, value = body[pos : pos + length].decode("utf-8", "replace").partition("=")
+        field, pos = read_prefixed(body, pos, "connection header", "field")
+        key, sep, value = field.decode("utf-8", "replace").partition("=")
         if not sep:
             raise TcprosError(f"connection header field without '=': {key[:40]!r}")
         fields[key] = value
-        pos += length
     return fields
 
 
@@ -148,7 +160,7 @@ def call_service(
         fields = read_header(sock, deadline)
         if "error" in fields:
             raise TcprosError(fields["error"] or "refused without a reason", refused_by_peer=True)
-        sock.sendall(_U32.pack(len(request)) + request)
+        sock.sendall(prefixed(request))
         ok = read_exact(sock, 1, deadline)[0]
         (length,) = _U32.unpack(read_exact(sock, 4, deadline))
         if length > MAX_REPLY_BYTES:
