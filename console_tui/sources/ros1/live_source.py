@@ -14,8 +14,8 @@ A graph thread does everything that waits on the network (each call with a timeo
 - the master restarted (its ``/run_id`` or pid changed): register again and connect to the
   publishers the new master knows; connections still open stay open;
 - publishers that appear later come with the master's ``publisherUpdate``; one whose
-  connection ends is tried again (backing off) while the master lists it; a killed node's
-  stale registration (connection refused) is skipped quietly;
+  connection ends is tried again (backing off, ``SubscribedTopic``) while the master lists
+  it; a killed node's stale registration (connection refused) is skipped quietly;
 - a publisher that refuses the subscription (another type, wrong md5sum) is reported;
 - ``rosnode kill`` (our ``shutdown``) ends the source; the table keeps what it has.
 

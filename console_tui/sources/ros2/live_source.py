@@ -14,10 +14,10 @@ turn of the loop pays for more than one message. ``stop()`` returns within tens 
 
 Loss is counted, never silent (``loss_counts.py``): the middleware's message-lost events
 and sequence gaps, batches the full ``IntakeQueue`` refused, and undecodable messages add
-up to ``SourceStatus.lost``. Fast DDS keeps at most ``QUEUE_DEPTH`` unread messages per
-subscription (with ``fastdds_reader_profile.xml``; about 5,000 without), whatever the
-depth asked for: what arrives while this thread cannot run for longer than that is lost,
-and reported as such.
+up to ``SourceStatus.lost``. Fast DDS keeps at most ``topic_reader.QUEUE_DEPTH`` unread
+messages per subscription (with ``fastdds_reader_profile.xml``; about 5,000 without),
+whatever the depth asked for: what arrives while this thread cannot run for longer than
+that is lost, and reported as such.
 
 Topic: ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``
 (``TopicChoice``, in ``topic_choice.py``): nothing arrives twice when it switches.
