@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from typing import Protocol
 
 from rich.style import Style
@@ -130,12 +131,11 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         Binding("enter", "activate", "Details", id="table.details"),
     ]
 
+    @dataclass
     class RowActivated(Message):
         """Enter or a double click on a row."""
 
-        def __init__(self, seq: int) -> None:
-            super().__init__()
-            self.seq = seq
+        seq: int
 
     class StateChanged(Message):
         """Following, pause or cursor changed (for the status bar)."""
