@@ -17,7 +17,6 @@ from textual.cache import LRUCache
 from textual.geometry import Region, Spacing
 from textual.strip import Strip
 
-from ...model.store import LogStore
 from ...model.storms import StormBadge
 from ...model.text import one_line
 from ...model.time_column import TimeFormat
@@ -33,10 +32,8 @@ _NO_SPACING = Spacing(0, 0, 0, 0)
 class TableFrame(TableLayout, TableCells):
     """``render_lines`` and ``render_line`` with their caches (``LogTable`` mixes this in)."""
 
-    # What it reads of the table (``LogTable`` sets them).
-    store: LogStore
+    # What it reads of the table (``LogTable`` sets them) beside what its bases read.
     view: TableRows
-    time_format: TimeFormat
     cursor_row: int
     selection_anchor: int | None
     decoration_of: Callable[[int], Decoration] | None
