@@ -1,6 +1,7 @@
 """The timeline strip above the table: the message rate over the whole history, by severity.
 
-Four lines, drawn with the line API from ``Timeline.columns`` (the model does the counting):
+Four lines, drawn with the line API from ``Timeline.columns`` (the model does the counting;
+the drawing is ``timeline_drawing.py``, mixed in):
 
 - the time span, the duration of a column and the peak rate (or, on a picked column, its
   time and counts);
