@@ -92,6 +92,15 @@ def fields(record) -> tuple:
     return (record.stamp_ns, record.level, record.node, record.msg, record.file, record.function, record.line)
 
 
+def talker_logs(nodes, name: str, texts: list[str]) -> None:
+    """A talker node ``name`` logs ``texts`` at INFO, one after the other, each acknowledged."""
+    talker = nodes.start("talker.py", "--name", name)
+    talker.expect("ready")
+    for text in texts:
+        talker.send({"cmd": "log", "level": "info", "msg": text})
+        talker.expect_next("logged")
+
+
 def counted(ticks: range) -> list[tuple[int, str]]:
     """What count_and_log logs (at INFO) for these ticks, in order."""
     out = []
@@ -187,12 +196,8 @@ def test_two_aggregators_do_not_echo_each_other(aggregators, nodes, ros_env, tmp
     first, second = aggregators("a"), aggregators("b", "--name", "rosout_b")
     first.wait_running()
     second.wait_running()
-    talker = nodes.start("talker.py", "--name", "twice")
-    talker.expect("ready")
-    for number in range(20):
-        talker.send({"cmd": "log", "level": "info", "msg": f"once {number}"})
-        talker.expect_next("logged")
     wanted = [f"once {n}" for n in range(20)]
+    talker_logs(nodes, "twice", wanted)
     for aggregator in (first, second):
         assert wait_until(lambda a=aggregator: b"once 19" in a.path.read_bytes(), 20)
     # A late subscriber of /rosout_agg hears each message once from each aggregator, no more.
@@ -268,11 +273,7 @@ def test_sigterm_exits_cleanly_with_a_summary(aggregators):
 def test_the_counts_are_reported_on_its_own_rosout_as_often_as_asked(aggregators, nodes):
     aggregator = aggregators("agg", "--report-every", "0.5")
     aggregator.wait_running()
-    talker = nodes.start("talker.py", "--name", "reported")
-    talker.expect("ready")
-    for number in range(3):
-        talker.send({"cmd": "log", "level": "info", "msg": f"counted {number}"})
-        talker.expect_next("logged")
+    talker_logs(nodes, "reported", [f"counted {n}" for n in range(3)])
     report = re.compile(
         r"[\d,]+ messages? from \d+ publishers?, [\d,]+ republished to \d+ subscribers?, "
         r"[\d,]+ written to .*rosout\.log; lost 0$"
