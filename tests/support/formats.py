@@ -63,6 +63,13 @@ def read_text(data: bytes, text_format: TextFormat, source: str = "test") -> tup
     return records, problems
 
 
+def read_cleanly(data: bytes, text_format: TextFormat, source: str = "test") -> list[LogRecord]:
+    """The records ``data`` reads as; it must read without a problem."""
+    records, problems = read_text(data, text_format, source)
+    assert list(problems) == []
+    return records
+
+
 def fields(record: LogRecord) -> tuple:
     """Every field but seq."""
     return (
