@@ -83,7 +83,11 @@ def build_parser() -> argparse.ArgumentParser:
         ),
     )
     getting.add_argument(
-        "--timeout", type=seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
+        "--timeout",
+        type=seconds,
+        default=DEFAULT_TIMEOUT_S,
+        metavar="SECONDS",
+        help=f"per call (default {DEFAULT_TIMEOUT_S:g})",
     )
     getting.add_argument("--json", action="store_true", help="print JSON")
 
@@ -101,7 +105,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="debug, info, warn, error, fatal (any case), or unset to inherit again (ROS 2 only)",
     )
     setting.add_argument(
-        "--timeout", type=seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
+        "--timeout",
+        type=seconds,
+        default=DEFAULT_TIMEOUT_S,
+        metavar="SECONDS",
+        help=f"per call (default {DEFAULT_TIMEOUT_S:g})",
     )
     setting.add_argument(
         "--for",

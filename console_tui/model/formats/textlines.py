@@ -3,7 +3,8 @@
 Every text format here is read the same way: ``TextLines`` turns a binary stream into
 numbered lines (split on ``\\n`` only, decoded as UTF-8, bad bytes replaced and
 reported), and ``group_lines`` gathers the lines of one record, because a message
-with newlines in it spans several lines in every one of these formats.
+with newlines in it spans several lines in every one of these formats; ``group_records``
+turns the groups into records, reporting the lines that make none.
 """
 
 from __future__ import annotations
