@@ -51,6 +51,8 @@ class OverviewActions(App[None]):
     timeline_strip: TimelineStrip
     _catching_up = False
     _strip_at = 0.0
+    #: The table followed the tail when the strip was last updated.
+    _strip_following = False
 
     def make_overview(self, store: LogStore, view: LogView, utc: bool) -> StormRows:
         """The overview's model and strip; returns the rows the table shows."""
@@ -95,18 +97,25 @@ class OverviewActions(App[None]):
             self.timeline.sync()  # done: the counts from before the change go
         finally:
             self._catching_up = False
-        self.show_overview(force=True)
+        self.show_overview(counts=True)
 
-    def show_overview(self, *, force: bool = False) -> None:
-        """The strip follows the counts and the table's place (a few times a second)."""
+    def show_overview(self, *, force: bool = False, counts: bool = False) -> None:
+        """The strip follows the counts and the table's place a few times a second; with
+        ``force`` the table's place now (unless the table follows the tail, as it did when
+        the strip was last updated: then the place moves with the counts), with ``counts``
+        the counts now too. The strip is redrawn only when what it shows changes."""
         strip = self.timeline_strip
         if not strip.shown:
             return
         now = self.clock()
-        if not force and now - self._strip_at < STRIP_PERIOD_S and not strip.has_focus:
+        due = counts or now - self._strip_at >= STRIP_PERIOD_S or strip.has_focus
+        following = self.table.following and self.table.paused_end is None
+        if not due and (not force or (following and self._strip_following)):
             return
-        self._strip_at = now
-        strip.update_from_model(self._table_span(), self.view.filtered)
+        if due:
+            self._strip_at = now
+        self._strip_following = following
+        strip.update_from_model(self._table_span(), self.view.filtered, counts=due)
 
     def _table_span(self) -> tuple[int, int] | None:
         """Stamps of the first and last rows on the table's screen."""
@@ -137,7 +146,7 @@ class OverviewActions(App[None]):
         """After the store was cleared."""
         self.storms.restart()
         self.timeline.restart()
-        self.show_overview(force=True)
+        self.show_overview(counts=True)
 
     # -- the timeline -------------------------------------------------------------------------------
 
@@ -149,7 +158,7 @@ class OverviewActions(App[None]):
             strip.add_class("-hidden")
         else:
             strip.remove_class("-hidden")
-            self.show_overview(force=True)
+            self.show_overview(counts=True)
 
     def action_timeline(self) -> None:
         """Pick a column of the timeline with the keys (showing it if hidden)."""
@@ -159,7 +168,7 @@ class OverviewActions(App[None]):
             return
         if not strip.shown:
             strip.remove_class("-hidden")
-        self.show_overview(force=True)
+        self.show_overview(counts=True)
         focus_now(strip)
 
     def on_timeline_strip_jump(self, message: TimelineStrip.Jump) -> None:

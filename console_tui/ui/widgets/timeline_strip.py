@@ -106,6 +106,8 @@ class TimelineStrip(TimelineDrawing, can_focus=True):
         self._lines: list[Strip] = []
         self._key: tuple | None = None
         self._columns: TimelineColumns | None = None
+        #: The timeline's counts the strip is to show (``update_from_model`` with ``counts``).
+        self._counts_key: tuple[int, bool] = (-1, False)
 
     @property
     def shown(self) -> bool:
@@ -113,34 +115,45 @@ class TimelineStrip(TimelineDrawing, can_focus=True):
 
     # -- what the app tells it ----------------------------------------------------------------------
 
-    def update_from_model(self, position: tuple[int, int] | None, filtered: bool) -> None:
-        """Redraw when the counts, the table's place or the rules changed."""
+    def update_from_model(self, position: tuple[int, int] | None, filtered: bool, *, counts: bool = True) -> None:
+        """Redraw when the counts (with ``counts``: new ones are not drawn otherwise, so that
+        the table's place moving as rows arrive does not redraw the strip every frame), the
+        table's place on the axis, or the rules changed."""
         if not self.shown:
             return
         self.position = position
         self.filtered = filtered
+        if counts:
+            self._counts_key = (self.timeline.generation, self.timeline.recounting)
         if self._lines_key() != self._key:
             self.refresh()
 
     def _lines_key(self) -> tuple:
         return (
             self.size.width,
-            self.timeline.generation,
-            self.timeline.recounting,
-            self.position,
+            self._counts_key,
+            self._position_columns(),
             self.picked_ns,
             self.filtered,
             self.has_focus,
             self.app.theme if self.is_attached else None,
         )
 
+    def _position_columns(self) -> tuple[int, int] | None:
+        """The columns the table's place covers on the strip as drawn (its stamps change
+        with every row that arrives while the table follows; its columns seldom do)."""
+        position, columns = self.position, self._columns
+        if position is None or columns is None:
+            return position
+        return columns.column_of(position[0]), columns.column_of(position[1])
+
     # -- drawing ------------------------------------------------------------------------------------
 
     def render_line(self, y: int) -> Strip:
         key = self._lines_key()
         if key != self._key or not self._lines:
-            self._key = key
             self._lines = self._draw(self.size.width)
+            self._key = self._lines_key()  # the table's place in the columns just drawn
         return self._lines[y] if y < len(self._lines) else Strip.blank(self.size.width)
 
     # -- picking a column ---------------------------------------------------------------------------
