@@ -29,7 +29,8 @@ _NS_PER_S = 1_000_000_000
 LINES = 4
 
 
-def stack(counts: Sequence[int], peak: int, eighths: int = _EIGHTHS) -> tuple[int, ...]:
+@lru_cache(maxsize=4096)  # most columns keep their counts from one frame to the next
+def stack(counts: tuple[int, ...], peak: int, eighths: int = _EIGHTHS) -> tuple[int, ...]:
     """Eighths of the bar for each severity: the bar as high as the total against ``peak``
     (at least one eighth when there is anything), each severity its share of it, and at least
     one eighth for any WARN, ERROR or FATAL."""
@@ -207,6 +208,7 @@ class TimelineDrawing(Widget):
     def _mark_line(self, columns: TimelineColumns, width: int, base: Style) -> Strip:
         axis, position = base + self._style("axis"), base + self._style("position")
         marks = [base + self._style(name) + Style(bold=True) for name in SEVERITIES]
+        inside_marks = [mark + Style(reverse=True) for mark in marks]
         picked_style = self._style("picked")
         picked = self.picked_column(columns)
         here = None
@@ -218,7 +220,7 @@ class TimelineDrawing(Widget):
             glyph, style = ("━", position) if inside else ("─", axis)
             for slot, letter in _MARKS:
                 if counts[slot]:
-                    glyph, style = letter, marks[slot] + (Style(reverse=True) if inside else Style())
+                    glyph, style = letter, (inside_marks if inside else marks)[slot]
                     break
             if column == picked:
                 style = style + picked_style
