@@ -131,6 +131,12 @@ class StormRows(ShownFollower):
                 if run.expanded:
                     rows.append(seq)
                     run.members.append(seq)  # type: ignore[union-attr]  # expanded: it has members
+            elif run is not None and run.count == 1 and not run.expanded:
+                # The node's last message stayed on its own (no storm holds it): its run
+                # starts again here, without a new object for every message.
+                rows.append(seq)
+                run.head = run.last = seq
+                run.level, run.source, run.key = level, source, key
             else:
                 rows.append(seq)
                 runs[node] = Storm(seq, node, level, source, key)
