@@ -21,7 +21,7 @@ from rich.style import Style
 from textual import events
 from textual.binding import Binding
 from textual.cache import LRUCache
-from textual.geometry import Size
+from textual.geometry import Region, Size
 from textual.message import Message
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
@@ -247,14 +247,19 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
             else:
                 self.cursor_row = min(self.cursor_row, max(rows - 1, 0))
             top = self.view.row_of(top_seq) if top_seq is not None else None
-        if shown is not None and top is not None and self._shown_seqs(top) == shown:
-            # The same rows on screen (older ones were filtered in, or new ones arrived below
-            # while scrolled up): only the scroll offset and, a few times a second, the
-            # scrollbar move; the table is not redrawn.
-            self._update_virtual_size(quiet=True)
-            self.set_reactive(ScrollView.scroll_y, float(top))
-            self.set_reactive(ScrollView.scroll_target_y, float(top))
-            return
+        if shown is not None and top is not None:
+            now = self._shown_seqs(top)
+            changed = _badges_changed(shown, now, badges=self.badge_of is not None)
+            if changed is not None:
+                # The same rows on screen (older ones were filtered in, or new ones arrived
+                # below while scrolled up): only the scroll offset and, a few times a second,
+                # the scrollbar move; only rows whose storm count changed are redrawn.
+                self._update_virtual_size(quiet=True)
+                self.set_reactive(ScrollView.scroll_y, float(top))
+                self.set_reactive(ScrollView.scroll_target_y, float(top))
+                for line in changed:
+                    self.refresh(Region(0, self.gutter.top + 1 + line, self.outer_size.width, 1))
+                return
         self._update_virtual_size()
         if top is not None:
             self.set_scroll(None, top)
@@ -347,6 +352,19 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         self._update_virtual_size()
         if self.following and self.paused_end is None:
             self._scroll_to_row_end()
+
+
+def _badges_changed(before: tuple[object, ...], after: tuple[object, ...], *, badges: bool) -> list[int] | None:
+    """The rows on screen (0: the first, under the header) whose storm badge changed
+    between two ``_shown_seqs``, when the cursor and the rows are the same; else None."""
+    if before == after:
+        return []
+    if not badges or len(before) != len(after):
+        return None
+    rows = len(before) // 2
+    if before[: rows + 1] != after[: rows + 1]:
+        return None
+    return [line for line in range(rows) if before[rows + 1 + line] != after[rows + 1 + line]]
 
 
 __all__ = ["Decoration", "LogTable", "Spans", "TableRows"]
