@@ -53,6 +53,8 @@ class OverviewActions(App[None]):
     _strip_at = 0.0
     #: The table followed the tail when the strip was last updated.
     _strip_following = False
+    #: The store's end when the strip was last updated.
+    _strip_end = -1
 
     def make_overview(self, store: LogStore, view: LogView, utc: bool) -> StormRows:
         """The overview's model and strip; returns the rows the table shows."""
@@ -97,25 +99,25 @@ class OverviewActions(App[None]):
             self.timeline.sync()  # done: the counts from before the change go
         finally:
             self._catching_up = False
-        self.show_overview(counts=True)
+        self.show_overview(force=True)
 
-    def show_overview(self, *, force: bool = False, counts: bool = False) -> None:
-        """The strip follows the counts and the table's place a few times a second; with
-        ``force`` the table's place now (unless the table follows the tail, as it did when
-        the strip was last updated: then the place moves with the counts), with ``counts``
-        the counts now too. The strip is redrawn only when what it shows changes."""
+    def show_overview(self, *, force: bool = False) -> None:
+        """The strip follows the counts and the table's place a few times a second, or now
+        with ``force`` -- except while the table follows the tail and records arrive: then
+        the table says it changed every tick, and the strip waits for its time."""
         strip = self.timeline_strip
         if not strip.shown:
             return
         now = self.clock()
-        due = counts or now - self._strip_at >= STRIP_PERIOD_S or strip.has_focus
-        following = self.table.following and self.table.paused_end is None
-        if not due and (not force or (following and self._strip_following)):
-            return
-        if due:
-            self._strip_at = now
-        self._strip_following = following
-        strip.update_from_model(self._table_span(), self.view.filtered, counts=due)
+        table, end = self.table, self.store.end_seq
+        following = table.following and table.paused_end is None
+        due = now - self._strip_at >= STRIP_PERIOD_S or strip.has_focus
+        if not due:
+            at_the_tail = following and self._strip_following and end != self._strip_end and strip.position is not None
+            if not force or at_the_tail:
+                return
+        self._strip_at, self._strip_following, self._strip_end = now, following, end
+        strip.update_from_model(self._table_span(), self.view.filtered)
 
     def _table_span(self) -> tuple[int, int] | None:
         """Stamps of the first and last rows on the table's screen."""
@@ -146,7 +148,7 @@ class OverviewActions(App[None]):
         """After the store was cleared."""
         self.storms.restart()
         self.timeline.restart()
-        self.show_overview(counts=True)
+        self.show_overview(force=True)
 
     # -- the timeline -------------------------------------------------------------------------------
 
@@ -158,7 +160,7 @@ class OverviewActions(App[None]):
             strip.add_class("-hidden")
         else:
             strip.remove_class("-hidden")
-            self.show_overview(counts=True)
+            self.show_overview(force=True)
 
     def action_timeline(self) -> None:
         """Pick a column of the timeline with the keys (showing it if hidden)."""
@@ -168,7 +170,7 @@ class OverviewActions(App[None]):
             return
         if not strip.shown:
             strip.remove_class("-hidden")
-        self.show_overview(counts=True)
+        self.show_overview(force=True)
         focus_now(strip)
 
     def on_timeline_strip_jump(self, message: TimelineStrip.Jump) -> None:

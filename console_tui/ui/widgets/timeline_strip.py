@@ -106,7 +106,7 @@ class TimelineStrip(TimelineDrawing, can_focus=True):
         self._lines: list[Strip] = []
         self._key: tuple | None = None
         self._columns: TimelineColumns | None = None
-        #: The timeline's counts the strip is to show (``update_from_model`` with ``counts``).
+        #: The timeline's counts the strip is to show (as of ``update_from_model``).
         self._counts_key: tuple[int, bool] = (-1, False)
 
     @property
@@ -115,16 +115,13 @@ class TimelineStrip(TimelineDrawing, can_focus=True):
 
     # -- what the app tells it ----------------------------------------------------------------------
 
-    def update_from_model(self, position: tuple[int, int] | None, filtered: bool, *, counts: bool = True) -> None:
-        """Redraw when the counts (with ``counts``: new ones are not drawn otherwise, so that
-        the table's place moving as rows arrive does not redraw the strip every frame), the
-        table's place on the axis, or the rules changed."""
+    def update_from_model(self, position: tuple[int, int] | None, filtered: bool) -> None:
+        """Redraw when the counts, the table's place on the axis or the rules changed."""
         if not self.shown:
             return
         self.position = position
         self.filtered = filtered
-        if counts:
-            self._counts_key = (self.timeline.generation, self.timeline.recounting)
+        self._counts_key = (self.timeline.generation, self.timeline.recounting)
         if self._lines_key() != self._key:
             self.refresh()
 
