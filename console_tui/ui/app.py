@@ -54,7 +54,7 @@ from .rule_actions import RuleActions
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
-from .screens.marks import MarksScreen
+from .screens.mark_list import MarksScreen
 from .screens.summary import SummaryScreen
 from .search_actions import SearchActions
 from .toggle_actions import ToggleActions

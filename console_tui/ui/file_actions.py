@@ -20,7 +20,7 @@ from ..model.text import one_line, plural
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from .screens.files import OpenScreen, SaveRequest, SaveScreen
-from .screens.problems import ProblemsScreen
+from .screens.load_problems import ProblemsScreen
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 

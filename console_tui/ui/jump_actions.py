@@ -25,7 +25,7 @@ from ..model.seek import Hits, Seeker, level_hits, view_shows
 from ..model.store import LogStore
 from ..model.text import one_line
 from ..model.view import LogView
-from .screens.marks import MarksScreen
+from .screens.mark_list import MarksScreen
 from .widgets.log_table import LogTable
 
 #: A jump looks this long at once, then goes on in slices of the same length.
