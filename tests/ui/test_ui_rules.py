@@ -153,6 +153,7 @@ async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], r
     if not app.rules_pane.is_open:
         await pilot.press("r")
     await pilot.press("a")
+    await until(pilot, lambda: isinstance(app.screen, RuleEditor), what="the rule editor")
     editor = app.screen
     assert isinstance(editor, RuleEditor)
     editor.query_one("#kind").value = kind
