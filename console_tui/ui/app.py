@@ -14,7 +14,6 @@ in a module of its own.
 from __future__ import annotations
 
 import time
-from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
@@ -162,7 +161,6 @@ class ConsoleApp(
         self.utc = utc
         self.drain_interval = drain_interval
         self.clock = clock
-        self._arrivals = deque()
         self.collection_policy = CollectionPolicy()
         rows = self.make_overview(self.store, self.view, utc)
         self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
@@ -191,7 +189,6 @@ class ConsoleApp(
         self.node_stats.update()
         self.node_pane = NodePane(self.node_stats, self.node_toggles)
         self.exit_signals = ExitSignals(self._exit_on_signal)
-        self._stopping = []
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)

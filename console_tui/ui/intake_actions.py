@@ -72,12 +72,15 @@ class IntakeActions(AppPart):
     follow_overview: Callable[[], None]
     rules_changed: Callable[[], None]
     search_after_records: Callable[[], None]
-    #: When records arrived, and how many: the receive rate.
-    _arrivals: deque[tuple[float, int]]
     _rate = 0.0
     _rate_at = 0.0
-    #: The threads stopping the sources, once quitting began.
-    _stopping: list[threading.Thread]
+
+    def __init__(self) -> None:
+        super().__init__()
+        #: When records arrived, and how many: the receive rate.
+        self._arrivals: deque[tuple[float, int]] = deque()
+        #: The threads stopping the sources, once quitting began.
+        self._stopping: list[threading.Thread] = []
 
     # -- the sources ------------------------------------------------------------------------------
 
