@@ -1,4 +1,4 @@
-"""Logger levels of a ROS graph's nodes, whatever the ROS: the errors, the events, the common part.
+"""Logger levels of a ROS graph's nodes, whatever the ROS: the control, its events, the common part.
 
 A ``LoggerControl`` runs one background thread (``console-tui-loggers``) that makes every ROS
 call. Its methods may be called from any thread and never block: calls return
@@ -15,7 +15,8 @@ it returns (each restore waits up to the call timeout); a process killed outrigh
 Beside it: ``logger_errors.py`` (how a call fails), ``logger_graph.py`` (the graph as watched,
 and waiting until it has settled), ``logger_calls.py`` (one call as the loggers thread moves it on).
 
-A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``).
+A ROS gets its control by subclassing ``LoggerControl`` (``ros2/logger_control.py``,
+``ros1/logger_control.py``).
 The subclass provides, called on the loggers thread unless said otherwise:
 
 - ``_open()``: set up (a node, a connection to the master). An error ends the control and
@@ -33,7 +34,8 @@ The subclass provides, called on the loggers thread unless said otherwise:
 - ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
 - ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
 
-and may set ``lists_loggers`` and ``read_when_asked`` (see them), and may override ``_lost(call)`` (a sent call's service went away: default never),
+and may set ``lists_loggers``, ``read_when_asked``, ``graph_min_s`` and ``graph_quiet_s`` (see
+them), and may override ``_lost(call)`` (a sent call's service went away: default never),
 ``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
 ``no_services_hint`` (how a user gives a node the logger services).
 """
