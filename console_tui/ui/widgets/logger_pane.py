@@ -31,7 +31,7 @@ from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
 from .logger_lists import LoggerList, NodeList
-from .side_pane import SidePane
+from .side_pane import RightPane
 
 if TYPE_CHECKING:
     from ...sources.logger_control import LoggerControl
@@ -55,7 +55,7 @@ _HINTS: list[Hint] = [
 _READ_HINTS: list[Hint] = [(("select", "refresh"), "read its loggers"), ("add_logger", "set one by name")]
 
 
-class LoggerPane(SidePane):
+class LoggerPane(RightPane):
     """Nodes, then the selected node's loggers; keys set the highlighted logger's level.
 
     | Key(s) | Description |
@@ -74,12 +74,6 @@ class LoggerPane(SidePane):
     LoggerPane {
         width: 46;
         max-width: 50%;
-        height: 100%;
-        background: $surface;
-        border-left: vkey $border-blurred;
-        padding: 0 0 0 1;
-        &:focus-within { border-left: vkey $border; }
-        & > .pane-title { text-style: bold; color: $text-primary; height: 1; }
         & > NodeList { height: auto; max-height: 40%; }
         & > LoggerList { height: 1fr; min-height: 3; }
         & > NodeList:focus, & > LoggerList:focus { background-tint: $foreground 5%; }
@@ -87,8 +81,6 @@ class LoggerPane(SidePane):
         & > #logger-notice { height: auto; max-height: 6; color: $text-muted; }
         & > #logger-notice.-error { color: $text-error; }
         & > LevelBar { height: auto; color: $text-accent; }
-        & > Input { margin: 0; }
-        & > #logger-keys { height: auto; color: $text-muted; }
     }
     """
 
@@ -161,7 +153,7 @@ class LoggerPane(SidePane):
         yield self.notice_line
         yield LevelBar(id="logger-level-bar")
         yield self.name_input
-        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="logger-keys")
+        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="logger-keys", classes="pane-keys")
 
     def on_mount(self) -> None:
         if self.requests.control is not None:
