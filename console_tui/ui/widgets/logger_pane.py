@@ -23,8 +23,7 @@ from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel, node_of_logger
-from ...model.logger_view import NO_ROS_TEXT
+from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
 from ...sources.logger_events import LoggerEvent, NodesChanged
 from ...sources.logger_requests import CallEnded, LoggerRequests
 from ..keys import Hint, hint_line
@@ -35,8 +34,6 @@ from .side_pane import RightPane
 
 if TYPE_CHECKING:
     from ...sources.logger_control import LoggerControl
-
-__all__ = ["NO_ROS_TEXT", "LoggerPane"]
 
 TICK_S = 1.0
 
@@ -229,15 +226,16 @@ class LoggerPane(RightPane):
 
     def show_failure(self, text: str) -> None:
         """A failed call: said in the pane and as a notification."""
-        self._say(text, error=True)
+        self.view.say(text, error=True)
+        self._render_notice()
         self.app.notify(text, title="Logger levels", severity="error", timeout=8, markup=False)
 
     def open_for_logger(self, logger: str) -> bool:
         """Open on the node whose messages carry this logger name (a table row's node)."""
         self.open(focus=False)
-        node = node_of_logger(logger, self.nodes)
+        node = self.view.node_logging_as(logger)
         if node is None:
-            self._say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
+            self._render_notice()  # says so
             self.node_list.focus()
             return False
         self.select_node(node.fqn, None if logger == node.fqn else logger)
@@ -385,10 +383,6 @@ class LoggerPane(RightPane):
         )
         self.notice_line.update(plain(text, lines=True))
         self.notice_line.set_class(error, "-error")
-
-    def _say(self, text: str, error: bool = False) -> None:
-        self.view.say(text, error)
-        self._render_notice()
 
     def _render_checking(self) -> None:
         self._render_nodes()
