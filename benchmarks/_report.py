@@ -5,7 +5,11 @@ from __future__ import annotations
 import os
 import platform
 import sys
-from collections.abc import Sequence
+import time
+from collections.abc import Callable, Sequence
+from typing import TypeVar
+
+T = TypeVar("T")
 
 
 def cpu_model() -> str:
@@ -44,6 +48,26 @@ def ros_line(env: dict[str, str]) -> str:
 def ros_header(title: str, env: dict[str, str], details: str) -> list[str]:
     """The lines a ROS benchmark's report starts with: its title, the machine, rclpy and RMW, and ``details``."""
     return [f"## {title}", "", machine_line(), f"{ros_line(env)}; {details}"]
+
+
+def ros_environment(domain: int, **more: str) -> dict[str, str]:
+    """The environment of a ROS benchmark's processes: this one's, on ROS_DOMAIN_ID ``domain``,
+    discovery on this machine only (ROS_AUTOMATIC_DISCOVERY_RANGE; the older ROS_LOCALHOST_ONLY dropped)."""
+    env = {**os.environ, "ROS_DOMAIN_ID": str(domain), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", **more}
+    env.pop("ROS_LOCALHOST_ONLY", None)
+    return env
+
+
+def run_under_header(header: list[str], run: Callable[[], T]) -> T:
+    """``run()``, its ``header`` on stderr before (to see what runs) and on stdout after, then
+    the load average at the end and how long it took; returns what ``run`` returned."""
+    print("\n".join(header), file=sys.stderr, flush=True)
+    started = time.monotonic()
+    result = run()
+    print("\n".join(header))
+    print(f"Load average at the end: {os.getloadavg()[0]:.2f} (run took {time.monotonic() - started:.0f} s)")
+    print()
+    return result
 
 
 def table(headers: Sequence[str], rows: Sequence[Sequence[object]]) -> str:

@@ -28,10 +28,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from _report import machine_line
-from recordings import write_rosbag2
 
 from console_tui.model.record import LogRecord
 from console_tui.sources.files import open_log_file
+
+from support.recordings import write_ros1_bag, write_rosbag2
 
 IMAGE_BYTES = 1_000_000
 
@@ -82,59 +83,6 @@ def size_of(path: Path) -> int:
     return path.stat().st_size if path.is_file() else sum(p.stat().st_size for p in path.rglob("*") if p.is_file())
 
 
-def write_ros1_with_images(path: Path, records: list[LogRecord], logs_per_image: int) -> Path:
-    """A ROS 1 bag like write_ros1_bag's, with a 1 MB image before every few log messages."""
-    import numpy as np
-    from rosbags.rosbag1 import Writer
-    from rosbags.typesys import Stores, get_typestore
-
-    from console_tui.model.levels import to_ros1
-
-    typestore = get_typestore(Stores.ROS1_NOETIC)
-    types = typestore.types
-    Log, Header, Time, Image = (
-        types[n]
-        for n in (
-            "rosgraph_msgs/msg/Log",
-            "std_msgs/msg/Header",
-            "builtin_interfaces/msg/Time",
-            "sensor_msgs/msg/Image",
-        )
-    )
-    width = 1024
-    height = IMAGE_BYTES // (width * 3)
-    pixels = np.random.default_rng(1).integers(0, 255, width * height * 3, dtype=np.uint8)
-    image = Image(
-        header=Header(seq=0, stamp=Time(sec=0, nanosec=0), frame_id="camera"),
-        height=height,
-        width=width,
-        encoding="rgb8",
-        is_bigendian=0,
-        step=width * 3,
-        data=pixels,
-    )
-    image_data = typestore.serialize_ros1(image, "sensor_msgs/msg/Image")
-    with Writer(path) as writer:
-        rosout = writer.add_connection("/rosout", "rosgraph_msgs/msg/Log", typestore=typestore)
-        camera = writer.add_connection("/camera/image", "sensor_msgs/msg/Image", typestore=typestore)
-        for index, record in enumerate(records):
-            if index % logs_per_image == 0:
-                writer.write(camera, record.stamp_ns - 1, image_data)
-            sec, nanosec = divmod(record.stamp_ns, 1_000_000_000)
-            message = Log(
-                header=Header(seq=index, stamp=Time(sec=sec, nanosec=nanosec), frame_id=""),
-                level=to_ros1(record.level),
-                name=record.node,
-                msg=record.msg,
-                file=record.file,
-                function=record.function,
-                line=record.line,
-                topics=[],
-            )
-            writer.write(rosout, record.stamp_ns, typestore.serialize_ros1(message, "rosgraph_msgs/msg/Log"))
-    return path
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--image-mb", type=int, default=300, help="about how many MB of images (1 MB each)")
@@ -162,7 +110,13 @@ def main() -> None:
         recordings = {
             "rosbag2 MCAP": _rosbag2(base / "mcap", records, "mcap", args.logs_per_image),
             "rosbag2 sqlite3": _rosbag2(base / "sqlite3", records, "sqlite3", args.logs_per_image),
-            "ROS 1 bag": write_ros1_with_images(base / "run.bag", records, args.logs_per_image),
+            "ROS 1 bag": write_ros1_bag(
+                base / "run.bag",
+                records,
+                chatter_every=args.logs_per_image,
+                image_bytes=IMAGE_BYTES,
+                image_every=args.logs_per_image,
+            ),
         }
         rows = []
         for name, path in recordings.items():

@@ -53,7 +53,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
 from _probe import process_cpu
-from _report import ros_header, table, verdict
+from _report import ros_environment, ros_header, run_under_header, table, verdict
 
 TOPIC = "/console_tui_bench_log"
 QUEUE_DEPTH = 10_000
@@ -814,8 +814,7 @@ def main() -> None:
     args.rates = args.rates or ([str(LOSSLESS_RATE)] if sustained else list(DEFAULT_RATES))
     args.kinds = args.kinds or (["app"] if sustained else list(DEFAULT_KINDS))
     args.duration = args.duration or (args.sustained if sustained else 5.0)
-    env = {**os.environ, "ROS_DOMAIN_ID": str(args.domain), "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
-    env.pop("ROS_LOCALHOST_ONLY", None)
+    env = ros_environment(args.domain)
     if args.udp:
         env["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
     header = ros_header(
@@ -824,12 +823,7 @@ def main() -> None:
         f"transport {'UDPv4' if args.udp else 'Fast DDS defaults (shared memory)'}; "
         f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized.",
     )
-    print("\n".join(header), file=sys.stderr, flush=True)
-    started = time.monotonic()
-    rows = measure(args, env)
-    print("\n".join(header))
-    print(f"Load average at the end: {os.getloadavg()[0]:.2f} (run took {time.monotonic() - started:.0f} s)")
-    print()
+    rows = run_under_header(header, lambda: measure(args, env))
     print(report(rows, args))
 
 

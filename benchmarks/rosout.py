@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _report import ros_header, table
+from _report import ros_environment, ros_header, run_under_header, table
 from intake import Child, message_pool, settle
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -214,33 +214,28 @@ def main() -> None:
         "--domain", type=int, default=150 + os.getpid() % 80, help="ROS_DOMAIN_ID (default: from the pid)"
     )
     args = parser.parse_args()
-    env = {
-        **os.environ,
-        "ROS_DOMAIN_ID": str(args.domain),
-        "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
-        "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])),
-    }
-    env.pop("ROS_LOCALHOST_ONLY", None)
+    env = ros_environment(
+        args.domain, PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")]))
+    )
     header = ros_header(
         "Rosout benchmark (benchmarks/rosout.py)",
         env,
         f"{args.publishers} publisher processes; {args.duration:g} s per measurement, median of {args.repeat}; "
         f"messages {len(message_pool(0)[0])}-ish bytes serialized; rosout.log on {tempfile.gettempdir()}.",
     )
-    print("\n".join(header), file=sys.stderr, flush=True)
-    started = time.monotonic()
-    rows: list[Row] = []
-    with tempfile.TemporaryDirectory(prefix="console-tui-rosout-bench-") as workdir:
-        for rate in args.rates:
-            runs = sorted(
-                (measure_once(args, env, rate, Path(workdir)) for _ in range(args.repeat)),
-                key=lambda row: row.forwarded_per_s,
-            )
-            rows.append(runs[len(runs) // 2])
-    print("\n".join(header))
-    print(f"Load average at the end: {os.getloadavg()[0]:.2f} (run took {time.monotonic() - started:.0f} s)")
-    print()
-    print(report(rows))
+
+    def medians() -> list[Row]:
+        rows: list[Row] = []
+        with tempfile.TemporaryDirectory(prefix="console-tui-rosout-bench-") as workdir:
+            for rate in args.rates:
+                runs = sorted(
+                    (measure_once(args, env, rate, Path(workdir)) for _ in range(args.repeat)),
+                    key=lambda row: row.forwarded_per_s,
+                )
+                rows.append(runs[len(runs) // 2])
+        return rows
+
+    print(report(run_under_header(header, medians)))
 
 
 if __name__ == "__main__":

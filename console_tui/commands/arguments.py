@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import textwrap
 
 from ..sources.ros_version import ROS1, ROS2
 
@@ -115,6 +116,17 @@ def add_ros_version_arguments(parser: argparse.ArgumentParser) -> None:
         help="ROS 1: talk to the master at ROS_MASTER_URI (default: ROS 1 when ROS_VERSION=1 or a master answers there, else ROS 2)",
     )
     group.add_argument("--ros2", dest="ros", action="store_const", const=ROS2, help="ROS 2, through rclpy")
+
+
+def command_parser(name: str, description: str, epilog: str) -> argparse.ArgumentParser:
+    """The parser of ``console-tui NAME``: ``description`` filled to 70 columns, then
+    ``epilog`` as written (its exit statuses)."""
+    return argparse.ArgumentParser(
+        prog=f"console-tui {name}",
+        description=textwrap.fill(description),
+        epilog=epilog,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
 
 
 def add_subcommand(

@@ -19,7 +19,7 @@ from pathlib import Path
 from ..model.rules.query import QueryError, parse_time
 from ..model.text import plural
 from ..sources.log_dir import LogRun, UnsafeRemoval, dangling_links, remove_run, ros_log_dir, scan_runs
-from .arguments import add_subcommand, parse_size, size_text
+from .arguments import add_subcommand, command_parser, parse_size, size_text
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -36,16 +36,13 @@ DEFAULT_TOP = 10
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="console-tui clean",
-        description=textwrap.fill(
-            "rosclean for ROS 2 and ROS 1: check the size of the ROS log directory "
-            "($ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log) and purge old runs. A run is one "
-            "entry of the directory: a ROS 1 run, a ros2 launch directory, a console-tui rosout "
-            "directory, or one ROS 2 node's log file. Symlinks are never followed."
-        ),
-        epilog=EXIT_CODES,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    parser = command_parser(
+        "clean",
+        "rosclean for ROS 2 and ROS 1: check the size of the ROS log directory "
+        "($ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log) and purge old runs. A run is one "
+        "entry of the directory: a ROS 1 run, a ros2 launch directory, a console-tui rosout "
+        "directory, or one ROS 2 node's log file. Symlinks are never followed.",
+        EXIT_CODES,
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="{check,purge}")
     check = add_subcommand(

@@ -8,7 +8,7 @@ import argparse
 from ..model.levels import Severity, parse_severity
 from ..model.logger_levels import DEFAULT_LOGGER
 from ..sources.logger_graph import GRAPH_MIN_S, GRAPH_QUIET_S
-from .arguments import add_ros_version_arguments, add_subcommand
+from .arguments import add_ros_version_arguments, add_subcommand, command_parser
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -35,16 +35,13 @@ _UNSET_WORDS = ("inherited", "inherit")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="console-tui loggers",
-        description=(
-            "List ROS nodes and get or set their logger levels: in ROS 2 through the nodes' "
-            "get_logger_levels and set_logger_levels services (ROS 2 Iron or later, enabled in the node), "
-            "in ROS 1 through ~get_loggers and ~set_logger_level (every roscpp and rospy node). "
-            "ROS 1 when ROS_VERSION=1 or a master answers at ROS_MASTER_URI, else ROS 2 (or say --ros1, --ros2)."
-        ),
-        epilog=EXIT_CODES,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    parser = command_parser(
+        "loggers",
+        "List ROS nodes and get or set their logger levels: in ROS 2 through the nodes' "
+        "get_logger_levels and set_logger_levels services (ROS 2 Iron or later, enabled in the node), "
+        "in ROS 1 through ~get_loggers and ~set_logger_level (every roscpp and rospy node). "
+        "ROS 1 when ROS_VERSION=1 or a master answers at ROS_MASTER_URI, else ROS 2 (or say --ros1, --ros2).",
+        EXIT_CODES,
     )
     commands = parser.add_subparsers(dest="command", required=True, metavar="{list,get,set}")
 
@@ -86,7 +83,11 @@ def build_parser() -> argparse.ArgumentParser:
         ),
     )
     getting.add_argument(
-        "--timeout", type=seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
+        "--timeout",
+        type=seconds,
+        default=DEFAULT_TIMEOUT_S,
+        metavar="SECONDS",
+        help=f"per call (default {DEFAULT_TIMEOUT_S:g})",
     )
     getting.add_argument("--json", action="store_true", help="print JSON")
 
@@ -104,7 +105,11 @@ def build_parser() -> argparse.ArgumentParser:
         help="debug, info, warn, error, fatal (any case), or unset to inherit again (ROS 2 only)",
     )
     setting.add_argument(
-        "--timeout", type=seconds, default=DEFAULT_TIMEOUT_S, metavar="SECONDS", help="per call (default 2)"
+        "--timeout",
+        type=seconds,
+        default=DEFAULT_TIMEOUT_S,
+        metavar="SECONDS",
+        help=f"per call (default {DEFAULT_TIMEOUT_S:g})",
     )
     setting.add_argument(
         "--for",

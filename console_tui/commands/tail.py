@@ -16,7 +16,6 @@ import argparse
 import os
 import signal
 import sys
-import textwrap
 import threading
 import time
 from collections.abc import Iterable, Sequence
@@ -32,7 +31,13 @@ from ..model.text import one_line
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_live
-from .arguments import add_last_argument, add_log_format_argument, add_ros_version_arguments, check_rule_arguments
+from .arguments import (
+    add_last_argument,
+    add_log_format_argument,
+    add_ros_version_arguments,
+    check_rule_arguments,
+    command_parser,
+)
 
 EXIT_OK = 0
 EXIT_FILES = 1
@@ -58,17 +63,14 @@ exit status:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="console-tui tail",
-        description=textwrap.fill(
-            "Print log messages on standard output, filtered with the app's query language and rule "
-            "files: the live stream of ROS 2 or ROS 1 (without FILEs: /rosout_agg when something publishes "
-            "it, else /rosout), "
-            "or log files and recordings merged by time, or both (--live). Runs until Ctrl-C when live or "
-            "following; a closed pipe (| head) ends it quietly."
-        ),
-        epilog=EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    parser = command_parser(
+        "tail",
+        "Print log messages on standard output, filtered with the app's query language and rule "
+        "files: the live stream of ROS 2 or ROS 1 (without FILEs: /rosout_agg when something publishes "
+        "it, else /rosout), "
+        "or log files and recordings merged by time, or both (--live). Runs until Ctrl-C when live or "
+        "following; a closed pipe (| head) ends it quietly.",
+        EPILOG,
     )
     parser.add_argument(
         "files",

@@ -8,6 +8,7 @@ system Python (which may be as old as 3.8 on a Noetic machine): keep this module
 
 from __future__ import annotations
 
+import itertools
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # only in annotations: Python 3.8 cannot subscript collections.abc.Callable
@@ -16,13 +17,16 @@ if TYPE_CHECKING:  # only in annotations: Python 3.8 cannot subscript collection
     Every = Callable[[float, Callable[[], None]], Any]
 
 
+def every_count(every: Every, seconds: float, callback: Callable[[int], None]) -> None:
+    """``callback(1)``, ``callback(2)`` and so on, one every ``seconds``."""
+    counter = itertools.count(1)
+    every(seconds, lambda: callback(next(counter)))
+
+
 def count_and_log(logger: Any, every: Every) -> None:
     """The ROS logging chapter's counter: DEBUG every tick, INFO on 3, WARN on 5, ERROR on 10, FATAL on 20."""
-    state = {"count": 0}
 
-    def tick() -> None:
-        state["count"] += 1
-        count = state["count"]
+    def tick(count: int) -> None:
         logger.debug(f"Counted to {count}")
         if count % 3 == 0:
             logger.info(f"{count} is divisible by 3")
@@ -33,17 +37,14 @@ def count_and_log(logger: Any, every: Every) -> None:
         if count % 20 == 0:
             logger.fatal(f"{count} is divisible by 20")
 
-    every(0.25, tick)
+    every_count(every, 0.25, tick)
 
 
 def planner(logger: Any, every: Every) -> None:
     """A path planner that sometimes fails, with a child logger for its costmap."""
     costmap = logger.get_child("costmap")
-    state = {"plan": 0}
 
-    def plan_path() -> None:
-        state["plan"] += 1
-        plan = state["plan"]
+    def plan_path(plan: int) -> None:
         goal = (plan % 17 * 0.5, plan % 11 * -0.25)
         if plan % 23 == 0:
             logger.error(f"Timed out waiting for costmap update after 1.2 s (goal {goal[0]:.2f}, {goal[1]:.2f})")
@@ -60,16 +61,13 @@ def planner(logger: Any, every: Every) -> None:
         costmap.info(f"costmap updated: 0.05 m/cell, {400 + plan % 50} obstacles")
         logger.debug(f"costmap age {plan % 4 * 0.1:.1f} s")
 
-    every(0.5, plan_path)
+    every_count(every, 0.5, plan_path)
 
 
 def lidar_driver(logger: Any, every: Every) -> None:
     """A sensor driver: a steady stream of scans, dropped packets, multi-line diagnostics."""
-    state = {"scan": 0}
 
-    def publish_scan() -> None:
-        state["scan"] += 1
-        scan = state["scan"]
+    def publish_scan(scan: int) -> None:
         logger.debug(f"scan {scan}: raw packet batch of 12 packets")
         if scan % 10 == 0:
             logger.info(f"scan {scan}: 720 points, {0.6 + scan % 5 * 0.1:.1f} ms")
@@ -83,7 +81,7 @@ def lidar_driver(logger: Any, every: Every) -> None:
             f"diagnostics at scan {scan}:\n  temperature: {40 + scan % 7}.2 C\n  motor: 600 rpm\n  firmware: 2.3.1"
         )
 
-    every(0.1, publish_scan)
+    every_count(every, 0.1, publish_scan)
 
 
 def battery_monitor(logger: Any, every: Every) -> None:

@@ -147,20 +147,21 @@ def _with_names(rules: RuleSet, toggle: str, names: tuple[str, ...]) -> RuleSet:
 
 def toggle_solo(rules: RuleSet, node: str) -> RuleSet:
     """Solo ``node`` (with the nodes soloed already), or take it out of the solo."""
-    names = soloed(rules)
-    if node in names:
-        return _with_names(rules, SOLO, tuple(n for n in names if n != node))
-    rules = _with_names(rules, MUTE, tuple(n for n in muted(rules) if n != node))
-    return _with_names(rules, SOLO, (*names, node))
+    return _toggle_node(rules, node, SOLO, MUTE)
 
 
 def toggle_mute(rules: RuleSet, node: str) -> RuleSet:
     """Mute ``node``, or hear it again."""
-    names = muted(rules)
+    return _toggle_node(rules, node, MUTE, SOLO)
+
+
+def _toggle_node(rules: RuleSet, node: str, toggle: str, other: str) -> RuleSet:
+    """``node`` out of ``toggle``'s names if it is in them, else into them and out of ``other``'s."""
+    names = _names(rules, toggle)
     if node in names:
-        return _with_names(rules, MUTE, tuple(n for n in names if n != node))
-    rules = _with_names(rules, SOLO, tuple(n for n in soloed(rules) if n != node))
-    return _with_names(rules, MUTE, (*names, node))
+        return _with_names(rules, toggle, tuple(n for n in names if n != node))
+    rules = _with_names(rules, other, tuple(n for n in _names(rules, other) if n != node))
+    return _with_names(rules, toggle, (*names, node))
 
 
 def without_node_toggles(rules: RuleSet) -> RuleSet:

@@ -1,4 +1,4 @@
-"""Logger levels of a ROS graph's nodes, whatever the ROS: the common part.
+"""Logger levels of a ROS graph's nodes, whatever the ROS: the control, the common part.
 
 A ``LoggerControl`` runs one background thread (``console-tui-loggers``) that makes every ROS
 call. Its methods may be called from any thread and never block: calls return
@@ -16,7 +16,8 @@ Beside it: ``logger_errors.py`` (how a call fails), ``logger_events.py`` (what i
 listeners), ``logger_graph.py`` (the graph as watched, and waiting until it has settled),
 ``logger_calls.py`` (one call as the loggers thread moves it on).
 
-A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``).
+A ROS gets its control by subclassing ``LoggerControl`` (``ros2/logger_control.py``,
+``ros1/logger_control.py``).
 The subclass provides, called on the loggers thread unless said otherwise:
 
 - ``_open()``: set up (a node, a connection to the master). An error ends the control and
@@ -34,10 +35,10 @@ The subclass provides, called on the loggers thread unless said otherwise:
 - ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
 - ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
 
-and may set ``lists_loggers`` and ``read_when_asked`` (see them), and may override ``_lost(call)``
-(a sent call's service went away: default never), ``_wait(timeout)`` and ``_wake()`` (sleep
-until woken from any thread: default an Event), and ``no_services_hint`` (how a user gives a
-node the logger services).
+and may set ``lists_loggers``, ``read_when_asked``, ``graph_min_s`` and ``graph_quiet_s`` (see
+them), and may override ``_lost(call)`` (a sent call's service went away: default never),
+``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
+``no_services_hint`` (how a user gives a node the logger services).
 """
 
 from __future__ import annotations

@@ -4,59 +4,18 @@ JSON, hostile text printed inert, and ``| head -1`` exiting 0."""
 from __future__ import annotations
 
 import json
-import queue
-import signal
 import subprocess
 import sys
-import threading
 import time
 
 import pytest
 
 from support.rosproc import wait_until
+from support.tail_process import TailProcess
 
 pytestmark = pytest.mark.ros2
 
 HOSTILE = "evil \x1b[2J\x1b]0;title\x07 \u202edesrever\x9b1m end"
-
-
-class Tail:
-    def __init__(self, env: dict[str, str], *args: str) -> None:
-        self.process = subprocess.Popen(
-            [sys.executable, "-m", "console_tui", "tail", *args],
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            env=env,
-        )
-        self.lines: queue.Queue[bytes] = queue.Queue()
-        self.stderr: list[bytes] = []
-        threading.Thread(target=self._read, daemon=True).start()
-        threading.Thread(target=lambda: self.stderr.extend(self.process.stderr), daemon=True).start()
-
-    def _read(self) -> None:
-        for line in self.process.stdout:
-            self.lines.put(line)
-
-    def take(self, count: int, timeout: float = 30) -> list[bytes]:
-        got: list[bytes] = []
-        deadline = time.monotonic() + timeout
-        while len(got) < count and (left := deadline - time.monotonic()) > 0:
-            try:
-                got.append(self.lines.get(timeout=left))
-            except queue.Empty:
-                break
-        return got
-
-    def stop(self) -> int:
-        if self.process.poll() is None:
-            self.process.send_signal(signal.SIGINT)
-            try:
-                self.process.wait(15)
-            except subprocess.TimeoutExpired:
-                self.process.kill()
-                self.process.wait()
-        return self.process.returncode
 
 
 def subscribed(node, count: int) -> bool:
@@ -80,7 +39,7 @@ def test_live_formats_json_and_inert_text(nodes, ros_env, ros_runtime):
         "json": ("--topic", "/rosout", "--json"),
         "errors": ("--topic", "/rosout", "--query", "level>=error node:t.*", "--format", "{severity} {message}"),
     }
-    tails = {name: Tail(ros_env, *args) for name, args in variants.items()}
+    tails = {name: TailProcess(ros_env, *args) for name, args in variants.items()}
     try:
         # Subscribed: what is logged now reaches every one of them (as history if need be).
         probe = ros_runtime.create_node("probe")
@@ -135,7 +94,7 @@ def test_head_closing_the_pipe_ends_it_with_status_0(nodes, ros_env):
 @pytest.mark.ros1
 def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env):
     ros1_nodes.rospy("rospy_node.py", "py_tailed", "--period", "0.1").expect("ready")
-    tail = Tail(
+    tail = TailProcess(
         ros1_env, "--ros1", "--query", "node:*py_tailed level>=warn", "--format", "${severity} ${node} ${message}"
     )
     try:

@@ -73,6 +73,14 @@ async def start_talkers(nodes, *extra: list[str]):
     return talker, others
 
 
+async def open_logger_pane(app, pilot, ready, what: str):
+    """Opens the logger pane (``l``) and lets the app run until ``ready(pane)``; returns the pane."""
+    pane = app.logger_pane
+    await pilot.press("l")
+    await until(pilot, lambda: ready(pane), what=what)
+    return pane
+
+
 async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off(nodes, live):
     talker, _ = await start_talkers(nodes, ["--name", "plain", "--no-logger-service"])
     talker.send({"cmd": "periodic", "period": 0.1})
@@ -141,11 +149,10 @@ async def test_temporary_debug_counts_down_and_reverts(nodes, live):
     talker.send({"cmd": "periodic", "period": 0.1})
     app = live
     async with app.run_test(size=(160, 40)) as pilot:
-        pane = app.logger_pane
-        await pilot.press("l")
-        await until(
+        pane = await open_logger_pane(
+            app,
             pilot,
-            lambda: pane.selected == TALKER and "inherited" in row_of(pane, "ns.talker"),
+            lambda pane: pane.selected == TALKER and "inherited" in row_of(pane, "ns.talker"),
             what="the talker's levels",
         )
         await pilot.press("right", "t")
@@ -182,11 +189,10 @@ async def test_node_killed_during_a_call_gives_a_clear_message_and_the_app_carri
     talker, (other,) = await start_talkers(nodes, ["--name", "other"])
     app = live
     async with app.run_test(size=(160, 40)) as pilot:
-        pane = app.logger_pane
-        await pilot.press("l")
-        await until(
+        pane = await open_logger_pane(
+            app,
             pilot,
-            lambda: (
+            lambda pane: (
                 {n.fqn for n in pane.nodes} >= {TALKER, "/other"} and all(n.has_logger_services for n in pane.nodes)
             ),
             what="the nodes",

@@ -4,13 +4,7 @@ rosout.log of a real roscore, with a rospy node logging."""
 from __future__ import annotations
 
 import json
-import os
-import shutil
-import signal
-import socket
 import subprocess
-import time
-from pathlib import Path
 
 import pytest
 
@@ -18,81 +12,27 @@ from console_tui.cli import main as cli_main
 from console_tui.sources.files import open_log_file
 
 from support.formats import fields
+from support.ros1 import SYSTEM_PYTHON, Ros1Master, free_port, ros1_environment, ros1_missing, stop_group
+from support.rosproc import NODES
 
 pytestmark = pytest.mark.ros1
-
-NODES = Path(__file__).parent.parent / "nodes"
-SYSTEM_PYTHON = "/usr/bin/python3"
-
-
-def _ros1_missing() -> str:
-    for tool in ("roscore", "rosbag"):
-        if shutil.which(tool) is None:
-            return f"{tool} is not installed (apt-get install ros-core python3-rospy)"
-    probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rospy"], capture_output=True)
-    if probe.returncode != 0:
-        return "rospy is not importable by /usr/bin/python3"
-    return ""
-
-
-def _free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
-
-
-def _wait_for_port(port: int, timeout: float) -> bool:
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        with socket.socket() as sock:
-            if sock.connect_ex(("127.0.0.1", port)) == 0:
-                return True
-        time.sleep(0.1)
-    return False
-
-
-def _stop(process: subprocess.Popen, timeout: float = 20) -> None:
-    """SIGINT to the process group it leads (it and its children), then SIGKILL if needed."""
-    if process.poll() is None:
-        try:
-            os.killpg(process.pid, signal.SIGINT)
-            process.wait(timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.wait(5)
-        except ProcessLookupError:
-            pass
 
 
 @pytest.fixture(scope="module")
 def ros1_run(tmp_path_factory):
     """roscore + 'rosbag record -a' + a rospy node that logs; returns the bag, the
     rosout.log and what the node says it logged."""
-    reason = _ros1_missing()
+    reason = ros1_missing("rosbag")
     if reason:
         pytest.skip(reason)
     base = tmp_path_factory.mktemp("ros1")
-    port = _free_port()
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("PYTHON", "VIRTUAL_ENV"))}
-    env.update(
-        ROS_MASTER_URI=f"http://127.0.0.1:{port}",
-        ROS_IP="127.0.0.1",
-        ROS_LOG_DIR=str(base / "log"),
-        ROS_HOME=str(base / "home"),
-    )
-    env.pop("ROS_HOSTNAME", None)
+    port = free_port()
+    env = ros1_environment(base, port)
     bag = base / "run.bag"
-    started: list[subprocess.Popen] = []
+    master = Ros1Master(base, port, env)
+    recorder = None
     try:
-        core = subprocess.Popen(
-            ["roscore", "-p", str(port)],
-            env=env,
-            start_new_session=True,
-            stdout=open(base / "roscore.out", "wb"),
-            stderr=subprocess.STDOUT,
-        )
-        started.append(core)
-        assert _wait_for_port(port, 30), (base / "roscore.out").read_text()
+        master.start()
         recorder = subprocess.Popen(
             ["rosbag", "record", "-a", "-O", str(bag), "__name:=recorder"],
             env=env,
@@ -100,16 +40,15 @@ def ros1_run(tmp_path_factory):
             stdout=open(base / "record.out", "wb"),
             stderr=subprocess.STDOUT,
         )
-        started.append(recorder)
         talker = subprocess.run(
             [SYSTEM_PYTHON, str(NODES / "ros1_talker.py")], env=env, capture_output=True, text=True, timeout=90
         )
         assert talker.returncode == 0, talker.stdout + talker.stderr
         logged = next(json.loads(line) for line in talker.stdout.splitlines() if '"logged"' in line)["messages"]
-        _stop(recorder)
     finally:
-        for process in reversed(started):
-            _stop(process)
+        if recorder is not None:
+            stop_group(recorder, timeout=20)
+        master.stop()
     assert bag.exists(), (base / "record.out").read_text()
     [rosout_log] = [p for p in (base / "log").glob("*/rosout.log") if p.parent.name != "latest"]
     return {"bag": bag, "rosout_log": rosout_log, "logged": logged}

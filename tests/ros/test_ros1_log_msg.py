@@ -11,6 +11,7 @@ import pytest
 
 from console_tui.model.formats.ros1_log_msg import MD5SUM, Ros1LogDecoder, encode_log
 
+from support.formats import random_ros1_log
 from support.ros1 import SYSTEM_PYTHON, ros1_missing
 
 pytestmark = pytest.mark.ros1
@@ -24,7 +25,8 @@ GENPY = textwrap.dedent(
     out = {"md5sum": Log._md5sum, "messages": [], "decoded": []}
     request = json.load(sys.stdin)
     for m in request["make"]:
-        log = Log(header=Header(seq=m["seq"], stamp=rospy.Time(m["secs"], m["nsecs"]), frame_id=m["frame_id"]),
+        stamp = rospy.Time(*divmod(m["stamp_ns"], 1_000_000_000))
+        log = Log(header=Header(seq=m["seq"], stamp=stamp, frame_id=m["frame_id"]),
                   level=m["level"], name=m["name"], msg=m["msg"], file=m["file"], function=m["function"],
                   line=m["line"], topics=m["topics"])
         buffer = io.BytesIO()
@@ -39,38 +41,13 @@ GENPY = textwrap.dedent(
 )
 
 
-def _random_text(rng: random.Random, longest: int) -> str:
-    return "".join(rng.choice('abc XYZ/_.:é日本🤖\n\t"\\') for _ in range(rng.randint(0, longest)))
-
-
 def test_decoder_and_encoder_agree_with_genpy():
     reason = ros1_missing()
     if reason:
         pytest.skip(reason)
     rng = random.Random(1)
-    made = [
-        {
-            "seq": rng.randint(0, 2**32 - 1),
-            "secs": rng.randint(0, 2**32 - 1),
-            "nsecs": rng.randint(0, 999_999_999),
-            "frame_id": _random_text(rng, 4),
-            "level": rng.choice([1, 2, 4, 8, 16]),
-            "name": _random_text(rng, 20),
-            "msg": _random_text(rng, 200),
-            "file": _random_text(rng, 30),
-            "function": _random_text(rng, 30),
-            "line": rng.randint(0, 2**32 - 1),
-            "topics": [_random_text(rng, 12) for _ in range(rng.randint(0, 3))],
-        }
-        for _ in range(200)
-    ]
-    ours = [
-        encode_log(
-            stamp_ns=m["secs"] * 1_000_000_000 + m["nsecs"],
-            **{k: m[k] for k in ("level", "name", "msg", "file", "function", "line", "topics", "seq", "frame_id")},
-        )
-        for m in made
-    ]
+    made = [random_ros1_log(rng) for _ in range(200)]
+    ours = [encode_log(**m) for m in made]
     result = subprocess.run(
         [SYSTEM_PYTHON, "-c", GENPY],
         input=json.dumps({"make": made, "read": [data.hex() for data in ours]}),
@@ -86,7 +63,7 @@ def test_decoder_and_encoder_agree_with_genpy():
         assert bytes.fromhex(data) == mine  # our encoder writes what genpy writes
         record = decoder.decode(bytes.fromhex(data), "/rosout")
         assert (record.stamp_ns, record.node, record.msg, record.file, record.function, record.line) == (
-            m["secs"] * 1_000_000_000 + m["nsecs"],
+            m["stamp_ns"],
             m["name"],
             m["msg"],
             m["file"],

@@ -6,6 +6,7 @@ import time
 
 import pytest
 
+from support.memory_control import running
 from support.rosproc import wait_until
 
 pytestmark = pytest.mark.ros2
@@ -17,12 +18,7 @@ ALPHA = "/ns/alpha"
 def control(ros_runtime):
     from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
-    control = Ros2LoggerControl(ros_runtime, call_timeout=1.5)
-    control.events = []
-    control.subscribe(control.events.append)
-    control.start()
-    yield control
-    control.close()
+    yield from running(Ros2LoggerControl(ros_runtime, call_timeout=1.5))
 
 
 class Rosout:

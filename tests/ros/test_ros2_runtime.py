@@ -24,19 +24,25 @@ def test_the_users_own_profiles_and_other_rmws_are_left_alone(tmp_path):
     assert reader_profile_environment({}, tmp_path) == {}
 
 
-def test_a_stalled_console_loses_nothing_of_a_burst_of_20000(nodes):
-    """The intake stops taking (as when the UI hogs the interpreter) while a node logs
-    20,000 messages; Fast DDS holds them all for the console (its default holds 5,000)."""
+def burst_into_a_stalled_intake(nodes, count: int) -> dict:
+    """A talker logs one message, on which the intake stalls, then ``count`` more in a burst;
+    then the intake goes on. Returns what it says it received (``count``, ``lost``, ``lost_qos``)."""
     talker = nodes.start("talker.py", "--name", "burst_talker")
     talker.expect("ready")
-    reader = nodes.start("stalled_intake.py", "20001")
+    reader = nodes.start("stalled_intake.py", str(count + 1))
     reader.expect("ready", timeout=30)
     talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
     reader.expect("stalled")
-    talker.send({"cmd": "burst", "count": 20_000})
+    talker.send({"cmd": "burst", "count": count})
     talker.expect("burst", timeout=60)
     reader.send({"cmd": "go"})
-    result = reader.expect("received", timeout=60)
+    return reader.expect("received", timeout=60)
+
+
+def test_a_stalled_console_loses_nothing_of_a_burst_of_20000(nodes):
+    """The intake stops taking (as when the UI hogs the interpreter) while a node logs
+    20,000 messages; Fast DDS holds them all for the console (its default holds 5,000)."""
+    result = burst_into_a_stalled_intake(nodes, 20_000)
     assert result["count"] == 20_001 and result["lost"] == 0
 
 
@@ -53,16 +59,7 @@ def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp
         "FASTDDS_DEFAULT_PROFILES_FILE": str(profile),
         "FASTRTPS_DEFAULT_PROFILES_FILE": str(profile),
     }
-    talker = nodes.start("talker.py", "--name", "burst_talker")
-    talker.expect("ready")
-    reader = nodes.start("stalled_intake.py", "10001")
-    reader.expect("ready", timeout=30)
-    talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
-    reader.expect("stalled")
-    talker.send({"cmd": "burst", "count": 10_000})
-    talker.expect("burst", timeout=60)
-    reader.send({"cmd": "go"})
-    result = reader.expect("received", timeout=60)
+    result = burst_into_a_stalled_intake(nodes, 10_000)
     assert result["count"] < 10_001 and result["lost_qos"] > 0
     assert 10_001 - 10 <= result["count"] + result["lost_qos"] <= 10_001
     assert result["lost"] == result["lost_qos"], "nothing else lost: the queue kept up, all decoded"

@@ -92,6 +92,30 @@ def fields(record) -> tuple:
     return (record.stamp_ns, record.level, record.node, record.msg, record.file, record.function, record.line)
 
 
+def talker(nodes, name: str):
+    """A talker node ``name``, ready for commands."""
+    process = nodes.start("talker.py", "--name", name)
+    process.expect("ready")
+    return process
+
+
+def talker_logs(nodes, name: str, texts: list[str]) -> None:
+    """A talker node ``name`` logs ``texts`` at INFO, one after the other, each acknowledged."""
+    process = talker(nodes, name)
+    for text in texts:
+        process.send({"cmd": "log", "level": "info", "msg": text})
+        process.expect_next("logged")
+
+
+def talker_bursts(nodes, name: str, count: int, aggregator) -> None:
+    """A talker node ``name`` logs ``count`` messages in a burst; returns once ``aggregator``
+    has written the last of them."""
+    process = talker(nodes, name)
+    process.send({"cmd": "burst", "count": count})
+    process.expect("burst")
+    assert wait_until(lambda: f"burst {count - 1}".encode() in aggregator.path.read_bytes(), 20)
+
+
 def counted(ticks: range) -> list[tuple[int, str]]:
     """What count_and_log logs (at INFO) for these ticks, in order."""
     out = []
@@ -187,12 +211,8 @@ def test_two_aggregators_do_not_echo_each_other(aggregators, nodes, ros_env, tmp
     first, second = aggregators("a"), aggregators("b", "--name", "rosout_b")
     first.wait_running()
     second.wait_running()
-    talker = nodes.start("talker.py", "--name", "twice")
-    talker.expect("ready")
-    for number in range(20):
-        talker.send({"cmd": "log", "level": "info", "msg": f"once {number}"})
-        talker.expect_next("logged")
     wanted = [f"once {n}" for n in range(20)]
+    talker_logs(nodes, "twice", wanted)
     for aggregator in (first, second):
         assert wait_until(lambda a=aggregator: b"once 19" in a.path.read_bytes(), 20)
     # A late subscriber of /rosout_agg hears each message once from each aggregator, no more.
@@ -228,11 +248,7 @@ def test_two_aggregators_do_not_echo_each_other(aggregators, nodes, ros_env, tmp
 def test_sigkill_leaves_a_readable_rosout_log(aggregators, nodes):
     aggregator = aggregators()
     aggregator.wait_running()
-    talker = nodes.start("talker.py", "--name", "killed")
-    talker.expect("ready")
-    talker.send({"cmd": "burst", "count": 500})
-    talker.expect("burst")
-    assert wait_until(lambda: b"burst 499" in aggregator.path.read_bytes(), 20)
+    talker_bursts(nodes, "killed", 500, aggregator)
     time.sleep(1.0)  # flushed at least every 0.2 s: a second is more than enough
     assert aggregator.stop(signal.SIGKILL) == -signal.SIGKILL
     records = aggregator.records()
@@ -242,11 +258,7 @@ def test_sigkill_leaves_a_readable_rosout_log(aggregators, nodes):
 def test_rotation_at_a_small_size_keeps_the_count(aggregators, nodes):
     aggregator = aggregators("agg", "--max-size", "4K", "--keep", "2")
     aggregator.wait_running()
-    talker = nodes.start("talker.py", "--name", "rotated")
-    talker.expect("ready")
-    talker.send({"cmd": "burst", "count": 400})
-    talker.expect("burst")
-    assert wait_until(lambda: b"burst 399" in aggregator.path.read_bytes(), 20)
+    talker_bursts(nodes, "rotated", 400, aggregator)
     assert aggregator.stop() == 0
     names = sorted(p.name for p in aggregator.log_dir.iterdir())
     assert names == ["rosout.log", "rosout.log.1", "rosout.log.2"]
@@ -268,11 +280,7 @@ def test_sigterm_exits_cleanly_with_a_summary(aggregators):
 def test_the_counts_are_reported_on_its_own_rosout_as_often_as_asked(aggregators, nodes):
     aggregator = aggregators("agg", "--report-every", "0.5")
     aggregator.wait_running()
-    talker = nodes.start("talker.py", "--name", "reported")
-    talker.expect("ready")
-    for number in range(3):
-        talker.send({"cmd": "log", "level": "info", "msg": f"counted {number}"})
-        talker.expect_next("logged")
+    talker_logs(nodes, "reported", [f"counted {n}" for n in range(3)])
     report = re.compile(
         r"[\d,]+ messages? from \d+ publishers?, [\d,]+ republished to \d+ subscribers?, "
         r"[\d,]+ written to .*rosout\.log; lost 0$"

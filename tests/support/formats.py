@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import random
 from pathlib import Path
 
 from console_tui.model.formats import Problems, TextFormat, read_batches
@@ -62,6 +63,13 @@ def read_text(data: bytes, text_format: TextFormat, source: str = "test") -> tup
     return records, problems
 
 
+def read_cleanly(data: bytes, text_format: TextFormat, source: str = "test") -> list[LogRecord]:
+    """The records ``data`` reads as; it must read without a problem."""
+    records, problems = read_text(data, text_format, source)
+    assert list(problems) == []
+    return records
+
+
 def fields(record: LogRecord) -> tuple:
     """Every field but seq."""
     return (
@@ -74,3 +82,28 @@ def fields(record: LogRecord) -> tuple:
         record.line,
         record.source,
     )
+
+
+#: What a ROS 1 string's length prefix and UTF-8 meet in the wild: quotes, backslashes, tabs,
+#: newlines, accents, CJK, emoji.
+ROS1_ALPHABET = "abcXYZ_./:0 é日本語🤖\t\"';\\\n"
+
+
+def random_text(rng: random.Random, longest: int) -> str:
+    return "".join(rng.choice(ROS1_ALPHABET) for _ in range(rng.randint(0, longest)))
+
+
+def random_ros1_log(rng: random.Random) -> dict:
+    """The fields of a random ``rosgraph_msgs/Log``, as ``encode_log`` takes them."""
+    return {
+        "stamp_ns": rng.randint(0, 2**32 - 1) * 1_000_000_000 + rng.randint(0, 999_999_999),
+        "level": rng.choice([1, 2, 4, 8, 16]),
+        "name": random_text(rng, 20),
+        "msg": random_text(rng, 300),
+        "file": random_text(rng, 30),
+        "function": random_text(rng, 30),
+        "line": rng.randint(0, 2**32 - 1),
+        "topics": [random_text(rng, 10) for _ in range(rng.randint(0, 3))],
+        "seq": rng.randint(0, 2**32 - 1),
+        "frame_id": random_text(rng, 5),
+    }

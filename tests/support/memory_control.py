@@ -1,10 +1,12 @@
 """A logger control over an in-memory graph of nodes (no ROS): ``MemoryControl`` is the
 smallest subclass ``LoggerControl`` accepts, and shows what a ROS provides. For tests of
-what the control and the app do with it; ROS 2's own is tested against real nodes."""
+what the control and the app do with it; ROS 2's own is tested against real nodes.
+``running`` starts any of them for a test, ``StepClock`` is a clock the test moves."""
 
 from __future__ import annotations
 
 import threading
+from collections.abc import Iterator
 from concurrent.futures import Future
 
 from console_tui.model.logger_levels import GraphNode, split_fqn
@@ -59,3 +61,23 @@ class MemoryControl(LoggerControl):
 
     def _shutdown(self) -> None:
         self.shut = True
+
+
+def running(control: LoggerControl) -> Iterator[LoggerControl]:
+    """For a fixture (``yield from``): ``control`` started, every event it sends kept in
+    ``control.events``; closed at the end."""
+    control.events = []  # type: ignore[attr-defined]
+    control.subscribe(control.events.append)  # type: ignore[attr-defined]
+    control.start()
+    yield control
+    control.close()
+
+
+class StepClock:
+    """A clock that moves only when the test says (``clock.now += 5``)."""
+
+    def __init__(self, now: float = 0.0) -> None:
+        self.now = now
+
+    def __call__(self) -> float:
+        return self.now

@@ -39,7 +39,6 @@ def write_rosbag2(
     """A rosbag2 directory with ``log_topics`` (the records), ``/chatter`` (a String after
     every ``chatter_every`` records) and, when ``image_bytes``, ``images_per_log``
     ``/camera/image`` Images of that size after every ``image_every``-th record. Returns the directory."""
-    import numpy as np
     from rosbags.rosbag2 import StoragePlugin, Writer
     from rosbags.rosbag2.writer import CompressionFormat, CompressionMode
     from rosbags.typesys import Stores, get_typestore
@@ -57,23 +56,8 @@ def write_rosbag2(
         ]
         chatter = writer.add_connection("/chatter", "std_msgs/msg/String", typestore=typestore)
         if image_bytes:
-            Image = typestore.types["sensor_msgs/msg/Image"]
-            Header = typestore.types["std_msgs/msg/Header"]
-            Time = typestore.types["builtin_interfaces/msg/Time"]
             camera = writer.add_connection("/camera/image", "sensor_msgs/msg/Image", typestore=typestore)
-            width = 1024
-            height = max(1, image_bytes // (width * 3))
-            pixels = np.random.default_rng(1).integers(0, 255, width * height * 3, dtype=np.uint8)
-            image = Image(
-                header=Header(stamp=Time(sec=0, nanosec=0), frame_id="camera"),
-                height=height,
-                width=width,
-                encoding="rgb8",
-                is_bigendian=0,
-                step=width * 3,
-                data=pixels,
-            )
-            image_data = typestore.serialize_cdr(image, "sensor_msgs/msg/Image")
+            image = typestore.serialize_cdr(camera_image(typestore, image_bytes), "sensor_msgs/msg/Image")
         for index, record in enumerate(records):
             data = typestore.serialize_cdr(ros2_log_message(typestore, record), "rcl_interfaces/msg/Log")
             for connection in log_connections:
@@ -83,13 +67,23 @@ def write_rosbag2(
                 writer.write(chatter, record.stamp_ns + 1, text)
             images = images_per_log if image is not None and index % image_every == 0 else 0
             for k in range(images):
-                writer.write(camera, record.stamp_ns + 2 + k, image_data)
+                writer.write(camera, record.stamp_ns + 2 + k, image)
     return path
 
 
-def write_ros1_bag(path: Path, records: Iterable[LogRecord], *, compression: str = "") -> Path:
-    """A ROS 1 bag with /rosout (``rosgraph_msgs/Log``) and /chatter, written by rosbags;
-    ``compression`` ``bz2`` or ``lz4`` compresses its chunks."""
+def write_ros1_bag(
+    path: Path,
+    records: Iterable[LogRecord],
+    *,
+    compression: str = "",
+    chatter_every: int = 1,
+    image_bytes: int = 0,
+    image_every: int = 1,
+) -> Path:
+    """A ROS 1 bag with /rosout (``rosgraph_msgs/Log``), /chatter (a String after every
+    ``chatter_every`` records) and, when ``image_bytes``, a ``/camera/image`` Image of that size
+    after every ``image_every``-th record, written by rosbags; ``compression`` ``bz2`` or ``lz4``
+    compresses its chunks."""
     from rosbags.rosbag1 import Writer
     from rosbags.typesys import Stores, get_typestore
 
@@ -106,6 +100,9 @@ def write_ros1_bag(path: Path, records: Iterable[LogRecord], *, compression: str
     with writer:
         rosout = writer.add_connection("/rosout", "rosgraph_msgs/msg/Log", typestore=typestore)
         chatter = writer.add_connection("/chatter", "std_msgs/msg/String", typestore=typestore)
+        if image_bytes:
+            camera = writer.add_connection("/camera/image", "sensor_msgs/msg/Image", typestore=typestore)
+            image = typestore.serialize_ros1(camera_image(typestore, image_bytes, seq=0), "sensor_msgs/msg/Image")
         for index, record in enumerate(records):
             sec, nanosec = divmod(record.stamp_ns, 1_000_000_000)
             message = Log(
@@ -119,6 +116,31 @@ def write_ros1_bag(path: Path, records: Iterable[LogRecord], *, compression: str
                 topics=["/chatter"],
             )
             writer.write(rosout, record.stamp_ns, typestore.serialize_ros1(message, "rosgraph_msgs/msg/Log"))
-            text = typestore.serialize_ros1(String(data=f"chatter {index}"), "std_msgs/msg/String")
-            writer.write(chatter, record.stamp_ns + 1, text)
+            if chatter_every and index % chatter_every == 0:
+                text = typestore.serialize_ros1(String(data=f"chatter {index}"), "std_msgs/msg/String")
+                writer.write(chatter, record.stamp_ns + 1, text)
+            if image_bytes and index % image_every == 0:
+                writer.write(camera, record.stamp_ns + 2, image)
     return path
+
+
+def camera_image(typestore, image_bytes: int, **header: int):
+    """A ``sensor_msgs/Image`` of about ``image_bytes`` (rgb8, 1024 pixels wide, the same random
+    pixels every time) stamped 0 in frame ``camera``; ``header``: ROS 1's ``seq``."""
+    import numpy as np
+
+    Image = typestore.types["sensor_msgs/msg/Image"]
+    Header = typestore.types["std_msgs/msg/Header"]
+    Time = typestore.types["builtin_interfaces/msg/Time"]
+    width = 1024
+    height = max(1, image_bytes // (width * 3))
+    pixels = np.random.default_rng(1).integers(0, 255, width * height * 3, dtype=np.uint8)
+    return Image(
+        header=Header(**header, stamp=Time(sec=0, nanosec=0), frame_id="camera"),
+        height=height,
+        width=width,
+        encoding="rgb8",
+        is_bigendian=0,
+        step=width * 3,
+        data=pixels,
+    )

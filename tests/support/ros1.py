@@ -14,7 +14,7 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
-from support.rosproc import NODES, NodeProcess, wait_until
+from support.rosproc import NODES, NodeProcess, NodeProcesses, wait_until
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 ROSCPP_SOURCE = NODES / "roscpp_node.cpp"
@@ -24,9 +24,9 @@ ROSCPP_LOGGER = f"ros.{ROSCPP_PACKAGE}"
 _ROSCPP_DEFINES = [f'-DROS_PACKAGE_NAME="{ROSCPP_PACKAGE}"']
 
 
-def ros1_missing() -> str:
-    """Why ROS 1 tests cannot run here, or "" when they can."""
-    for tool in ("roscore", "rosmaster", "rosnode"):
+def ros1_missing(*tools: str) -> str:
+    """Why ROS 1 tests cannot run here (roscore, rosmaster, rosnode and ``tools``), or "" when they can."""
+    for tool in ("roscore", "rosmaster", "rosnode", *tools):
         if shutil.which(tool) is None:
             return f"{tool} is not installed (apt-get install ros-core python3-rospy libroscpp-dev)"
     probe = subprocess.run([SYSTEM_PYTHON, "-c", "import rospy"], capture_output=True)
@@ -157,29 +157,19 @@ class Ros1Master:
             return None
 
 
-class Ros1Nodes:
+class Ros1Nodes(NodeProcesses):
     """Node processes of one test: rospy scripts (system Python) and the roscpp node."""
 
     def __init__(self, env: dict[str, str], roscpp_binary: Path | None = None) -> None:
-        self.env = env
+        super().__init__(env)
         self.roscpp_binary = roscpp_binary
-        self.started: list[NodeProcess] = []
 
     def rospy(self, script: str, *args: str) -> NodeProcess:
-        process = NodeProcess(script, *args, env=self.env, python=SYSTEM_PYTHON)
-        self.started.append(process)
-        return process
+        return self.add(NodeProcess(script, *args, env=self.env, python=SYSTEM_PYTHON))
 
     def roscpp(self, *args: str) -> NodeProcess:
         assert self.roscpp_binary is not None, "use the roscpp_binary fixture"
-        process = NodeProcess("", *args, env=self.env, command=[str(self.roscpp_binary)])
-        self.started.append(process)
-        return process
-
-    def stop_all(self) -> None:
-        for process in self.started:
-            process.stop()
-        self.started.clear()
+        return self.add(NodeProcess("", *args, env=self.env, command=[str(self.roscpp_binary)]))
 
 
 def build_roscpp_node(cache: Path) -> Path:

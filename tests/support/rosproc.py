@@ -128,7 +128,10 @@ class NodeProcesses:
         self.started: list[NodeProcess] = []
 
     def start(self, script: str, *args: str) -> NodeProcess:
-        process = NodeProcess(script, *args, env=self.env)
+        return self.add(NodeProcess(script, *args, env=self.env))
+
+    def add(self, process: NodeProcess) -> NodeProcess:
+        """``process``, stopped with the others at the end."""
         self.started.append(process)
         return process
 

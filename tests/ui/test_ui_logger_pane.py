@@ -6,7 +6,11 @@ its ``LoggerControl`` would; what ROS does is tested in test_e2e_logger_pane.py.
 
 from __future__ import annotations
 
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
 from functools import partial
+
+from textual.pilot import Pilot
 
 from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
 from console_tui.model.logger_view import NO_ROS_TEXT
@@ -21,13 +25,17 @@ from support.ui import cursor_number, screen_text, table_rows, type_text, until
 make_app = partial(ui.make_app, clock=lambda: 100.0)  # nodes include navigation.planner and its costmap
 
 
-async def open_fed_pane(pilot) -> LoggerPane:
-    """Open the pane with ``l`` and give it the fixed state of ``feed_logger_pane``."""
-    pane = pilot.app.logger_pane
-    await pilot.press("l")
-    feed_logger_pane(pane)
-    await pilot.pause()
-    return pane
+@asynccontextmanager
+async def fed_pane() -> AsyncIterator[tuple[Pilot, LoggerPane]]:
+    """The app running at 140x30, its pane opened with ``l`` and given the fixed state of
+    ``feed_logger_pane``: the pilot and the pane."""
+    app = make_app()
+    async with app.run_test(size=(140, 30)) as pilot:
+        pane = app.logger_pane
+        await pilot.press("l")
+        feed_logger_pane(pane)
+        await pilot.pause()
+        yield pilot, pane
 
 
 def lines(option_list) -> list[str]:
@@ -81,9 +89,8 @@ async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
 
 
 async def test_nodes_marks_loggers_and_levels_as_shown():
-    app = make_app()
-    async with app.run_test(size=(140, 30)) as pilot:
-        pane = await open_fed_pane(pilot)
+    async with fed_pane() as (pilot, pane):
+        app = pilot.app
         await until(pilot, lambda: pane_says(app, "Loggers of /navigation/planner"), what="the fed pane")
         shown = pane_text(app)
         nodes = shown[1:5]
@@ -114,9 +121,7 @@ async def test_nodes_marks_loggers_and_levels_as_shown():
 
 
 async def test_arrows_move_between_the_lists_and_keys_pick_the_logger():
-    app = make_app()
-    async with app.run_test(size=(140, 30)) as pilot:
-        pane = await open_fed_pane(pilot)
+    async with fed_pane() as (pilot, pane):
         await pilot.press("right")
         assert pane.logger_list.has_focus
         await pilot.press("down")
@@ -130,9 +135,7 @@ async def test_arrows_move_between_the_lists_and_keys_pick_the_logger():
 
 
 async def test_a_typed_logger_name_is_offered_and_highlighted():
-    app = make_app()
-    async with app.run_test(size=(140, 30)) as pilot:
-        pane = await open_fed_pane(pilot)
+    async with fed_pane() as (pilot, pane):
         await pilot.press("a")
         assert pane.name_input.has_focus
         await pilot.press(*"navigation.planner.extra", "enter")
@@ -145,9 +148,7 @@ async def test_a_typed_logger_name_is_offered_and_highlighted():
 
 
 async def test_temporary_level_shows_its_countdown():
-    app = make_app()
-    async with app.run_test(size=(140, 30)) as pilot:
-        pane = await open_fed_pane(pilot)
+    async with fed_pane() as (pilot, pane):
         pane.show_temporaries([TemporaryLevel(PLANNER, "navigation.planner.costmap", 10, 0, deadline=165.2)])
         await pilot.pause()
         row = next(line for line in lines(pane.logger_list) if ".costmap" in line)

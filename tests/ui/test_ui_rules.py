@@ -17,7 +17,7 @@ from console_tui.ui.screens.rule_editor import RuleEditor
 
 from support import ui
 from support.feed import NODES, records
-from support.ui import line_with, screen_text, steady_cursors, style_at, type_text, until
+from support.ui import line_with, screen_text, steady_cursors, style_at, table_rows, type_text, until
 
 make_app = partial(ui.make_app, count=300)
 
@@ -43,21 +43,11 @@ async def type_query(pilot, app: ConsoleApp, text: str) -> None:
     line_with(app, text)
 
 
-def table_rows(app: ConsoleApp) -> dict[str, int]:
-    """The table's rows on the screen: the number each starts with, to its terminal row."""
-    rows = {}
-    for y, line in enumerate(screen_text(app).splitlines()):
-        first = line.split(maxsplit=1)[0] if line.strip() else ""
-        if first.isdigit() and len(line.split()) > 3:
-            rows[first] = y
-    return rows
-
-
-def looks(app: ConsoleApp, column: int = 60) -> dict[str, tuple]:
+def looks(app: ConsoleApp, column: int = 60) -> dict[int, tuple]:
     """How each table row on the screen is painted: the colours of a cell in its message."""
     return {
         number: (style_at(app, column, y).color, style_at(app, column, y).bgcolor)
-        for number, y in table_rows(app).items()
+        for number, (y, _) in table_rows(app).items()
     }
 
 
@@ -71,7 +61,7 @@ async def test_query_line_applies_and_replaces_its_rules():
         assert rows and all(r.level >= 30 and r.node.startswith("nav") for r in rows)
         await pilot.pause()
         assert f"{len(rows)}/300 shown" in screen_text(app) and "level>=warn node:nav*" not in screen_text(app)
-        painted = [screen_text(app).splitlines()[y] for y in table_rows(app).values()]
+        painted = [line for _, line in table_rows(app).values()]
         assert painted and all(line.split()[3].startswith("navigation") for line in painted)
         assert all(line.split()[2] in ("WARN", "ERROR", "FATAL") for line in painted)
         await type_query(pilot, app, "-level:debug")
@@ -80,7 +70,7 @@ async def test_query_line_applies_and_replaces_its_rules():
         assert all(r.level != 10 for r in shown(app)) and len(shown(app)) == 270
         await pilot.pause()
         assert "270/300 shown" in screen_text(app)
-        assert "DEBUG" not in {screen_text(app).splitlines()[y].split()[2] for y in table_rows(app).values()}
+        assert "DEBUG" not in {line.split()[2] for _, line in table_rows(app).values()}
 
 
 async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
@@ -133,8 +123,8 @@ async def test_query_given_at_start():
         after = looks(app)
         rows = table_rows(app)
         assert "300/300 shown" in screen_text(app) and rows.keys() == before.keys()
-        cursor = max(rows, key=int)  # following: the newest row has the cursor
-        fatal = {n for n, y in rows.items() if screen_text(app).splitlines()[y].split()[2] == "FATAL"}
+        cursor = max(rows)  # following: the newest row has the cursor
+        fatal = {n for n, (_, line) in rows.items() if line.split()[2] == "FATAL"}
         assert fatal and cursor in fatal
         for number in rows:
             if number == cursor:
@@ -153,6 +143,7 @@ async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], r
     if not app.rules_pane.is_open:
         await pilot.press("r")
     await pilot.press("a")
+    await until(pilot, lambda: isinstance(app.screen, RuleEditor), what="the rule editor")
     editor = app.screen
     assert isinstance(editor, RuleEditor)
     editor.query_one("#kind").value = kind
@@ -289,7 +280,7 @@ async def test_highlighted_only_switch():
         assert app.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
         await pilot.pause()
         assert "60/300 shown" in screen_text(app)
-        assert {screen_text(app).splitlines()[y].split()[2] for y in table_rows(app).values()} == {"ERROR", "FATAL"}
+        assert {line.split()[2] for _, line in table_rows(app).values()} == {"ERROR", "FATAL"}
         await pilot.press("H")
         assert len(app.view) == 300
         await pilot.pause()

@@ -86,31 +86,36 @@ def names(log: Path) -> set[str]:
     return {entry.name for entry in log.iterdir()}
 
 
-def test_purge_older_than(tree, capsys):
+@pytest.mark.parametrize(
+    ("options", "kept", "removed"),
+    [
+        pytest.param(
+            ["--older-than", "7d"],
+            {"9f9e8d7c-1111-2222-3333-444455556666", "listener_99_1700000000001.log", "latest", "out"},
+            "3 runs",
+            id="older-than",
+        ),
+        # 10,600 bytes: the 20-day run (5000), then the 10-day launch (2000) go; 3,600 are left.
+        pytest.param(
+            ["--keep-size", "4K"],
+            {
+                "9f9e8d7c-1111-2222-3333-444455556666",
+                "talker_1234_1700000000000.log",
+                "listener_99_1700000000001.log",
+                "latest",
+                "out",
+            },
+            "2 runs",
+            id="keep-size-removes-the-oldest-first",
+        ),
+    ],
+)
+def test_purge_by_age_and_by_size(tree, capsys, options, kept, removed):
     log, outside = tree
-    assert main(["clean", "purge", "--dir", str(log), "--older-than", "7d", "--yes"]) == 0
-    assert names(log) == {
-        "9f9e8d7c-1111-2222-3333-444455556666",
-        "listener_99_1700000000001.log",
-        "latest",
-        "out",
-    }
+    assert main(["clean", "purge", "--dir", str(log), *options, "--yes"]) == 0
+    assert names(log) == kept
     assert (outside / "precious.log").stat().st_size == 5000
-    assert "Removed 3 runs" in capsys.readouterr().out
-
-
-def test_purge_keep_size_removes_the_oldest_first(tree):
-    log, outside = tree
-    assert main(["clean", "purge", "--dir", str(log), "--keep-size", "4K", "--yes"]) == 0
-    # 10,600 bytes: the 20-day run (5000), then the 10-day launch (2000) go; 3,600 are left.
-    assert names(log) == {
-        "9f9e8d7c-1111-2222-3333-444455556666",
-        "talker_1234_1700000000000.log",
-        "listener_99_1700000000001.log",
-        "latest",
-        "out",
-    }
-    assert (outside / "precious.log").exists()
+    assert f"Removed {removed}" in capsys.readouterr().out
 
 
 def test_purge_all_removes_links_never_their_targets(tree):

@@ -6,13 +6,10 @@ from __future__ import annotations
 import json
 import os
 import pty
-import queue
 import re
 import select
-import signal
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
@@ -31,6 +28,7 @@ from console_tui.model.view import LogView
 
 from support.feed import records as feed_records
 from support.formats import hostile_records
+from support.tail_process import TailProcess
 
 ENV = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])}
 ENV.pop("NO_COLOR", None)
@@ -216,32 +214,6 @@ def test_use_color():
     assert not use_color("always", object(), {"NO_COLOR": "x"})
 
 
-class Lines:
-    """A process's stdout lines, read by a thread (select misses lines already buffered)."""
-
-    def __init__(self, process: subprocess.Popen) -> None:
-        self.queue: queue.Queue[str | None] = queue.Queue()
-        threading.Thread(target=self._read, args=(process.stdout,), daemon=True).start()
-
-    def _read(self, stream) -> None:
-        for line in stream:
-            self.queue.put(line.decode().rstrip("\n"))
-        self.queue.put(None)
-
-    def take(self, count: int, timeout: float = 20) -> list[str]:
-        lines: list[str] = []
-        deadline = time.monotonic() + timeout
-        while len(lines) < count and (left := deadline - time.monotonic()) > 0:
-            try:
-                line = self.queue.get(timeout=left)
-            except queue.Empty:
-                break
-            if line is None:
-                break
-            lines.append(line)
-        return lines
-
-
 def test_follow_a_growing_and_rotated_file(tmp_path):
     path = tmp_path / "rosout.log"
     log = RotatingFile(path, max_bytes=2048, keep=2, header=ROS2_HEADER)
@@ -256,32 +228,23 @@ def test_follow_a_growing_and_rotated_file(tmp_path):
         log.flush()
 
     put(0, 3)
-    process = subprocess.Popen(
-        [sys.executable, "-m", "console_tui", "tail", "-f", str(path), "--format", "{message}"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        env=ENV,
-    )
-    lines = Lines(process)
+    follower = TailProcess(ENV, "-f", str(path), "--format", "{message}")
     try:
-        assert lines.take(4) == ["line 0", "more", "line 1", "line 2"]
+        assert follower.take_text(4, 20) == ["line 0", "more", "line 1", "line 2"]
         put(3, 2)
-        assert lines.take(2) == ["line 3", "line 4"]
+        assert follower.take_text(2, 20) == ["line 3", "line 4"]
         for first in range(5, 205, 20):  # rotated every few steps, as a busy node's log is
             put(first, 20)
             time.sleep(0.3)
         expected = []
         for n in range(5, 205):
             expected += [f"line {n}", "more"] if n % 7 == 0 else [f"line {n}"]
-        assert lines.take(len(expected)) == expected
+        assert follower.take_text(len(expected), 20) == expected
         assert log.rotations >= 3
-        process.send_signal(signal.SIGINT)
-        assert process.wait(10) == 0
-        assert process.stderr.read() == b""
+        assert follower.stop(10) == 0
+        assert follower.stderr == []
     finally:
-        if process.poll() is None:
-            process.kill()
-            process.wait()
+        follower.stop()
         log.close()
 
 
@@ -330,23 +293,14 @@ def test_a_folder_with_rotated_files_and_last(tmp_path):
     env = {**ENV, "ROS_LOG_DIR": str(tmp_path / "log")}
     assert tail("--last", "--format", "{message}", env=env).stdout.decode().splitlines() == expected
     # Followed: the rotated file is read first, then the newest one is followed.
-    process = subprocess.Popen(
-        [sys.executable, "-m", "console_tui", "tail", "-f", str(run), "--format", "{message}"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        env=ENV,
-    )
-    lines = Lines(process)
+    follower = TailProcess(ENV, "-f", str(run), "--format", "{message}")
     try:
-        assert lines.take(5) == expected
+        assert follower.take_text(5, 20) == expected
         with open(run / "rosout.log", "a") as log:
             log.write(rosout_log_text(LogRecord(10**18 + 5, 20, "n", "new 5")))
-        assert lines.take(1) == ["new 5"]
-        process.send_signal(signal.SIGINT)
-        assert process.wait(10) == 0
+        assert follower.take_text(1, 20) == ["new 5"]
+        assert follower.stop(10) == 0
     finally:
-        if process.poll() is None:
-            process.kill()
-            process.wait()
+        follower.stop()
     missing = tail("--last", env={**ENV, "ROS_LOG_DIR": str(tmp_path / "none")})
     assert missing.returncode == 2 and b"--last: no ROS log directory" in missing.stderr

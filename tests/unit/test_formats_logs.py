@@ -17,7 +17,7 @@ from console_tui.model.formats import (
 )
 from console_tui.model.formats.rcutils_log import decode_template, split_template
 
-from support.formats import hostile_records, read_text
+from support.formats import hostile_records, read_cleanly, read_text
 
 DEFAULT_LOG = (
     b"[INFO] [1795345407.868935159] [ns.probe]: hello\n"
@@ -30,8 +30,7 @@ DEFAULT_LOG = (
 
 
 def test_default_rcutils_format_with_multi_line_messages():
-    records, problems = read_text(DEFAULT_LOG, RcutilsLogFormat(), "node.log")
-    assert list(problems) == []
+    records = read_cleanly(DEFAULT_LOG, RcutilsLogFormat(), "node.log")
     assert [(r.level, r.node, r.msg) for r in records] == [
         (20, "ns.probe", "hello"),
         (30, "ns.probe", 'multi\nline "quoted"; semi\n'),
@@ -52,8 +51,7 @@ def test_custom_template_with_every_location_token():
         b"line | still\n"
         b" | end\n"
     )
-    records, problems = read_text(data, RcutilsLogFormat(CUSTOM), "n.log")
-    assert list(problems) == []
+    records = read_cleanly(data, RcutilsLogFormat(CUSTOM), "n.log")
     assert [(r.stamp_ns, r.level, r.node, r.function, r.file, r.line, r.msg) for r in records] == [
         (1795345408542813893, 20, "ns.probe", "<module>", "/tmp/n.py", 6, "hello"),
         (1795345408543451033, 30, "ns.probe", "tick", "/tmp/n.py", 7, "multi\nline | still\n"),
@@ -102,8 +100,7 @@ ROSOUT_LOG = (
 
 
 def test_rosout_log():
-    records, problems = read_text(ROSOUT_LOG, RosoutLogFormat(), "rosout.log")
-    assert list(problems) == []
+    records = read_cleanly(ROSOUT_LOG, RosoutLogFormat(), "rosout.log")
     assert [(r.level, r.node, r.file, r.line, r.function, r.msg) for r in records] == [
         (20, "/talker1", "talker1.py", 11, "<module>", "hello"),
         (30, "/talker1", "talker1.py", 12, "<module>", 'multi\nline "quoted"; semi'),
@@ -209,8 +206,7 @@ def test_kinetic_rosout_log_without_a_node_field():
         b"1487700000.250000000 WARN [/ws/src/n.cpp:12(operator()) [topics: /rosout, /map] two\nlines [/not markup]\n"
         b"1487700001.000000000 ERROR [n.py:3(<module>) [topics: ] empty topics\n"
     )
-    records, problems = read_text(data, RosoutLogFormat(), "rosout.log")
-    assert list(problems) == []
+    records = read_cleanly(data, RosoutLogFormat(), "rosout.log")
     assert [(r.stamp_ns, r.level, r.node, r.file, r.function, r.line, r.msg) for r in records] == [
         (0, 20, "", "/ws/src/map_server/src/main.cpp", "MapServer", 167, "Loading map from image"),
         (1487700000_250000000, 30, "", "/ws/src/n.cpp", "operator()", 12, "two\nlines [/not markup]"),

@@ -12,7 +12,7 @@ from console_tui.model.formats.jsonl import JsonLinesWriter
 from console_tui.model.formats.rqt_csv import RqtCsvWriter, split_location
 from console_tui.model.record import LogRecord
 
-from support.formats import DATA, fields, hostile_records, read_text
+from support.formats import DATA, fields, hostile_records, read_cleanly, read_text
 
 
 def _write(writer, records) -> bytes:
@@ -51,8 +51,7 @@ ROS2_EXPECTED = [
 
 def test_reads_rqt_console_ros2_file_exactly():
     data = (DATA / "rqt_console_ros2.csv").read_bytes()
-    records, problems = read_text(data, RqtCsvFormat(), "rqt_console_ros2.csv")
-    assert list(problems) == []
+    records = read_cleanly(data, RqtCsvFormat(), "rqt_console_ros2.csv")
     assert [fields(r) for r in records] == [fields(r) for r in ROS2_EXPECTED]
 
 
@@ -63,8 +62,7 @@ def test_writes_the_bytes_rqt_console_writes():
 
 def test_reads_and_writes_rqt_console_ros1_variant():
     data = (DATA / "rqt_console_ros1.csv").read_bytes()
-    records, problems = read_text(data, RqtCsvFormat(), "r1")
-    assert list(problems) == []
+    records = read_cleanly(data, RqtCsvFormat(), "r1")
     assert [r.level for r in records] == [20, 30, 10, 40, 50]
     assert records[1].msg == 'say "hi";\nsecond line'
     assert records[3].msg == "error ✓"
@@ -93,8 +91,7 @@ def test_round_trip_keeps_every_field(tmp_path, save_format):
     path = tmp_path / ("out.jsonl" if save_format == "jsonl" else "out.csv")
     assert save_records(records, path, save_format) == len(records)
     text_format = JsonLinesFormat() if save_format == "jsonl" else RqtCsvFormat()
-    loaded, problems = read_text(path.read_bytes(), text_format, "out")
-    assert list(problems) == []
+    loaded = read_cleanly(path.read_bytes(), text_format, "out")
     if save_format == "jsonl":
         assert [fields(r) for r in loaded] == [fields(r) for r in records]
     else:  # rqt_console's format has no source column: records take the file's name
@@ -106,8 +103,7 @@ def test_jsonl_keeps_lone_surrogates_and_unknown_levels():
     record = LogRecord(5, 25, "n\udc80", "bad \ud800 text", "", "", 0, "")
     data = _write(JsonLinesWriter(), [record])
     data.decode("utf-8")  # always valid UTF-8
-    loaded, problems = read_text(data, JsonLinesFormat(), "src")
-    assert list(problems) == []
+    loaded = read_cleanly(data, JsonLinesFormat(), "src")
     assert loaded[0].msg == "bad \ud800 text" and loaded[0].level == 25 and loaded[0].source == "src"
 
 
@@ -194,8 +190,7 @@ def test_rqt_rows_apart_with_blank_lines_and_crlf_endings():
         b'"two";"30";"n";"2.000000005";"f:g:2"\n'
         b"\n"
     )
-    records, problems = read_text(data, RqtCsvFormat(), "blank.csv")
-    assert list(problems) == []
+    records = read_cleanly(data, RqtCsvFormat(), "blank.csv")
     assert [(r.msg, r.level, r.stamp_ns, r.line) for r in records] == [
         ("one", 20, 1_000_000_000, 1),
         ("two", 30, 2_000_000_005, 2),

@@ -21,7 +21,7 @@ from console_tui.model.formats import (
 from console_tui.model.formats.mixed_output import process_of_file, ros1_node_of_process
 from console_tui.sources.files import open_log_file
 
-from support.formats import DATA, read_text
+from support.formats import DATA, read_cleanly, read_text
 
 RUN = DATA / "ros_log" / "c0ffee00-d4b2-11eb-9c3e-0242ac110002"
 LAUNCH = DATA / "ros_log" / "2024-10-05-00-46-21-512000-robot-4242"
@@ -52,8 +52,7 @@ def _rows(records):
 
 def test_roslaunch_log_with_a_continued_message(zone):
     fmt = PythonLogFormat().for_file("roslaunch-robot-4242.log")
-    records, problems = read_text((RUN / "roslaunch-robot-4242.log").read_bytes(), fmt, "roslaunch")
-    assert list(problems) == []
+    records = read_cleanly((RUN / "roslaunch-robot-4242.log").read_bytes(), fmt, "roslaunch")
     args = "roslaunch starting with args ['/opt/ros/noetic/bin/roslaunch', 'demo', 'talker.launch']"
     assert _rows(records) == [
         (
@@ -101,8 +100,7 @@ def test_a_file_starting_inside_a_record_keeps_those_lines_as_a_row(zone):
     """talker-2.log begins with the end of a traceback (the rest is in talker-2.log.1):
     read alone, those lines are a row of the node, at the time of the record after them."""
     fmt = PythonLogFormat().for_file("talker-2.log")
-    records, problems = read_text((RUN / "talker-2.log").read_bytes(), fmt, "talker-2.log")
-    assert list(problems) == []
+    records = read_cleanly((RUN / "talker-2.log").read_bytes(), fmt, "talker-2.log")
     assert _rows(records) == [
         (T0 + 6_990_000_000, 20, "/talker", '  File "talker.py", line 18, in main'),
         (T0 + 6_990_000_000, 20, "/talker", "ZeroDivisionError: division by zero"),
@@ -116,8 +114,7 @@ def test_a_file_starting_inside_a_record_keeps_those_lines_as_a_row(zone):
 
 def test_rospy_stdout_capture():
     fmt = Ros1ConsoleFormat().for_file("talker-2-stdout.log")
-    records, problems = read_text((RUN / "talker-2-stdout.log").read_bytes(), fmt, "out")
-    assert list(problems) == []
+    records = read_cleanly((RUN / "talker-2-stdout.log").read_bytes(), fmt, "out")
     assert _rows(records) == [
         (1624512197_562810000, 20, "/talker", "talker starting"),
         (1624512197_562810000, 20, "/talker", "你好，世界: hello 1\na line printed after it"),
@@ -134,8 +131,7 @@ def test_roscpp_console_capture_with_wall_and_sim_time_and_colour():
         b"[DEBUG] [1579418626.000000000]: \x1b]0;PWNED\x07 and \x1b[2J kept as they are\n"
     )
     fmt = Ros1ConsoleFormat().for_file("ns1-cam_driver-7-stdout.log")
-    records, problems = read_text(data, fmt, "cap")
-    assert list(problems) == []
+    records = read_cleanly(data, fmt, "cap")
     assert _rows(records) == [
         (1579418624_945503644, 20, "/ns1/cam_driver", "started"),
         (1579418625_000000001, 30, "/ns1/cam_driver", "slow 日本"),
@@ -147,8 +143,7 @@ def test_roscpp_console_capture_with_wall_and_sim_time_and_colour():
 
 def test_launch_log():
     fmt = LaunchLogFormat().for_file("launch.log")
-    records, problems = read_text((LAUNCH / "launch.log").read_bytes(), fmt, "launch.log")
-    assert list(problems) == []
+    records = read_cleanly((LAUNCH / "launch.log").read_bytes(), fmt, "launch.log")
     died = (
         "process has died [pid 4245, exit code 255, cmd "
         "'/opt/ros/humble/lib/sllidar_ros2/sllidar_node --ros-args -r __node:=sllidar_node']."
@@ -198,8 +193,7 @@ SCREEN = (
 
 def test_saved_ros2_launch_output():
     fmt = LaunchLogFormat().for_file("output.txt")
-    records, problems = read_text(SCREEN.encode(), fmt, "output.txt")
-    assert list(problems) == []
+    records = read_cleanly(SCREEN.encode(), fmt, "output.txt")
     first, talker, warned = 1671253878_884025200, 1671253879_374483100, 1671253879_874501800
     assert _rows(records) == [
         (first, 20, "launch", SCREEN.split("\n")[0].split(": ", 1)[1]),

@@ -13,19 +13,14 @@ import pytest
 from console_tui.sources.logger_errors import CallTimedOut, ControlClosed, LevelRefused, NodeNotFound, NoLoggerServices
 from console_tui.sources.logger_events import NodesChanged, TemporaryEnded
 
-from support.memory_control import MemoryControl, MemoryNode
+from support.memory_control import MemoryControl, MemoryNode, StepClock, running
 from support.rosproc import wait_until
 
 
 @pytest.fixture
 def control():
     nodes = [MemoryNode("/ns/alpha"), MemoryNode("/beta", services=False), MemoryNode("/_hidden")]
-    control = MemoryControl(nodes, call_timeout=0.5)
-    control.events = []
-    control.subscribe(control.events.append)
-    control.start()
-    yield control
-    control.close()
+    yield from running(MemoryControl(nodes, call_timeout=0.5))
 
 
 def test_the_graph_leaves_out_hidden_nodes_and_says_who_has_services(control):
@@ -35,16 +30,6 @@ def test_the_graph_leaves_out_hidden_nodes_and_says_who_has_services(control):
     ]
     assert any(isinstance(event, NodesChanged) for event in control.events)
     assert control.is_settled("/ns/alpha") and control.node("/nobody") is None
-
-
-class StepClock:
-    """A clock that moves only when the test says."""
-
-    def __init__(self) -> None:
-        self.now = 0.0
-
-    def __call__(self) -> float:
-        return self.now
 
 
 def test_waiting_for_the_graph_lasts_until_no_node_came_for_the_quiet_time():

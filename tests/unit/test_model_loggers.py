@@ -18,6 +18,8 @@ from console_tui.model.logger_levels import (
     split_fqn,
 )
 
+from support.memory_control import StepClock
+
 
 @pytest.mark.parametrize(
     ("namespace", "name", "logger"),
@@ -129,7 +131,7 @@ def test_rows_show_inherited_levels_and_temporaries():
     rows = loggers.rows()
     assert [r.level_text for r in rows] == ["?", "?", "?"]
     loggers.update_levels({"": 20, "ns": 0, "ns.talker": 10, "ns.talker.sub": 0})
-    clock = FakeClock()
+    clock = StepClock(100.0)
     temporaries = TemporaryLevels(clock)
     temporaries.start("/ns/talker", "ns.talker", 10, 0, 30)
     temporaries.start("/other", "ns.talker", 10, 0, 30)
@@ -143,16 +145,8 @@ def test_rows_show_inherited_levels_and_temporaries():
     assert rows[1].temporary is None
 
 
-class FakeClock:
-    def __init__(self) -> None:
-        self.now = 100.0
-
-    def __call__(self) -> float:
-        return self.now
-
-
 def test_temporary_levels_come_due_in_order():
-    clock = FakeClock()
+    clock = StepClock(100.0)
     temporaries = TemporaryLevels(clock)
     first = temporaries.start("/a", "a", 10, 20, 5)
     temporaries.start("/b", "b", 10, 0, 2)
@@ -167,7 +161,7 @@ def test_temporary_levels_come_due_in_order():
 
 
 def test_temporary_again_keeps_the_original_previous_level():
-    clock = FakeClock()
+    clock = StepClock(100.0)
     temporaries = TemporaryLevels(clock)
     temporaries.start("/a", "a", 10, 30, 5)
     again = temporaries.start("/a", "a", 20, 10, 60)
@@ -175,7 +169,7 @@ def test_temporary_again_keeps_the_original_previous_level():
 
 
 def test_cancel_retry_and_take_all():
-    clock = FakeClock()
+    clock = StepClock(100.0)
     temporaries = TemporaryLevels(clock)
     entry = temporaries.start("/a", "a", 10, 30, 5)
     assert temporaries.cancel("/a", "a") == entry

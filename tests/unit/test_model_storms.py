@@ -15,6 +15,14 @@ def rec(i, node="a", msg="same", level=20, source=""):
     return LogRecord(stamp_ns=1_000_000_000 * i, level=level, node=node, msg=msg, source=source)
 
 
+def storm_rows(records=()) -> tuple[LogStore, LogView, StormRows]:
+    """A store holding ``records``, its view and their storm rows (not synced yet)."""
+    store = LogStore()
+    store.extend(records)
+    view = LogView(store)
+    return store, view, StormRows(store, view)
+
+
 def rows_of(rows):
     return [rows.seq_at(r) for r in range(len(rows))]
 
@@ -59,10 +67,7 @@ def check(store, view, rows, masked=False, expanded_heads=()):
 
 
 def test_ten_thousand_identical_messages_are_one_row():
-    store = LogStore()
-    store.extend(rec(i) for i in range(10_000))
-    view = LogView(store)
-    rows = StormRows(store, view)
+    *_, rows = storm_rows(rec(i) for i in range(10_000))
     assert rows.sync()
     assert len(rows) == 1
     badge = rows.badge(rows.seq_at(0))
@@ -70,12 +75,9 @@ def test_ten_thousand_identical_messages_are_one_row():
 
 
 def test_other_nodes_between_do_not_break_a_storm_another_text_does():
-    store = LogStore()
-    store.extend(
+    *_, rows = storm_rows(
         [rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "a", "x"), rec(5, "a", "w")]
     )
-    view = LogView(store)
-    rows = StormRows(store, view)
     assert rows.sync()
     assert rows_of(rows) == [0, 1, 3, 5]
     assert rows.badge(0) == (3, 0, 4, False, True)
@@ -93,10 +95,7 @@ def test_severity_and_source_are_part_of_a_storm():
 
 
 def test_digits_masked_on_request():
-    store = LogStore()
-    store.extend(rec(i, msg=f"took {i}.{i * 7} ms") for i in range(50))
-    view = LogView(store)
-    rows = StormRows(store, view)
+    store, view, rows = storm_rows(rec(i, msg=f"took {i}.{i * 7} ms") for i in range(50))
     check(store, view, rows)
     assert len(rows) == 50
     rows.set_mask_digits(True)
@@ -105,9 +104,7 @@ def test_digits_masked_on_request():
 
 
 def test_counts_exact_as_repeats_arrive():
-    store = LogStore()
-    view = LogView(store)
-    rows = StormRows(store, view)
+    store, view, rows = storm_rows()
     for batch in range(20):
         store.extend(rec(batch * 500 + i, node="a" if i % 3 else "b", msg="x") for i in range(500))
         view.update()
@@ -118,10 +115,9 @@ def test_counts_exact_as_repeats_arrive():
 
 
 def test_expand_and_collapse():
-    store = LogStore()
-    store.extend([rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "a", "x")])
-    view = LogView(store)
-    rows = StormRows(store, view)
+    store, view, rows = storm_rows(
+        [rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "a", "x")]
+    )
     assert rows.sync()
     storm = rows.storm_of(0)
     assert storm is not None
@@ -141,10 +137,7 @@ def test_expand_and_collapse():
 
 
 def test_off_shows_the_view():
-    store = LogStore()
-    store.extend(rec(i) for i in range(100))
-    view = LogView(store)
-    rows = StormRows(store, view)
+    *_, rows = storm_rows(rec(i) for i in range(100))
     rows.sync()
     assert len(rows) == 1
     rows.set_enabled(False)
@@ -156,10 +149,7 @@ def test_off_shows_the_view():
 
 
 def test_rows_not_caught_up_are_the_views():
-    store = LogStore()
-    store.extend(rec(i) for i in range(10))
-    view = LogView(store)
-    rows = StormRows(store, view)
+    store, view, rows = storm_rows(rec(i) for i in range(10))
     rows.sync()
     store.extend(rec(i) for i in range(10, 15))
     view.update()
@@ -170,10 +160,7 @@ def test_rows_not_caught_up_are_the_views():
 
 
 def test_rules_change_collapses_again():
-    store = LogStore()
-    store.extend([rec(0, "a", "x"), rec(1, "a", "y", level=10), rec(2, "a", "x")])
-    view = LogView(store)
-    rows = StormRows(store, view)
+    store, view, rows = storm_rows([rec(0, "a", "x"), rec(1, "a", "y", level=10), rec(2, "a", "x")])
     check(store, view, rows)
     assert len(rows) == 3
     view.set_rules(RuleSet((exclude(SeverityRule.of("debug")),)))
@@ -230,10 +217,9 @@ def test_random_histories_against_brute_force():
 
 
 def test_the_row_showing_a_collapsed_repeat_is_its_storms():
-    store = LogStore()
-    store.extend([rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)])
-    view = LogView(store)
-    rows = StormRows(store, view)
+    _, view, rows = storm_rows(
+        [rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)]
+    )
     rows.sync()
     assert rows_of(rows) == [0, 1, 3, 4]
     assert rows.row_showing(2) == 0  # a's repeat: the storm's row
@@ -244,10 +230,9 @@ def test_the_row_showing_a_collapsed_repeat_is_its_storms():
 
 
 def test_row_shown_is_the_storms_row_for_a_repeat_and_none_for_a_hidden_message():
-    store = LogStore()
-    store.extend([rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)])
-    view = LogView(store)
-    rows = StormRows(store, view)
+    _, view, rows = storm_rows(
+        [rec(0, "a", "x"), rec(1, "b", "y"), rec(2, "a", "x"), rec(3, "b", "z"), rec(4, "c", "q", level=10)]
+    )
     rows.sync()
     assert [rows.row_shown(seq) for seq in range(5)] == [0, 1, 0, 2, 3]
     assert view.row_shown(2) == 2  # the view itself: every message its row

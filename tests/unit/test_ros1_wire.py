@@ -23,11 +23,7 @@ from console_tui.sources.ros1.slave_server import SlaveServer
 from console_tui.sources.ros1.tcpros import TcprosError, decode_header, encode_header
 from console_tui.sources.ros_version import ROS1, ROS2, choose_ros
 
-ALPHABET = "abcXYZ_./:0 é日本語🤖\t\"';\\\n"
-
-
-def _text(rng: random.Random, longest: int) -> str:
-    return "".join(rng.choice(ALPHABET) for _ in range(rng.randint(0, longest)))
+from support.formats import random_ros1_log
 
 
 def _framed(message: bytes) -> bytes:
@@ -35,17 +31,8 @@ def _framed(message: bytes) -> bytes:
 
 
 def _random_message(rng: random.Random) -> tuple[dict, bytes]:
-    fields = {
-        "stamp_ns": rng.randint(0, 2**32 - 1) * 1_000_000_000 + rng.randint(0, 999_999_999),
-        "level": rng.choice([1, 2, 4, 8, 16]),
-        "name": _text(rng, 20),
-        "msg": _text(rng, 300),
-        "file": _text(rng, 30),
-        "function": _text(rng, 30),
-        "line": rng.randint(0, 2**32 - 1),
-        "topics": [_text(rng, 10) for _ in range(rng.randint(0, 3))],
-    }
-    return fields, encode_log(**fields, seq=rng.randint(0, 2**32 - 1), frame_id=_text(rng, 5))
+    fields = random_ros1_log(rng)
+    return fields, encode_log(**fields)
 
 
 def _expected(fields: dict, source: str) -> LogRecord:

@@ -3,16 +3,20 @@
 - ``rqt_csv``: rqt_console's message files (ROS 2 and ROS 1 variants), read and written;
 - ``jsonl``: JSON Lines, lossless, read and written;
 - ``rcutils_log``: ROS 2 node log files (any ``RCUTILS_CONSOLE_OUTPUT_FORMAT``), read;
-- ``rosout_log``: ROS 1 ``rosout.log``, read;
+- ``rosout_log``: ROS 1 ``rosout.log``, read; the ``rosout.log`` of ``console-tui rosout``
+  (ROS 2), read and written (``rotating_file`` rotates it);
 - ``python_log``: ROS 1 run logs in Python's layout (``master.log``, ``roslaunch-*.log``,
   rospy nodes' ``<node>-N.log``), read;
 - ``ros1_console``: roscpp and rospy console output (``<node>-N-stdout.log``, captures), read;
 - ``launch_log``: ROS 2 ``launch.log`` and saved ``ros2 launch`` output, read.
 
 ``mixed_output`` is what the last three share (plain lines, missing times, names from
-file names); ``detect`` picks a file's format from its first lines.
+file names); ``detect`` picks a file's format from its first lines; ``save`` writes a file
+atomically (``atomic``); ``print_format`` makes console lines for ``console-tui tail``.
 
-Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS libraries.
+Recordings (bags) are read by ``console_tui.sources.files``, which needs ROS libraries; the
+``Log`` messages inside them and on the wire are decoded by ``ros2_log_msg`` (CDR) and
+``ros1_log_msg``.
 """
 
 from __future__ import annotations

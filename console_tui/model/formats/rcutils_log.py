@@ -23,7 +23,7 @@ from ..record import LogRecord
 from ..text import strip_colour
 from .problems import Problems, RecordError
 from .text_format import TextFormat
-from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
+from .textlines import LineGroup, LineKind, TextLines, group_lines, group_records
 
 DEFAULT_TEMPLATE = "[{severity}] [{time}] [{name}]: {message}"
 
@@ -195,14 +195,7 @@ class RcutilsLogFormat(TextFormat):
                     return LineKind.MORE
 
             groups = group_lines(lines, classify, problems)
-        for group in groups:
-            if not group.is_record:
-                stray_text_problem(group, problems, self.title)
-                continue
-            try:
-                yield self.parse_record(group.text, source)
-            except RecordError as error:
-                problems.add(str(error), line=group.line)
+        return group_records(groups, lambda group: self.parse_record(group.text, source), problems, self.title)
 
     def parse_record(self, text: str, source: str) -> LogRecord:
         """One record's text (its lines joined by ``\\n``) as a record."""

@@ -46,7 +46,7 @@ from ..levels import SEVERITY_TABLE, SEVERITY_WORDS, from_ros1
 from ..record import LogRecord
 from .problems import Problems, RecordError
 from .text_format import TextFormat
-from .textlines import LineKind, TextLines, group_lines, stray_text_problem
+from .textlines import LineKind, TextLines, group_lines, group_records
 
 _LEVELS = SEVERITY_WORDS
 #: Message severities by name; any other level is written as its number.
@@ -83,14 +83,8 @@ class RosoutLogFormat(TextFormat):
         return _classify(first_line) is not LineKind.MORE
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
-        for group in group_lines(lines, _classify, problems):
-            if not group.is_record:
-                stray_text_problem(group, problems, self.title)
-                continue
-            try:
-                yield parse_rosout_record(group.text, source)
-            except RecordError as error:
-                problems.add(str(error), line=group.line)
+        groups = group_lines(lines, _classify, problems)
+        return group_records(groups, lambda group: parse_rosout_record(group.text, source), problems, self.title)
 
 
 def parse_rosout_record(text: str, source: str) -> LogRecord:
@@ -165,14 +159,8 @@ class Ros2RosoutLogFormat(TextFormat):
         return first_line.startswith(_ROS2_HEADER_START)
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
-        for group in group_lines(lines, _classify_ros2, problems):
-            if not group.is_record:
-                stray_text_problem(group, problems, self.title)
-                continue
-            try:
-                yield parse_ros2_rosout_record(group.lines, source)
-            except RecordError as error:
-                problems.add(str(error), line=group.line)
+        groups = group_lines(lines, _classify_ros2, problems)
+        return group_records(groups, lambda group: parse_ros2_rosout_record(group.lines, source), problems, self.title)
 
 
 def parse_ros2_rosout_record(lines: list[str], source: str) -> LogRecord:

@@ -66,6 +66,10 @@ class RotatingFile:
     def _failed(self, error: OSError) -> None:
         self.error = f"{self.path}: {error.strerror or error}"
         self._retry_at = time.monotonic() + RETRY_S
+        self._drop_file()
+
+    def _drop_file(self) -> None:
+        """Close the file if it is open; a failure to close is let pass."""
         if self._file is not None:
             try:
                 self._file.close()
@@ -105,12 +109,7 @@ class RotatingFile:
 
     def rotate(self) -> None:
         """Start a new file now: the current one becomes ``.1``."""
-        if self._file is not None:
-            try:
-                self._file.close()
-            except OSError:
-                pass
-            self._file = None
+        self._drop_file()
         try:
             self._shift()
         except OSError as error:

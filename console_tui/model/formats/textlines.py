@@ -3,7 +3,8 @@
 Every text format here is read the same way: ``TextLines`` turns a binary stream into
 numbered lines (split on ``\\n`` only, decoded as UTF-8, bad bytes replaced and
 reported), and ``group_lines`` gathers the lines of one record, because a message
-with newlines in it spans several lines in every one of these formats.
+with newlines in it spans several lines in every one of these formats; ``group_records``
+turns the groups into records, reporting the lines that make none.
 """
 
 from __future__ import annotations
@@ -14,7 +15,8 @@ from enum import Enum
 from typing import BinaryIO
 
 from ...model.text import plural
-from .problems import Problems
+from ..record import LogRecord
+from .problems import Problems, RecordError
 
 BLOCK_SIZE = 1 << 20
 #: Longest line kept: the rest of a longer line is left out (and reported), so one line
@@ -213,3 +215,21 @@ def stray_text_problem(group: LineGroup, problems: Problems, format_name: str) -
     if count > 1:
         what += f" (and {plural(count - 1, 'more line')} up to line {group.line + count - 1})"
     problems.add(what, line=group.line)
+
+
+def group_records(
+    groups: Iterable[LineGroup],
+    parse: Callable[[LineGroup], LogRecord],
+    problems: Problems,
+    format_name: str,
+) -> Iterator[LogRecord]:
+    """The record ``parse`` makes of each group that is one; stray lines, and groups
+    ``parse`` refuses with a ``RecordError``, are reported instead."""
+    for group in groups:
+        if not group.is_record:
+            stray_text_problem(group, problems, format_name)
+            continue
+        try:
+            yield parse(group)
+        except RecordError as error:
+            problems.add(str(error), line=group.line)

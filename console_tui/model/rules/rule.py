@@ -117,7 +117,7 @@ class IdLookup:
             predicate = self._predicate
             answers.extend(1 if predicate(table[i]) else 0 for i in range(len(answers), len(table)))
         if len(answers) <= 256:
-            # Ids fit in the low byte of each 4-byte id: one C-level translate.
+            # Ids fit in the low byte of each id (2 or 4 bytes): one C-level translate.
             low_bytes = ids[lo:hi].tobytes()[0 :: ids.itemsize]
             return low_bytes.translate(bytes(answers) + bytes(256 - len(answers)))
         return bytes(map(answers.__getitem__, ids[lo:hi]))

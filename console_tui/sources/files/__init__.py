@@ -4,14 +4,14 @@ the ``files`` extra (rosbags, mcap).
 
 The UI's entry points:
 
-- ``FileLoad(paths, queue, log_format=..., on_change=...)``: ``start()``, ``cancel()``,
-  ``progress`` (``LoadProgress``), ``problems()``, ``notes()``; a path may be a folder
-  (every log in it, ``folders``);
+- ``FileLoad(paths, sink, log_format=..., on_change=...)`` (``sink``: an ``IntakeQueue``, or
+  a callable taking each batch): ``start()``, ``cancel()``, ``progress`` (``LoadProgress``),
+  ``problems()``, ``notes()``; a path may be a folder (every log in it, ``folders``);
 - ``open_logs(paths)`` -> ``OpenedLogs`` (files, failures, skipped), ``open_log_file(path)``
   -> ``LogFile`` (``batches(cancel)``, ``done``/``total``, ``problems``, ``notes()``), and
   ``load_records(files, cancel)`` to merge in the caller's thread;
 - ``latest_run()``: the paths of the newest run in the ROS log directory;
-- saving: ``console_tui.model.formats.save_records(records, path, format)``.
+- saving: ``console_tui.model.formats.save_records(records, path, save_format)``.
 """
 
 from __future__ import annotations

@@ -14,9 +14,10 @@ this process's queue hold what arrives (2 million records at most, then counted 
 
 It ends, stopping the source cleanly, when its stdin closes (the app stops it, or the app
 died: the kernel closes the app's end of the pipe, even after a SIGKILL), on SIGTERM, and
-when the app's process ends (Linux: ``PR_SET_PDEATHSIG``, when started from the app's main
-thread). Ctrl+C in the terminal is for the app, not for it. Whatever it would print goes
-to stderr: its stdout carries only frames.
+when the app's process ends (Linux: ``PR_SET_PDEATHSIG``, which fires when the app's thread
+that started it ends: the one that reads its pipe until it ends). Ctrl+C in the terminal is
+for the app, not for it. Whatever it would print goes to stderr: its stdout carries only
+frames.
 """
 
 from __future__ import annotations

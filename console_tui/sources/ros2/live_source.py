@@ -64,7 +64,7 @@ class LiveLogSource:
         self._thread: threading.Thread | None = None
         self._guard: Any = None
 
-    # -- control, from the UI thread ------------------------------------------------------
+    # -- control, from the thread that owns the source ---------------------------------------
 
     def start(self) -> None:
         self._thread = threading.Thread(target=self._run_guarded, name="console-tui-intake", daemon=True)
