@@ -9,15 +9,25 @@
   the map, so the footer, which follows that order, shows it last, and cut off on most
   terminals (``console.pause = "p"``: no Pause in the footer at 120 columns). Here a rebound
   binding keeps the place its old key had. Seen with Textual 8.2.8.
+- When the terminal goes away (an SSH session dropping), the kernel sends SIGHUP and then
+  SIGCONT. Textual's output thread dies on the first write that fails (``EIO``) and the
+  writes after it fill its queue of 30, so the app's exit blocked for ever on the 31st
+  (1 hang-up in 10 here); and SIGCONT resumed the application mode of a driver that was never
+  suspended (a second output thread, the terminal's modes written again). Here the output
+  thread drops what it cannot write and goes on emptying its queue, and SIGCONT resumes only
+  a suspended driver. Seen with Textual 8.2.8.
 """
 
 from __future__ import annotations
 
 from textual.binding import BindingsMap, Keymap, KeymapApplyResult
+from textual.drivers._writer_thread import WriterThread
+from textual.drivers.linux_driver import LinuxDriver
 from textual.widgets import OptionList
 
 _original_move_page = OptionList._move_page
 _original_apply_keymap = BindingsMap.apply_keymap
+_original_sigcont = LinuxDriver._sigcont_application
 
 
 def _move_page(self: OptionList, direction: int) -> None:
@@ -53,7 +63,36 @@ def _apply_keymap(self: BindingsMap, keymap: Keymap) -> KeymapApplyResult:
     return result
 
 
+def _write_until_stopped(self: WriterThread) -> None:
+    """``WriterThread.run`` that survives the terminal going away: after a failed write it
+    drops the rest, but keeps taking from the queue until ``stop()``, so no writer blocks."""
+    get = self._queue.get
+    writing = True
+    while (text := get()) is not None:
+        if not writing:
+            continue
+        try:
+            self._file.write(text)
+            if self._queue.qsize() == 0:
+                self._file.flush()
+        except (OSError, ValueError):  # EIO: the terminal is gone; ValueError: the file closed
+            writing = False
+    if writing:
+        try:
+            self._file.flush()
+        except (OSError, ValueError):
+            pass
+
+
+def _sigcont_application(self: LinuxDriver, *args: object) -> None:
+    writer = self._writer_thread
+    if writer is None or not writer.is_alive():  # suspended (Ctrl+Z): come back
+        _original_sigcont(self, *args)
+
+
 def apply() -> None:
     """Install the work-arounds (idempotent)."""
     OptionList._move_page = _move_page  # type: ignore[method-assign]
     BindingsMap.apply_keymap = _apply_keymap  # type: ignore[method-assign]
+    WriterThread.run = _write_until_stopped  # type: ignore[method-assign]
+    LinuxDriver._sigcont_application = _sigcont_application  # type: ignore[method-assign]

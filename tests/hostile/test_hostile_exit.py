@@ -11,8 +11,10 @@ import pty
 import select
 import signal
 import sys
+import threading
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
@@ -53,7 +55,7 @@ class Console:
         os.close(self.fd)
         self.fd = -1
 
-    def wait(self, timeout: float = 40) -> int:  # loaded CI with coverage: once over 20 s
+    def wait(self, timeout: float = 20) -> int:  # exits in 0.3 s; generous for a loaded CI run
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             pid, status = os.waitpid(self.pid, os.WNOHANG)
@@ -112,3 +114,54 @@ def test_an_error_in_the_app_puts_temporary_levels_back(console):
     status = app.wait()
     assert app.levels_left() == {"": 20, "n": 20}
     assert os.WIFEXITED(status)
+
+
+class _GoneTerminal:
+    """A terminal whose other side has closed: every write fails with EIO."""
+
+    def write(self, text: str) -> None:
+        raise OSError(5, "Input/output error")
+
+    def flush(self) -> None:
+        raise OSError(5, "Input/output error")
+
+
+def test_the_output_thread_outlives_a_terminal_gone():
+    """Textual's output thread died on the first failed write, and the 31st write after it
+    blocked the app's exit for ever (a hang-up's exit, 1 in 10)."""
+    from textual.drivers._writer_thread import MAX_QUEUED_WRITES, WriterThread
+
+    from console_tui.ui import textual_fixes
+
+    textual_fixes.apply()
+    writer = WriterThread(_GoneTerminal())  # type: ignore[arg-type]
+    writer.start()
+    finished = threading.Event()
+
+    def write_then_stop() -> None:
+        for _ in range(MAX_QUEUED_WRITES * 3):
+            writer.write("\x1b[?25h")
+        writer.stop()
+        finished.set()
+
+    threading.Thread(target=write_then_stop, daemon=True).start()
+    assert finished.wait(10), "writing to a terminal that is gone blocked"
+
+
+def test_sigcont_resumes_only_a_suspended_driver():
+    """A hang-up brings SIGCONT with SIGHUP: the driver was never suspended, so it is not
+    resumed (that started a second output thread and wrote the terminal's modes again)."""
+    from console_tui.ui import textual_fixes
+
+    resumed: list[bool] = []
+    running = threading.Thread(target=time.sleep, args=(5,), daemon=True)
+    running.start()
+    driver = SimpleNamespace(_auto_restart=True, resume_application_mode=lambda: resumed.append(True))
+    driver._writer_thread = running
+    textual_fixes._sigcont_application(driver)  # type: ignore[arg-type]
+    assert resumed == [], "a running driver was resumed"
+    driver._writer_thread = threading.Thread(target=lambda: None)
+    driver._writer_thread.start()
+    driver._writer_thread.join()
+    textual_fixes._sigcont_application(driver)  # type: ignore[arg-type]
+    assert resumed == [True], "a suspended driver (its output thread stopped) was not resumed"

@@ -25,7 +25,7 @@ from ...model.text import one_line, shorten_name
 from ...model.timefmt import clock_text, duration_text
 from ..keys import hint_line
 from ..severity_styles import severity_classes, severity_css
-from ..widgets.timeline_strip import span_text
+from ..widgets.timeline_drawing import span_text
 
 _NAME_WIDTH = 28
 #: The dialog's room for text: its width less its border and padding, the list's border,

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from textual.message import Message
 from textual.widgets import Static
 
@@ -14,12 +16,11 @@ TEMPORARY = -1
 class LevelBar(Static):
     """``DEBUG INFO WARN ERROR FATAL unset temporary``, each a link that posts ``Chosen``."""
 
+    @dataclass
     class Chosen(Message):
         """A level name was clicked: ``level`` (0 unsets), or ``TEMPORARY``."""
 
-        def __init__(self, level: int) -> None:
-            super().__init__()
-            self.level = level
+        level: int
 
     def on_mount(self) -> None:
         parts = [f"[@click=choose({int(level.severity)})]{level.name}[/]" for level in SEVERITY_TABLE]

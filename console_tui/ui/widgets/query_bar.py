@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -45,13 +47,12 @@ class QueryBar(Vertical):
         Binding("down", "history(1)", "Later query", show=False, id="query.later"),
     ]
 
+    @dataclass
     class Applied(Message):
         """Enter on a query that parses: its entries replace the previous query's."""
 
-        def __init__(self, text: str, entries: tuple[Entry, ...]) -> None:
-            super().__init__()
-            self.text = text
-            self.entries = entries
+        text: str
+        entries: tuple[Entry, ...]
 
     class Closed(Message):
         """Escape (or after applying): focus goes back to the table."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 
 from rich.style import Style
 from rich.table import Table
@@ -131,26 +132,23 @@ class RulesPane(SidePane):
         Binding("escape", "leave", "Back to the table", show=False, id="rules.leave"),
     ]
 
+    @dataclass
     class Changed(Message):
         """The user changed the rules through the pane."""
 
-        def __init__(self, rules: RuleSet) -> None:
-            super().__init__()
-            self.rules = rules
+        rules: RuleSet
 
+    @dataclass
     class EditRequested(Message):
         """Open the rule editor: on entry ``index``, or for a new rule (None)."""
 
-        def __init__(self, index: int | None) -> None:
-            super().__init__()
-            self.index = index
+        index: int | None
 
+    @dataclass
     class FileRequested(Message):
         """Save the rule set to a file, or open one (``save`` False)."""
 
-        def __init__(self, save: bool) -> None:
-            super().__init__()
-            self.save = save
+        save: bool
 
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)

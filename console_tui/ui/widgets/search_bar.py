@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
@@ -36,19 +38,17 @@ class SearchBar(Vertical):
 
     BINDINGS = [Binding("escape", "cancel", "Cancel the search", show=False, id="search.cancel")]
 
+    @dataclass
     class Changed(Message):
         """The text changed and reads as a search (or is empty)."""
 
-        def __init__(self, text: str) -> None:
-            super().__init__()
-            self.text = text
+        text: str
 
+    @dataclass
     class Done(Message):
         """Enter (``keep``: the search stays) or Escape (cancelled)."""
 
-        def __init__(self, keep: bool) -> None:
-            super().__init__()
-            self.keep = keep
+        keep: bool
 
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
