@@ -2,8 +2,9 @@
 its loggers and their levels, the calls under way per node, and the one-line notice.
 
 ``LoggerView`` is to the logger levels pane what ``LogView`` is to the table: the pane draws
-it and turns keys into calls; the view keeps the books (which node is selected, what was
-read, which calls are pending, what to say when a call ends). No ROS, no Textual.
+it and turns keys into calls (``sources/logger_requests.py`` makes them and brings their
+outcomes here); the view keeps the books (which node is selected, what was read, which
+calls are pending, what to say when a call ends). No ROS, no Textual.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 
 from .levels import Severity, severity_name
-from .logger_levels import DEFAULT_LOGGER, GraphNode, LoggerRow, NodeLoggers, TemporaryLevel
+from .logger_levels import DEFAULT_LOGGER, GraphNode, LoggerRow, NodeLoggers, TemporaryLevel, node_of_logger
 
 #: What the pane says when this run has no live ROS (files only).
 NO_ROS_TEXT = "No live ROS in this console (files only): logger levels cannot be read or set."
@@ -94,6 +95,13 @@ class LoggerView:
         if changed:
             self.notice = ""
         return changed
+
+    def node_logging_as(self, logger: str) -> GraphNode | None:
+        """The node whose messages carry this logger name; None after saying there is none."""
+        node = node_of_logger(logger, self.nodes)
+        if node is None:
+            self.say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
+        return node
 
     def loggers_of(self, node: GraphNode) -> NodeLoggers:
         loggers = self._loggers.get(node.fqn)

@@ -1,4 +1,4 @@
-"""Logger levels of a ROS graph's nodes, whatever the ROS: the control, its events, the common part.
+"""Logger levels of a ROS graph's nodes, whatever the ROS: the control, the common part.
 
 A ``LoggerControl`` runs one background thread (``console-tui-loggers``) that makes every ROS
 call. Its methods may be called from any thread and never block: calls return
@@ -12,8 +12,9 @@ FATAL, 0 = unset, the logger inherits). Temporary levels are restored by the log
 when their time is up, whatever the UI does. ``close`` restores the ones still running before
 it returns (each restore waits up to the call timeout); a process killed outright leaves them set.
 
-Beside it: ``logger_errors.py`` (how a call fails), ``logger_graph.py`` (the graph as watched,
-and waiting until it has settled), ``logger_calls.py`` (one call as the loggers thread moves it on).
+Beside it: ``logger_errors.py`` (how a call fails), ``logger_events.py`` (what it tells its
+listeners), ``logger_graph.py`` (the graph as watched, and waiting until it has settled),
+``logger_calls.py`` (one call as the loggers thread moves it on).
 
 A ROS gets its control by subclassing ``LoggerControl`` (``ros2/logger_control.py``,
 ``ros1/logger_control.py``).
@@ -48,22 +49,21 @@ import time
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future
-from dataclasses import dataclass
 from typing import Any
 
-from ..model.levels import Severity
-from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, TemporaryLevel, TemporaryLevels
+from ..model.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
 from .futures import done_future, failed_future, settle, then
 from .logger_calls import Call
 from .logger_errors import (
     CallTimedOut,
     ControlClosed,
     LevelRefused,
-    LoggerCallError,
     NodeGone,
     NoLoggerServices,
     call_error,
+    unsendable,
 )
+from .logger_events import LoggerEvent, NodesChanged, TemporaryEnded
 from .logger_graph import GRAPH_MIN_S, GRAPH_PERIOD_S, GRAPH_QUIET_S, GraphSnapshot, GraphWait, GraphWatch
 
 CALL_TIMEOUT_S = 2.0
@@ -73,26 +73,6 @@ STARTUP_S = 3.0
 RESTORE_ATTEMPTS = 3
 RESTORE_RETRY_S = 1.0
 MAX_IDLE_S = 0.1
-
-# -- events ------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class NodesChanged:
-    """The graph's nodes changed (or their logger services appeared)."""
-
-    nodes: tuple[GraphNode, ...]
-
-
-@dataclass(frozen=True)
-class TemporaryEnded:
-    """A temporary level is over: ``previous`` restored, or ``error`` says why not."""
-
-    entry: TemporaryLevel
-    error: LoggerCallError | None = None
-
-
-LoggerEvent = NodesChanged | TemporaryEnded
 
 
 class LoggerControl(ABC):
@@ -293,10 +273,7 @@ class LoggerControl(ABC):
 
     def _set(self, node: str, levels: Mapping[str, int], *, restore: bool = False) -> Future[dict[str, int]]:
         levels = dict(levels)
-        bad = {name: f"not a level: {level!r}" for name, level in levels.items() if not _is_level_number(level)}
-        if levels.get(DEFAULT_LOGGER) == Severity.UNSET:
-            # rcutils takes it, and the whole process then logs everything: never send it.
-            bad[DEFAULT_LOGGER] = "the default logger cannot be unset"
+        bad = unsendable(levels)
         if bad:
             return failed_future(LevelRefused(node, bad))
         return self._call_set(node, levels, restore=restore)
@@ -418,7 +395,3 @@ class LoggerControl(ABC):
                 listener(event)
             except Exception:
                 pass
-
-
-def _is_level_number(level: Any) -> bool:
-    return isinstance(level, int) and 0 <= level < 2**32

@@ -1,8 +1,13 @@
-"""How a logger-level call fails: one exception per reason, its ``str()`` the message to show."""
+"""How a logger-level call fails: one exception per reason, its ``str()`` the message to show;
+the levels never sent."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import Any
+
+from ..model.levels import Severity
+from ..model.logger_levels import DEFAULT_LOGGER
 
 
 class LoggerCallError(Exception):
@@ -58,3 +63,17 @@ def call_error(node: str, error: BaseException | None) -> LoggerCallError | None
     if error is None or isinstance(error, LoggerCallError):
         return error
     return LoggerCallError(node, f"{node}: {error}")
+
+
+def unsendable(levels: Mapping[str, Any]) -> dict[str, str]:
+    """Why some of ``levels`` are never sent, by logger name (none: empty): a value that is not
+    a level number, or the default logger unset."""
+    bad = {name: f"not a level: {level!r}" for name, level in levels.items() if not _is_level_number(level)}
+    if levels.get(DEFAULT_LOGGER) == Severity.UNSET:
+        # rcutils takes it, and the whole process then logs everything: never send it.
+        bad[DEFAULT_LOGGER] = "the default logger cannot be unset"
+    return bad
+
+
+def _is_level_number(level: Any) -> bool:
+    return isinstance(level, int) and 0 <= level < 2**32

@@ -1,21 +1,21 @@
 """The console-tui Textual app: the wiring of the table, the panes, the status line and the keys.
 
-The app's jobs live beside it, each mixed into ``ConsoleApp``: ``rule_actions`` (rules and
-filtering), ``file_actions`` (opening and saving files), ``pane_actions`` (the side panes),
-``search_actions`` (search, next / previous match), ``jump_actions`` (errors, warnings, marks,
-the source file), ``toggle_actions`` (level and node toggles, the node panel, time formats),
-``commands`` (the command palette) and ``keys`` (the user's keymap, hints from bindings).
-A feature adds its keys to ``BINDINGS`` below and its work in a module of its own.
+The app's jobs live beside it, each a part mixed into ``ConsoleApp`` (``app_part`` types what
+they share): ``intake_actions`` (the sources, their records into the store), ``table_actions``
+(pause, clear, columns, details), ``rule_actions`` (rules and filtering), ``file_actions``
+(opening and saving files), ``pane_actions`` (the side panes), ``search_actions`` (search,
+next / previous match), ``jump_actions`` (errors, warnings, marks, the source file),
+``toggle_actions`` (level and node toggles, the node panel, time formats), ``overview_actions``
+(the timeline, storms, the summary), ``commands`` (the command palette) and ``keys`` (the
+user's keymap, hints from bindings). A feature adds its keys to ``BINDINGS`` below and its work
+in a module of its own.
 """
 
 from __future__ import annotations
 
-import threading
 import time
-from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
@@ -30,8 +30,6 @@ from textual.widgets import Footer
 from ..model.intake_queue import IntakeQueue
 from ..model.marks import Marks
 from ..model.node_stats import NodeStats
-from ..model.record import LogRecord
-from ..model.record_batch import RecordColumns
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
@@ -39,24 +37,24 @@ from ..model.store import LogStore
 from ..model.text import multi_line, one_line
 from ..model.view import LogView
 from ..sources.files import FileLoad
-from ..sources.status import SourceStatus
 from . import textual_fixes
 from .commands import ConsoleCommands
 from .exit_signals import ExitSignals
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
+from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
 from .jump_actions import JumpActions
 from .keys import binding_ids, keymap_path, load_keymap
 from .overview_actions import OverviewActions
 from .pane_actions import PaneActions
 from .rule_actions import RuleActions
-from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
-from .screens.marks import MarksScreen
+from .screens.mark_list import MarksScreen
 from .screens.summary import SummaryScreen
 from .search_actions import SearchActions
+from .table_actions import TableActions
 from .toggle_actions import ToggleActions
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
@@ -66,27 +64,12 @@ from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 from .widgets.search_bar import SearchBar
 from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
-from .widgets.table_columns import COLUMNS
 from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
     from ..sources.logger_control import LoggerControl
 
 textual_fixes.apply()
-
-DRAIN_INTERVAL = 1 / 15
-#: Records taken into the store per tick at most, so one tick never stalls the screen.
-MAX_RECORDS_PER_TICK = 20_000
-RATE_WINDOW_S = 2.0
-#: How long quitting waits for the sources to stop, at most.
-SOURCE_STOP_TIMEOUT_S = 2.0
-
-
-def _stop_quietly(source: Source) -> None:
-    try:
-        source.stop()
-    except Exception:
-        pass
 
 
 class TerminalGuard(Protocol):
@@ -97,17 +80,17 @@ class TerminalGuard(Protocol):
     def resume(self) -> None: ...
 
 
-class Source(Protocol):
-    """A producer of records (the live stream, a file loader) the app starts and stops."""
-
-    status: SourceStatus
-
-    def start(self) -> None: ...
-
-    def stop(self) -> None: ...
-
-
-class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActions, ToggleActions, OverviewActions):
+class ConsoleApp(
+    IntakeActions,
+    TableActions,
+    RuleActions,
+    FileActions,
+    PaneActions,
+    SearchActions,
+    JumpActions,
+    ToggleActions,
+    OverviewActions,
+):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
@@ -178,9 +161,6 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.utc = utc
         self.drain_interval = drain_interval
         self.clock = clock
-        self._arrivals: deque[tuple[float, int]] = deque()
-        self._rate = 0.0
-        self._rate_at = 0.0
         self.collection_policy = CollectionPolicy()
         rows = self.make_overview(self.store, self.view, utc)
         self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
@@ -209,13 +189,10 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.node_stats.update()
         self.node_pane = NodePane(self.node_stats, self.node_toggles)
         self.exit_signals = ExitSignals(self._exit_on_signal)
-        #: The threads stopping the sources, once quitting began.
-        self._stopping: list[threading.Thread] = []
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
-        self._shown_paused = False
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -294,16 +271,6 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
             self.set_keymap(loaded.keys)
         return loaded.problems
 
-    def start_sources(self) -> None:
-        starting: list = list(self.sources)
-        if self.logger_control is not None:
-            starting.append(self.logger_control)  # started here, but closed by whoever made it
-        for source in starting:
-            try:
-                source.start()
-            except Exception as error:
-                self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
-
     def on_unmount(self) -> None:
         self.exit_signals.remove()
         self.stop_sources()
@@ -322,79 +289,9 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.begin_stopping_sources()
         self.exit(return_code=128 + signum)
 
-    def begin_stopping_sources(self) -> None:
-        """Start stopping every source, all at once, each in a thread of its own: each may
-        wait a moment for a process of its own (the intake process, demo nodes) to end, and
-        that runs while Textual takes the screens down, not after."""
-        sources, self.sources = self.sources, []
-        for source in sources:
-            thread = threading.Thread(target=_stop_quietly, args=(source,), name="console-tui-stop", daemon=True)
-            thread.start()
-            self._stopping.append(thread)
-
-    def stop_sources(self) -> None:
-        """Stop every source (``begin_stopping_sources``) and wait until they have stopped
-        (``SOURCE_STOP_TIMEOUT_S`` at most): the app should be gone within a second of ``q``."""
-        self.begin_stopping_sources()
-        deadline = time.monotonic() + SOURCE_STOP_TIMEOUT_S
-        for thread in self._stopping:
-            thread.join(max(deadline - time.monotonic(), 0.0))
-
     async def action_quit(self) -> None:
         self.begin_stopping_sources()
         self.exit()
-
-    # -- records ----------------------------------------------------------------------------------
-
-    def drain_intake(self) -> None:
-        """Move what the sources queued into the store, in one batch per tick.
-
-        Records from files come first; live records wait while files load, so that a
-        view of files plus the live stream stays in time order."""
-        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
-        if not self.loading:
-            room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
-            batches += self.queue.drain_batches(room)
-        arrived = self.add_batches(batches) if batches else 0
-        if self.loads:
-            self.check_loads()
-        if self.rules_pane.is_open:
-            self.show_rules(at_most_every=0.5)
-        self.update_status()
-        self.show_overview()
-        self.collection_policy.tick(arrived)
-
-    def add_records(self, records: Iterable[LogRecord]) -> None:
-        self.add_batches([records if isinstance(records, list) else list(records)])
-
-    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
-        """Put batches (records, or records in columns) into the store and the view; how many."""
-        table = self.table
-        added = 0
-        with table.keeping_position():
-            for batch in batches:
-                added += len(self.store.extend(batch))
-            self.view.update()
-            self.follow_overview()
-        if self.view.switched_off:
-            self.rules_changed()
-        self._arrivals.append((self.clock(), added))
-        self.node_stats.update()
-        self.search_after_records()
-        return added
-
-    def receive_rate(self) -> float:
-        """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
-        (so the status line is not redrawn every tick for a changing digit)."""
-        now = self.clock()
-        if now - self._rate_at < 1.0:
-            return self._rate
-        arrivals = self._arrivals
-        while arrivals and arrivals[0][0] < now - RATE_WINDOW_S:
-            arrivals.popleft()
-        self._rate = sum(count for _, count in arrivals) / RATE_WINDOW_S
-        self._rate_at = now
-        return self._rate
 
     def update_status(self) -> None:
         table = self.table
@@ -418,23 +315,6 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         self.status_bar.show_facts(facts)
         table.show_hint(empty_hint(facts, self.view.refiltering))
 
-    def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
-        self.update_status()
-        self.show_overview(force=True)
-        paused = self.table.paused_end is not None
-        if paused != self._shown_paused:
-            self._shown_paused = paused
-            self.name_pause_key(paused)
-
-    def name_pause_key(self, paused: bool) -> None:
-        """The footer names what the pause key does now: Pause, or Resume while paused. (The
-        app's own bindings are changed in place; a keymap applies over them as before.)"""
-        words = "Resume" if paused else "Pause"
-        table = self._bindings.key_to_bindings
-        for key, bindings in table.items():
-            table[key] = [replace(b, description=words) if b.id == "console.pause" else b for b in bindings]
-        self.refresh_bindings()
-
     async def on_event(self, event: events.Event) -> None:
         # Keys typed ahead go where they were meant (see focus.py): they wait while the screen
         # on top is not ready for them, and while the table has the focus a key's binding runs
@@ -454,58 +334,6 @@ class ConsoleApp(RuleActions, FileActions, PaneActions, SearchActions, JumpActio
         if action == "clear_search":
             return self.search is not None and not self.view.refiltering
         return True
-
-    # -- the table --------------------------------------------------------------------------------
-
-    def action_toggle_pause(self) -> None:
-        table = self.table
-        table.set_paused(table.paused_end is None)
-
-    def action_follow(self) -> None:
-        self.table.follow()
-
-    def action_clear(self) -> None:
-        self.marks.clear()
-        self.store.clear()
-        self.node_stats.clear()
-        self.view.rebuild()
-        self.clear_overview()
-        self.table.reset()
-        self.update_status()
-
-    def action_columns(self) -> None:
-        def apply(shown: frozenset[str] | None) -> None:
-            if shown is not None:
-                table = self.table
-                for column in COLUMNS:
-                    table.set_column_shown(column.key, column.key in shown)
-
-        self.push_screen(ColumnsScreen(self.table.shown_columns), apply)
-
-    def action_toggle_column(self, key: str) -> None:
-        self.table.set_column_shown(key, key not in self.table.shown_columns)
-
-    def action_details(self) -> None:
-        self.table.action_activate()
-
-    def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
-        self.open_detail(message.seq)
-
-    def open_detail(self, seq: int) -> None:
-        if seq not in self.store:
-            return
-        self.push_screen(
-            DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record, source_notes=self.source_notes)
-        )
-
-    def _step_record(self, seq: int, delta: int) -> LogRecord | None:
-        """The record ``delta`` rows away from ``seq`` in the table, moving the cursor too."""
-        table = self.table
-        row = table.view.row_of(seq) + delta
-        if not 0 <= row < table.row_count:
-            return None
-        table.move_cursor(row)
-        return self.store.get(table.view.seq_at(row))
 
     # -- help and the command palette -------------------------------------------------------------
 

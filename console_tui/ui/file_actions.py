@@ -11,30 +11,24 @@ import time
 from collections.abc import Sequence
 
 from textual import work
-from textual.app import App
 
 from ..model.formats.save import save_records
 from ..model.intake_queue import IntakeQueue
-from ..model.store import LogStore
 from ..model.text import one_line, plural
-from ..model.view import LogView
 from ..sources.files import FileLoad
+from .app_part import AppPart
 from .screens.files import OpenScreen, SaveRequest, SaveScreen
-from .screens.problems import ProblemsScreen
+from .screens.load_problems import ProblemsScreen
 from .widgets.load_bar import LoadBar
-from .widgets.log_table import LogTable
 
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
 
 
-class FileActions(App[None]):
+class FileActions(AppPart):
     """Files read in the background into the table, merged by time; the table saved to a file."""
 
     # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    view: LogView
-    table: LogTable
     load_bar: LoadBar
     #: File loads: their records come through a queue of their own, ahead of live ones.
     file_queue: IntakeQueue

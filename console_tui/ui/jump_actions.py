@@ -16,24 +16,22 @@ import subprocess
 from collections.abc import Callable
 
 from textual import work
-from textual.app import App, SuspendNotSupported
+from textual.app import SuspendNotSupported
 from textual.binding import Binding
 
 from ..model.levels import Severity
 from ..model.marks import Marks
 from ..model.seek import Hits, Seeker, level_hits, view_shows
-from ..model.store import LogStore
 from ..model.text import one_line
-from ..model.view import LogView
-from .screens.marks import MarksScreen
-from .widgets.log_table import LogTable
+from .app_part import AppPart
+from .screens.mark_list import MarksScreen
 
 #: A jump looks this long at once, then goes on in slices of the same length.
 SEEK_BUDGET_S = 0.008
 SEEK_PAUSE_S = 0.001
 
 
-class JumpActions(App[None]):
+class JumpActions(AppPart):
     """Jumps to errors, warnings and marks; the source of a message in the editor."""
 
     #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
@@ -50,11 +48,7 @@ class JumpActions(App[None]):
     ]
 
     # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    view: LogView
-    table: LogTable
     marks: Marks
-    update_status: Callable[[], None]
     _show_search_marks: Callable[[], None]
 
     # -- levels -----------------------------------------------------------------------------------

@@ -10,19 +10,17 @@ background in slices with the event loop free between them, as the rules are.
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable
 
 from textual import work
-from textual.app import App
 
 from ..model.node_stats import NodeStats
 from ..model.store import LogStore
 from ..model.storms import StormRows
 from ..model.timeline import Timeline
 from ..model.view import LogView
+from .app_part import AppPart
 from .focus import focus_now
 from .screens.summary import SummaryScreen
-from .widgets.log_table import LogTable
 from .widgets.timeline_strip import TimelineStrip
 
 #: Taking in what arrived, each tick: at most this long (the rest in the background).
@@ -34,16 +32,8 @@ CATCH_UP_PAUSE_S = 0.001
 STRIP_PERIOD_S = 0.25
 
 
-class OverviewActions(App[None]):
+class OverviewActions(AppPart):
     """The timeline, the storms and the summary, and their keys."""
-
-    # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    view: LogView
-    table: LogTable
-    utc: bool
-    clock: Callable[[], float]
-    update_status: Callable[[], None]
 
     timeline: Timeline
     storms: StormRows

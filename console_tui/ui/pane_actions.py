@@ -6,13 +6,10 @@ A part of ``ConsoleApp`` (it mixes this in).
 
 from __future__ import annotations
 
-from textual.app import App
-
 from ..model.logger_view import shown_logger
-from ..model.store import LogStore
+from .app_part import AppPart
 from .focus import focus_now
 from .screens.temporary_level import TemporaryLevelScreen
-from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
 from .widgets.node_pane import NodePane
 from .widgets.side_pane import SidePane
@@ -21,12 +18,10 @@ from .widgets.side_pane import SidePane
 DEFAULT_TEMPORARY_S = 30.0
 
 
-class PaneActions(App[None]):
+class PaneActions(AppPart):
     """Keys that open the panes, and the table taking focus back from them."""
 
     # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    table: LogTable
     logger_pane: LoggerPane
     node_pane: NodePane
 

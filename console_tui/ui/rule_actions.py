@@ -8,24 +8,20 @@ from __future__ import annotations
 
 import asyncio
 import os
-from collections.abc import Callable
 
 from textual import work
-from textual.app import App
 
 from ..model.rules.history import QueryHistory
 from ..model.rules.query import parse_query
 from ..model.rules.rule import RuleError
 from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
-from ..model.store import LogStore
 from ..model.text import plural
-from ..model.view import LogView
+from .app_part import AppPart
 from .focus import focus_now
 from .screens.files import PathScreen
 from .screens.quick_rule import QuickRuleScreen
 from .screens.rule_editor import RuleEditor
-from .widgets.log_table import LogTable
 from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 
@@ -39,19 +35,13 @@ REFILTER_PROGRESS_PERIOD_S = 0.1
 QUICK_RULE_ROWS = 10_000
 
 
-class RuleActions(App[None]):
+class RuleActions(AppPart):
     """Rules in force, and every way to change them."""
 
     # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    view: LogView
-    table: LogTable
     query_bar: QueryBar
     rules_pane: RulesPane
     query_history: QueryHistory
-    utc: bool
-    clock: Callable[[], float]
-    update_status: Callable[[], None]
 
     #: The rules in force; a new set replaces it whole (rule sets are values).
     rules: RuleSet = RuleSet()

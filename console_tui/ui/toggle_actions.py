@@ -10,20 +10,18 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from textual.app import App
 from textual.binding import Binding
 
 from ..model import toggles
 from ..model.levels import MESSAGE_SEVERITIES
 from ..model.rules.ruleset import RuleSet
-from ..model.store import LogStore
 from ..model.time_column import TimeFormat, format_info, next_format, sim_time_note
-from .widgets.log_table import LogTable
+from .app_part import AppPart
 from .widgets.logger_pane import LoggerPane
 from .widgets.node_pane import NodePane
 
 
-class ToggleActions(App[None]):
+class ToggleActions(AppPart):
     """Levels, nodes and time formats in one key each."""
 
     #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
@@ -54,13 +52,10 @@ class ToggleActions(App[None]):
     ]
 
     # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    table: LogTable
     node_pane: NodePane
     logger_pane: LoggerPane
     rules: RuleSet
     apply_rules: Callable[[RuleSet], None]
-    update_status: Callable[[], None]
     #: The live sources (none when only files are shown).
     sources: list
 

@@ -16,7 +16,7 @@ from console_tui.model.store import LogStore
 from console_tui.sources.files.loader import FileProgress, LoadProgress
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.detail import DetailScreen
-from console_tui.ui.screens.problems import ProblemsScreen
+from console_tui.ui.screens.load_problems import ProblemsScreen
 from console_tui.ui.screens.quick_rule import QuickRuleScreen
 from console_tui.ui.screens.rule_editor import RuleEditor
 

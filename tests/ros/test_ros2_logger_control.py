@@ -71,8 +71,8 @@ def log_all(process, tag, **extra):
 
 
 def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
-    from console_tui.sources.logger_control import NodesChanged
     from console_tui.sources.logger_errors import NoLoggerServices
+    from console_tui.sources.logger_events import NodesChanged
 
     start_alpha(nodes, ["--name", "beta", "--no-logger-service"])
     ready(control)
@@ -136,7 +136,7 @@ def test_debug_level_lets_debug_messages_through_and_info_stops_them(nodes, cont
 
 
 def test_temporary_debug_reverts_on_time(nodes, control, rosout):
-    from console_tui.sources.logger_control import TemporaryEnded
+    from console_tui.sources.logger_events import TemporaryEnded
 
     alpha = start_alpha(nodes)
     ready(control)

@@ -9,7 +9,7 @@ from console_tui.model.formats.save import save_records
 from console_tui.model.store import LogStore
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.files import OpenScreen, SaveScreen
-from console_tui.ui.screens.problems import ProblemsScreen
+from console_tui.ui.screens.load_problems import ProblemsScreen
 
 from support.feed import records
 from support.ui import line_with, screen_text, table_rows, type_text, until

@@ -1,18 +1,18 @@
 """The logger levels pane, beside the table: the graph's nodes, a node's loggers and their levels.
 
-The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into calls of the
-``LoggerControl``. With a control, the pane feeds the view itself (nodes as the graph changes,
-levels as they are read, temporary levels as they run); tests may feed it through ``show_*``
-and ``select_node`` for a fixed picture. Every service call runs on the control's thread: its
-future's outcome comes back as a message, so the screen never waits for a node. For a
-temporary level the pane posts ``TemporaryRequested``: the app asks for the level and time.
+The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into requests
+(``sources/logger_requests.py``: the calls of the ``LoggerControl`` and their books). With a
+control, the pane keeps the view fed (nodes as the graph changes, levels as they are read,
+temporary levels as they run); tests may feed it through ``show_*`` and ``select_node`` for a
+fixed picture. Every service call runs on the control's thread: its end comes back as a
+message, so the screen never waits for a node. For a temporary level the pane posts
+``TemporaryRequested``: the app asks for the level and time.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Mapping, Sequence
-from concurrent.futures import Future
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from textual import on
 from textual.app import ComposeResult
@@ -23,18 +23,17 @@ from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, LoggerRow, TemporaryLevel, node_of_logger
-from ...model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
+from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
+from ...sources.logger_events import LoggerEvent, NodesChanged
+from ...sources.logger_requests import CallEnded, LoggerRequests
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
 from .logger_lists import LoggerList, NodeList
-from .side_pane import SidePane
+from .side_pane import RightPane
 
 if TYPE_CHECKING:
-    from ...sources.logger_control import LoggerControl, LoggerEvent
-
-__all__ = ["NO_ROS_TEXT", "LoggerPane"]
+    from ...sources.logger_control import LoggerControl
 
 TICK_S = 1.0
 
@@ -53,7 +52,7 @@ _HINTS: list[Hint] = [
 _READ_HINTS: list[Hint] = [(("select", "refresh"), "read its loggers"), ("add_logger", "set one by name")]
 
 
-class LoggerPane(SidePane):
+class LoggerPane(RightPane):
     """Nodes, then the selected node's loggers; keys set the highlighted logger's level.
 
     | Key(s) | Description |
@@ -72,12 +71,6 @@ class LoggerPane(SidePane):
     LoggerPane {
         width: 46;
         max-width: 50%;
-        height: 100%;
-        background: $surface;
-        border-left: vkey $border-blurred;
-        padding: 0 0 0 1;
-        &:focus-within { border-left: vkey $border; }
-        & > .pane-title { text-style: bold; color: $text-primary; height: 1; }
         & > NodeList { height: auto; max-height: 40%; }
         & > LoggerList { height: 1fr; min-height: 3; }
         & > NodeList:focus, & > LoggerList:focus { background-tint: $foreground 5%; }
@@ -85,8 +78,6 @@ class LoggerPane(SidePane):
         & > #logger-notice { height: auto; max-height: 6; color: $text-muted; }
         & > #logger-notice.-error { color: $text-error; }
         & > LevelBar { height: auto; color: $text-accent; }
-        & > Input { margin: 0; }
-        & > #logger-keys { height: auto; color: $text-muted; }
     }
     """
 
@@ -107,31 +98,19 @@ class LoggerPane(SidePane):
     ]
 
     class ControlEvent(Message):
-        """An event of the ``LoggerControl`` (posted from its thread)."""
+        """An event of the ``LoggerControl``, or the end of a call (posted from its thread)."""
 
-        def __init__(self, event: LoggerEvent) -> None:
+        def __init__(self, event: LoggerEvent | CallEnded) -> None:
             super().__init__()
             self.event = event
 
         def can_replace(self, message: Message) -> bool:
             # A burst of graph changes: only the newest node list matters.
-            from ...sources.logger_control import NodesChanged
-
             return (
                 isinstance(message, LoggerPane.ControlEvent)
                 and isinstance(self.event, NodesChanged)
                 and isinstance(message.event, NodesChanged)
             )
-
-    class CallDone(Message):
-        """A service call finished (its future is done); ``then`` takes its result."""
-
-        def __init__(self, future: Future[Any], fqn: str, what: str, then: Callable[[Any], None]) -> None:
-            super().__init__()
-            self.future = future
-            self.fqn = fqn
-            self.what = what
-            self.then = then
 
     class TemporaryRequested(Message):
         """``t`` on a logger: ask for a level and a time, then call ``set_temporary``."""
@@ -151,17 +130,9 @@ class LoggerPane(SidePane):
         id: str | None = "logger-pane",
     ) -> None:
         super().__init__(id=id)
-        self.control = control
-        #: Logger names seen in records (the store's node column): where child loggers come from.
-        self.seen_loggers = seen_loggers
         self.clock = control.clock if control is not None else clock
-        # Without a control (files only, or a test feeding the pane) nodes are ROS 2's.
-        self.view = LoggerView(
-            has_ros=control is not None,
-            no_services_hint=control.no_services_hint if control is not None else ENABLE_LOGGER_SERVICE_HINT,
-            lists_loggers=control is not None and control.lists_loggers,
-            read_when_asked=control is not None and control.read_when_asked,
-        )
+        self.requests = LoggerRequests(control, self._from_control_thread, seen_loggers=seen_loggers)
+        self.view = self.requests.view
         self._ticker: Timer | None = None
         self.node_list = NodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
@@ -179,18 +150,17 @@ class LoggerPane(SidePane):
         yield self.notice_line
         yield LevelBar(id="logger-level-bar")
         yield self.name_input
-        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="logger-keys")
+        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="logger-keys", classes="pane-keys")
 
     def on_mount(self) -> None:
-        control = self.control
-        if control is not None:
-            control.subscribe(self._from_control_thread)
-            self.show_nodes(control.nodes)
+        if self.requests.control is not None:
+            self.requests.listen()
+            self.show_nodes(self.requests.control.nodes)
         self._render_all()
 
     def when_opened(self) -> None:
-        self.view.note_seen(self.seen_loggers)
-        self._refresh_checking()
+        if self.requests.opened():
+            self._render_checking()
         if self.selected is None and self.node_list.option_count:
             self.node_list.highlighted = 0
         elif self.selected is not None:
@@ -223,35 +193,25 @@ class LoggerPane(SidePane):
 
     def show_nodes(self, nodes: Sequence[GraphNode], checking: Collection[str] | None = None) -> None:
         """The graph's nodes; ``checking`` names those whose logger services may yet appear."""
-        view = self.view
-        had_selection = view.selected is not None
-        if checking is None:
-            checking = self._checking_now(nodes)
-        services_appeared = view.set_nodes(nodes, checking)
-        view.note_seen(self.seen_loggers, force=True)
+        had_selection = self.selected is not None
+        self.requests.set_nodes(nodes, checking)
         self._render_nodes()
-        if not had_selection and self.is_open and view.nodes:
+        if not had_selection and self.is_open and self.view.nodes:
             self.node_list.highlighted = 0  # the first nodes since the pane opened: show one
-        elif services_appeared and view.selected is not None:
-            self.read_levels(view.selected)
         self._render_loggers()
         self._update_ticker()
 
     def select_node(self, fqn: str, logger: str | None = None) -> bool:
         """Show ``fqn``'s loggers (reading their levels), with ``logger`` highlighted."""
-        view = self.view
-        changed = view.select(fqn, logger)
+        changed = self.requests.select(fqn, logger)
         if changed is None:
             return False
-        view.note_seen(self.seen_loggers, force=True)
         if changed:
             with self.node_list.prevent(OptionList.OptionHighlighted):
                 self.node_list.highlighted = self.node_list.get_option_index(fqn)
-        node = view.selected_node
+        node = self.view.selected_node
         own = node.logger_name if node is not None else None
         self._render_loggers(highlight=logger if logger is not None else (None if not changed else own))
-        if changed or logger is not None:
-            self.read_levels(fqn)
         return True
 
     def show_levels(self, fqn: str, levels: Mapping[str, int]) -> None:
@@ -266,106 +226,48 @@ class LoggerPane(SidePane):
 
     def show_failure(self, text: str) -> None:
         """A failed call: said in the pane and as a notification."""
-        self._say(text, error=True)
+        self.view.say(text, error=True)
+        self._render_notice()
         self.app.notify(text, title="Logger levels", severity="error", timeout=8, markup=False)
 
     def open_for_logger(self, logger: str) -> bool:
         """Open on the node whose messages carry this logger name (a table row's node)."""
         self.open(focus=False)
-        node = node_of_logger(logger, self.nodes)
+        node = self.view.node_logging_as(logger)
         if node is None:
-            self._say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
+            self._render_notice()  # says so
             self.node_list.focus()
             return False
         self.select_node(node.fqn, None if logger == node.fqn else logger)
         self.logger_list.focus()
         return True
 
-    # -- service calls ------------------------------------------------------------------------
+    # -- service calls (``LoggerRequests`` makes them and keeps their books) -----------------------
 
     def read_levels(self, fqn: str, *, asked: bool = False) -> None:
         """Read ``fqn``'s levels; where they are read only when asked (ROS 1), only when ``asked``."""
-        names = self.view.names_to_read(fqn)
-        if self.control is None or names is None or (self.view.read_when_asked and not asked):
-            return
-        self._call(
-            self.control.get_levels(fqn, names), fqn, "read the levels", lambda levels: self.show_levels(fqn, levels)
-        )
-
-    def set_level(self, fqn: str, logger: str, level: int) -> None:
-        control = self._usable_control()
-        if control is None:
-            return
-
-        def done(levels: Mapping[str, int]) -> None:
-            self.view.level_set(fqn, logger, level, levels)
-            self.show_temporaries(control.temporaries())
-            self.read_levels(fqn)
-
-        what = f"set {shown_logger(logger)} to {level_word(level)}"
-        self._call(control.set_level(fqn, logger, level), fqn, what, done)
+        self.requests.read_levels(fqn, asked=asked)
+        self._render_heading()
 
     def set_temporary(self, fqn: str, logger: str, level: int, seconds: float) -> None:
-        control = self._usable_control()
-        if control is None:
-            return
+        """Set a temporary level (the app's answer to ``TemporaryRequested``)."""
+        self.requests.set_temporary(fqn, logger, level, seconds)
+        self._render_status()
 
-        def done(entry: TemporaryLevel) -> None:
-            self.view.temporary_set(fqn, entry, seconds)
-            self.show_temporaries(control.temporaries())
-            self.read_levels(fqn)
-
-        what = f"set {shown_logger(logger)} to {level_word(level)} for {seconds:g} s"
-        self._call(control.set_temporary(fqn, logger, level, seconds), fqn, what, done)
-
-    def end_temporary(self, fqn: str, logger: str) -> None:
-        control = self._usable_control()
-        if control is None:
-            return
-
-        def done(_levels: Mapping[str, int]) -> None:
-            self.view.say(f"{shown_logger(logger)}: temporary level ended")
-            self.show_temporaries(control.temporaries())
-            self.read_levels(fqn)
-
-        self._call(control.end_temporary(fqn, logger), fqn, f"end the temporary level of {shown_logger(logger)}", done)
-
-    def _usable_control(self) -> LoggerControl | None:
-        if self.control is None:
-            self._say(NO_ROS_TEXT, error=True)
-        return self.control
-
-    def _call(self, future: Future[Any], fqn: str, what: str, then: Callable[[Any], None]) -> None:
-        self.view.call_started(fqn)
-        self._render_heading()
-        future.add_done_callback(lambda done: self.post_message(self.CallDone(done, fqn, what, then)))
-
-    def on_logger_pane_call_done(self, message: CallDone) -> None:
-        message.stop()
-        self.view.call_ended(message.fqn)
-        self._render_heading()
-        error = message.future.exception()
-        if error is None:
-            message.then(message.future.result())
-        else:
-            self.show_failure(f"Could not {message.what}: {error}")
-
-    def _from_control_thread(self, event: LoggerEvent) -> None:
+    def _from_control_thread(self, event: LoggerEvent | CallEnded) -> None:
         self.post_message(self.ControlEvent(event))
 
     def on_logger_pane_control_event(self, message: ControlEvent) -> None:
-        from ...sources.logger_control import NodesChanged, TemporaryEnded
-
         message.stop()
         event = message.event
         if isinstance(event, NodesChanged):
             self.show_nodes(event.nodes)
-        elif isinstance(event, TemporaryEnded) and self.control is not None:
-            failure = self.view.temporary_ended(event.entry, event.error)
-            self.show_temporaries(self.control.temporaries())
-            if failure is not None:
-                self.show_failure(failure)
-            self.read_levels(event.entry.node)
+            return
+        failure = self.requests.finish(event)  # a call or a temporary level ended
+        self._render_loggers()
+        self._update_ticker()
+        if failure is not None:
+            self.show_failure(failure)
 
     # -- keys and clicks -------------------------------------------------------------------------
 
@@ -378,7 +280,8 @@ class LoggerPane(SidePane):
     def action_set_level(self, level: int) -> None:
         target = self._target()
         if target is not None:
-            self.set_level(*target, level)
+            self.requests.set_level(*target, level)
+            self._render_status()
 
     def action_temporary(self) -> None:
         target = self._target()
@@ -388,15 +291,14 @@ class LoggerPane(SidePane):
     def action_end_temporary(self) -> None:
         target = self._target()
         if target is not None:
-            self.end_temporary(*target)
+            self.requests.end_temporary(*target)
+            self._render_status()
 
     def action_add_logger(self) -> None:
         self.name_input.focus()
 
     def action_refresh(self) -> None:
-        self.view.note_seen(self.seen_loggers, force=True)
-        if self.selected is not None:
-            self.read_levels(self.selected, asked=True)
+        self.requests.reread()
         self._render_all()
 
     def action_focus_nodes(self) -> None:
@@ -441,12 +343,11 @@ class LoggerPane(SidePane):
     @on(Input.Submitted, "#logger-name")
     def _name_typed(self, message: Input.Submitted) -> None:
         message.stop()
-        name = self.view.add_logger(message.value)
-        if name is None or self.selected is None:
+        name = self.requests.add_logger(message.value)
+        if name is None:
             return
         self.name_input.value = ""
         self._render_loggers(highlight=name)
-        self.read_levels(self.selected)
         self.logger_list.focus()
 
     # -- drawing ------------------------------------------------------------------------------
@@ -468,35 +369,26 @@ class LoggerPane(SidePane):
         self._render_heading()
         self._render_notice()
 
+    def _render_status(self) -> None:
+        """The heading (a call under way) and the notice."""
+        self._render_heading()
+        self._render_notice()
+
     def _render_heading(self) -> None:
         self.heading.update(plain(self.view.heading(), no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
-        problem = self.control.problem if self.control is not None else ""
         text, error = self.view.notice_text(
-            problem, hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS)
+            self.requests.problem, hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS)
         )
         self.notice_line.update(plain(text, lines=True))
         self.notice_line.set_class(error, "-error")
 
-    def _say(self, text: str, error: bool = False) -> None:
-        self.view.say(text, error)
+    def _render_checking(self) -> None:
+        self._render_nodes()
         self._render_notice()
 
     # -- keeping up -----------------------------------------------------------------------------
-
-    def _checking_now(self, nodes: Sequence[GraphNode] | None = None) -> frozenset[str]:
-        control = self.control
-        if control is None:
-            return self.view.checking
-        return self.view.unsettled(control.is_settled, self.view.nodes if nodes is None else nodes)
-
-    def _refresh_checking(self) -> None:
-        checking = self._checking_now()
-        if checking != self.view.checking:
-            self.view.checking = checking
-            self._render_nodes()
-            self._render_notice()
 
     def _update_ticker(self) -> None:
         """A 1 s tick while the pane is open: countdowns, "checking" marks, new child loggers."""
@@ -507,19 +399,12 @@ class LoggerPane(SidePane):
             self._ticker = None
 
     def _tick(self) -> None:
-        view = self.view
-        if self.control is not None:
-            if self.control.problem and self.control.problem not in str(self.notice_line.content):
-                self._render_notice()
-            temporaries = self.control.temporaries()
-            if temporaries != view.temporaries:
-                view.temporaries = temporaries
-                self._render_loggers()
-        if view.checking:
-            self._refresh_checking()
-        if view.note_seen(self.seen_loggers):
+        requests = self.requests
+        if requests.problem and requests.problem not in str(self.notice_line.content):
+            self._render_notice()
+        if requests.take_temporaries():
             self._render_loggers()
-            if self.selected is not None:
-                self.read_levels(self.selected)
-        elif view.counting_down():
-            self._render_loggers()  # the countdown
+        if self.view.checking and requests.refresh_checking():
+            self._render_checking()
+        if requests.new_child_loggers() or self.view.counting_down():
+            self._render_loggers()  # the new loggers, or the countdown

@@ -31,7 +31,7 @@ from ...model.text import one_line
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..severity_styles import severity_classes, severity_css
-from .side_pane import SidePane
+from .side_pane import RightPane
 
 REFRESH_S = 1.0
 
@@ -145,7 +145,7 @@ class NodeList(OptionList):
     """The nodes; ``s``, ``m`` act on the highlighted one."""
 
 
-class NodePane(SidePane):
+class NodePane(RightPane):
     """Every node seen, its counts and rate; solo / mute with one key.
 
     | Key(s) | Description |
@@ -172,17 +172,9 @@ class NodePane(SidePane):
     NodePane {
         width: 56;
         max-width: 55%;
-        height: 100%;
-        background: $surface;
-        border-left: vkey $border-blurred;
-        padding: 0 0 0 1;
-        &:focus-within { border-left: vkey $border; }
-        & > #nodes-title { text-style: bold; color: $text-primary; height: 1; }
-        & > Input { margin: 0; }
         & > #nodes-header { height: 1; color: $text-muted; text-style: bold; }
         & > NodeList { height: 1fr; }
         & > NodeList:focus { background-tint: $foreground 5%; }
-        & > #nodes-keys { height: auto; color: $text-muted; }
     }
     """ + severity_css("NodePane", "node-pane--severity")
 
@@ -223,11 +215,11 @@ class NodePane(SidePane):
         self.filter_input = Input(placeholder="filter nodes: part of a name", id="nodes-filter", compact=True)
 
     def compose(self) -> ComposeResult:
-        yield Static("Nodes", id="nodes-title")
+        yield Static("Nodes", id="nodes-title", classes="pane-title")
         yield self.filter_input
         yield Static(header_line(self.sort), id="nodes-header")
         yield self.node_list
-        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="nodes-keys")
+        yield Static(hint_line(self.app, self.BINDINGS, _HINTS), id="nodes-keys", classes="pane-keys")
 
     def focus_target(self) -> Widget:
         return self.node_list

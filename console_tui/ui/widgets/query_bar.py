@@ -7,7 +7,6 @@ from dataclasses import dataclass
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding
-from textual.containers import Vertical
 from textual.message import Message
 from textual.widgets import Input, Static
 
@@ -15,15 +14,15 @@ from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
 from ...model.text import one_line, plural
-from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..plain import plain
+from .input_line import InputLine
 
 _HINTS: list[Hint] = [("submit", "applies"), ("close", "closes"), (("history(-1)", "history(1)"), "history")]
 PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
 
 
-class QueryBar(Vertical):
+class QueryBar(InputLine):
     """Hidden until opened; while the text does not parse, the rules in force stay.
 
     | Key(s) | Description |
@@ -33,10 +32,6 @@ class QueryBar(Vertical):
     """
 
     DEFAULT_CSS = """
-    QueryBar { height: auto; display: none; background: $panel; padding: 0 1; }
-    QueryBar.-open { display: block; }
-    /* One line, no border: the focused Input's built-in tall border must not win either. */
-    QueryBar > Input, QueryBar > Input:focus { border: none; height: 1; padding: 0; background: $panel; }
     QueryBar > #query-problem { color: $text-error; height: auto; }
     QueryBar > #query-problem.-ok { color: $text-muted; }
     """
@@ -71,22 +66,11 @@ class QueryBar(Vertical):
         """``⏎ applies · esc closes · ↑/↓ history``, from the bindings."""
         return hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], _HINTS)
 
-    @property
-    def input(self) -> Input:
-        return self.query_one(Input)
-
-    @property
-    def is_open(self) -> bool:
-        return self.has_class("-open")
-
     def open(self) -> None:
-        self.add_class("-open")
-        self.input.value = self.applied_text
-        self.input.cursor_position = len(self.applied_text)
-        focus_now(self.input)
+        self.open_with(self.applied_text)
 
     def action_close(self) -> None:
-        self.remove_class("-open")
+        self.close()
         self.post_message(self.Closed())
 
     def action_history(self, step: int) -> None:
@@ -95,8 +79,7 @@ class QueryBar(Vertical):
         if found is not None and found == current and step < 0:
             found = self.history.previous(current) or found  # the query shown is the newest: skip it
         if found is not None:
-            self.input.value = found
-            self.input.cursor_position = len(found)
+            self.set_text(found)
 
     def check(self, text: str) -> tuple[Entry, ...] | None:
         """The entries of ``text``, or None after showing where it goes wrong."""

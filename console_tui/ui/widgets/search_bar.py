@@ -7,20 +7,19 @@ from dataclasses import dataclass
 from textual import on
 from textual.app import ComposeResult
 from textual.binding import Binding, BindingType
-from textual.containers import Vertical
 from textual.message import Message
 from textual.widgets import Input, Static
 
 from ...model.rules.rule import RuleError
 from ...model.search import parse_search
-from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..plain import plain
+from .input_line import InputLine
 
 PLACEHOLDER = "text to find (smart case), or /regex/ or /regex/i: the rows stay, matches are marked"
 
 
-class SearchBar(Vertical):
+class SearchBar(InputLine):
     """Hidden until opened. Posts ``Changed`` as the text changes and ``Done`` when closed.
 
     | Key(s) | Description |
@@ -29,9 +28,6 @@ class SearchBar(Vertical):
     """
 
     DEFAULT_CSS = """
-    SearchBar { height: auto; display: none; background: $panel; padding: 0 1; }
-    SearchBar.-open { display: block; }
-    SearchBar > Input, SearchBar > Input:focus { border: none; height: 1; padding: 0; background: $panel; }
     SearchBar > #search-hint { color: $text-muted; height: auto; }
     SearchBar > #search-hint.-error { color: $text-error; }
     """
@@ -74,23 +70,9 @@ class SearchBar(Vertical):
         hint.set_class(bool(problem), "-error")
         hint.update(plain(problem) if problem else self.key_hints())
 
-    @property
-    def input(self) -> Input:
-        return self.query_one(Input)
-
-    @property
-    def is_open(self) -> bool:
-        return self.has_class("-open")
-
     def open(self, text: str = "") -> None:
-        self.add_class("-open")
-        self.input.value = text
-        self.input.cursor_position = len(text)
         self.show_hint()
-        focus_now(self.input)
-
-    def close(self) -> None:
-        self.remove_class("-open")
+        self.open_with(text)
 
     def action_cancel(self) -> None:
         self.close()

@@ -62,3 +62,21 @@ class SidePane(Vertical):
 
     def action_leave(self) -> None:
         self.post_message(self.Leave())
+
+
+class RightPane(SidePane):
+    """A side pane on the table's right (the node panel, the logger levels pane): a title
+    (class ``pane-title``) on top, its keys (class ``pane-keys``) at the foot."""
+
+    DEFAULT_CSS = """
+    RightPane {
+        height: 100%;
+        background: $surface;
+        border-left: vkey $border-blurred;
+        padding: 0 0 0 1;
+        &:focus-within { border-left: vkey $border; }
+        & > .pane-title { text-style: bold; color: $text-primary; height: 1; }
+        & > Input { margin: 0; }
+        & > .pane-keys { height: auto; color: $text-muted; }
+    }
+    """

@@ -1,0 +1,165 @@
+"""The app's intake: the sources started and stopped, and what they queued taken into the store.
+
+A part of ``ConsoleApp`` (it mixes this in). Sources (the live stream, file loads) run in
+threads or processes of their own and put records on an ``IntakeQueue``; each tick
+(``DRAIN_INTERVAL``) moves what is there into the store, the view and every part that follows
+them, at most ``MAX_RECORDS_PER_TICK`` at a time.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections import deque
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Protocol
+
+from ..model.intake_queue import IntakeQueue
+from ..model.node_stats import NodeStats
+from ..model.record import LogRecord
+from ..model.record_batch import RecordColumns
+from ..sources.files import FileLoad
+from ..sources.status import SourceStatus
+from .app_part import AppPart
+from .gc_policy import CollectionPolicy
+from .widgets.rules_pane import RulesPane
+
+if TYPE_CHECKING:
+    from ..sources.logger_control import LoggerControl
+
+DRAIN_INTERVAL = 1 / 15
+#: Records taken into the store per tick at most, so one tick never stalls the screen.
+MAX_RECORDS_PER_TICK = 20_000
+RATE_WINDOW_S = 2.0
+#: How long quitting waits for the sources to stop, at most.
+SOURCE_STOP_TIMEOUT_S = 2.0
+
+
+class Source(Protocol):
+    """A producer of records (the live stream, a file loader) the app starts and stops."""
+
+    status: SourceStatus
+
+    def start(self) -> None: ...
+
+    def stop(self) -> None: ...
+
+
+def _stop_quietly(source: Source) -> None:
+    try:
+        source.stop()
+    except Exception:
+        pass
+
+
+class IntakeActions(AppPart):
+    """Sources in, records into the store each tick, sources out when the app ends."""
+
+    # What it uses of the app (``ConsoleApp`` sets them).
+    sources: list[Source]
+    #: The live sources' records; file loads have a queue of their own (``file_queue``).
+    queue: IntakeQueue
+    file_queue: IntakeQueue
+    loads: list[FileLoad]
+    loading: bool
+    logger_control: LoggerControl | None
+    node_stats: NodeStats
+    rules_pane: RulesPane
+    collection_policy: CollectionPolicy
+    check_loads: Callable[[], None]
+    show_rules: Callable[..., None]
+    show_overview: Callable[..., None]
+    follow_overview: Callable[[], None]
+    rules_changed: Callable[[], None]
+    search_after_records: Callable[[], None]
+    _rate = 0.0
+    _rate_at = 0.0
+
+    def __init__(self) -> None:
+        super().__init__()
+        #: When records arrived, and how many: the receive rate.
+        self._arrivals: deque[tuple[float, int]] = deque()
+        #: The threads stopping the sources, once quitting began.
+        self._stopping: list[threading.Thread] = []
+
+    # -- the sources ------------------------------------------------------------------------------
+
+    def start_sources(self) -> None:
+        starting: list = list(self.sources)
+        if self.logger_control is not None:
+            starting.append(self.logger_control)  # started here, but closed by whoever made it
+        for source in starting:
+            try:
+                source.start()
+            except Exception as error:
+                self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
+
+    def begin_stopping_sources(self) -> None:
+        """Start stopping every source, all at once, each in a thread of its own: each may
+        wait a moment for a process of its own (the intake process, demo nodes) to end, and
+        that runs while Textual takes the screens down, not after."""
+        sources, self.sources = self.sources, []
+        for source in sources:
+            thread = threading.Thread(target=_stop_quietly, args=(source,), name="console-tui-stop", daemon=True)
+            thread.start()
+            self._stopping.append(thread)
+
+    def stop_sources(self) -> None:
+        """Stop every source (``begin_stopping_sources``) and wait until they have stopped
+        (``SOURCE_STOP_TIMEOUT_S`` at most): the app should be gone within a second of ``q``."""
+        self.begin_stopping_sources()
+        deadline = time.monotonic() + SOURCE_STOP_TIMEOUT_S
+        for thread in self._stopping:
+            thread.join(max(deadline - time.monotonic(), 0.0))
+
+    # -- records ----------------------------------------------------------------------------------
+
+    def drain_intake(self) -> None:
+        """Move what the sources queued into the store, in one batch per tick.
+
+        Records from files come first; live records wait while files load, so that a
+        view of files plus the live stream stays in time order."""
+        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
+        if not self.loading:
+            room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
+            batches += self.queue.drain_batches(room)
+        arrived = self.add_batches(batches) if batches else 0
+        if self.loads:
+            self.check_loads()
+        if self.rules_pane.is_open:
+            self.show_rules(at_most_every=0.5)
+        self.update_status()
+        self.show_overview()
+        self.collection_policy.tick(arrived)
+
+    def add_records(self, records: Iterable[LogRecord]) -> None:
+        self.add_batches([records if isinstance(records, list) else list(records)])
+
+    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
+        """Put batches (records, or records in columns) into the store and the view; how many."""
+        table = self.table
+        added = 0
+        with table.keeping_position():
+            for batch in batches:
+                added += len(self.store.extend(batch))
+            self.view.update()
+            self.follow_overview()
+        if self.view.switched_off:
+            self.rules_changed()
+        self._arrivals.append((self.clock(), added))
+        self.node_stats.update()
+        self.search_after_records()
+        return added
+
+    def receive_rate(self) -> float:
+        """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
+        (so the status line is not redrawn every tick for a changing digit)."""
+        now = self.clock()
+        if now - self._rate_at < 1.0:
+            return self._rate
+        arrivals = self._arrivals
+        while arrivals and arrivals[0][0] < now - RATE_WINDOW_S:
+            arrivals.popleft()
+        self._rate = sum(count for _, count in arrivals) / RATE_WINDOW_S
+        self._rate_at = now
+        return self._rate
