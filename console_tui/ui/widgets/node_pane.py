@@ -67,7 +67,7 @@ _PLAIN = Style()
 
 
 def compact(number: int) -> str:
-    """At most 4 characters: ``9999``, ``12k``, ``1.2M``."""
+    """Short: ``9999``, ``12k``, ``1.2M`` (4 characters at most below 10 million)."""
     if number < 10_000:
         return str(number)
     if number < 999_500:
