@@ -13,7 +13,10 @@ are shown changed).
 
 Messages are tested as the message rule tests them (``rules/message.py``): on a full chunk's
 packed text all at once where the match allows (``rules/packed_match.py``), else one by one;
-a regex under ``time_limit``.
+a regex under ``time_limit``. A search looks for something rare, so first the plain text
+every match holds (``must_hold``) is looked for in a full chunk's packed text with one
+``re`` search (faster than ``str.find`` on such text): where it is absent, no message of the
+span matches, and the test starts at the first message holding it.
 """
 
 from __future__ import annotations
@@ -21,12 +24,15 @@ from __future__ import annotations
 import re
 from array import array
 from bisect import bisect_left, bisect_right
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from itertools import compress
 from operator import neg
 from time import perf_counter
 
+from .packed_texts import PackedTexts
 from .rules.message import messages_test
+from .rules.packed_match import lowered
+from .rules.regex_shape import required_literal
 from .rules.text_match import TextMatch
 from .rules.time_limit import MatchTimeout, time_limit
 from .seek import HITS_LIMIT_S, Hits, PieceSize, Walk, view_shows
@@ -59,12 +65,65 @@ def display_pattern(match: TextMatch) -> re.Pattern[str]:
     return re.compile(re.escape(match.text), re.IGNORECASE if match.ignore_case else 0)
 
 
+def must_hold(match: TextMatch) -> tuple[str, bool]:
+    """Plain text every message matching ``match`` holds ("" when there is none to look
+    for), and whether it is to be looked for in the lower-cased text (ignoring case; the
+    text is then ASCII, as the message rule's packed matchers have it)."""
+    if match.regex:
+        if not match.text:
+            return "", False  # the empty regex: every message matches
+        pattern = match.pattern()
+        ignore_case = bool(pattern.flags & re.IGNORECASE)
+        text = required_literal(pattern).text
+        if ignore_case:
+            text = text.lower() if text.isascii() else ""
+    else:
+        ignore_case = match.ignore_case
+        text = match.text.casefold() if ignore_case else match.text
+    if not text or "\0" in text or (ignore_case and not text.isascii()):
+        return "", False
+    return text, ignore_case
+
+
+#: ``first(chunk, lo, hi)``: the first message in ``lo:hi`` that may match (``hi``: none).
+FirstCandidate = Callable[[Chunk, int, int], int]
+
+
+def first_candidate(match: TextMatch) -> FirstCandidate | None:
+    """The first message of a span holding ``must_hold``'s text, found in a full chunk's
+    packed text (``lo`` for other chunks: any may match); None when there is no text to
+    look for."""
+    text, lower = must_hold(match)
+    if not text:
+        return None
+    find = re.compile(re.escape(text)).search
+
+    def first(chunk: Chunk, lo: int, hi: int) -> int:
+        texts = chunk.msgs
+        if not isinstance(texts, PackedTexts) or lo >= hi:
+            return lo
+        haystack = lowered(texts) if lower else texts.text
+        if haystack is None:
+            return lo
+        starts = texts.starts
+        found = find(haystack, starts[lo], starts[hi] - 1)
+        return hi if found is None else bisect_right(starts, found.start()) - 1
+
+    return first
+
+
 def text_hits(match: TextMatch) -> Hits:
     """The ``Hits`` of a ``TextMatch`` over messages: the message rule's own test (on a full
-    chunk's packed text all at once where the match allows), as offsets."""
+    chunk's packed text all at once where the match allows), as offsets, from the first
+    message that may match (``first_candidate``)."""
     test = messages_test(match)
+    first = first_candidate(match)
 
     def hits(chunk: Chunk, lo: int, hi: int) -> Sequence[int]:
+        if first is not None:
+            lo = first(chunk, lo, hi)
+            if lo >= hi:
+                return []
         return list(compress(range(lo, hi), test(chunk, lo, hi)))
 
     return hits

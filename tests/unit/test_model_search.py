@@ -15,7 +15,7 @@ from console_tui.model.rules.message import MessageRule
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.ruleset import RuleSet, exclude
 from console_tui.model.rules.severity import SeverityRule
-from console_tui.model.search import PENDING, Search, parse_search, text_hits
+from console_tui.model.search import PENDING, Search, must_hold, parse_search, text_hits
 from console_tui.model.seek import Seeker, level_hits, view_shows
 from console_tui.model.store import CHUNK_SIZE, LogStore
 from console_tui.model.view import LogView
@@ -138,13 +138,54 @@ def test_text_hits_on_packed_and_listed_chunks_agree(words):
     store = make_store(CHUNK_SIZE + 100, words=words)
     full, growing = (span.chunk for span in store.spans(0, store.end_seq))
     assert isinstance(full.msgs, PackedTexts) and isinstance(growing.msgs, list)
-    for text in ("timeout", "TIMEOUT", "größe", "/out \\d/", "/OUT/i"):
+    rng = random.Random(3)
+    spans = [(0, 0), (5, 5), *((lo, lo + rng.randrange(1, 300)) for lo in rng.sample(range(3000), 8))]
+    for text in SEARCHES:
         hits = text_hits(parse_search(text))
         predicate = parse_search(text).predicate()
         for chunk in (full, growing):
-            assert list(hits(chunk, 10, len(chunk) - 3)) == [
-                i for i in range(10, len(chunk) - 3) if predicate(chunk.msgs[i])
-            ]
+            for lo, hi in [(10, len(chunk) - 3), *spans]:
+                expected = [i for i in range(lo, min(hi, len(chunk))) if predicate(chunk.msgs[i])]
+                assert list(hits(chunk, lo, min(hi, len(chunk)))) == expected, (text, lo, hi)
+
+
+#: Texts, regexes and neither (the plain text every match holds, looked for first, or none).
+SEARCHES = (
+    "timeout",
+    "TIMEOUT",
+    "Timeout",
+    "größe",
+    "Größe 3",
+    "nowhere",
+    "/out \\d/",
+    "/OUT/i",
+    "/(?i)timed? ?out/",
+    "/^goal/",
+    "/Größe \\d+$/",
+    "/GRÖSSE/i",
+    "/time(out|d out) 1\\d/",
+    "/\\d{3}/",
+    "/x|ok/",
+)
+
+
+@pytest.mark.parametrize(
+    ("text", "holds"),
+    [
+        ("Timeout", ("Timeout", False)),
+        ("timeout", ("timeout", True)),
+        ("straße", ("strasse", True)),  # case folding, as the message rule does
+        ("größe", ("", False)),
+        ("/need(le|ful) \\d+/", ("need", False)),
+        ("/NEED(le)?/i", ("need", True)),
+        ("/(?i)Need/", ("need", True)),
+        ("/a|b/", ("", False)),
+        ("/Größe/i", ("", False)),
+        ("/a\\x00b/", ("", False)),
+    ],
+)
+def test_must_hold_is_the_plain_text_every_match_holds(text, holds):
+    assert must_hold(parse_search(text)) == holds
 
 
 @pytest.mark.parametrize("forward", [True, False])
