@@ -151,7 +151,7 @@ class Ros1Demo:
                 pass
             self.roscore.wait(timeout)
             for pid in leftovers:  # roslaunch gives rosmaster and rosout sessions of their own
-                if _runs(pid, str(self.port)) or _runs(pid, self._folder):
+                if _is_ours(pid, str(self.port)) or _is_ours(pid, self._folder):
                     try:
                         os.kill(pid, signal.SIGKILL)
                     except (ProcessLookupError, PermissionError):
@@ -170,7 +170,7 @@ class Ros1Demo:
         return pids
 
 
-def _runs(pid: int, text: str) -> bool:
+def _is_ours(pid: int, text: str) -> bool:
     """Whether process ``pid`` is still one of ours: its command line mentions ``text``."""
     try:
         with open(f"/proc/{pid}/cmdline", "rb") as cmdline:

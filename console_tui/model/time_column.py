@@ -75,7 +75,7 @@ def next_format(fmt: TimeFormat) -> TimeFormat:
     return FORMATS[(FORMATS.index(fmt) + 1) % len(FORMATS)]
 
 
-def duration_text(ns: int) -> str:
+def offset_text(ns: int) -> str:
     """A signed duration, milliseconds truncated: ``+0.137``, ``-1:02.500``, ``+2d 03:04:05``."""
     if ns == 0:
         return "0.000"
@@ -124,8 +124,8 @@ def time_cell(
     if fmt is TimeFormat.STAMP:
         return stamp_text(stamp_ns)
     if fmt is TimeFormat.DELTA:
-        return duration_text(stamp_ns - previous_ns) if previous_ns is not None else ""
-    return duration_text(stamp_ns - origin_ns) if origin_ns is not None else ""
+        return offset_text(stamp_ns - previous_ns) if previous_ns is not None else ""
+    return offset_text(stamp_ns - origin_ns) if origin_ns is not None else ""
 
 
 def sim_time_note(stamp_ns: int, now_ns: int, *, live: bool) -> str:

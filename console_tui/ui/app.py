@@ -25,7 +25,6 @@ from textual.binding import Binding, BindingType
 from textual.containers import Horizontal
 from textual.notifications import SeverityLevel
 from textual.screen import Screen
-from textual.widgets import Footer
 
 from ..model.intake_queue import IntakeQueue
 from ..model.marks import Marks
@@ -56,6 +55,7 @@ from .screens.summary import SummaryScreen
 from .search_actions import SearchActions
 from .table_actions import TableActions
 from .toggle_actions import ToggleActions
+from .widgets.key_footer import KeyFooter
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
@@ -243,7 +243,7 @@ class ConsoleApp(
         yield self.search_bar
         yield self.load_bar
         yield self.status_bar
-        yield Footer()
+        yield KeyFooter()
 
     def on_mount(self) -> None:
         self.exit_signals.install()

@@ -34,7 +34,7 @@ SEEK_PAUSE_S = 0.001
 class JumpActions(AppPart):
     """Jumps to errors, warnings and marks; the source of a message in the editor."""
 
-    #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
+    #: Its keys (``ConsoleApp.BINDINGS`` places them, for the footer's order).
     KEYS = [
         Binding("e", "next_level(40)", "Next ERROR or worse", show=False, id="nav.next_error"),
         Binding("E", "previous_level(40)", "Previous ERROR or worse", show=False, id="nav.previous_error"),

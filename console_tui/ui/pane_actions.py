@@ -1,5 +1,6 @@
 """The app's side panes beside the table (the logger levels pane; the rules pane is in
-``rule_actions``, the node panel in ``toggle_actions``): opening them, and what their messages ask of the app.
+``rule_actions``, the node panel in ``toggle_actions``): opening them, and what their messages
+ask of the app.
 
 A part of ``ConsoleApp`` (it mixes this in).
 """
@@ -19,7 +20,8 @@ DEFAULT_TEMPORARY_S = 30.0
 
 
 class PaneActions(AppPart):
-    """Keys that open the panes, and the table taking focus back from them."""
+    """The keys that open the logger levels pane, its temporary levels, and the table taking
+    the focus back from any pane."""
 
     # What it uses of the app (``ConsoleApp`` sets them).
     logger_pane: LoggerPane

@@ -1,6 +1,6 @@
 """The app's search: the search line, next / previous match, the marks on matching rows.
 
-A part of ``ConsoleApp`` (it mixes this in). The search itself is the model's ``Search``:
+A part of ``ConsoleApp`` (``app_part.AppPart``). The search itself is the model's ``Search``:
 it walks the history in slices on the event loop (the screen never waits), newer or older
 first as the jump asked for needs, and the status line says "match 3 of 17".
 """
@@ -8,21 +8,18 @@ first as the jump asked for needs, and the status line says "match 3 of 17".
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable
 from dataclasses import dataclass
 
 from textual import work
-from textual.app import App
 from textual.binding import Binding
 
 from ..model.marks import Marks
 from ..model.rules.time_limit import MatchTimeout, time_limit
 from ..model.search import PENDING, Search, describe_search, display_pattern, parse_search
-from ..model.store import LogStore
 from ..model.text import plural
-from ..model.view import LogView
+from .app_part import AppPart
 from .focus import focus_now
-from .widgets.log_table import LogTable, Spans
+from .widgets.log_table import Spans
 from .widgets.search_bar import SearchBar
 
 #: Slices of the search on the event loop, and the pause between them. A slice adds to the
@@ -47,24 +44,19 @@ class _Jump:
     either_way: bool = False
 
 
-class SearchActions(App[None]):
+class SearchActions(AppPart):
     """Search without filtering: every match marked, n / N across the whole history."""
 
-    #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
+    #: Its keys (``ConsoleApp.BINDINGS`` places them, for the footer's order).
     KEYS = [
         Binding("f,ctrl+f", "search", "Find", id="nav.find"),
         Binding("n", "next_match", "Next match", show=False, id="nav.next_match"),
         Binding("N", "previous_match", "Previous match", show=False, id="nav.previous_match"),
     ]
 
-    # What it uses of the app (``ConsoleApp`` sets them).
-    store: LogStore
-    view: LogView
-    table: LogTable
+    # What else it uses of the app (``ConsoleApp`` sets them).
     search_bar: SearchBar
     marks: Marks
-    update_status: Callable[[], None]
-    clock: Callable[[], float]
 
     search: Search | None = None
     _search_rules: object = None
@@ -255,7 +247,8 @@ class SearchActions(App[None]):
         return MATCH_GLYPH if search is not None and search.is_match(seq) else ""
 
     def search_status(self) -> str:
-        """``match 3 of 17 'timeout'``, ``17 matches``, ``searching… 5 found``, or ""."""
+        """``match 3 of 17 'timeout'``, ``17 matches 'timeout'``, ``searching 'timeout': 5 found``,
+        ``no match 'timeout'``, ``search stopped: ...`` (the regex took too long), or ""."""
         search = self._fresh_search()
         if search is None:
             return ""

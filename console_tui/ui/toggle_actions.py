@@ -24,7 +24,7 @@ from .widgets.node_pane import NodePane
 class ToggleActions(AppPart):
     """Levels, nodes and time formats in one key each."""
 
-    #: Its keys (``ConsoleApp.BINDINGS`` lists them after its own, for the footer's order).
+    #: Its keys (``ConsoleApp.BINDINGS`` places them, for the footer's order).
     KEYS = [
         *(
             Binding(

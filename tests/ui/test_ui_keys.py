@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from console_tui.ui.commands import palette_commands
 from console_tui.ui.keys import load_keymap
+from console_tui.ui.widgets.key_footer import KeyFooter
 
 from support.feed import feed_logger_pane
 from support.ui import make_app, screen_text, until
@@ -75,3 +76,27 @@ async def test_palette_entries_have_distinct_names_and_show_their_keys():
         assert "(space)" in screen_text(app)
         system = [command.title for command in app.get_system_commands(app.screen)]
         assert "Keys" not in system, "Textual's key panel gives way to the help screen"
+
+
+async def test_the_footer_mounts_its_keys_again_only_when_they_change():
+    """Textual's footer mounted its ~30 keys again on every signal, twice per change of
+    focus; the search line's opening and closing now cost one each, and the footer shows
+    the same keys after as before."""
+    app = make_app(50)
+    async with app.run_test(size=(140, 30)) as pilot:
+        footer = app.query_one(KeyFooter)
+        await until(pilot, lambda: footer.recomposed > 0, what="the footer's keys")
+        await pilot.pause(0.1)
+        keys_before = screen_text(app).splitlines()[-1]
+        assert "Pause" in keys_before, keys_before
+        before = footer.recomposed
+        await pilot.press("f")
+        await until(pilot, lambda: app.search_bar.is_open, what="the search line")
+        await pilot.pause(0.1)
+        await pilot.press("escape")
+        await until(pilot, lambda: app.focused is app.table, what="the table focused again")
+        await pilot.pause(0.2)
+        assert footer.recomposed - before <= 2, f"{footer.recomposed - before} recomposes for open and close"
+        assert screen_text(app).splitlines()[-1] == keys_before
+        await pilot.press("space")  # pause: the footer's Pause becomes Resume
+        await until(pilot, lambda: "Resume" in screen_text(app).splitlines()[-1], what="Resume in the footer")

@@ -11,7 +11,7 @@ from console_tui.model.record import LogRecord
 from console_tui.model.rules.message import MessageRule
 from console_tui.model.rules.ruleset import RuleSet, exclude
 from console_tui.model.store import LogStore
-from console_tui.model.time_column import TimeFormat, duration_text, sim_time_note, time_cell
+from console_tui.model.time_column import TimeFormat, offset_text, sim_time_note, time_cell
 from console_tui.model.view import LogView
 
 # -- marks ------------------------------------------------------------------------------------
@@ -104,10 +104,10 @@ def test_time_cells(fmt, expected):
 
 
 def test_durations_and_sim_time():
-    assert duration_text(0) == "0.000"
-    assert duration_text(-1_500_000_000) == "-1.500"
-    assert duration_text(61_000_000_000) == "+1:01.000"
-    assert duration_text(2 * 86_400_000_000_000 + 5_000_000_000) == "+2d 00:00:05"
+    assert offset_text(0) == "0.000"
+    assert offset_text(-1_500_000_000) == "-1.500"
+    assert offset_text(61_000_000_000) == "+1:01.000"
+    assert offset_text(2 * 86_400_000_000_000 + 5_000_000_000) == "+2d 00:00:05"
     assert time_cell(STAMP, TimeFormat.DELTA, previous_ns=None) == ""
     now = STAMP
     assert "near 0" in sim_time_note(12_000_000_000, now, live=False)

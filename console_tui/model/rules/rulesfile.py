@@ -86,10 +86,10 @@ def load_rules(path: str | os.PathLike[str]) -> RuleSet:
 
 def dumps_rules(rules: RuleSet) -> str:
     data = rules.to_dict()
-    lines = ["# console-tui rule set", f"highlighted_only = {_value(data['highlighted_only'])}"]
+    lines = ["# console-tui rule set", f"highlighted_only = {_toml_value(data['highlighted_only'])}"]
     for rule in data["rules"]:
         lines.append("")
-        _table(lines, "rules", rule)
+        _toml_table(lines, "rules", rule)
     return "\n".join(lines) + "\n"
 
 
@@ -101,7 +101,7 @@ def save_rules(rules: RuleSet, path: str | os.PathLike[str]) -> None:
         stream.write(dumps_rules(rules).encode("utf-8"))
 
 
-def _table(lines: list[str], name: str, fields: dict[str, Any]) -> None:
+def _toml_table(lines: list[str], name: str, fields: dict[str, Any]) -> None:
     lines.append(f"[[{name}]]")
     nested = []
     for key, value in fields.items():
@@ -109,25 +109,25 @@ def _table(lines: list[str], name: str, fields: dict[str, Any]) -> None:
             nested.append((key, value))
             continue
         comment = f"  # {full_text(value, utc=True)}" if key.endswith("_ns") else ""
-        lines.append(f"{key} = {_value(value)}{comment}")
+        lines.append(f"{key} = {_toml_value(value)}{comment}")
     for key, tables in nested:
         for table in tables:
-            _table(lines, f"{name}.{key}", table)
+            _toml_table(lines, f"{name}.{key}", table)
 
 
-def _value(value: Any) -> str:
+def _toml_value(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
         return str(value)
     if isinstance(value, str):
-        return _string(value)
+        return _toml_string(value)
     if isinstance(value, list):
-        return "[" + ", ".join(_value(item) for item in value) + "]"
+        return "[" + ", ".join(_toml_value(item) for item in value) + "]"
     raise TypeError(f"cannot write {type(value).__name__} to a rules file")
 
 
-def _string(text: str) -> str:
+def _toml_string(text: str) -> str:
     out = ['"']
     for ch in text:
         code = ord(ch)

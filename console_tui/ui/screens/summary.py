@@ -8,8 +8,6 @@ counts on the status line); a target the rules hide is said so instead of shown.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from rich.text import Text
 from textual.app import ComposeResult
 from textual.binding import Binding
@@ -31,16 +29,6 @@ _NAME_WIDTH = 28
 #: The dialog's room for text: its width less its border and padding, the list's border,
 #: an option's padding and the scrollbar.
 _FRAME = 10
-
-
-@dataclass(frozen=True)
-class SummaryFacts:
-    """What the summary shows, read from the model when it opens."""
-
-    total: int
-    shown: int
-    oldest_ns: int | None
-    newest_ns: int | None
 
 
 class SummaryScreen(ModalScreen[int | None]):

@@ -18,20 +18,20 @@ from ..severity_styles import severity_classes, severity_css
 _OPTION_PREFIX = "logger:"
 
 
-class NodeList(OptionList):
+class GraphNodeList(OptionList):
     """The graph's nodes; the highlighted one is the pane's selected node.
 
     | Class | Description |
     | :- | :- |
-    | `node-list--checking` | "checking…": the node's logger services may yet appear. |
-    | `node-list--no-services` | "no logger services". |
+    | `graph-node-list--checking` | "checking…": the node's logger services may yet appear. |
+    | `graph-node-list--no-services` | "no logger services". |
     """
 
     DEFAULT_CSS = """
-    NodeList > .node-list--checking { color: $foreground-muted; text-style: italic; }
-    NodeList > .node-list--no-services { color: $text-warning; }
+    GraphNodeList > .graph-node-list--checking { color: $foreground-muted; text-style: italic; }
+    GraphNodeList > .graph-node-list--no-services { color: $text-warning; }
     """
-    COMPONENT_CLASSES = {"node-list--checking", "node-list--no-services"}
+    COMPONENT_CLASSES = {"graph-node-list--checking", "graph-node-list--no-services"}
 
     def show(self, nodes: tuple[GraphNode, ...], checking: frozenset[str], selected: str | None) -> None:
         styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
@@ -89,9 +89,9 @@ def node_prompt(node: GraphNode, checking: bool, styles: Mapping[str, Style]) ->
     if node.has_logger_services:
         marker = Text("")
     elif checking:
-        marker = Text("checking…", style=styles.get("node-list--checking", ""))
+        marker = Text("checking…", style=styles.get("graph-node-list--checking", ""))
     else:
-        marker = Text("no logger services", style=styles.get("node-list--no-services", ""))
+        marker = Text("no logger services", style=styles.get("graph-node-list--no-services", ""))
     return _two_columns(plain(node.fqn), marker)
 
 

@@ -12,6 +12,7 @@ message, so the screen never waits for a node. For a temporary level the pane po
 from __future__ import annotations
 
 from collections.abc import Callable, Collection, Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from textual import on
@@ -29,7 +30,7 @@ from ...sources.logger_requests import CallEnded, LoggerRequests
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
-from .logger_lists import LoggerList, NodeList
+from .logger_lists import GraphNodeList, LoggerList
 from .side_pane import RightPane
 
 if TYPE_CHECKING:
@@ -71,9 +72,9 @@ class LoggerPane(RightPane):
     LoggerPane {
         width: 46;
         max-width: 50%;
-        & > NodeList { height: auto; max-height: 40%; }
+        & > GraphNodeList { height: auto; max-height: 40%; }
         & > LoggerList { height: 1fr; min-height: 3; }
-        & > NodeList:focus, & > LoggerList:focus { background-tint: $foreground 5%; }
+        & > GraphNodeList:focus, & > LoggerList:focus { background-tint: $foreground 5%; }
         & > #logger-heading { height: 1; margin-top: 1; text-style: bold; color: $text-primary; }
         & > #logger-notice { height: auto; max-height: 6; color: $text-muted; }
         & > #logger-notice.-error { color: $text-error; }
@@ -97,12 +98,11 @@ class LoggerPane(RightPane):
         Binding("escape", "leave", "Back to the table", show=False, id="loggers.leave"),
     ]
 
+    @dataclass
     class ControlEvent(Message):
         """An event of the ``LoggerControl``, or the end of a call (posted from its thread)."""
 
-        def __init__(self, event: LoggerEvent | CallEnded) -> None:
-            super().__init__()
-            self.event = event
+        event: LoggerEvent | CallEnded
 
         def can_replace(self, message: Message) -> bool:
             # A burst of graph changes: only the newest node list matters.
@@ -112,14 +112,13 @@ class LoggerPane(RightPane):
                 and isinstance(message.event, NodesChanged)
             )
 
+    @dataclass
     class TemporaryRequested(Message):
         """``t`` on a logger: ask for a level and a time, then call ``set_temporary``."""
 
-        def __init__(self, pane: LoggerPane, fqn: str, logger: str) -> None:
-            super().__init__()
-            self.pane = pane
-            self.fqn = fqn
-            self.logger = logger
+        pane: LoggerPane
+        fqn: str
+        logger: str
 
     def __init__(
         self,
@@ -134,7 +133,7 @@ class LoggerPane(RightPane):
         self.requests = LoggerRequests(control, self._from_control_thread, seen_loggers=seen_loggers)
         self.view = self.requests.view
         self._ticker: Timer | None = None
-        self.node_list = NodeList(id="logger-nodes", compact=True)
+        self.node_list = GraphNodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
         self.name_input = Input(placeholder="add a logger: type its name, Enter", id="logger-name", compact=True)
         self.heading = Static("Loggers", id="logger-heading")

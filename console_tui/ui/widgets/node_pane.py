@@ -67,7 +67,7 @@ _PLAIN = Style()
 
 
 def compact(number: int) -> str:
-    """At most 4 characters: ``9999``, ``12k``, ``1.2M``."""
+    """Short: ``9999``, ``12k``, ``1.2M`` (4 characters at most below 10 million)."""
     if number < 10_000:
         return str(number)
     if number < 999_500:
@@ -75,7 +75,7 @@ def compact(number: int) -> str:
     return f"{number / 1_000_000:.1f}M"
 
 
-def rate_text(rate: float) -> str:
+def rate_cell(rate: float) -> str:
     if rate < 100:
         return f"{rate:.1f}"
     return compact(round(rate))
@@ -92,7 +92,7 @@ def column_widths(rows: Sequence[NodeCounts]) -> tuple[int, ...]:
     for row in rows:
         for at, count in enumerate(row.counts):
             widths[at] = max(widths[at], len(compact(count)) + 1)
-        widths[5] = max(widths[5], len(rate_text(row.rate)) + 1)
+        widths[5] = max(widths[5], len(rate_cell(row.rate)) + 1)
     return tuple(widths)
 
 
@@ -124,7 +124,7 @@ def node_line(
         Text(state, style="bold reverse" if state else ""),
         Text(one_line(row.node, 200), style=name_style),
         *counts,
-        Text(rate_text(row.rate), style=look("rate")),
+        Text(rate_cell(row.rate), style=look("rate")),
     )
     return grid
 
@@ -141,8 +141,8 @@ def header_line(sort: Sort, widths: Sequence[int] = _NARROWEST) -> Table:
     return grid
 
 
-class NodeList(OptionList):
-    """The nodes; ``s``, ``m`` act on the highlighted one."""
+class NodeCountList(OptionList):
+    """The nodes, a line each with its counts and rate; ``s``, ``m`` act on the highlighted one."""
 
 
 class NodePane(RightPane):
@@ -173,8 +173,8 @@ class NodePane(RightPane):
         width: 56;
         max-width: 55%;
         & > #nodes-header { height: 1; color: $text-muted; text-style: bold; }
-        & > NodeList { height: 1fr; }
-        & > NodeList:focus { background-tint: $foreground 5%; }
+        & > NodeCountList { height: 1fr; }
+        & > NodeCountList:focus { background-tint: $foreground 5%; }
     }
     """ + severity_css("NodePane", "node-pane--severity")
 
@@ -187,13 +187,12 @@ class NodePane(RightPane):
         Binding("escape", "leave", "Back to the table", show=False, id="nodes.leave"),
     ]
 
+    @dataclass
     class Toggle(Message):
         """Solo or mute ``node`` (``kind`` "solo", "mute"), or no solo and no mute ("clear")."""
 
-        def __init__(self, kind: str, node: str = "") -> None:
-            super().__init__()
-            self.kind = kind
-            self.node = node
+        kind: str
+        node: str = ""
 
     def __init__(
         self,
@@ -211,7 +210,7 @@ class NodePane(RightPane):
         self.rows: list[NodeCounts] = []
         self._shown_key: tuple = ()
         self._timer: Timer | None = None
-        self.node_list = NodeList(id="nodes-list", compact=True)
+        self.node_list = NodeCountList(id="nodes-list", compact=True)
         self.filter_input = Input(placeholder="filter nodes: part of a name", id="nodes-filter", compact=True)
 
     def compose(self) -> ComposeResult:

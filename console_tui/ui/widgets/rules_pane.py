@@ -90,7 +90,7 @@ class RulesPane(SidePane):
     | `rules-pane--inactive` | A rule switched on that does nothing yet. |
     | `rules-pane--off-rule` | A rule switched off. |
     | `rules-pane--count` | How many messages a rule matches. |
-    | `rules-pane--aside` | "(query)", "(empty: matches nothing)". |
+    | `rules-pane--aside` | "(query)", "(level keys)", "(empty: matches nothing)". |
     """
 
     COMPONENT_CLASSES = {

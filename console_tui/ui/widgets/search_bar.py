@@ -58,7 +58,7 @@ class SearchBar(InputLine):
         self.show_hint()
 
     def key_hints(self) -> str:
-        """``Enter keeps · Esc cancels · n/N next/previous``, from the bindings."""
+        """``⏎ keeps the search · esc cancels · n/N next/previous afterwards``, from the bindings."""
         app_bindings: list[BindingType] = getattr(self.app, "nav_bindings", list)()
         hints: list[Hint] = [("submit", "keeps the search"), ("cancel", "cancels")]
         line = hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], hints)

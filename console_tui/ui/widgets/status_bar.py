@@ -1,5 +1,5 @@
-"""The status line: rows shown of total, the search, level and node toggles, counts per
-severity, rate, state, source, the rules and the time format."""
+"""The status line: the state (follow, scroll, paused), rows shown of total, the search, level
+and node toggles, counts per severity, rate, the sources, the rules and storms, the time format."""
 
 from __future__ import annotations
 
@@ -45,14 +45,14 @@ class StatusBar(Widget):
     | :- | :- |
     | `status-bar--follow` | FOLLOW: the table follows the newest message. |
     | `status-bar--scroll` | SCROLL: the table stays where the user put it. |
-    | `status-bar--paused` | PAUSED, and the count of messages that came since. |
+    | `status-bar--paused` | PAUSED (the count of messages that came since is drawn as WARN's). |
     | `status-bar--search` | The search and where the cursor is among its matches. |
     | `status-bar--toggles` | The level and node toggles in force. |
     | `status-bar--severity-debug` ... `status-bar--severity-fatal` | A severity's count. |
     | `status-bar--topic` | The live topic. |
     | `status-bar--problem` | Losses and a source's problem. |
     | `status-bar--where` | Where records come from (a file, a log folder). |
-    | `status-bar--note` | What the rules do; the time format. |
+    | `status-bar--note` | What the rules and storms do; the time format. |
     """
 
     DEFAULT_CSS = """

@@ -58,7 +58,7 @@ def layout_columns(
     width: int, shown: frozenset[str], node_width: int, widths: Mapping[str, int] | None = None
 ) -> tuple[PlacedColumn, ...]:
     """Place the shown columns in ``width`` cells, dropping optional ones while the
-    message column would be narrower than ``MESSAGE_MIN``; the message takes the rest.
+    message column would be narrower than ``message_min(width)``; the message takes the rest.
     ``widths`` overrides columns' widths (the Time column's follows its format)."""
     widths = widths or {}
 
