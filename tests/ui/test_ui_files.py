@@ -90,7 +90,20 @@ async def test_open_dialog_refuses_a_missing_file(tmp_path):
         assert "No such file" not in screen_text(app)
 
 
-async def test_a_large_load_shows_progress_answers_keys_and_cancels(tmp_path):
+async def test_a_large_load_shows_progress_answers_keys_and_cancels(tmp_path, monkeypatch):
+    """The load holds after its first batch until cancelled (10 s at most): a fast machine
+    read all 300,000 lines before `x` reached it."""
+    from console_tui.sources.files import loader
+
+    load_records = loader.load_records
+
+    def held_after_the_first_batch(files, cancel, **options):
+        batches = load_records(files, cancel, **options)
+        yield next(batches)
+        cancel.wait(10)
+        yield from batches
+
+    monkeypatch.setattr(loader, "load_records", held_after_the_first_batch)
     big = tmp_path / "big.jsonl"
     with big.open("w") as stream:
         for i in range(300_000):
