@@ -49,6 +49,7 @@ class SearchBar(InputLine):
     def __init__(self, *, id: str | None = None) -> None:
         super().__init__(id=id)
         self.text = ""
+        self._hint_shown: tuple[str, str] | None = None
 
     def compose(self) -> ComposeResult:
         yield Input(placeholder=PLACEHOLDER, id="search-input")
@@ -66,9 +67,15 @@ class SearchBar(InputLine):
         return " · ".join(part for part in (line, more) if part)
 
     def show_hint(self, problem: str = "") -> None:
+        """The problem with the text typed, or the keys; the same text is not set again (each
+        update lays the screen out again, and this runs on every key typed)."""
+        shown = (problem, "" if problem else self.key_hints())
+        if shown == self._hint_shown:
+            return
+        self._hint_shown = shown
         hint = self.query_one("#search-hint", Static)
         hint.set_class(bool(problem), "-error")
-        hint.update(plain(problem) if problem else self.key_hints())
+        hint.update(plain(problem) if problem else shown[1])
 
     def open(self, text: str = "") -> None:
         self.show_hint()
