@@ -25,8 +25,10 @@ from .widgets.timeline_strip import TimelineStrip
 
 #: Taking in what arrived, each tick: at most this long (the rest in the background).
 FOLLOW_BUDGET_S = 0.010
-#: Catching up after a rule change: slices of this long, the event loop free between them.
-CATCH_UP_BUDGET_S = 0.012
+#: Catching up after a rule change (or over a history at start): slices of this long, the
+#: event loop free between them. A slice adds to the frame drawn in the same turn of the
+#: loop (as the search's do): 12 ms slices made the longest stalls of a search over 1M.
+CATCH_UP_BUDGET_S = 0.005
 CATCH_UP_PAUSE_S = 0.001
 #: The strip is redrawn at most this often while records arrive.
 STRIP_PERIOD_S = 0.25
