@@ -1,0 +1,50 @@
+"""What the screen leaves for Python's cycle collector: nothing of Textual's strips, so a
+full collection (``ui/gc_policy.py``) has only live objects to visit (``textual_fixes``)."""
+
+from __future__ import annotations
+
+import gc
+
+from rich.segment import Segment
+from textual.strip import Strip
+
+from console_tui.ui import textual_fixes
+
+from support.feed import records
+from support.ui import make_app, screen_text, until
+
+
+def test_a_strip_cropped_or_divided_whole_is_freed_when_dropped():
+    textual_fixes.apply()
+    gc.collect()
+    gc.disable()
+    try:
+        strip = Strip([Segment("a row of the table")])
+        assert strip.crop_extend(0, strip.cell_length, None) is strip
+        assert strip.divide([strip.cell_length]) == [strip]
+        assert strip.crop_extend(0, 5, None).text == "a row"
+        del strip
+        left = gc.collect()
+    finally:
+        gc.enable()
+    assert left == 0, "a dropped strip was left for the cycle collector"
+
+
+async def test_drawing_the_table_leaves_no_strip_for_the_collector():
+    app = make_app(200)
+    async with app.run_test(size=(100, 24)) as pilot:
+        await until(pilot, lambda: "200/200 shown" in screen_text(app), what="the records shown")
+        gc.collect()
+        gc.set_debug(gc.DEBUG_SAVEALL)
+        try:
+            for start in range(200, 1200, 100):
+                app.add_records(records(100, start=start))
+                await pilot.press("up", "end")
+                await pilot.pause()
+            await until(pilot, lambda: "1,200/1,200 shown" in screen_text(app), what="the new records shown")
+            gc.collect()
+            strips = [item for item in gc.garbage if isinstance(item, Strip)]
+        finally:
+            gc.set_debug(0)
+            gc.garbage.clear()
+    assert strips == [], f"{len(strips)} strips drawn were freed only by the collector"
