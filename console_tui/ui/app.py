@@ -161,7 +161,7 @@ class ConsoleApp(
         self.utc = utc
         self.drain_interval = drain_interval
         self.clock = clock
-        self.collection_policy = CollectionPolicy()
+        self.collection_policy = CollectionPolicy(delay=drain_interval / 2)
         rows = self.make_overview(self.store, self.view, utc)
         self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
         self.status_bar = StatusBar(id="status")

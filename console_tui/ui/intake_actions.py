@@ -123,14 +123,15 @@ class IntakeActions(AppPart):
         if not self.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
             batches += self.queue.drain_batches(room)
-        arrived = self.add_batches(batches) if batches else 0
+        if batches:
+            self.add_batches(batches)
         if self.loads:
             self.check_loads()
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
         self.show_overview()
-        self.collection_policy.tick(arrived)
+        self.collection_policy.tick()
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
         self.add_batches([records if isinstance(records, list) else list(records)])

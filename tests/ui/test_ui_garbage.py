@@ -48,3 +48,23 @@ async def test_drawing_the_table_leaves_no_strip_for_the_collector():
             gc.set_debug(0)
             gc.garbage.clear()
     assert strips == [], f"{len(strips)} strips drawn were freed only by the collector"
+
+
+async def test_a_full_collection_runs_in_a_turn_of_its_own_after_the_drain():
+    import asyncio
+
+    from console_tui.ui.gc_policy import CollectionPolicy
+
+    now = [0.0]
+    policy = CollectionPolicy(clock=lambda: now[0], period=2.0, delay=0.01)
+    policy.tick()
+    assert policy.full_collections == 0, "collected before its period"
+    now[0] = 2.5
+    policy.tick()
+    policy.tick()
+    assert policy.full_collections == 0, "collected in the drain's turn"
+    await asyncio.sleep(0.05)
+    assert policy.full_collections == 1, "not collected once, after the delay"
+    policy.tick()
+    await asyncio.sleep(0.05)
+    assert policy.full_collections == 1, "collected again before the next period"

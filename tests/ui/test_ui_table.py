@@ -9,7 +9,7 @@ from console_tui.ui.commands import palette_commands
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records
-from support.ui import cursor_number, line_with, make_app, screen_text, table_rows, type_text, until
+from support.ui import cursor_number, line_with, make_app, screen_text, style_at, table_rows, type_text, until
 
 
 def status_line(app) -> str:
@@ -66,6 +66,35 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
         await pilot.press("end")
         await until(pilot, lambda: cursor_number(app) == 600, what="the cursor on the newest row")
         assert bottom_number(app) == 600 and "FOLLOW" in status_line(app)
+
+
+def thumb_rows(app) -> list[int]:
+    """The screen rows where the table's scrollbar shows its thumb (drawn in reverse)."""
+    region = app.table.region
+    return [y for y in range(region.y, region.bottom) if style_at(app, region.right - 1, y).reverse]
+
+
+async def test_the_scrollbar_stays_at_the_bottom_while_following_and_is_not_redrawn():
+    app = make_app(1000)
+    async with app.run_test(size=(100, 24)) as pilot:
+        await until(pilot, lambda: "1,000/1,000 shown" in status_line(app), what="the records shown")
+        bottom = app.table.region.bottom - 1
+        assert thumb_rows(app) == [bottom]
+        bar = app.table.vertical_scrollbar
+        painted = []
+        paint = bar.render
+        bar.render = lambda: painted.append(1) or paint()
+        for start in range(1000, 20_000, 1000):
+            app.add_records(records(1000, start=start))
+            await pilot.pause()
+        await until(pilot, lambda: "20,000/20,000 shown" in status_line(app), what="the new records shown")
+        await pilot.pause(0.3)
+        assert thumb_rows(app) == [bottom], "the thumb left the bottom while the table follows the tail"
+        assert painted == [], "the scrollbar was drawn again with its thumb in the same place"
+        await pilot.press("home")
+        await until(pilot, lambda: cursor_number(app) == 1, what="the first row")
+        await pilot.pause(0.3)
+        assert thumb_rows(app) == [app.table.region.y + 1] or thumb_rows(app) == [app.table.region.y]
 
 
 async def test_position_survives_eviction_at_the_bound():

@@ -24,6 +24,7 @@ from textual.cache import LRUCache
 from textual.geometry import Region, Size
 from textual.message import Message
 from textual.scroll_view import ScrollView
+from textual.scrollbar import ScrollBar
 from textual.strip import Strip
 
 from ...model.store import LogStore
@@ -34,6 +35,7 @@ from .log_table_cells import Decoration, Spans
 from .log_table_cursor import TableCursor
 from .log_table_frame import TableFrame
 from .table_columns import COLUMNS, PlacedColumn
+from .table_scrollbar import TableScrollBar
 
 
 class TableRows(Protocol):
@@ -142,6 +144,37 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
 
         def can_replace(self, message: Message) -> bool:
             return isinstance(message, LogTable.StateChanged)  # it says nothing but "look again"
+
+    @property
+    def vertical_scrollbar(self) -> ScrollBar:
+        """Textual's own code, with a ``TableScrollBar``: repainted only when its thumb moves."""
+        if self._vertical_scrollbar is None:
+            bar = TableScrollBar(vertical=True, name="vertical", thickness=self.scrollbar_size_vertical)
+            bar.display = False
+            self._vertical_scrollbar = bar
+            self.app._start_widget(self, bar)
+        return self._vertical_scrollbar
+
+    def _scroll_update(self, virtual_size: Size) -> None:
+        """Textual's, less its repaint of the vertical scrollbar on every call: the
+        ``TableScrollBar`` repaints itself when its thumb moves."""
+        self._refresh_scrollbars()
+        width, height = self.container_size
+        if self.show_vertical_scrollbar and self.styles.scrollbar_size_vertical:
+            self.vertical_scrollbar.window_virtual_size = virtual_size.height
+            self.vertical_scrollbar.window_size = height - self.scrollbar_size_horizontal
+        if self.show_horizontal_scrollbar and self.styles.scrollbar_size_horizontal:
+            self.horizontal_scrollbar.window_virtual_size = virtual_size.width
+            self.horizontal_scrollbar.window_size = width - self.scrollbar_size_vertical
+            self.horizontal_scrollbar.refresh()
+        self.scroll_x = self.validate_scroll_x(self.scroll_x)
+        self.scroll_y = self.validate_scroll_y(self.scroll_y)
+
+    def set_scroll(self, x: float | None, y: float | None) -> None:
+        """Textual's, and the scrollbar told (Textual's sets the offset alone)."""
+        super().set_scroll(x, y)
+        if y is not None and self.show_vertical_scrollbar:
+            self.vertical_scrollbar.position = self.scroll_y
 
     def __init__(self, store: LogStore, view: TableRows, *, utc: bool = False, id: str | None = None) -> None:
         super().__init__(id=id)
