@@ -84,19 +84,21 @@ class TableCells(ScrollView):
         if is_cursor:
             row_style += styles.get("log-table--cursor", Style())
         muted = styles.get("log-table--dim-column", Style())
-        segments: list[Segment] = []
+        row = _RowSegments()
+        add = row.add
         if gutter is not None:
-            segments.append(Segment(fit(gutter, 1), row_style + styles.get("log-table--gutter", Style())))
-            segments.append(Segment(" ", row_style))
+            add(fit(gutter, 1), row_style + styles.get("log-table--gutter", Style()))
+            add(" ", row_style)
         for place in placed:
             key = place.column.key
             if key == "message" and badge is not None:
                 mark = self._badge_text(badge, place.width)
-                segments.append(Segment(mark, row_style + styles.get("log-table--storm", Style())))
+                add(mark, row_style + styles.get("log-table--storm", Style()))
                 room = place.width - len(mark)
                 text = self._cell_text(record, key, room)
-                segments.extend(self._message_segments(record.seq, text, fit(text, room), row_style))
-                segments.append(Segment(" ", row_style))
+                for segment in self._message_segments(record.seq, text, fit(text, room), row_style):
+                    add(*segment[:2])
+                add(" ", row_style)
                 continue
             if key == "time":
                 text = time_cell(
@@ -111,11 +113,12 @@ class TableCells(ScrollView):
                 style = row_style + muted
             fitted = fit(text, place.width, place.column.align)
             if key == "message":
-                segments.extend(self._message_segments(record.seq, text, fitted, style))
+                for segment in self._message_segments(record.seq, text, fitted, style):
+                    add(*segment[:2])
             else:
-                segments.append(Segment(fitted, style))
-            segments.append(Segment(" ", row_style))
-        return Strip(segments).adjust_cell_length(width, row_style).simplify()
+                add(fitted, style)
+            add(" ", row_style)
+        return row.strip(width, row_style)
 
     def _message_segments(self, seq: int, text: str, fitted: str, style: Style) -> list[Segment]:
         """The message cell, with where a search matches marked."""
@@ -162,6 +165,49 @@ class TableCells(ScrollView):
         if key == "source":
             return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
         raise KeyError(key)
+
+
+class _RowSegments:
+    """A row's segments as they are added, each run of one style joined into one segment
+    (what ``Strip.simplify`` would do after), and the cells counted: the row becomes one
+    ``Strip`` of the table's width, without Textual's passes to measure, pad and join it."""
+
+    __slots__ = ("_style", "_texts", "cells", "segments")
+
+    def __init__(self) -> None:
+        self.segments: list[Segment] = []
+        self.cells = 0
+        self._texts: list[str] = []
+        self._style: Style | None = None
+
+    def add(self, text: str, style: Style | None) -> None:
+        """``text`` (already fitted: its length in cells is known when it is ASCII)."""
+        if not text:
+            return
+        self.cells += len(text) if text.isascii() else cell_len(text)
+        if style is not self._style and style != self._style:
+            self._flush()
+            self._style = style
+        self._texts.append(text)
+
+    def _flush(self) -> None:
+        if self._texts:
+            self.segments.append(Segment("".join(self._texts), self._style))
+            self._texts = []
+
+    def strip(self, width: int, style: Style) -> Strip:
+        """The row, padded with ``style`` or cut to ``width`` cells."""
+        if self.cells < width:
+            self.add(" " * (width - self.cells), style)
+        elif self.cells > width and self._texts:
+            last, excess = self._texts[-1], self.cells - width
+            if excess <= len(last) and last.isspace():  # the last column's separator
+                self._texts[-1] = last[:-excess]
+                self.cells = width
+        self._flush()
+        if self.cells > width:
+            return Strip(self.segments, self.cells).crop(0, width)
+        return Strip(self.segments, width)
 
 
 @lru_cache(maxsize=4096)
