@@ -78,25 +78,42 @@ async def test_palette_entries_have_distinct_names_and_show_their_keys():
         assert "Keys" not in system, "Textual's key panel gives way to the help screen"
 
 
-async def test_the_footer_mounts_its_keys_again_only_when_they_change():
+async def test_the_footer_draws_its_keys_again_only_when_they_change_and_asks_no_layout():
     """Textual's footer mounted its ~30 keys again on every signal, twice per change of
-    focus; the search line's opening and closing now cost one each, and the footer shows
-    the same keys after as before."""
+    focus, and laid out the screen after: the search line's opening and closing were the
+    longest pauses of a search. The footer is one line now, drawn again when its keys
+    change, and shows the same keys after as before."""
     app = make_app(50)
     async with app.run_test(size=(140, 30)) as pilot:
         footer = app.query_one(KeyFooter)
-        await until(pilot, lambda: footer.recomposed > 0, what="the footer's keys")
-        await pilot.pause(0.1)
+        await until(pilot, lambda: "Pause" in screen_text(app).splitlines()[-1], what="the footer's keys")
         keys_before = screen_text(app).splitlines()[-1]
-        assert "Pause" in keys_before, keys_before
-        before = footer.recomposed
+        assert keys_before.startswith(" end Follow tail  ⏎ Details  space Pause"), keys_before
+        assert keys_before.rstrip().endswith("▏^p palette"), keys_before
+        layouts = []
+        refresh = footer.refresh
+        footer.refresh = lambda *a, layout=False, **k: layouts.append(layout) or refresh(*a, layout=layout, **k)
+        before = footer.changes
         await pilot.press("f")
         await until(pilot, lambda: app.search_bar.is_open, what="the search line")
-        await pilot.pause(0.1)
+        await until(pilot, lambda: "f1 Help" in screen_text(app).splitlines()[-1], what="the search line's keys")
         await pilot.press("escape")
         await until(pilot, lambda: app.focused is app.table, what="the table focused again")
         await pilot.pause(0.2)
-        assert footer.recomposed - before <= 2, f"{footer.recomposed - before} recomposes for open and close"
+        assert footer.changes - before <= 2, f"{footer.changes - before} changes for open and close"
+        assert True not in layouts, "the footer asked for a layout"
         assert screen_text(app).splitlines()[-1] == keys_before
         await pilot.press("space")  # pause: the footer's Pause becomes Resume
         await until(pilot, lambda: "Resume" in screen_text(app).splitlines()[-1], what="Resume in the footer")
+
+
+async def test_a_click_on_a_key_in_the_footer_presses_it():
+    app = make_app(50)
+    async with app.run_test(size=(140, 30)) as pilot:
+        await until(pilot, lambda: "Pause" in screen_text(app).splitlines()[-1], what="the footer's keys")
+        bottom = len(screen_text(app).splitlines()) - 1
+        await pilot.click(offset=(screen_text(app).splitlines()[-1].index("Pause"), bottom))
+        await until(pilot, lambda: "PAUSED" in screen_text(app), what="paused by the click")
+        await until(pilot, lambda: "Resume" in screen_text(app).splitlines()[-1], what="Resume in the footer")
+        await pilot.click(offset=(screen_text(app).splitlines()[-1].index("space"), bottom))
+        await until(pilot, lambda: "FOLLOW" in screen_text(app), what="resumed by the click")

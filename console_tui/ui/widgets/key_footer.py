@@ -1,49 +1,148 @@
-"""The footer: Textual's, drawn again only when the keys it shows change.
+"""The footer: the keys the focused widget and the screen answer, drawn as one line.
 
-Textual's ``Footer`` takes down and mounts again all of its keys (about 30 widgets here)
-each time the screen's bindings may have changed, and a change of focus signals that twice:
-21-46 ms of CPU each on this project's machines, with a layout after it, for a footer that
-mostly shows the same keys (the search line: once on opening it, twice on closing it).
-``KeyFooter`` composes again only when what it would show differs from what it shows.
+Textual's ``Footer`` is a container of one widget a key (about 30 here): each time the
+screen's bindings may have changed (twice on every change of focus) it took them down and
+mounted them again, 21-46 ms of CPU with a layout of the screen after it; skipping the
+rebuilds that showed the same keys still left opening and closing the search line at 20-30
+ms, the longest pauses of a search. ``KeyFooter`` draws the same line (each key and what
+it does, the palette's key on the right) as one strip, again only when what it shows
+changes, and never asks for a layout. A click on a key presses it, as in Textual's.
 """
 
 from __future__ import annotations
 
 from collections.abc import Hashable
 
-from textual.widgets import Footer
+from rich.segment import Segment
+from rich.style import Style
+from textual.binding import Binding
+from textual.strip import Strip
+from textual.widget import Widget
+
+#: A shown key: the key pressed on a click, the key as it reads, what it does, enabled.
+FooterEntry = tuple[str, str, str, bool]
 
 
-class KeyFooter(Footer):
-    """``Footer`` that skips a recompose that would show the same keys."""
+class KeyFooter(Widget, can_focus=False):
+    """One line of keys: ``end Follow tail  ⏎ Details ...  ▏^p palette``.
+
+    | Class | Description |
+    | :- | :- |
+    | `key-footer--key` | A key. |
+    | `key-footer--description` | What the key does. |
+    | `key-footer--disabled` | A key that does nothing now. |
+    | `key-footer--separator` | The line before the palette's key. |
+    """
+
+    DEFAULT_CSS = """
+    KeyFooter {
+        dock: bottom;
+        height: 1;
+        color: $footer-foreground;
+        background: $footer-background;
+    }
+    KeyFooter > .key-footer--key {
+        color: $footer-key-foreground;
+        background: $footer-key-background;
+        text-style: bold;
+    }
+    KeyFooter > .key-footer--description {
+        color: $footer-description-foreground;
+        background: $footer-description-background;
+    }
+    KeyFooter > .key-footer--disabled { text-style: dim; }
+    KeyFooter > .key-footer--separator { color: $foreground 20%; }
+    """
+
+    COMPONENT_CLASSES = {
+        "key-footer--key",
+        "key-footer--description",
+        "key-footer--disabled",
+        "key-footer--separator",
+    }
+
+    ALLOW_SELECT = False
 
     def __init__(self) -> None:
         super().__init__()
-        self._shown: Hashable = None
-        self.recomposed = 0  #: how many times the keys were mounted again (for tests)
+        self.entries: tuple[FooterEntry, ...] = ()
+        self.palette: FooterEntry | None = None
+        self.changes = 0  #: how many times the keys shown changed (for tests)
+        self._line: tuple[Hashable, Strip] | None = None
 
-    def _keys(self) -> Hashable:
-        """What ``compose`` would show now: each shown binding, enabled, tooltip and key,
-        and the palette's entry."""
+    def on_mount(self) -> None:
+        self.screen.bindings_updated_signal.subscribe(self, self._bindings_changed)
+        self._bindings_changed(self.screen)
+
+    def on_unmount(self) -> None:
+        self.screen.bindings_updated_signal.unsubscribe(self)
+
+    def _bindings_changed(self, screen: object) -> None:
+        if not self.is_attached or screen is not self.screen:
+            return
         app = self.app
         active = self.screen.active_bindings
-        shown = tuple(
-            (binding, enabled, tooltip, app.get_key_display(binding))
-            for (_, binding, enabled, tooltip) in active.values()
-            if binding.show
-        )
+        entries: list[FooterEntry] = []
+        actions: set[str] = set()
+        for _, binding, enabled, _ in active.values():
+            if binding.show and binding.action not in actions:  # one key an action, as Textual's
+                actions.add(binding.action)
+                entries.append(self._entry(binding, enabled))
         palette = None
-        if self.show_command_palette and app.ENABLE_COMMAND_PALETTE:
-            entry = active.get(app.COMMAND_PALETTE_BINDING)
-            palette = entry[1:] if entry is not None else None
-        return self._bindings_ready, shown, palette
+        if app.ENABLE_COMMAND_PALETTE and app.COMMAND_PALETTE_BINDING in active:
+            _, binding, enabled, _ = active[app.COMMAND_PALETTE_BINDING]
+            palette = self._entry(binding, enabled)
+        if (tuple(entries), palette) != (self.entries, self.palette):
+            self.entries, self.palette = tuple(entries), palette
+            self.changes += 1
+            self.refresh()
 
-    async def recompose(self) -> None:
-        if not self.is_attached:
-            return
-        keys = self._keys()
-        if keys == self._shown:
-            return
-        self._shown = keys
-        self.recomposed += 1
-        await super().recompose()
+    def _entry(self, binding: Binding, enabled: bool) -> FooterEntry:
+        return (binding.key.split(",")[0].strip(), self.app.get_key_display(binding), binding.description, enabled)
+
+    def notify_style_update(self) -> None:
+        super().notify_style_update()
+        self._line = None
+
+    def render_line(self, y: int) -> Strip:
+        width = self.size.width
+        key = (width, self.entries, self.palette, self.app.theme)
+        if self._line is None or self._line[0] != key:
+            self._line = (key, self._draw(width))
+        return self._line[1]
+
+    def _draw(self, width: int) -> Strip:
+        style = self.rich_style
+        look = {
+            name: style + self.get_component_rich_style(f"key-footer--{name}", partial=True)
+            for name in ("key", "description", "disabled", "separator")
+        }
+        palette: list[Segment] = []
+        if self.palette is not None:
+            palette = [Segment("▏", look["separator"]), *self._key_segments(self.palette, look, style, pad=False)]
+        room = width - sum(len(segment.text) for segment in palette)
+        keys: list[Segment] = []
+        used = 0
+        for entry in self.entries:
+            for segment in self._key_segments(entry, look, style):
+                text = segment.text[: room - used]
+                if text:
+                    keys.append(Segment(text, segment.style))
+                    used += len(text)
+            if used >= room:
+                break
+        if used < room:
+            keys.append(Segment(" " * (room - used), style))
+        return Strip([*keys, *palette]).crop(0, width)
+
+    @staticmethod
+    def _key_segments(entry: FooterEntry, look: dict[str, Style], base: Style, pad: bool = True) -> list[Segment]:
+        """`` key `` and ``description `` with the click that presses the key."""
+        key, shown, description, enabled = entry
+        click = Style.from_meta({"@click": f"app.simulate_key({key!r})" if enabled else "app.bell"})
+        dim = look["disabled"] if not enabled else Style()
+        key_text = f" {shown} " if pad else f"{shown} "
+        return [
+            Segment(key_text, look["key"] + dim + click),
+            Segment(f"{description} ", look["description"] + dim + click),
+        ]
