@@ -165,3 +165,20 @@ async def test_temporary_level_seconds_box_shows_the_typed_number():
         await type_into(pilot, "0", clear=True)
         await pilot.press("enter")
         assert "Seconds must be a number above 0, not '0'" in screen_text(app)
+
+
+async def test_typing_in_the_search_line_shows_the_text_without_laying_out_the_screen():
+    """Textual's ``Input`` laid out the whole screen on every key (its virtual size is
+    its text's width); the search and query lines' inputs do not."""
+    app = make_app()
+    async with app.run_test(size=(100, 24)) as pilot:
+        await pilot.press("f")
+        await until(pilot, lambda: app.search_bar.is_open, what="the search line")
+        await pilot.pause(0.2)
+        screen = app.screen
+        layouts = []
+        layout = screen._refresh_layout
+        screen._refresh_layout = lambda *a, **k: layouts.append(1) or layout(*a, **k)
+        await pilot.press(*"divisible")
+        await until(pilot, lambda: "divisible" in screen_text(app), what="the typed text")
+        assert layouts == [], f"{len(layouts)} layouts of the screen while typing"

@@ -260,3 +260,22 @@ async def test_command_palette_offers_the_actions():
         await until(pilot, lambda: "Pause / resume" in screen_text(app), what="the palette offering Pause")
         await pilot.press("enter")
         await until(pilot, lambda: "PAUSED" in status_line(app), what="PAUSED")
+
+
+async def test_a_change_of_focus_redraws_only_the_cursor_row():
+    """Only the cursor's row may look different when the table has the focus; the other
+    rows are not drawn again when the focus moves (the search line opening)."""
+    app = make_app(100)
+    async with app.run_test(size=(100, 24)) as pilot:
+        await until(pilot, lambda: cursor_number(app) == 100, what="the cursor on the last row")
+        table = app.table
+        other_y = table_rows(app)[99][0]
+        other = style_at(app, 10, other_y)
+        drawn = []
+        draw = table._render_row
+        table._render_row = lambda record, *args: drawn.append(record.seq + 1) or draw(record, *args)
+        await pilot.press("f")
+        await until(pilot, lambda: app.search_bar.is_open, what="the search line")
+        await pilot.pause(0.2)
+        assert style_at(app, 10, table_rows(app)[99][0]) == other
+        assert set(drawn) <= {100}, f"rows drawn again: {sorted(set(drawn))}"

@@ -4,15 +4,30 @@ query line have in common."""
 from __future__ import annotations
 
 from textual.containers import Vertical
+from textual.geometry import Size
+from textual.widget import Widget
 from textual.widgets import Input
 
 from ..focus import focus_now
 
 
+class LineInput(Input):
+    """``Input`` whose typing does not lay out the screen.
+
+    Textual's keeps its virtual size at its text's width through a reactive that lays out
+    the whole screen on every key (3-4 ms here, in the turn of the search that key starts);
+    a line's ``Input`` has a fixed size, so the width is set without a layout.
+    """
+
+    def _watch_value(self, value: str) -> None:
+        self.set_reactive(Widget.virtual_size, Size(self.content_width, 1))
+        super()._watch_value(value)  # sets the same size again: no change, no layout
+
+
 class InputLine(Vertical):
     """One ``Input`` of one line (and what a subclass puts below it), shown while open.
 
-    Subclasses compose the ``Input`` and say what its keys and messages mean.
+    Subclasses compose the ``Input`` (a ``LineInput``) and say what its keys and messages mean.
     """
 
     DEFAULT_CSS = """

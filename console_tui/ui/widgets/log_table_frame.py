@@ -76,9 +76,17 @@ class TableFrame(TableLayout, TableCells):
         key = (self.has_focus, self.app.theme)
         if key != self._styles_key:
             self._styles_key = key
-            self._styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
-            self._base = self.rich_style
-            self._forget_drawn_rows()
+            styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
+            base = self.rich_style
+            changed = {name for name in styles if styles[name] != self._styles.get(name)}
+            self._styles, self._frame = styles, None
+            if base != self._base or changed - {"log-table--cursor"}:
+                self._base = base
+                self._forget_drawn_rows()
+            elif changed:  # focus came or went: only the cursor's row looks different
+                cursor_rows = [row_key for row_key in list(self._cache.keys()) if row_key[1]]
+                for row_key in cursor_rows:  # (the key's second item: the cursor's row)
+                    self._cache.discard(row_key)
 
     def render_lines(self, crop: Region) -> list[Strip]:
         # Everything a row needs that is the same for every row: worked out once a frame.

@@ -16,7 +16,7 @@ from ...model.rules.ruleset import Entry
 from ...model.text import one_line, plural
 from ..keys import Hint, hint_line
 from ..plain import plain
-from .input_line import InputLine
+from .input_line import InputLine, LineInput
 
 _HINTS: list[Hint] = [("submit", "applies"), ("close", "closes"), (("history(-1)", "history(1)"), "history")]
 PLACEHOLDER = 'level>=warn node:nav* -node:rviz* +"planner failed" /time(out|d out)/i file:planner.cpp'
@@ -59,7 +59,7 @@ class QueryBar(InputLine):
         self.applied_text = ""
 
     def compose(self) -> ComposeResult:
-        yield Input(placeholder=PLACEHOLDER, id="query-input")
+        yield LineInput(placeholder=PLACEHOLDER, id="query-input")
         yield Static(f"{self.key_hints()} · -term excludes, +term highlights", id="query-problem", classes="-ok")
 
     def key_hints(self) -> str:

@@ -14,7 +14,7 @@ from ...model.rules.rule import RuleError
 from ...model.search import parse_search
 from ..keys import Hint, hint_line
 from ..plain import plain
-from .input_line import InputLine
+from .input_line import InputLine, LineInput
 
 PLACEHOLDER = "text to find (smart case), or /regex/ or /regex/i: the rows stay, matches are marked"
 
@@ -52,7 +52,7 @@ class SearchBar(InputLine):
         self._hint_shown: tuple[str, str] | None = None
 
     def compose(self) -> ComposeResult:
-        yield Input(placeholder=PLACEHOLDER, id="search-input")
+        yield LineInput(placeholder=PLACEHOLDER, id="search-input")
         yield Static("", id="search-hint")
 
     def on_mount(self) -> None:
