@@ -27,6 +27,9 @@ from .widgets.search_bar import SearchBar
 #: slices: 18-26 ms stalls against a floor of 4-5 ms; 3 ms: 10-18 ms; 2 ms no better).
 SEARCH_BUDGET_S = 0.003
 SEARCH_PAUSE_S = 0.001
+#: After the table moved or its marks changed, the pause that leaves the next frame (every
+#: row drawn again) a turn of the loop without a slice in it.
+SEARCH_FRAME_GAP_S = 1 / 60
 #: How often the status line's count moves while searching.
 SEARCH_PROGRESS_PERIOD_S = 0.1
 #: Finding the matches in one row as shown (a regex) may take this long at most.
@@ -198,16 +201,22 @@ class SearchActions(AppPart):
                 if search.failed:
                     self.notify(f"Search stopped, {search.failed}: {describe_search(search.match)}", severity="error")
                     self._jump = None
+                waiting = self._jump is not None
                 jumped = self._try_jump()
+                redrawn = waiting and jumped  # the table moved to a match
                 if self.clock() - shown_at >= SEARCH_PROGRESS_PERIOD_S or complete:
                     shown_at = self.clock()
                     found = search.count()
                     if found != marked:  # new matches may be on screen: draw their marks
                         marked = found
                         self._show_search_marks()
+                        redrawn = True
                     self.update_status()
                 if complete and jumped:
                     return
+                if redrawn:  # the frame that draws it goes first, in a turn of its own
+                    await asyncio.sleep(SEARCH_FRAME_GAP_S)
+                    continue
             await asyncio.sleep(SEARCH_PAUSE_S)
 
     def search_after_records(self) -> None:
