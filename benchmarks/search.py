@@ -231,7 +231,7 @@ def main() -> int:
         result = results[title]
         rows.append(
             [
-                f"{title} `{text}`",
+                f"{title} `{text}`".replace("|", "\\|"),  # a regex's | would end the cell
                 f"{result['first']:.0f}",
                 f"{result['next']:.0f}",
                 f"{result['next_cpu']:.0f}",
