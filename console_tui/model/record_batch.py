@@ -28,6 +28,8 @@ import struct
 from array import array
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from itertools import chain, compress
+from typing import Any
 
 from .record import LogRecord
 
@@ -95,6 +97,21 @@ class RecordColumns:
                 record.topics = topics
         return records
 
+    @classmethod
+    def joined(cls, parts: Sequence[RecordColumns]) -> RecordColumns:
+        """The records of ``parts``, one after another, as one batch."""
+        if len(parts) == 1:
+            return parts[0]
+        columns = [list(chain.from_iterable(getattr(part, name) for part in parts)) for name in _COLUMNS]
+        with_topics = any(part.topics is not None for part in parts)
+        topics = list(chain.from_iterable(part.topics or ("",) * len(part) for part in parts)) if with_topics else None
+        return _made(columns, topics)
+
+    def kept(self, keep: Sequence[bool]) -> RecordColumns:
+        """The records whose entry in ``keep`` is true, in order."""
+        columns = [list(compress(getattr(self, name), keep)) for name in _COLUMNS]
+        return _made(columns, None if self.topics is None else list(compress(self.topics, keep)))
+
     def slice(self, lo: int, hi: int) -> RecordColumns:
         """Records ``lo:hi`` as columns of their own."""
         return RecordColumns(
@@ -108,6 +125,15 @@ class RecordColumns:
             self.sources[lo:hi],
             None if self.topics is None else self.topics[lo:hi],
         )
+
+
+#: The columns every batch has (``topics`` is optional), in ``RecordColumns``' order.
+_COLUMNS = ("stamps", "levels", "nodes", "msgs", "files", "functions", "lines", "sources")
+
+
+def _made(columns: list[list[Any]], topics: list[str] | None) -> RecordColumns:
+    stamps, levels, nodes, msgs, files, functions, lines, sources = columns
+    return RecordColumns(stamps, levels, nodes, msgs, files, functions, lines, sources, topics)
 
 
 class BatchError(ValueError):

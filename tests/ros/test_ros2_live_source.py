@@ -165,7 +165,7 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env):
         assert reader.path == "raw+cdr"
         reader.close()
         reader.main = SimpleNamespace(handle=_OldRclpyHandle([Log(name="n", msg="one"), Log(name="n", msg="two")]))
-        assert [r.msg for r in reader.take_all(10)] == ["one", "two"]
+        assert list(reader.take_all(10).msgs) == ["one", "two"]
         assert reader.path == "typed"
     finally:
         runtime.shutdown()
@@ -299,10 +299,10 @@ def test_without_publisher_gids_messages_are_kept_by_the_node_that_owns_their_lo
         publisher_gid(node, "named_owner")
         assert reader._keep_from_extra({}) is True and reader._gidless
         reader.refresh_graph()
-        assert reader._keep_record_from_extra(LogRecord(1, 20, "named_owner", "m")) is False
-        assert reader._keep_record_from_extra(LogRecord(1, 20, "named_owner.child.grandchild", "m")) is False
-        assert reader._keep_record_from_extra(LogRecord(1, 20, "named_owner_other", "m")) is True
-        assert reader._keep_record_from_extra(LogRecord(1, 20, "nobody.at.all", "m")) is True
+        assert reader._keep_node_from_extra("named_owner") is False
+        assert reader._keep_node_from_extra("named_owner.child.grandchild") is False
+        assert reader._keep_node_from_extra("named_owner_other") is True
+        assert reader._keep_node_from_extra("nobody.at.all") is True
 
 
 def test_middleware_losses_count_on_the_main_subscription_and_on_the_second_only_when_it_stands_alone(ros_env):

@@ -304,11 +304,20 @@ def test_refused_messages_go_to_the_callback_whose_records_take_their_place():
 
     records = LogDecoder().decode_many([good[0], bad[0], good[1], bad[1], good[2]], "/rosout", refused)
     assert [r.msg for r in records] == ["m0", "in place of a bad one", "m1", "m2"]
+    assert [(r.level, r.node) for r in records][1] == (40, "stand-in")
     assert [data for data, _ in seen] == bad
     assert seen[1][1] == "Log message truncated: 9 bytes"
     assert [r.source for r in records if r.node == "n"] == ["/rosout"] * 3
     assert LogDecoder().decode_many([good[0]])[0].source == "", "no source unless given"
     assert LogDecoder().decode(good[0]).source == ""
+
+
+def test_columns_hold_what_records_hold():
+    messages = [encode_log(strings=(b"n", f"m{i}".encode(), b"f", b"g")) for i in range(3)]
+    columns = LogDecoder().decode_columns(messages, "/rosout")
+    assert columns.records() == LogDecoder().decode_many(messages, "/rosout")
+    assert list(columns.msgs) == ["m0", "m1", "m2"] and list(columns.sources) == ["/rosout"] * 3
+    assert len(LogDecoder().decode_columns([])) == 0
 
 
 def test_a_message_with_several_nuls_ends_at_the_first():

@@ -64,6 +64,20 @@ def test_columns_slice_and_store_take_them_whole():
     assert fields([store.get(0), store.get(CHUNK_SIZE + 9)]) == fields([make(0), make(CHUNK_SIZE + 9)])
 
 
+def test_columns_joined_and_kept_in_order():
+    parts = [RecordColumns.from_records([make(i) for i in range(lo, hi)]) for lo, hi in ((0, 3), (3, 3), (3, 7))]
+    joined = RecordColumns.joined(parts)
+    assert fields(joined.records()) == fields([make(i) for i in range(7)])
+    assert joined.topics is None and len(RecordColumns.joined([])) == 0
+    kept = joined.kept([i % 3 == 0 for i in range(7)])
+    assert fields(kept.records()) == fields([make(0), make(3), make(6)])
+    with_topics = make(9)
+    with_topics.topics = "/chatter"
+    mixed = RecordColumns.joined([parts[0], RecordColumns.from_records([with_topics])])
+    assert mixed.topics == ["", "", "", "/chatter"]
+    assert mixed.kept([False, False, True, True]).topics == ["", "/chatter"]
+
+
 def test_store_widens_columns_for_big_ids_and_lines():
     store = LogStore()
     store.extend([make(i) for i in range(10)])

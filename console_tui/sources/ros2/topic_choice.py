@@ -7,7 +7,7 @@ aggregator, ``/rosout`` is held back, so the history comes in time order.
 
 from __future__ import annotations
 
-from ...model.record import LogRecord
+from ...model.record_batch import RecordColumns
 from ..log_topics import ROSOUT
 
 #: At start, ``/rosout`` messages are held back while ``/rosout_agg`` may still be
@@ -38,7 +38,7 @@ class TopicChoice:
     def __init__(self, start: float) -> None:
         self.start = start
         self.deadline = start + AUTO_TOPIC_MAX_S
-        self.held: list[LogRecord] = []
+        self.held: list[RecordColumns] = []
         #: Per logger name, the oldest and newest stamps ``/rosout`` gave.
         self.oldest: dict[str, int] = {}
         self.newest: dict[str, int] = {}
@@ -65,21 +65,27 @@ class TopicChoice:
             self.dedupe_until = now + SWITCH_DEDUPE_S
         self.deadline = 0.0
 
-    def filter(self, batch: list[LogRecord], topic: str, now: float) -> list[LogRecord]:
+    def filter(self, batch: RecordColumns, topic: str, now: float) -> RecordColumns:
+        """What of ``batch`` (just taken from ``topic``) goes on now, in order."""
         if topic == ROSOUT:
-            oldest, newest = self.oldest, self.newest
-            for record in batch:
-                oldest.setdefault(record.node, record.stamp_ns)
-                newest[record.node] = record.stamp_ns
+            nodes, stamps, oldest = batch.nodes, batch.stamps, self.oldest
+            for node in set(nodes).difference(oldest):
+                oldest[node] = stamps[nodes.index(node)]
+            self.newest.update(zip(nodes, stamps, strict=True))
             if self.holding(now):
-                self.held.extend(batch)
-                return []
+                self.held.append(batch)
+                return RecordColumns.joined([])
             if self.held:
-                batch, self.held = self.held + batch, []
+                batch, self.held = RecordColumns.joined([*self.held, batch]), []
             return batch
         if now < self.dedupe_until:
             oldest, newest = self.oldest, self.newest
-            return [r for r in batch if r.node not in newest or not oldest[r.node] <= r.stamp_ns <= newest[r.node]]
+            return batch.kept(
+                [
+                    node not in newest or not oldest[node] <= stamp <= newest[node]
+                    for node, stamp in zip(batch.nodes, batch.stamps, strict=True)
+                ]
+            )
         if self.newest:
             self.oldest, self.newest = {}, {}
         return batch

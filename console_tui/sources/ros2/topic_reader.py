@@ -23,6 +23,7 @@ from typing import Any
 from ...model.formats.ros2_log_msg import CdrError, LogDecoder
 from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
+from ...model.record_batch import RecordColumns
 from ..log_message import log_to_record
 from .loss_counts import LossCounts, SequenceGaps
 
@@ -191,7 +192,7 @@ class TopicReader:
 
     def _keep_from_extra(self, info: dict) -> bool:
         """Whether a message the extra subscription took is one only it receives (by its
-        publisher's GID; kept for ``_keep_record_from_extra`` when the info has none)."""
+        publisher's GID; kept for ``_keep_node_from_extra`` when the info has none)."""
         if "publisher_gid" not in info:
             self._gidless = True
             return True
@@ -200,13 +201,13 @@ class TopicReader:
             self._refresh_for_unknown()
         return gid not in self._covered
 
-    def _keep_record_from_extra(self, record: LogRecord) -> bool:
-        """Without publisher GIDs: whether the record's logger belongs to a node only the
+    def _keep_node_from_extra(self, logger: str) -> bool:
+        """Without publisher GIDs: whether a record of this logger belongs to a node only the
         extra subscription matches (the node whose logger name is the longest prefix of it)."""
-        owner = self._owner(record.node)
+        owner = self._owner(logger)
         if owner is None:
             self._refresh_for_unknown()
-            owner = self._owner(record.node)
+            owner = self._owner(logger)
         return owner is None or not self._node_covered[owner]
 
     def _owner(self, logger: str) -> str | None:
@@ -223,20 +224,21 @@ class TopicReader:
             self._unknown_refreshed_at = now
             self.refresh_graph()  # a publisher newer than our last look
 
-    def take_all(self, limit: int) -> list[LogRecord]:
-        """Every message waiting (up to ``limit``), as records, oldest first per subscription."""
-        batch: list[LogRecord] = []
-        taken = self._take_into(batch, self.main, limit, None)
+    def take_all(self, limit: int) -> RecordColumns:
+        """Every message waiting (up to ``limit``), as records in columns, oldest first per subscription."""
+        parts: list[RecordColumns] = []
+        taken = self._take_into(parts, self.main, limit, None)
         if self.extra is not None and taken < limit:
-            extra: list[LogRecord] = []
+            extra: list[RecordColumns] = []
             self._take_into(extra, self.extra, limit - taken, self._keep_from_extra)
             if extra and self._covered and self._gidless:
-                extra = [record for record in extra if self._keep_record_from_extra(record)]
-            batch.extend(extra)
-        return batch
+                from_extra = RecordColumns.joined(extra)
+                extra = [from_extra.kept([self._keep_node_from_extra(node) for node in from_extra.nodes])]
+            parts.extend(extra)
+        return RecordColumns.joined(parts)
 
-    def _take_into(self, batch: list[LogRecord], subscription: Any, limit: int, keep: Any) -> int:
-        """Take up to ``limit`` messages into ``batch`` (those ``keep(info)`` accepts); how many taken.
+    def _take_into(self, parts: list[RecordColumns], subscription: Any, limit: int, keep: Any) -> int:
+        """Take up to ``limit`` messages into ``parts`` (those ``keep(info)`` accepts); how many taken.
 
         The hot loop of the app: messages are taken first, then decoded all in one call.
         """
@@ -257,9 +259,9 @@ class TopicReader:
                     continue
                 if not isinstance(error, TypeError):
                     raise
-                batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
+                parts.append(decoder.decode_columns(messages, self.topic, self._read_refused))
                 self.decoder = None  # an rclpy that cannot take serialized messages
-                return count + self._take_into(batch, subscription, limit - count, keep)
+                return count + self._take_into(parts, subscription, limit - count, keep)
             if taken is None:
                 break
             count += 1
@@ -268,10 +270,10 @@ class TopicReader:
                 append(taken[0])
                 see(info)
         if decoder is not None:
-            batch.extend(decoder.decode_many(messages, self.topic, self._read_refused))
+            parts.append(decoder.decode_columns(messages, self.topic, self._read_refused))
         else:
             topic = self.topic
-            batch.extend([log_to_record(message, topic) for message in messages])
+            parts.append(RecordColumns.from_records([log_to_record(message, topic) for message in messages]))
         return count
 
     def _gaps(self, subscription: Any) -> SequenceGaps:
