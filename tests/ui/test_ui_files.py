@@ -156,6 +156,23 @@ async def test_save_what_is_shown_then_load_it_back(tmp_path):
         assert loaded == original
 
 
+async def test_save_dialog_marks_only_the_chosen_format():
+    """The marks tell on from off without colour (NO_COLOR, monochrome terminals): only the
+    chosen format shows ``●``, the others a blank."""
+    store = LogStore()
+    store.extend(records(3))
+    app = ConsoleApp(store=store)
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("s")
+        await until(pilot, lambda: "Save messages to" in screen_text(app))
+        assert "▐●▌ rqt_console (ROS 2)" in line_with(app, "rqt_console (ROS 2)")[1]
+        assert "▐ ▌ JSON Lines" in line_with(app, "JSON Lines")[1]
+        assert "▐X▌ Only the rows shown" in line_with(app, "Only the rows shown")[1]
+        await pilot.press("tab", "down", "down", "space")
+        await until(pilot, lambda: "▐●▌ JSON Lines" in screen_text(app), what="the mark on the format clicked")
+        assert "▐ ▌ rqt_console (ROS 2)" in line_with(app, "rqt_console (ROS 2)")[1]
+
+
 async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
     store = LogStore()
     store.extend(records(3))

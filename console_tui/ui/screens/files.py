@@ -18,6 +18,7 @@ from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
 from ...model.formats.save import save_format_for
 from ..keys import hint_line
 from ..plain import plain
+from ..widgets.marked_toggles import MarkedCheckbox, MarkedRadioButton
 
 SAVE_FORMAT_TITLES = {
     "rqt": "rqt_console (ROS 2) .csv",
@@ -183,8 +184,10 @@ class SaveScreen(_Dialog):
             yield PathInput(self.default_path, suggester=PathSuggester(), id="path")
             with RadioSet(id="format"):
                 for key, title in SAVE_FORMAT_TITLES.items():
-                    yield RadioButton(title, value=key == save_format_for(self.default_path), name=key)
-            yield Checkbox("Only the rows shown (after rules)", value=True, id="shown-only", disabled=not self.filtered)
+                    yield MarkedRadioButton(title, value=key == save_format_for(self.default_path), name=key)
+            yield MarkedCheckbox(
+                "Only the rows shown (after rules)", value=True, id="shown-only", disabled=not self.filtered
+            )
             yield Label(self.key_hints(), classes="hint")
             yield self.error_line()
 

@@ -9,7 +9,7 @@ from textual.app import ComposeResult
 from textual.binding import Binding
 from textual.containers import Horizontal, Vertical
 from textual.screen import ModalScreen
-from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet, Select
+from textual.widgets import Checkbox, Input, Label, RadioSet, Select
 
 from ...model.levels import MESSAGE_SEVERITIES
 from ...model.rules.custom import CustomRule
@@ -24,6 +24,7 @@ from ...model.rules.time_range import TimeRangeRule
 from ...model.timefmt import full_text
 from ..keys import Hint, hint_line
 from ..plain import plain
+from ..widgets.marked_toggles import MarkedCheckbox, MarkedRadioButton
 
 KINDS = {
     "message": "Message text",
@@ -100,9 +101,9 @@ class RuleEditor(ModalScreen[Entry | None]):
             yield Label("Edit rule" if self.entry is not None else "New rule", classes="title")
             yield Select([(title, key) for key, title in KINDS.items()], value=self.kind, allow_blank=False, id="kind")
             with RadioSet(id="role"):
-                yield RadioButton("Exclude", value=self.role is Role.EXCLUDE, name="exclude")
-                yield RadioButton("Highlight", value=self.role is Role.HIGHLIGHT, name="highlight")
-            yield Checkbox(
+                yield MarkedRadioButton("Exclude", value=self.role is Role.EXCLUDE, name="exclude")
+                yield MarkedRadioButton("Highlight", value=self.role is Role.HIGHLIGHT, name="highlight")
+            yield MarkedCheckbox(
                 "Inverted: matches what the rule does not",
                 value=bool(self.entry and self.entry.inverted),
                 id="inverted",
@@ -110,11 +111,13 @@ class RuleEditor(ModalScreen[Entry | None]):
             with Vertical(classes="group", id="group-message"):
                 yield Input(message.text, placeholder="text the message contains", id="message-text")
                 with Horizontal():
-                    yield Checkbox("Ignore case", value=message.ignore_case, id="message-ignore-case")
-                    yield Checkbox("Regular expression", value=message.regex, id="message-regex")
+                    yield MarkedCheckbox("Ignore case", value=message.ignore_case, id="message-ignore-case")
+                    yield MarkedCheckbox("Regular expression", value=message.regex, id="message-regex")
             with Horizontal(classes="group", id="group-severity"):
                 for level in MESSAGE_SEVERITIES:
-                    yield Checkbox(level.name, value=int(level) in severity.levels, id=f"severity-{level.name.lower()}")
+                    yield MarkedCheckbox(
+                        level.name, value=int(level) in severity.levels, id=f"severity-{level.name.lower()}"
+                    )
             with Vertical(classes="group", id="group-node"):
                 yield Input(
                     ", ".join(node.names),
@@ -129,8 +132,8 @@ class RuleEditor(ModalScreen[Entry | None]):
                         "" if location.line is None else str(location.line), placeholder="line", id="location-line"
                     )
                 with Horizontal():
-                    yield Checkbox("Ignore case", value=location.ignore_case, id="location-ignore-case")
-                    yield Checkbox("Regular expressions", value=location.regex, id="location-regex")
+                    yield MarkedCheckbox("Ignore case", value=location.ignore_case, id="location-ignore-case")
+                    yield MarkedCheckbox("Regular expressions", value=location.regex, id="location-regex")
             with Horizontal(classes="group", id="group-time"):
                 yield Input(
                     self._time(period.start_ns),
