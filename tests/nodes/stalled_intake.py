@@ -54,7 +54,17 @@ def main() -> None:
     received += len(queue.drain())
     status = source.status
     print(
-        json.dumps({"event": "received", "count": received, "lost": status.lost, "lost_qos": status.lost_qos}),
+        json.dumps(
+            {
+                "event": "received",
+                "count": received,
+                "lost": status.lost,
+                "lost_qos": status.lost_qos,
+                # What each count saw (lost_qos is the larger), for a failure to show.
+                "loss_events": source.counts.lost_qos,
+                "sequence_gaps": source.counts.lost_gaps,
+            }
+        ),
         flush=True,
     )
     source.stop()

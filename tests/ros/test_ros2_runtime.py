@@ -61,7 +61,7 @@ def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp
     }
     result = burst_into_a_stalled_intake(nodes, 10_000)
     assert result["count"] < 10_001 and result["lost_qos"] > 0
-    assert 10_001 - 10 <= result["count"] + result["lost_qos"] <= 10_001
+    assert 10_001 - 10 <= result["count"] + result["lost_qos"] <= 10_001, result
     assert result["lost"] == result["lost_qos"], "nothing else lost: the queue kept up, all decoded"
 
 
