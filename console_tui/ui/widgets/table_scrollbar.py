@@ -6,15 +6,26 @@ every drain of the intake, but the thumb stays one cell at the bottom: each redr
 1.5 ms, a frame's longest part after the rows) drew the same column. This one keeps the
 values exact (a click or a drag reads them) and redraws only when the thumb's cells, to an
 eighth of a cell as Textual draws them, are not the same.
+
+And when it does redraw, it makes its column's lines straight from Textual's own
+``ScrollBarRender.render_bar`` (one segment a row) and keeps them until the next refresh,
+instead of through Rich's rendering and Textual's styles cache: 0.05 ms instead of 0.8 for
+42 rows here, and the compositor asks for a few rows at a time, often.
 """
 
 from __future__ import annotations
 
 from math import ceil
+from typing import Literal
 
+from rich.color import Color
 from rich.console import RenderableType
+from rich.segment import Segment
+from rich.style import Style
+from textual.geometry import Region
 from textual.reactive import Reactive
 from textual.scrollbar import ScrollBar, ScrollBarRender
+from textual.strip import Strip
 
 #: Textual draws a thumb's ends in eighths of a cell.
 _EIGHTHS = len(ScrollBarRender.VERTICAL_BARS)
@@ -32,6 +43,8 @@ class TableScrollBar(ScrollBar):
         #: The thumb last drawn (``thumb``), and whether a check that it moved is queued.
         self._drawn: tuple[int, ...] | None = None
         self._check_due = False
+        #: Every row as last drawn (``_draw_rows``), until the next refresh.
+        self._rows: list[Strip] | Literal[False] | None = None
 
     def thumb(self) -> tuple[int, ...]:
         """The length of the bar and the thumb's first and last eighth of a cell, as
@@ -49,6 +62,45 @@ class TableScrollBar(ScrollBar):
     def render(self) -> RenderableType:
         self._drawn = self.thumb()
         return super().render()
+
+    def render_lines(self, crop: Region) -> list[Strip]:
+        # Textual's own lines, less the trip through Rich and its styles cache: the column as
+        # ``render_bar`` makes it, one segment a row over the widget's style, made again only
+        # after a refresh (the compositor asks for a few rows at a time, often).
+        if self._dirty_regions or self._rows is None:
+            self._rows = self._draw_rows()
+            self._dirty_regions.clear()
+        if self._rows is False:
+            return super().render_lines(crop)
+        rows = self._rows[crop.y : crop.bottom]
+        filters = self.get_line_filters()
+        if filters:
+            _, background = self.background_colors
+            for line_filter in filters:
+                rows = [row.apply_filter(line_filter, background) for row in rows]
+        if crop.column_span != (0, self.size.width):
+            rows = [row.crop(crop.x, crop.right) for row in rows]
+        return rows
+
+    def _draw_rows(self) -> list[Strip] | Literal[False]:
+        """Every row of the bar; ``False`` when it is not a plain vertical bar (Textual draws it)."""
+        bar = self.render()
+        style = getattr(bar, "style", None)
+        if not (self.vertical and isinstance(bar, ScrollBarRender) and isinstance(style, Style)):
+            return False
+        width, height = self.size
+        column = ScrollBarRender.render_bar(
+            size=height,
+            virtual_size=bar.virtual_size,
+            window_size=bar.window_size,
+            position=bar.position,
+            thickness=width,
+            vertical=True,
+            back_color=style.bgcolor or Color.parse("#555555"),
+            bar_color=style.color or Color.parse("bright_magenta"),
+        )
+        base = self.visual_style.rich_style  # under each segment's own style, as Rich's rendering puts it
+        return [Strip((Segment(segment.text, base + segment.style),), width) for segment in column.segments]
 
     def _thumb_may_have_moved(self) -> None:
         # Checked once all of an update's values are set (height, window, position: one
