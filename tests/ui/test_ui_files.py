@@ -26,6 +26,17 @@ def source_of(line: str) -> str:
     return line.translate({ord(c): " " for c in "▁▂▃▄▅▆▇█"}).split()[-1]
 
 
+def app_with(count: int) -> ConsoleApp:
+    store = LogStore()
+    store.extend(records(count))
+    return ConsoleApp(store=store)
+
+
+async def open_save_dialog(pilot, app: ConsoleApp) -> None:
+    await pilot.press("s")
+    await until(pilot, lambda: "Save messages to" in screen_text(app))
+
+
 async def test_files_given_at_start_load_merged_with_their_source(tmp_path):
     first = write_jsonl(tmp_path / "a.jsonl", 50, start=0)
     second_rows = records(50, start=25)
@@ -140,8 +151,7 @@ async def test_save_what_is_shown_then_load_it_back(tmp_path):
     app = ConsoleApp(store=store, utc=True)
     target = tmp_path / "saved.jsonl"
     async with app.run_test(size=(120, 30)) as pilot:
-        await pilot.press("s")
-        await until(pilot, lambda: "Save messages to" in screen_text(app))
+        await open_save_dialog(pilot, app)
         assert isinstance(app.screen, SaveScreen)
         await pilot.press("end", "ctrl+u")
         await type_text(pilot, str(target))
@@ -159,12 +169,9 @@ async def test_save_what_is_shown_then_load_it_back(tmp_path):
 async def test_save_dialog_marks_only_the_chosen_format():
     """The marks tell on from off without colour (NO_COLOR, monochrome terminals): only the
     chosen format shows ``●``, the others a blank."""
-    store = LogStore()
-    store.extend(records(3))
-    app = ConsoleApp(store=store)
+    app = app_with(3)
     async with app.run_test(size=(120, 30)) as pilot:
-        await pilot.press("s")
-        await until(pilot, lambda: "Save messages to" in screen_text(app))
+        await open_save_dialog(pilot, app)
         assert "▐●▌ rqt_console (ROS 2)" in line_with(app, "rqt_console (ROS 2)")[1]
         assert "▐ ▌ JSON Lines" in line_with(app, "JSON Lines")[1]
         assert "▐X▌ Only the rows shown" in line_with(app, "Only the rows shown")[1]
@@ -174,12 +181,9 @@ async def test_save_dialog_marks_only_the_chosen_format():
 
 
 async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
-    store = LogStore()
-    store.extend(records(3))
-    app = ConsoleApp(store=store)
+    app = app_with(3)
     async with app.run_test(size=(120, 30)) as pilot:
-        await pilot.press("s")
-        await until(pilot, lambda: "Save messages to" in screen_text(app))
+        await open_save_dialog(pilot, app)
         await pilot.press("end", "ctrl+u")
         await type_text(pilot, str(tmp_path / "no" / "such" / "x.csv"))
         await pilot.press("enter")
