@@ -323,6 +323,7 @@ def run_app_subscriber(kind: str) -> None:
             "rss_app": process_rss_mb(os.getpid()),
             "rss_intake": process_rss_mb(pid) if pid else 0.0,
             "gc_longest": app.collection_policy.longest * 1000,
+            "gc_longest_cpu": app.collection_policy.longest_cpu * 1000,
         }
 
     def mark() -> None:
@@ -614,7 +615,17 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         subscriber.close()
         for child in publishers:  # the next subscriber starts once this one is gone
             child.ask("matched", cmd="matched", count=0)
-    app_keys = ("stall_max", "stall_p99", "key_median", "key_max", "keys", "rss_app", "rss_intake", "gc_longest")
+    app_keys = (
+        "stall_max",
+        "stall_p99",
+        "key_median",
+        "key_max",
+        "keys",
+        "rss_app",
+        "rss_intake",
+        "gc_longest",
+        "gc_longest_cpu",
+    )
     row = Row(
         publishers=len(publishers),
         rate=rate,
@@ -712,13 +723,13 @@ def app_table(rows: list[Row]) -> str:
                 both("key_median"),
                 both("key_max"),
                 int(app["keys"]),
-                f"{app['gc_longest']:.0f}",
+                f"{app['gc_longest']:.0f} ({app['gc_longest_cpu']:.0f})",
                 f"{app['rss_app']:.0f} + {app['rss_intake']:.0f}",
                 f"{row.stop_ms:.0f}" if row.stop_ms is not None else "",
             ]
         )
     headers = ["pubs", "offered/s", "app", "longest stall ms", "stall p99 ms", "key median ms", "key worst ms"]
-    headers += ["keys", "longest gc ms", "RSS MB app + intake", "quit ms"]
+    headers += ["keys", "longest gc ms (its CPU)", "RSS MB app + intake", "quit ms"]
     return table(headers, body)
 
 

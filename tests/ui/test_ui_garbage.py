@@ -68,3 +68,30 @@ async def test_a_full_collection_runs_in_a_turn_of_its_own_after_the_drain():
     policy.tick()
     await asyncio.sleep(0.05)
     assert policy.full_collections == 1, "collected again before the next period"
+
+
+def test_what_is_alive_once_start_up_settled_is_frozen_once():
+    """Objects made after the first freeze (rclpy and modules imported by threads, the first
+    screens' caches) are frozen by the first full collection ``settled`` seconds after start,
+    and never again."""
+    import gc
+
+    from console_tui.ui.gc_policy import CollectionPolicy
+
+    now = [0.0]
+    policy = CollectionPolicy(clock=lambda: now[0], settled=10.0)
+    policy.started = 0.0  # as ``start`` sets it, without freezing this test process at start
+    try:
+        now[0] = 5.0
+        policy.collect()
+        assert not policy.refrozen, "frozen before start-up settled"
+        frozen = gc.get_freeze_count()
+        now[0] = 12.0
+        policy.collect()
+        assert policy.refrozen and gc.get_freeze_count() > frozen
+        again = gc.get_freeze_count()
+        now[0] = 30.0
+        policy.collect()
+        assert gc.get_freeze_count() == again, "frozen a second time"
+    finally:
+        gc.unfreeze()
