@@ -5,9 +5,10 @@ referring to themselves (before, about 700 objects a second with a few messages 
 arriving and several thousand at 10k messages a second waited for a full collection);
 what is left are the cycles of widgets removed, screens closed and the like. What a full
 collection costs: every tracked object is visited; the objects made at start-up are frozen
-out of collections (``gc.freeze``), and the store is no container of Python objects once
-its chunks are full (messages packed), so what is left is about 20,000 live objects,
-mostly Textual's strips and their caches.
+out of collections (``gc.freeze``, once the app is up and once more when start-up has
+settled), and the store is no container of Python objects once its chunks are full
+(messages packed), so what is left is about 7,000 live objects, mostly Textual's strips
+and their caches.
 
 Measured here (benchmarks and a headless demo): with full collections only every 10
 minutes (the policy before this one), the demo grew from 106 MB to 166 MB in five
