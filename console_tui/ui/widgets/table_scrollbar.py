@@ -9,8 +9,9 @@ eighth of a cell as Textual draws them, are not the same.
 
 And when it does redraw, it makes its column's lines straight from Textual's own
 ``ScrollBarRender.render_bar`` (one segment a row) and keeps them until the next refresh,
-instead of through Rich's rendering and Textual's styles cache: 0.05 ms instead of 0.8 for
-42 rows here, and the compositor asks for a few rows at a time, often.
+instead of through Rich's rendering and Textual's styles cache: 0.49 ms instead of 1.27 for
+42 rows after the thumb moved, 0.025 instead of 0.055 for a row asked for again (the
+compositor asks for a few rows at a time, often).
 """
 
 from __future__ import annotations
@@ -69,7 +70,8 @@ class TableScrollBar(ScrollBar):
         # after a refresh (the compositor asks for a few rows at a time, often).
         if self._dirty_regions or self._rows is None:
             self._rows = self._draw_rows()
-            self._dirty_regions.clear()
+            if self._rows is not False:  # (else Textual draws it, and reads what changed)
+                self._dirty_regions.clear()
         if self._rows is False:
             return super().render_lines(crop)
         rows = self._rows[crop.y : crop.bottom]
