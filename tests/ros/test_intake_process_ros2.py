@@ -46,7 +46,7 @@ def test_every_field_and_the_loss_counts_come_through_the_pipe(nodes):
         ]
         assert {r.node for r in mine} == {logger} and {r.source for r in mine} == {"/rosout"}
         status = rosout.status
-        assert (status.topic, status.path, status.running, status.lost) == ("/rosout", "raw+cdr", True, 0)
+        assert (status.topic, status.path, status.running, status.lost) == ("/rosout", "c+cdr", True, 0)
 
         publisher = nodes.start("raw_publisher.py", "--topic", topic)
         publisher.expect("ready")

@@ -40,11 +40,12 @@ class SequenceGaps:
     the same publisher (by GID) lost 2. The first number seen from a publisher starts its
     count (what it sent before we joined is not ours to miss)."""
 
-    __slots__ = ("_last", "counts")
+    __slots__ = ("counts", "last_seen")
 
     def __init__(self, counts: LossCounts) -> None:
         self.counts = counts
-        self._last: dict[bytes, int] = {}
+        #: ``{publisher GID: highest sequence number seen}`` (the compiled take updates it too).
+        self.last_seen: dict[bytes, int] = {}
 
     def see(self, info: dict) -> None:
         gid = info.get("publisher_gid")
@@ -52,8 +53,8 @@ class SequenceGaps:
         if not gid or not number:
             return
         key = gid.get("data", b"") if isinstance(gid, dict) else gid
-        last = self._last.get(key)
+        last = self.last_seen.get(key)
         if last is None or number > last:
             if last is not None and number > last + 1:
                 self.counts.lost_gaps += number - last - 1
-            self._last[key] = number
+            self.last_seen[key] = number

@@ -11,8 +11,9 @@ incompatible publisher, the graph is looked at again at once, so that second
 subscription starts without waiting for the next periodic look.
 
 Messages are taken serialized and read by the direct CDR decoder (``LogDecoder``), path
-``raw+cdr``; a message the decoder refuses goes through rclpy's deserializer instead, and
-an rclpy that cannot take serialized messages gets the typed path (``typed``).
+``raw+cdr``, or ``c+cdr`` where the main subscription's take loop runs in C
+(``compiled_take.py``); a message the decoder refuses goes through rclpy's deserializer
+instead, and an rclpy that cannot take serialized messages gets the typed path (``typed``).
 """
 
 from __future__ import annotations
@@ -25,11 +26,13 @@ from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
 from ...model.record_batch import RecordColumns
 from ..log_message import log_to_record
+from . import compiled_take
 from .loss_counts import LossCounts, SequenceGaps
 
 QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profile.xml (else 5,000)
 UNKNOWN_PUBLISHER_REFRESH_S = 0.2
 PATH_RAW = "raw+cdr"
+PATH_COMPILED = "c+cdr"
 PATH_TYPED = "typed"
 
 
@@ -63,6 +66,8 @@ class TopicReader:
         self.topic = topic
         self.counts = counts
         self.decoder = LogDecoder() if raw else None
+        #: The take loop in C (``None``: rclpy's take), and why not when it is missing.
+        self.compiled, self.compiled_problem = compiled_take.load() if raw else (None, "")
         self.publisher_count = 0
         #: Set by an incompatible-QoS event on the main subscription: look at the graph now.
         self.graph_changed = False
@@ -96,7 +101,9 @@ class TopicReader:
 
     @property
     def path(self) -> str:
-        return PATH_RAW if self.decoder is not None else PATH_TYPED
+        if self.decoder is None:
+            return PATH_TYPED
+        return PATH_COMPILED if self.compiled is not None else PATH_RAW
 
     def _subscribe(self, qos: Any, *, main: bool) -> Any:
         """A subscription with loss and incompatibility events, as far as this rclpy and RMW have them."""
@@ -242,7 +249,10 @@ class TopicReader:
 
         The hot loop of the app: messages are taken first, then decoded all in one call.
         """
-        take, msg_type, decoder = subscription.handle.take_message, self.msg_type, self.decoder
+        decoder = self.decoder
+        if decoder is not None and keep is None and self.compiled is not None:
+            return self._take_compiled(parts, subscription, limit, decoder)
+        take, msg_type = subscription.handle.take_message, self.msg_type
         raw = decoder is not None
         messages: list[Any] = []
         append = messages.append
@@ -277,6 +287,19 @@ class TopicReader:
             topic = self.topic
             parts.append(RecordColumns.from_records([log_to_record(message, topic) for message in messages]))
         return count
+
+    def _take_compiled(self, parts: list[RecordColumns], subscription: Any, limit: int, decoder: LogDecoder) -> int:
+        """``_take_into`` for the main subscription, its takes and sequence checks in C."""
+        assert self.compiled is not None
+        try:
+            messages, lost = self.compiled(subscription.handle.pointer, limit, self._gaps(subscription).last_seen)
+        except (RuntimeError, AttributeError) as error:  # rcl refused a take, or no pointer: rclpy's take
+            self.compiled, self.compiled_problem = None, str(error)
+            return self._take_into(parts, subscription, limit, None)
+        self.counts.lost_gaps += lost
+        if messages:
+            parts.append(decoder.decode_columns(messages, self.topic, self._read_refused))
+        return len(messages)
 
     def _gaps(self, subscription: Any) -> SequenceGaps:
         gaps = self._sequences.get(id(subscription))
