@@ -15,7 +15,8 @@ class LossCounts:
     sequence numbers (``lost_gaps``, see ``SequenceGaps``). Each misses what the other
     sees: Fast DDS reports nothing for messages its reader history overwrote (KEEP_LAST),
     nor, it seems, when the publisher left before telling it; gaps need a publisher GID in
-    the message info (Jazzy's rclpy gives none) and the next message from that publisher.
+    the message info (Jazzy's rclpy gives none; the take loop in C reads it from rcl) and
+    the next message from that publisher.
     """
 
     __slots__ = ("decoded_by_rclpy", "incompatible", "last_policy", "lost_gaps", "lost_qos", "lost_undecodable")
