@@ -29,7 +29,7 @@ from collections.abc import Callable
 
 NO_AUTOMATIC_FULL_COLLECTIONS = 1_000_000_000
 FULL_COLLECTION_PERIOD_S = 2.0
-#: What is still alive this long after start-up is frozen too, once (see ``CollectionPolicy``).
+#: Until this long after start-up, each full collection freezes what survived it (see ``CollectionPolicy``).
 SETTLED_S = 10.0
 
 
@@ -42,9 +42,11 @@ class CollectionPolicy:
     import in their threads, the first screens' caches), which every full collection visited
     again. Freezing at each of them, not only at the last, keeps the collections of the first
     seconds short too: with one freeze at 10 s, a search typed 4 s after start met a 14-15 ms
-    collection (benchmarks/search.py, traced); each one now visits what the last 2 s made. Measured at 20,000
-    msg/s (benchmarks/intake.py, the app with its logger pane's rclpy): a full collection
-    visited 28,000-31,000 objects, 6.5-22 ms; after the second freeze 6,400-7,800, 1.5-4.8 ms.
+    collection (benchmarks/search.py, traced); each one now visits what the last 2 s made.
+    Measured at 20,000 msg/s (benchmarks/intake.py, the app with its logger pane's rclpy): a
+    full collection visited 28,000-31,000 objects, 6.5-22 ms; once start-up had settled and
+    was frozen, 6,400-7,800, 1.5-4.8 ms. ``refrozen`` says start-up has settled (no more
+    freezing).
     An object frozen lives on until nothing refers to it; only a cycle among frozen objects
     would wait for ever, and these are made once.
     """

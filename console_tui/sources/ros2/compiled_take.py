@@ -105,8 +105,8 @@ def build_key(library: Path) -> str:
 
 
 def _compiler() -> str | None:
-    named = os.environ.get("CC") or str(sysconfig.get_config_var("CC") or "cc")
-    return shutil.which(named.split()[0]) if named.split() else None
+    words = (os.environ.get("CC") or str(sysconfig.get_config_var("CC") or "cc")).split()
+    return shutil.which(words[0]) if words else None
 
 
 def build(library: Path, target: Path) -> str:
