@@ -23,6 +23,13 @@
   second about 3,000 objects a second (a strip, its seven caches, its segments) waited for
   the collector, and each full collection had them to find and free. Here a strip is not
   cached in itself, and a dropped strip is freed at once. Seen with Textual 8.2.8.
+- ``Screen.focused`` is a reactive that repaints the whole screen when it changes, though
+  the widgets that gain and lose the focus repaint themselves (``Widget._on_focus`` and
+  ``_on_blur``) and those styled by it (``:focus-within``) are restyled. So every change of
+  focus drew every widget again: closing the search line with Enter (the focus back to the
+  table) cost a frame of 11-13 ms at 160x48 against 7 ms for the table alone, with part
+  of the search in the same turn of the event loop. Here a change of focus repaints only
+  what it changes. Seen with Textual 8.2.8.
 """
 
 from __future__ import annotations
@@ -33,6 +40,7 @@ from rich.style import Style
 from textual.binding import BindingsMap, Keymap, KeymapApplyResult
 from textual.drivers._writer_thread import WriterThread
 from textual.drivers.linux_driver import LinuxDriver
+from textual.screen import Screen
 from textual.strip import Strip
 from textual.widgets import OptionList
 
@@ -129,3 +137,4 @@ def apply() -> None:
     LinuxDriver._sigcont_application = _sigcont_application  # type: ignore[method-assign]
     Strip.crop_extend = _crop_extend  # type: ignore[method-assign]
     Strip.divide = _divide  # type: ignore[method-assign]
+    Screen.focused._repaint = False  # a change of focus: no repaint of the whole screen
