@@ -15,6 +15,9 @@ class SourceStatus:
     origin: str = ""
     #: How messages are taken and decoded, for example ``raw+cdr`` or ``typed``.
     path: str = ""
+    #: Why the path is not the fastest there is, or "": for example why the take loop in C
+    #: (``c+cdr``) is not used (``no C compiler (cc)``).
+    path_note: str = ""
     #: Messages known lost, all causes: the sum of the ``lost_*`` counts below.
     lost: int = 0
     #: Lost in the middleware (for example a publisher's history overwritten before the
@@ -33,6 +36,11 @@ class SourceStatus:
     problem: str = ""
     running: bool = False
 
+    def path_text(self) -> str:
+        """How messages are taken, in words: ``c+cdr: the take loop in C, the CDR decoded directly``."""
+        meaning = _PATHS.get(self.path, "")
+        return f"{self.path}: {meaning}" if meaning else self.path
+
     def loss_text(self) -> str:
         """The loss for a status bar: "" when nothing was lost, else the total and its causes."""
         if not self.lost:
@@ -44,3 +52,12 @@ class SourceStatus:
         ]
         detail = ", ".join(f"{count:,} {cause}" for count, cause in causes if count)
         return f"{self.lost:,} lost ({detail})"
+
+
+#: What each ``path`` means.
+_PATHS = {
+    "c+cdr": "the take loop in C, the CDR decoded directly",
+    "raw+cdr": "rclpy's take, the CDR decoded directly",
+    "typed": "rclpy's take and typed messages",
+    "tcpros": "ROS 1's TCPROS, read directly",
+}

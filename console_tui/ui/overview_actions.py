@@ -10,6 +10,7 @@ background in slices with the event loop free between them, as the rules are.
 from __future__ import annotations
 
 import asyncio
+from typing import TYPE_CHECKING
 
 from textual import work
 
@@ -22,6 +23,9 @@ from .app_part import AppPart
 from .focus import focus_now
 from .screens.summary import SummaryScreen
 from .widgets.timeline_strip import TimelineStrip
+
+if TYPE_CHECKING:
+    from .intake_actions import Source
 
 #: Taking in what arrived, each tick: at most this long (the rest in the background).
 FOLLOW_BUDGET_S = 0.010
@@ -41,6 +45,8 @@ class OverviewActions(AppPart):
     storms: StormRows
     node_stats: NodeStats
     timeline_strip: TimelineStrip
+    #: The live sources (``IntakeActions``): the summary says what each reads and lost.
+    sources: list[Source]
     _catching_up = False
     _strip_at = 0.0
     #: The table followed the tail when the strip was last updated.
@@ -260,7 +266,10 @@ class OverviewActions(AppPart):
             else:
                 self.show_seq(seq)
 
-        self.push_screen(SummaryScreen(self.store, self.node_stats, len(self.view), utc=self.utc), chosen)
+        sources = [source.status for source in self.sources]
+        self.push_screen(
+            SummaryScreen(self.store, self.node_stats, len(self.view), utc=self.utc, sources=sources), chosen
+        )
 
     def _view_shows(self, seq: int) -> bool:
         view = self.view

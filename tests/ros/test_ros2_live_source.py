@@ -81,6 +81,7 @@ def test_every_field_arrives_on_every_path(nodes, path, monkeypatch):
     assert {r.node for r in mine} == {logger} and {r.source for r in mine} == {"/rosout"}
     assert all(r.stamp_ns > 0 for r in mine)
     assert status.path == path
+    assert status.path_note == ("CONSOLE_TUI_COMPILED_TAKE=0" if path == "raw+cdr" else "")  # why not c+cdr
     assert (status.lost, status.decoded_by_rclpy, status.incompatible) == (0, 0, 0)
 
 
@@ -182,7 +183,7 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env, monkeypat
     runtime = RosRuntime()
     try:
         reader = TopicReader(runtime.create_node("fallback"), Log, "/fallback_log", LossCounts())
-        assert reader.path == "raw+cdr"
+        assert (reader.path, reader.path_note) == ("raw+cdr", "CONSOLE_TUI_COMPILED_TAKE=0")
         reader.close()
         reader.main = SimpleNamespace(handle=_OldRclpyHandle([Log(name="n", msg="one"), Log(name="n", msg="two")]))
         assert list(reader.take_all(10).msgs) == ["one", "two"]

@@ -43,7 +43,7 @@ def test_a_stalled_console_loses_nothing_of_a_burst_of_20000(nodes):
     """The intake stops taking (as when the UI hogs the interpreter) while a node logs
     20,000 messages; Fast DDS holds them all for the console (its default holds 5,000)."""
     result = burst_into_a_stalled_intake(nodes, 20_000)
-    assert result["count"] == 20_001 and result["lost"] == 0
+    assert (result["count"], result["lost"]) == (20_001, 0), result
 
 
 def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp_path):

@@ -119,3 +119,33 @@ async def test_q_starts_stopping_the_sources_at_once_and_the_app_waits_for_them(
         source.release.set()
     assert source.stopped.is_set(), "the app waited for the source to stop"
     assert source.calls == ["start", "stop"]
+
+
+async def test_the_summary_says_what_each_source_reads_how_and_what_it_lost():
+    status = SourceStatus(
+        topic="/rosout",
+        publishers=3,
+        origin="ROS 2 domain 7",
+        path="raw+cdr",
+        path_note="no C compiler (cc)",
+        lost=12,
+        lost_qos=12,
+        running=True,
+    )
+    helper = Source(SourceStatus(path="demo: 4 nodes"))  # reads no topic: not a source of messages
+    queue = IntakeQueue()
+    app = ConsoleApp(store=LogStore(), queue=queue, sources=[Source(status), helper], utc=True)
+    async with app.run_test(size=(80, 24)) as pilot:
+        queue.put(records(3))
+        await until(pilot, lambda: "3/3 shown" in status_line(app), what="records from the queue")
+        await pilot.press("S")
+        await until(pilot, lambda: "Summary: 3 messages kept" in screen_text(app), what="the summary")
+        lines = [line.strip(" █▊▎") for line in screen_text(app).splitlines()]
+    start = lines.index("Source: /rosout, 3 publishers")
+    assert lines[start + 1 : start + 5] == [
+        "ROS 2 domain 7",
+        "taken by raw+cdr: rclpy's take, the CDR decoded directly",
+        "the take loop in C is not used: no C compiler (cc)",
+        "lost: 12 lost (12 in the middleware)",
+    ]
+    assert sum(line.startswith("Source:") for line in lines) == 1, "the demo's nodes are no source of messages"

@@ -92,6 +92,7 @@ class LiveLogSource:
         lost_queue = self.queue.dropped
         fields: dict[str, Any] = {
             "path": reader.path,
+            "path_note": reader.path_note,
             "lost": counts.lost_in_middleware + lost_queue + counts.lost_undecodable,
             "lost_qos": counts.lost_in_middleware,
             "lost_queue": lost_queue,

@@ -105,6 +105,11 @@ class TopicReader:
             return PATH_TYPED
         return PATH_COMPILED if self.compiled is not None else PATH_RAW
 
+    @property
+    def path_note(self) -> str:
+        """Why the take loop in C is not used, or "" (it is, or the path is ``typed``)."""
+        return self.compiled_problem if self.decoder is not None and self.compiled is None else ""
+
     def _subscribe(self, qos: Any, *, main: bool) -> Any:
         """A subscription with loss and incompatibility events, as far as this rclpy and RMW have them."""
         callbacks = _subscription_event_callbacks()

@@ -1,5 +1,6 @@
 """The summary of the run: counts per severity and per node, the busiest nodes over the
-last minute, the first message of each severity. Every line is a jump target: Enter (or a
+last minute, the first message of each severity, and the live sources (what they read, how,
+what was lost). Every line is a jump target: Enter (or a
 click) shows its message in the table.
 
 It counts every kept message (what the rules hide too: it describes the run, like the
@@ -7,6 +8,8 @@ counts on the status line); a target the rules hide is said so instead of shown.
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
 
 from rich.text import Text
 from textual.app import ComposeResult
@@ -19,8 +22,9 @@ from textual.widgets.option_list import Option
 from ...model.levels import MESSAGE_SEVERITIES, severity_level
 from ...model.node_stats import NodeStats
 from ...model.store import LogStore
-from ...model.text import one_line, shorten_name
+from ...model.text import one_line, plural, shorten_name
 from ...model.timefmt import clock_text, duration_text
+from ...sources.status import SourceStatus
 from ..keys import hint_line
 from ..severity_styles import severity_classes, severity_css
 from ..widgets.timeline_drawing import span_text
@@ -59,12 +63,21 @@ class SummaryScreen(ModalScreen[int | None]):
         Binding("escape,q,S", "close", "Close", show=False, id="summary.close"),
     ]
 
-    def __init__(self, store: LogStore, stats: NodeStats, shown: int, *, utc: bool = False) -> None:
+    def __init__(
+        self,
+        store: LogStore,
+        stats: NodeStats,
+        shown: int,
+        *,
+        utc: bool = False,
+        sources: Sequence[SourceStatus] = (),
+    ) -> None:
         super().__init__()
         self.store = store
         self.stats = stats
         self.shown_rows = shown
         self.utc = utc
+        self.sources = sources
         #: option id -> what its line jumps to
         self._targets: dict[str, str] = {}
 
@@ -112,7 +125,7 @@ class SummaryScreen(ModalScreen[int | None]):
     def _options(self) -> list[Option]:
         store, stats = self.store, self.stats
         name_width, count_width = self._widths()
-        options: list[Option] = [_heading("Severity       count   first")]
+        options: list[Option] = [*self._source_options(), _heading("Severity       count   first")]
         counts = store.counts
         #: The severities drawn as everywhere else (the theme's, and by weight without colour).
         styles = [
@@ -152,6 +165,31 @@ class SummaryScreen(ModalScreen[int | None]):
                 line.append(f"{number:>{count_width},}", style=styles[slot] if number else "dim")
             line.append(f"{entry.total:>{count_width + 1},}", style="bold")
             options.append(self._target_option(line, f"node:{entry.node_id}"))
+        return options
+
+    def _source_options(self) -> list[Option]:
+        """What each live source reads, how, and what it lost (none: nothing), each followed
+        by an empty line; first in the list, where it is seen without scrolling."""
+        options: list[Option] = []
+        for status in self.sources:
+            if not (status.topic or status.origin):  # no reader of a topic (the demo's nodes)
+                continue
+            where = f"{status.topic or '(no topic yet)'}, {plural(status.publishers, 'publisher')}"
+            options.append(_heading(f"Source: {one_line(where, 200)}"))
+            lines = [
+                status.origin,
+                f"taken by {status.path_text()}" if status.path else "",
+                f"the take loop in C is not used: {status.path_note}" if status.path_note else "",
+                f"lost: {status.loss_text() or 'none known'}",
+                f"{status.decoded_by_rclpy:,} read by rclpy (the direct decoder refused them)"
+                if status.decoded_by_rclpy
+                else "",
+                status.problem,
+            ]
+            for line in lines:
+                if line:
+                    options.append(self._target_option(Text(f"  {one_line(line, 400)}"), None))
+            options.append(_heading(""))
         return options
 
     def _target_option(self, line: Text, target: str | None) -> Option:
