@@ -35,8 +35,8 @@ SWITCH = "CONSOLE_TUI_COMPILED_TAKE"
 BUILD_TIMEOUT_S = 60.0
 _LIBRARIES = ("rcl", "rmw", "rcutils")
 
-#: ``take(pointer, limit, last_seen) -> (messages, lost)``; see take_loop.c.
-TakeFunction = Callable[[int, int, dict], tuple[list[bytes], int]]
+#: ``take(pointer, limit, last_seen[, infos]) -> (messages, lost)``; see take_loop.c.
+TakeFunction = Callable[..., tuple[list[bytes], int]]
 
 _loaded: tuple[TakeFunction | None, str] | None = None
 

@@ -5,10 +5,14 @@
  * message-info dict and a sequence-number check a message; this loop pays for the take and
  * one bytes object.
  *
- * take(pointer, limit, last_seen) -> (messages, lost)
+ * take(pointer, limit, last_seen[, infos]) -> (messages, lost)
  *   pointer    the address of an rcl_subscription_t (rclpy's Subscription.pointer)
  *   limit      how many messages to take at most
  *   last_seen  {publisher GID bytes: highest sequence number seen}, read and updated
+ *   infos      a list, or None: given a list, each message's info is appended to it as
+ *              rclpy gives it ({"publisher_gid": bytes, "publication_sequence_number": int})
+ *              and the sequence numbers are left to the caller (last_seen untouched, lost 0):
+ *              the extra subscription keeps only some messages, and checks those
  *   messages   the serialized messages, oldest first (a list of bytes)
  *   lost       messages the gaps in each publisher's sequence numbers show were lost
  *              (the same rule as SequenceGaps.see in loss_counts.py)
@@ -71,8 +75,13 @@ static PyObject *take(PyObject *self, PyObject *args) {
     unsigned long long pointer;
     Py_ssize_t limit;
     PyObject *last_seen;
+    PyObject *infos = Py_None;
     (void)self;
-    if (!PyArg_ParseTuple(args, "KnO!", &pointer, &limit, &PyDict_Type, &last_seen)) {
+    if (!PyArg_ParseTuple(args, "KnO!|O", &pointer, &limit, &PyDict_Type, &last_seen, &infos)) {
+        return NULL;
+    }
+    if (infos != Py_None && !PyList_Check(infos)) {
+        PyErr_SetString(PyExc_TypeError, "infos must be a list or None");
         return NULL;
     }
     const rcl_subscription_t *subscription = (const rcl_subscription_t *)(uintptr_t)pointer;
@@ -113,7 +122,21 @@ static PyObject *take(PyObject *self, PyObject *args) {
         }
         Py_DECREF(message);
         uint64_t number = info.publication_sequence_number;
-        if (number == 0 || number == RMW_MESSAGE_INFO_SEQUENCE_NUMBER_UNSUPPORTED) {
+        if (number == RMW_MESSAGE_INFO_SEQUENCE_NUMBER_UNSUPPORTED) {
+            number = 0;
+        }
+        if (infos != Py_None) {
+            PyObject *entry = Py_BuildValue(
+                "{s:y#,s:K}", "publisher_gid", (const char *)info.publisher_gid.data, (Py_ssize_t)GID_SIZE,
+                "publication_sequence_number", (unsigned long long)number);
+            if (entry == NULL || PyList_Append(infos, entry) < 0) {
+                Py_XDECREF(entry);
+                goto fail;
+            }
+            Py_DECREF(entry);
+            continue;
+        }
+        if (number == 0) {
             continue;
         }
         if (!publisher.known || memcmp(publisher.gid, info.publisher_gid.data, GID_SIZE) != 0) {
@@ -149,7 +172,7 @@ fail:
 }
 
 static PyMethodDef methods[] = {
-    {"take", take, METH_VARARGS, "take(pointer, limit, last_seen) -> (messages, lost)"},
+    {"take", take, METH_VARARGS, "take(pointer, limit, last_seen[, infos]) -> (messages, lost)"},
     {NULL, NULL, 0, NULL},
 };
 

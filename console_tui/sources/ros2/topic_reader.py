@@ -5,19 +5,20 @@ console started late still gets the history each node's rosout publisher keeps. 
 subscription never matches a publisher whose rosout QoS was made VOLATILE (or
 BEST_EFFORT); when the graph shows one, a second, VOLATILE + BEST_EFFORT subscription is
 added, and from it only messages of the publishers the first one cannot match are kept
-(by publisher GID; where rclpy's message info has no GID, as in Jazzy, by the logger name
-of the publisher's node), so nothing arrives twice. When the main subscription reports an
+(by publisher GID; where there is none, as with rclpy's take on Jazzy, whose message info
+lacks it, by the logger name of the publisher's node), so nothing arrives twice. When the main subscription reports an
 incompatible publisher, the graph is looked at again at once, so that second
 subscription starts without waiting for the next periodic look.
 
 Messages are taken serialized and read by the direct CDR decoder (``LogDecoder``), path
-``raw+cdr``, or ``c+cdr`` where the main subscription's take loop runs in C
-(``compiled_take.py``); a message the decoder refuses goes through rclpy's deserializer
+``raw+cdr``, or ``c+cdr`` where the take loop runs in C (``compiled_take.py``), which
+gives the publisher's GID with each message on every distribution; a message the decoder refuses goes through rclpy's deserializer
 instead, and an rclpy that cannot take serialized messages gets the typed path (``typed``).
 """
 
 from __future__ import annotations
 
+import itertools
 import time
 from typing import Any
 
@@ -255,8 +256,8 @@ class TopicReader:
         The hot loop of the app: messages are taken first, then decoded all in one call.
         """
         decoder = self.decoder
-        if decoder is not None and keep is None and self.compiled is not None:
-            return self._take_compiled(parts, subscription, limit, decoder)
+        if decoder is not None and self.compiled is not None:
+            return self._take_compiled(parts, subscription, limit, decoder, keep)
         take, msg_type = subscription.handle.take_message, self.msg_type
         raw = decoder is not None
         messages: list[Any] = []
@@ -293,18 +294,31 @@ class TopicReader:
             parts.append(RecordColumns.from_records([log_to_record(message, topic) for message in messages]))
         return count
 
-    def _take_compiled(self, parts: list[RecordColumns], subscription: Any, limit: int, decoder: LogDecoder) -> int:
-        """``_take_into`` for the main subscription, its takes and sequence checks in C."""
+    def _take_compiled(
+        self, parts: list[RecordColumns], subscription: Any, limit: int, decoder: LogDecoder, keep: Any
+    ) -> int:
+        """``_take_into`` with the takes in C: for the main subscription the sequence checks
+        too; for the extra one (``keep``) each message's info comes back, with its
+        publisher's GID even where rclpy's message info has none (Jazzy), and only the
+        messages ``keep`` accepts are checked and kept."""
         assert self.compiled is not None
+        gaps = self._gaps(subscription)
+        infos: list[dict] | None = None if keep is None else []
         try:
-            messages, lost = self.compiled(subscription.handle.pointer, limit, self._gaps(subscription).last_seen)
+            messages, lost = self.compiled(subscription.handle.pointer, limit, gaps.last_seen, infos)
         except (RuntimeError, AttributeError) as error:  # rcl refused a take, or no pointer: rclpy's take
             self.compiled, self.compiled_problem = None, str(error)
-            return self._take_into(parts, subscription, limit, None)
+            return self._take_into(parts, subscription, limit, keep)
+        taken = len(messages)
+        if infos is not None:
+            kept = [keep(info) for info in infos]
+            for info in itertools.compress(infos, kept):
+                gaps.see(info)
+            messages = list(itertools.compress(messages, kept))
         self.counts.lost_gaps += lost
         if messages:
             parts.append(decoder.decode_columns(messages, self.topic, self._read_refused))
-        return len(messages)
+        return taken
 
     def _gaps(self, subscription: Any) -> SequenceGaps:
         gaps = self._sequences.get(id(subscription))
