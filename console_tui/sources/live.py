@@ -9,15 +9,14 @@ sources' shape: ``start()``, ``stop()``, ``status`` (a ``SourceStatus``), feedin
 
 The stream, ROS 1's and ROS 2's alike, is taken in a child process (``intake_process``),
 where nothing the app does can hold it up; for ROS 2 this process keeps an rclpy context
-of its own for the logger levels. ``in_process=True`` takes it in threads of this process
-instead.
+of its own for the logger levels.
 """
 
 from __future__ import annotations
 
 import os
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 from ..model.intake_queue import IntakeQueue
@@ -69,40 +68,23 @@ def start_ros2() -> Any:
         raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None
 
 
-def open_live(
-    queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None, in_process: bool = False
-) -> LiveIntake:
+def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None) -> LiveIntake:
     """The live log stream into ``queue`` (not started yet: call ``source.start()``).
 
     ``ros`` is 1 or 2 (``--ros1``/``--ros2``), or None to decide from the environment.
     ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``.
     Raises ``RosUnavailable`` (with what to do) when there is no ROS to read from.
     """
+    from .intake_process.parent import ProcessSource
+
     if choose_ros(ros).version == ROS1:
-        if not in_process:
-            from .intake_process.parent import ProcessSource
-            from .ros1.environment import Ros1Environment
+        from .ros1.environment import Ros1Environment
 
-            origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
-            return LiveIntake(ProcessSource(queue, "ros1", topic=topic, origin=origin))
-        from .ros1.live_source import Ros1LiveSource
-
-        return LiveIntake(Ros1LiveSource(queue, topic=topic))
+        origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
+        return LiveIntake(ProcessSource(queue, "ros1", topic=topic, origin=origin))
     try:
         runtime = start_ros2()
     except RosUnavailable as error:
         raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
-    if not in_process:
-        from .intake_process.parent import ProcessSource
-
-        return LiveIntake(ProcessSource(queue, "ros2", topic=topic, origin=origin), runtime, [runtime.shutdown])
-    from .ros2.live_source import LiveLogSource
-
-    try:
-        source = LiveLogSource(runtime, queue, topic=topic)
-    except Exception:
-        runtime.shutdown()
-        raise
-    source.status = replace(source.status, origin=origin)
-    return LiveIntake(source, runtime, [runtime.shutdown])
+    return LiveIntake(ProcessSource(queue, "ros2", topic=topic, origin=origin), runtime, [runtime.shutdown])
