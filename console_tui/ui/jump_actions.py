@@ -8,7 +8,6 @@ million rows away never freezes the screen.
 
 from __future__ import annotations
 
-import asyncio
 import os
 import shlex
 import shutil
@@ -25,6 +24,7 @@ from ..model.seek import Hits, Seeker, level_hits, view_shows
 from ..model.text import one_line
 from .app_part import AppPart
 from .screens.mark_list import MarksScreen
+from .slicing import pause_between_slices
 
 #: A jump looks this long at once, then goes on in slices of the same length.
 SEEK_BUDGET_S = 0.008
@@ -78,7 +78,7 @@ class JumpActions(AppPart):
     @work(exclusive=True, group="seek")
     async def _seek_in_background(self, seeker: Seeker, what: str) -> None:
         while not seeker.step(SEEK_BUDGET_S):
-            await asyncio.sleep(SEEK_PAUSE_S)
+            await pause_between_slices(SEEK_PAUSE_S)
         self._sought(seeker, what)
 
     def _sought(self, seeker: Seeker, what: str) -> None:

@@ -22,6 +22,7 @@ from ..model.view import LogView
 from .app_part import AppPart
 from .focus import focus_now
 from .screens.summary import SummaryScreen
+from .slicing import pause_between_slices
 from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
@@ -93,7 +94,7 @@ class OverviewActions(AppPart):
                 with self.table.keeping_position():
                     self.storms.sync(CATCH_UP_BUDGET_S)
                 self.timeline.sync(CATCH_UP_BUDGET_S / 3)
-                await asyncio.sleep(CATCH_UP_PAUSE_S)
+                await pause_between_slices(CATCH_UP_PAUSE_S)
             self.timeline.sync()  # done: the counts from before the change go
         finally:
             self._catching_up = False

@@ -22,6 +22,7 @@ from .focus import focus_now
 from .screens.files import PathScreen
 from .screens.quick_rule import QuickRuleScreen
 from .screens.rule_editor import RuleEditor
+from .slicing import pause_between_slices
 from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 
@@ -93,7 +94,7 @@ class RuleActions(AppPart):
             if self.clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
                 shown_at = self.clock()
                 self.update_status()
-            await asyncio.sleep(REFILTER_PAUSE_S)
+            await pause_between_slices(REFILTER_PAUSE_S)
         self.show_rules()
         self.update_status()
 

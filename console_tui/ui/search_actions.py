@@ -7,7 +7,6 @@ first as the jump asked for needs, and the status line says "match 3 of 17".
 
 from __future__ import annotations
 
-import asyncio
 from dataclasses import dataclass
 
 from textual import work
@@ -19,6 +18,7 @@ from ..model.search import PENDING, Search, describe_search, display_pattern, pa
 from ..model.text import plural
 from .app_part import AppPart
 from .focus import focus_now
+from .slicing import pause_between_slices
 from .widgets.log_table import Spans
 from .widgets.search_bar import SearchBar
 
@@ -30,27 +30,11 @@ SEARCH_PAUSE_S = 0.001
 #: After the table moved or its marks changed, the pause that leaves the next frame (every
 #: row drawn again) a turn of the loop without a slice in it.
 SEARCH_FRAME_GAP_S = 1 / 60
-#: Woken this much later than asked, the search had waited behind other work (a frame, keys):
-#: it pauses once more, so that what waited with it (a key pressed meanwhile) goes first and
-#: the slice does not lengthen that turn of the loop (traced: a 10 ms frame, then a 3 ms
-#: slice before the next key or the stall probe). At most ``SEARCH_YIELDS`` times in a row.
-SEARCH_LATE_S = 0.002
-SEARCH_YIELDS = 3
 #: How often the status line's count moves while searching.
 SEARCH_PROGRESS_PERIOD_S = 0.1
 #: Finding the matches in one row as shown (a regex) may take this long at most.
 ROW_MARK_LIMIT_S = 0.05
 MARK_GLYPH, MATCH_GLYPH = "●", "»"
-
-
-async def _pause(seconds: float) -> None:
-    """Sleep ``seconds``, and again while the wake came ``SEARCH_LATE_S`` late (the loop was busy)."""
-    loop = asyncio.get_running_loop()
-    for _ in range(SEARCH_YIELDS):
-        asked = loop.time()
-        await asyncio.sleep(seconds)
-        if loop.time() - asked - seconds < SEARCH_LATE_S:
-            return
 
 
 @dataclass
@@ -231,9 +215,9 @@ class SearchActions(AppPart):
                 if complete and jumped:
                     return
                 if redrawn:  # the frame that draws it goes first, in a turn of its own
-                    await _pause(SEARCH_FRAME_GAP_S)
+                    await pause_between_slices(SEARCH_FRAME_GAP_S)
                     continue
-            await _pause(SEARCH_PAUSE_S)
+            await pause_between_slices(SEARCH_PAUSE_S)
 
     def search_after_records(self) -> None:
         """New records arrived: they are searched too."""

@@ -5,17 +5,14 @@ opened in the editor."""
 
 from __future__ import annotations
 
-import asyncio
 import json
 import stat
 import sys
-import time
 
 import pytest
 
 from console_tui.model.record import LogRecord
 from console_tui.model.store import LogStore
-from console_tui.ui import search_actions
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import BASE_NS, records
@@ -150,26 +147,6 @@ async def test_next_and_previous_match_across_100k_messages():
         await pilot.press("N", "N")
         await until(pilot, lambda: "needle 100" in cursor_line(app))
         assert "match 1 of 3" in status_line(app)
-
-
-async def test_the_search_woken_late_lets_what_waited_with_it_go_first():
-    """A long frame held the event loop while the search slept: a key that came meanwhile is
-    handled before the search's next slice, which would lengthen that wait."""
-    order: list[str] = []
-
-    async def search() -> None:
-        await search_actions._pause(0.001)
-        order.append("slice")
-
-    async def key() -> None:
-        await asyncio.sleep(0.005)
-        order.append("key")
-
-    tasks = [asyncio.create_task(search()), asyncio.create_task(key())]
-    await asyncio.sleep(0)  # both asleep
-    time.sleep(0.03)  # the frame: both wakes come due meanwhile, the search's first
-    await asyncio.gather(*tasks)
-    assert order == ["key", "slice"]
 
 
 async def test_search_counts_only_rows_the_rules_show():

@@ -1,0 +1,29 @@
+"""The pause between two slices of work done in the background on the event loop (the search,
+the rules applied again, a jump's seek, the overview catching up).
+
+A slice adds to whatever shares its turn of the loop. A task that sleeps is woken in the
+turn after the one in which its time came; when a frame (7-10 ms at 160x48) held the loop
+meanwhile, the slice runs at once after it, before a key pressed during the frame or
+anything else that came due later in that frame: the wait was the frame and the slice
+together (traced in the search benchmark: a 10 ms frame, then a 3 ms slice, then the
+probe). So a pause that ends ``LATE_S`` late is taken once more, up to ``YIELDS`` times in
+a row, so that what waited goes first.
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+#: Woken this much later than asked: the loop was busy, and the pause is taken again.
+LATE_S = 0.002
+YIELDS = 3
+
+
+async def pause_between_slices(seconds: float) -> None:
+    """Sleep ``seconds``, and again while the wake came ``LATE_S`` late (at most ``YIELDS`` sleeps)."""
+    loop = asyncio.get_running_loop()
+    for _ in range(YIELDS):
+        asked = loop.time()
+        await asyncio.sleep(seconds)
+        if loop.time() - asked - seconds < LATE_S:
+            return
