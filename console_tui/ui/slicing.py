@@ -6,24 +6,27 @@ turn after the one in which its time came; when a frame (7-10 ms at 160x48) held
 meanwhile, the slice runs at once after it, before a key pressed during the frame or
 anything else that came due later in that frame: the wait was the frame and the slice
 together (traced in the search benchmark: a 10 ms frame, then a 3 ms slice, then the
-probe). So a pause that ends ``LATE_S`` late is taken once more, up to ``YIELDS`` times in
-a row, so that what waited goes first.
+probe). So a pause that ends ``LATE_S`` late is followed by a short one (``YIELD_S``), up to
+``YIELDS`` in a row, so that what waited goes first; the pause asked for is not taken again
+(after a 1/60 s pause that would have been another 1/60 s).
 """
 
 from __future__ import annotations
 
 import asyncio
 
-#: Woken this much later than asked: the loop was busy, and the pause is taken again.
+#: Woken this much later than asked: the loop was busy, and a short pause follows.
 LATE_S = 0.002
-YIELDS = 3
+YIELD_S = 0.001
+YIELDS = 2
 
 
 async def pause_between_slices(seconds: float) -> None:
-    """Sleep ``seconds``, and again while the wake came ``LATE_S`` late (at most ``YIELDS`` sleeps)."""
+    """Sleep ``seconds``, then ``YIELD_S`` while the last wake came ``LATE_S`` late (at most ``YIELDS`` times)."""
     loop = asyncio.get_running_loop()
-    for _ in range(YIELDS):
+    for _ in range(YIELDS + 1):
         asked = loop.time()
         await asyncio.sleep(seconds)
         if loop.time() - asked - seconds < LATE_S:
             return
+        seconds = YIELD_S

@@ -6,14 +6,15 @@ subscription never matches a publisher whose rosout QoS was made VOLATILE (or
 BEST_EFFORT); when the graph shows one, a second, VOLATILE + BEST_EFFORT subscription is
 added, and from it only messages of the publishers the first one cannot match are kept
 (by publisher GID; where there is none, as with rclpy's take on Jazzy, whose message info
-lacks it, by the logger name of the publisher's node), so nothing arrives twice. When the main subscription reports an
-incompatible publisher, the graph is looked at again at once, so that second
-subscription starts without waiting for the next periodic look.
+lacks it, by the logger name of the publisher's node), so nothing arrives twice. When the
+main subscription reports an incompatible publisher, the graph is looked at again at once,
+so that second subscription starts without waiting for the next periodic look.
 
 Messages are taken serialized and read by the direct CDR decoder (``LogDecoder``), path
 ``raw+cdr``, or ``c+cdr`` where the take loop runs in C (``compiled_take.py``), which
-gives the publisher's GID with each message on every distribution; a message the decoder refuses goes through rclpy's deserializer
-instead, and an rclpy that cannot take serialized messages gets the typed path (``typed``).
+gives the publisher's GID with each message on every distribution; a message the decoder
+refuses goes through rclpy's deserializer instead, and an rclpy that cannot take
+serialized messages gets the typed path (``typed``).
 """
 
 from __future__ import annotations
