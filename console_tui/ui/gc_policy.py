@@ -1,23 +1,13 @@
 """When Python's cyclic garbage collector runs, so that it stays short and memory stays flat.
 
-What it has to collect: little since ``textual_fixes`` stopped Textual's strips from
-referring to themselves (before, about 700 objects a second with a few messages a second
-arriving and several thousand at 10k messages a second waited for a full collection);
-what is left are the cycles of widgets removed, screens closed and the like. What a full
-collection costs: every tracked object is visited; the objects made at start-up are frozen
-out of collections (``gc.freeze``, once the app is up and once more when start-up has
-settled), and the store is no container of Python objects once its chunks are full
-(messages packed), so what is left is about 7,000 live objects, mostly Textual's strips
-and their caches.
-
-Measured here (benchmarks and a headless demo): with full collections only every 10
-minutes (the policy before this one), the demo grew from 106 MB to 166 MB in five
-minutes and would pause for the whole pile at once; with one every
-``FULL_COLLECTION_PERIOD_S`` it stays flat, each collection a few milliseconds on a
-quiet machine. Young collections stay automatic; the oldest generation is collected
-only here, in a turn of the event loop of its own, ``delay`` after a drain of the intake
-(half way to the next): not in the drain's turn, nor just before the frame the drain
-asks for, where it would lengthen the longest pause by its own length.
+Young collections stay automatic. The oldest generation is collected only here, every
+``FULL_COLLECTION_PERIOD_S``, in a turn of the event loop of its own ``delay`` after a drain
+of the intake (half way to the next): not in the drain's turn, nor just before the frame the
+drain asks for, where it would lengthen the longest pause by its own length. What start-up
+made is frozen out of collections (``gc.freeze``), so a full collection visits only what the
+app made since: mostly Textual's strips and their caches, and the cycles of widgets removed
+and screens closed. Why collections are scheduled this way, and what was measured:
+docs/architecture.md, "Garbage collection on our schedule".
 """
 
 from __future__ import annotations
@@ -37,18 +27,12 @@ class CollectionPolicy:
     """Call ``start`` once the app is up and ``tick`` on every drain of the intake.
 
     ``start`` freezes what exists then; each full collection until ``settled`` seconds
-    later (that one included) freezes what is still alive once more: what the app made while
-    starting after its first frame (rclpy and the modules the logger pane and the live source
-    import in their threads, the first screens' caches), which every full collection visited
-    again. Freezing at each of them, not only at the last, keeps the collections of the first
-    seconds short too: with one freeze at 10 s, a search typed 4 s after start met a 14-15 ms
-    collection (benchmarks/search.py, traced); each one now visits what the last 2 s made.
-    Measured at 20,000 msg/s (benchmarks/intake.py, the app with its logger pane's rclpy): a
-    full collection visited 28,000-31,000 objects, 6.5-22 ms; once start-up had settled and
-    was frozen, 6,400-7,800, 1.5-4.8 ms. ``refrozen`` says start-up has settled (no more
-    freezing).
-    An object frozen lives on until nothing refers to it; only a cycle among frozen objects
-    would wait for ever, and these are made once.
+    later (that one included) freezes what is still alive once more: what the app makes while
+    it starts after its first frame (rclpy and the modules the logger pane and the live source
+    import in their threads, the first screens' caches). Freezing at each of them, not only at
+    the last, keeps the collections of the first seconds short too. ``refrozen`` says start-up
+    has settled (no more freezing). An object frozen lives on until nothing refers to it; only
+    a cycle among frozen objects would wait for ever, and these are made once.
     """
 
     def __init__(

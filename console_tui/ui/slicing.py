@@ -2,13 +2,12 @@
 the rules applied again, a jump's seek, the overview catching up).
 
 A slice adds to whatever shares its turn of the loop. A task that sleeps is woken in the
-turn after the one in which its time came; when a frame (7-10 ms at 160x48) held the loop
-meanwhile, the slice runs at once after it, before a key pressed during the frame or
-anything else that came due later in that frame: the wait was the frame and the slice
-together (traced in the search benchmark: a 10 ms frame, then a 3 ms slice, then the
-probe). So a pause that ends ``LATE_S`` late is followed by a short one (``YIELD_S``), up to
-``YIELDS`` in a row, so that what waited goes first; the pause asked for is not taken again
-(after a 1/60 s pause that would have been another 1/60 s).
+turn after the one in which its time came; when a frame held the loop meanwhile, the slice
+would run at once after it, before a key pressed during the frame or anything else that came
+due later in that frame. So a pause that ends ``LATE_S`` late is followed by a short one
+(``YIELD_S``), up to ``YIELDS`` in a row, so that what waited goes first; the pause asked for
+is not taken again. The measurements behind it: docs/architecture.md, "Background work in
+slices".
 """
 
 from __future__ import annotations
