@@ -24,6 +24,7 @@ SUBCOMMANDS: dict[str, str] = {
     "tail": "prints the live log stream or log files, filtered, on standard output",
     "rosout": "runs the rosout node for ROS 2: /rosout_agg and rosout.log",
     "clean": "checks and purges the ROS log directory (rosclean)",
+    "serve": "serves the console to web browsers, one console per tab (the [web] extra)",
 }
 
 

@@ -62,7 +62,11 @@ class NativeOutput:
 
     @staticmethod
     def possible() -> bool:
-        """Only a real terminal is worth guarding (a pipe or a test's capture is left alone)."""
+        """Only a real terminal is worth guarding (a pipe or a test's capture is left alone), and
+        the pipe of a console in a browser (``console-tui serve``): its standard output carries
+        the screen's frames, which a stray line of native output would break."""
+        if "web_driver" in os.environ.get("TEXTUAL_DRIVER", ""):
+            return True
         try:
             return os.isatty(1) and os.isatty(2)
         except OSError:
