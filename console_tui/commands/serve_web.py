@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import signal
 import sys
 from collections.abc import Awaitable, Callable
 from pathlib import Path
@@ -87,6 +88,13 @@ class ConsoleServer(Server):
         self.banner = banner
         #: The tasks serving open tabs (cancelled when the server stops).
         self.sessions: set[asyncio.Task[Any]] = set()
+
+    def serve(self, debug: bool = False) -> None:
+        """Until Ctrl-C, SIGTERM or SIGHUP (the SSH session it runs in drops)."""
+        loop = asyncio.new_event_loop()
+        asyncio.set_event_loop(loop)  # textual-serve's serve() takes this loop
+        loop.add_signal_handler(signal.SIGHUP, self.request_exit)
+        super().serve(debug)
 
     def initialize_logging(self) -> None:
         # Warnings and errors only, plainly: no access log, no logo.

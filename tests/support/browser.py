@@ -167,9 +167,9 @@ class ServeProcess:
     def text(self) -> str:
         return "\n".join(self.output)
 
-    def interrupt(self, timeout: float = 60.0) -> int:
-        """Ctrl-C; returns the exit status."""
-        self.process.send_signal(signal.SIGINT)
+    def interrupt(self, stop: int = signal.SIGINT, timeout: float = 60.0) -> int:
+        """Ctrl-C (or ``stop``); returns the exit status."""
+        self.process.send_signal(stop)
         return self.process.wait(timeout)
 
     def stop(self) -> None:
