@@ -32,6 +32,7 @@ from aiohttp import web
 from textual_serve.app_service import AppService
 from textual_serve.server import Server
 
+from ..model.text import one_line
 from .serve_access import TOKEN_PARAMETER, Access
 
 #: Where the page's template is (textual-serve renders ``app_index.html`` from it).
@@ -119,13 +120,16 @@ class ConsoleServer(Server):
             cookie_token=request.cookies.get(access.cookie_name),
         )
         if refusal is not None:
-            log.warning("%s %s from %s: %s", request.method, request.path, request.remote, refusal.split(";")[0])
+            # The path is the requester's text: inert and short on the server's terminal.
+            what = one_line(f"{request.method} {request.path}", 200)
+            log.warning("%s from %s: %s", what, request.remote, refusal.split(";")[0])
             return web.Response(status=403, text=refusal + "\n")
         response = await handler(request)
         if access.token_ok(query_token) and not response.prepared:
             # The page's own requests (its script, font, websocket) carry the token from here on.
             response.set_cookie(access.cookie_name, query_token or "", httponly=True, samesite="Strict", path="/")
-        response.headers.setdefault("Cache-Control", "no-store")
+        if not response.prepared:
+            response.headers.setdefault("Cache-Control", "no-store")
         return response
 
     async def on_startup(self, app: web.Application) -> None:

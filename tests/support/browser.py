@@ -26,6 +26,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from support.ros1 import free_port
+
 CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
 #: The flags that work here: nothing leaves the machine, nothing is kept between runs.
@@ -65,12 +67,6 @@ def browser_missing() -> str | None:
         if importlib.util.find_spec(module) is None:
             return f"{module} is not installed (pip install -e '.[{extra}]')"
     return None
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def wait_for(condition: Callable[[], Any], what: str, timeout: float = 60.0) -> Any:
@@ -139,7 +135,7 @@ class ServeProcess:
         )
         self.output: deque[str] = deque(maxlen=400)
         threading.Thread(target=self._read, daemon=True).start()
-        banner = wait_for(lambda: self._printed(r"http://\S+"), "the server's URL", timeout=90)
+        banner = wait_for(lambda: self.printed(r"http://\S+"), "the server's URL", timeout=90)
         printed = re.search(r"\?token=(\S+)", banner)
         self.token = printed.group(1) if printed else None
         self.url = f"http://127.0.0.1:{self.port}/" + (f"?token={self.token}" if self.token else "")
@@ -151,7 +147,7 @@ class ServeProcess:
         for line in self.process.stdout:
             self.output.append(line.rstrip("\n"))
 
-    def _printed(self, pattern: str) -> str | None:
+    def printed(self, pattern: str) -> str | None:
         for line in list(self.output):
             if re.search(pattern, line):
                 return line

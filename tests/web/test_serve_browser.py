@@ -182,6 +182,10 @@ def test_beyond_loopback_a_request_without_the_token_is_refused(server_env, brow
         assert _status(port, "/static/js/textual.js") == 403
         assert _status(port, "/ws?width=80&height=24", _websocket_headers(port)) == 403
         assert not children(server.process.pid), "no console was started for a refused websocket"
+        # A refused request is logged, its path made inert (aiohttp decodes %1B to ESC).
+        assert _status(port, "/%1B%5B2J%1B%5D0%3Bowned%07") == 403
+        wait_for(lambda: server.printed("owned"), "the refusal in the server's log")
+        assert "\x1b" not in server.text() and "\x07" not in server.text()
         assert _status(port, f"/?token={server.token}") == 200
         assert (
             _status(port, "/ws", {**_websocket_headers(port), "Cookie": f"console_tui_token_{port}={server.token}"})
