@@ -17,6 +17,7 @@ import subprocess
 import sys
 from collections.abc import Sequence
 
+from .arguments import command_parser
 from .serve_access import TOKEN_PARAMETER, is_loopback, new_token
 
 EXIT_OK = 0
@@ -35,7 +36,7 @@ _CHECK = (
     "from console_tui.cli import build_parser\n"
     "from console_tui.commands.arguments import check_rule_arguments\n"
     "parser = build_parser()\n"
-    "parser.prog = 'console-tui serve'\n"
+    "parser.prog = 'console-tui'\n"
     "check_rule_arguments(parser, parser.parse_args(sys.argv[1:]))\n"
 )
 
@@ -51,24 +52,23 @@ def port_number(text: str) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="console-tui serve",
-        usage="console-tui serve [-h] [--host HOST] [--port PORT] [--token TOKEN] [APP ARGUMENTS ...]",
-        description=(
-            "Serve the console in a web browser: each browser tab runs its own console-tui with the APP "
-            "ARGUMENTS (files, --demo, --ros1, --query ...: as for console-tui itself; put them after -- "
-            "if one looks like these options). Closing the tab ends its console. Needs the [web] extra: "
-            "pip install 'console-tui[web]'."
-        ),
-        epilog=(
-            "Listening on anything but loopback needs an access token: one is generated and printed in "
-            "the URL to open, unless --token gives it; requests without it are refused. To reach a "
-            "robot's console from a laptop, keep the default and forward the port: "
-            f"ssh -L {DEFAULT_PORT}:127.0.0.1:{DEFAULT_PORT} robot, then open http://127.0.0.1:{DEFAULT_PORT}/. "
-            f"exit status: {EXIT_OK} stopped by Ctrl-C or SIGTERM; {EXIT_FAILED} cannot listen, or "
-            f"textual-serve missing; {EXIT_USAGE} bad command line"
-        ),
+    parser = command_parser(
+        "serve",
+        "Serve the console to web browsers: each browser tab runs its own console-tui with the APP "
+        "ARGUMENTS (files, --demo, --ros1, --query ...: as for console-tui itself; put them after -- "
+        "if one looks like these options). Closing the tab ends its console. Listening on anything "
+        "but loopback needs the access token: one is generated and printed in the URL to open, "
+        "unless --token gives it; requests without it are refused. Needs the [web] extra: "
+        "pip install 'console-tui[web]'.",
+        f"""a robot's console from a laptop: keep the default address on the robot and forward the port,
+  ssh -N -L {DEFAULT_PORT}:127.0.0.1:{DEFAULT_PORT} robot   (then open http://127.0.0.1:{DEFAULT_PORT}/)
+
+exit status:
+  {EXIT_OK}  stopped by Ctrl-C, SIGTERM or SIGHUP
+  {EXIT_FAILED}  cannot listen, or textual-serve is missing
+  {EXIT_USAGE}  bad command line (serve's options or the console's arguments)""",
     )
+    parser.usage = "console-tui serve [-h] [--host HOST] [--port PORT] [--token TOKEN] [APP ARGUMENTS ...]"
     parser.add_argument(
         "--host",
         default=DEFAULT_HOST,
@@ -120,6 +120,23 @@ def check_app_arguments(parser: argparse.ArgumentParser, app_arguments: list[str
         sys.exit(EXIT_USAGE)
 
 
+def cannot_listen(host: str, port: int) -> str | None:
+    """Why the server could not listen on ``host:port`` (tried at once, before anything is
+    printed), or None."""
+    try:
+        addresses = socket.getaddrinfo(host or None, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except OSError as error:
+        return str(error.strerror or error)
+    for family, kind, protocol, _, address in addresses:
+        try:
+            with socket.socket(family, kind, protocol) as probe:
+                probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as aiohttp does
+                probe.bind(address)
+        except OSError as error:
+            return str(error.strerror or error)
+    return None
+
+
 def url_host(host: str) -> str:
     """The host to print in a URL: this machine's name for every address, IPv6 in brackets."""
     if host in ("", "0.0.0.0", "::"):
@@ -154,6 +171,10 @@ def main(argv: Sequence[str]) -> int:
         )
         return EXIT_FAILED
     check_app_arguments(parser, app_arguments)
+    problem = cannot_listen(args.host, args.port)
+    if problem is not None:
+        print(f"console-tui serve: cannot listen on {args.host}:{args.port}: {problem}", file=sys.stderr)
+        return EXIT_FAILED
     token = args.token or (None if is_loopback(args.host) else new_token())
     from .serve_access import Access
 

@@ -148,3 +148,24 @@ def test_the_textual_serve_internals_relied_on_are_checked(monkeypatch):
     monkeypatch.delattr(Server, "_process_messages")
     with pytest.raises(RuntimeError, match=r"lacks Server\._process_messages.*console-tui\[web\]"):
         serve_web.check_upstream()
+
+
+def test_a_port_in_use_is_reported_and_exits_1():
+    pytest.importorskip("textual_serve")
+    import socket
+    import subprocess
+    import sys
+
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        result = subprocess.run(
+            [sys.executable, "-m", "console_tui", "serve", "--port", str(port)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+    assert result.returncode == 1
+    assert f"cannot listen on 127.0.0.1:{port}: Address already in use" in result.stderr
+    assert "open the console" not in result.stdout  # no address printed that does not work
