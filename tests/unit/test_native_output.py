@@ -67,3 +67,12 @@ def test_levels_from_the_words():
     assert level_of("2026-11-23 [XMLPARSER Error] realpath failed") == 40
     assert level_of("[WARN] [rcl]: something") == 30
     assert level_of("just text, terror-free") == 20
+
+
+def test_a_console_in_a_browser_is_guarded_too(monkeypatch):
+    """Under ``console-tui serve`` standard output is a pipe carrying the screen's frames (the
+    Textual web driver's): native output there would break them, so it is caught as well."""
+    monkeypatch.setenv("TEXTUAL_DRIVER", "textual.drivers.web_driver:WebDriver")
+    assert NativeOutput.possible()
+    monkeypatch.delenv("TEXTUAL_DRIVER")
+    assert NativeOutput.possible() == (os.isatty(1) and os.isatty(2))
