@@ -17,7 +17,7 @@ import subprocess
 import sys
 from collections.abc import Sequence
 
-from .arguments import command_parser
+from .arguments import command_parser, positive_int
 from .serve_access import TOKEN_PARAMETER, is_loopback, new_token
 
 EXIT_OK = 0
@@ -26,6 +26,8 @@ EXIT_USAGE = 2
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
+#: Each console is a process (with its own demo nodes): a browser left opening tabs is bounded.
+DEFAULT_MAX_CONSOLES = 8
 #: A token given with --token goes into URLs unchanged, and is long enough not to be guessed.
 _TOKEN_SHAPE = re.compile(r"[A-Za-z0-9._~-]{16,}")
 #: How long checking the console's arguments may take (one Python start).
@@ -68,7 +70,9 @@ exit status:
   {EXIT_FAILED}  cannot listen, or textual-serve is missing
   {EXIT_USAGE}  bad command line (serve's options or the console's arguments)""",
     )
-    parser.usage = "console-tui serve [-h] [--host HOST] [--port PORT] [--token TOKEN] [APP ARGUMENTS ...]"
+    parser.usage = (
+        "console-tui serve [-h] [--host HOST] [--port PORT] [--token TOKEN] [--max-consoles N] [APP ARGUMENTS ...]"
+    )
     parser.add_argument(
         "--host",
         default=DEFAULT_HOST,
@@ -84,6 +88,14 @@ exit status:
         help="the access token (at least 16 of A-Z a-z 0-9 . _ ~ -); required on every address when given "
         "(default: generated when --host is not loopback). Other users of this machine can read a command "
         "line: prefer the generated one there",
+    )
+    parser.add_argument(
+        "--max-consoles",
+        type=positive_int,
+        default=DEFAULT_MAX_CONSOLES,
+        metavar="N",
+        help=f"consoles (browser tabs) running at once, at most; a tab beyond it is refused (default "
+        f"{DEFAULT_MAX_CONSOLES})",
     )
     return parser
 
@@ -184,6 +196,7 @@ def main(argv: Sequence[str]) -> int:
         port=args.port,
         access=Access(token=token, port=args.port),
         banner=banner(args.host, args.port, token, app_arguments),
+        max_consoles=args.max_consoles,
     )
     try:
         server.serve()

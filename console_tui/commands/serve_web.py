@@ -82,11 +82,13 @@ class ConsoleServer(Server):
     """Serves ``command`` (a shell command line: one console-tui per tab) under ``access``;
     ``banner`` is printed once the server listens."""
 
-    def __init__(self, command: str, *, host: str, port: int, access: Access, banner: str) -> None:
+    def __init__(self, command: str, *, host: str, port: int, access: Access, banner: str, max_consoles: int) -> None:
         check_upstream()
         super().__init__(command, host=host, port=port, title="console-tui", templates_path=PAGE_FOLDER)
         self.access = access
         self.banner = banner
+        #: Consoles running at once, at most (each is a process, with its demo nodes).
+        self.max_consoles = max_consoles
         #: The tasks serving open tabs (cancelled when the server stops).
         self.sessions: set[asyncio.Task[Any]] = set()
 
@@ -148,6 +150,9 @@ class ConsoleServer(Server):
 
     async def handle_websocket(self, request: web.Request) -> web.WebSocketResponse:
         """One tab: its own console process, ended with the tab (and the tab with it)."""
+        if len(self.sessions) >= self.max_consoles:
+            log.warning("a new tab refused: %d consoles run already (--max-consoles)", len(self.sessions))
+            raise web.HTTPServiceUnavailable(text=f"refused: {len(self.sessions)} consoles run already\n")
         websocket = web.WebSocketResponse(heartbeat=15)
         width = _size(request.query.get("width"), 80, MAX_COLUMNS)
         height = _size(request.query.get("height"), 24, MAX_ROWS)

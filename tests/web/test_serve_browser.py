@@ -242,3 +242,23 @@ def test_closing_the_tab_of_a_demo_ends_its_console_and_its_demo_nodes(ros_env, 
         assert server.process.poll() is None, "the server goes on"
     finally:
         server.stop()
+
+
+def test_a_tab_beyond_max_consoles_is_refused_and_says_so(server_env, browser):
+    server = ServeProcess("--max-consoles", "1", str(KNOWN_FILE), env=server_env)
+    try:
+        browser.open(server.url, new_tab=True)
+        browser.wait_for_text("timer fired")
+        assert len(children(server.process.pid)) == 1
+        browser.open(server.url, new_tab=True)
+        wait_for(
+            lambda: browser.driver.execute_script("return document.body.classList.contains('-closed')"),
+            "the second tab to say its connection is lost",
+        )
+        assert len(children(server.process.pid)) == 1, "no second console"
+        assert "a new tab refused: 1 consoles run already" in server.text()
+    finally:
+        while len(browser.driver.window_handles) > 1:
+            browser.driver.close()
+            browser.driver.switch_to.window(browser.driver.window_handles[0])
+        server.stop()
