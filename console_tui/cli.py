@@ -9,6 +9,8 @@ from collections.abc import Sequence
 
 from . import __version__
 from .commands.arguments import (
+    DOCS_URL,
+    EXIT_NO_ROS,
     add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
@@ -26,6 +28,27 @@ SUBCOMMANDS: dict[str, str] = {
     "clean": "checks and purges the ROS log directory (rosclean)",
     "serve": "serves the console to web browsers, one console per tab (the [web] extra)",
 }
+#: Other names of subcommands: ``ros2 log``'s words for them.
+ALIASES: dict[str, str] = {"watch": "tail"}
+
+
+EPILOG = "\n".join(
+    [
+        "subcommands (each has --help):",
+        *(f"  {name:9} {what}" for name, what in SUBCOMMANDS.items()),
+        *(f"  {alias:9} the same as '{verb}' (as in 'ros2 log {alias}')" for alias, verb in ALIASES.items()),
+        "",
+        "exit status:",
+        "  0  done",
+        f"  {EXIT_NO_ROS}  bad command line, or ROS is not available (no rclpy in this Python, no roscore for",
+        f"     --demo --ros1); ROS not available is {EXIT_NO_ROS} in every subcommand too",
+        "",
+        "install extras: [ros] (ROS 2 Kilted from PyPI) or [jazzy] (ROS 2 Jazzy), never both; [files] for",
+        "recordings (.bag, .mcap, .db3). The [ros] and [jazzy] wheels exist for x86_64 Linux only: elsewhere",
+        "(aarch64 robots) source your ROS first.",
+        f"documentation: {DOCS_URL} (the query line: {DOCS_URL}rules/#the-query-line)",
+    ]
+)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -35,9 +58,8 @@ def build_parser() -> argparse.ArgumentParser:
             "A terminal log console for ROS: every node's log messages in one fast table, "
             "with filters, highlights and logger levels."
         ),
-        epilog="Subcommands (each has --help): "
-        + "; ".join(f"'console-tui {name}' {what}" for name, what in SUBCOMMANDS.items())
-        + ".",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=EPILOG,
     )
     parser.add_argument("--version", action="version", version=f"console-tui {__version__}")
     parser.add_argument(
@@ -84,7 +106,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="QUERY",
         help=(
             "start with this query, for example 'level>=warn node:nav* -node:rviz* +\"failed\"' "
-            '(syntax: the README\'s section "The query line")'
+            "(syntax: 'The query line' in the documentation, link below)"
         ),
     )
     parser.add_argument(
@@ -116,8 +138,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     session ends the process itself once everything it started has stopped (see
     ``launch.end_now``); with ``argv`` given (a caller in the same process), it returns."""
     args_list = list(sys.argv[1:] if argv is None else argv)
-    if args_list and args_list[0] in SUBCOMMANDS:
-        module = importlib.import_module(f"{__package__}.commands.{args_list[0]}")
+    if args_list and args_list[0] in SUBCOMMANDS.keys() | ALIASES.keys():
+        verb = ALIASES.get(args_list[0], args_list[0])
+        module = importlib.import_module(f"{__package__}.commands.{verb}")
         status: int = module.main(args_list[1:])
         return status
     parser = build_parser()

@@ -8,6 +8,7 @@ import sys
 from collections.abc import Callable
 from typing import Any
 
+from .commands.arguments import EXIT_NO_ROS
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
 from .sources.live import RosUnavailable, open_live
@@ -52,7 +53,7 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
             native.stop()
         if isinstance(error, RosUnavailable):
             print(f"console-tui: {error}", file=sys.stderr)
-            return 2
+            return EXIT_NO_ROS
         raise
     if native is not None:
         cleanups.insert(0, native.stop)  # the last cleanup: the terminal back, what was caught on stderr

@@ -7,6 +7,13 @@ import textwrap
 
 from ..sources.ros_version import ROS1, ROS2
 
+#: "ROS is not available" (no rclpy in this Python, no ROS 1 master answers, no roscore for
+#: the ROS 1 demo): one exit status for the app and every subcommand, argparse's for a bad
+#: command line (the command cannot do its job as asked, and says what to do on stderr).
+EXIT_NO_ROS = 2
+#: Where the documentation lives (``--help`` texts point here, not to the README).
+DOCS_URL = "https://console-tui.github.io/console-tui/"
+
 
 def add_log_format_argument(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(

@@ -18,9 +18,9 @@ from typing import Any
 from ..model.levels import Severity, severity_name
 from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from ..model.text import plural
+from .arguments import EXIT_NO_ROS
 from .loggers_arguments import (
     DEFAULT_TIMEOUT_S,
-    EXIT_ERROR,
     EXIT_FAILED,
     EXIT_INTERRUPTED,
     EXIT_NOT_FOUND,
@@ -110,7 +110,7 @@ def _ros2_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
         try:
             runtime = RosRuntime()
         except RosUnavailable as error:
-            raise CommandError(str(error), EXIT_ERROR) from None
+            raise CommandError(str(error), EXIT_NO_ROS) from None
     control = Ros2LoggerControl(
         runtime, call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False)
     )
@@ -144,7 +144,7 @@ def _interruptible() -> Iterator[None]:
 def _find_node(control: Any, query: str, wait: float) -> GraphNode:
     matches: list[GraphNode] = control.find_node(query, wait)
     if not matches and control.problem:
-        raise CommandError(control.problem, EXIT_ERROR)
+        raise CommandError(control.problem, EXIT_NO_ROS)
     if not matches:
         raise CommandError(
             f"no node {query!r} in the ROS graph (waited {wait:g} s); 'console-tui loggers list' shows the nodes",
@@ -182,7 +182,7 @@ def _list(control: Any, args: argparse.Namespace) -> int:
             print(f"{n.fqn}\t{logger_of(n) or '-'}\t{services}")
     waited = f"{seen.waited_s:.1f} s"
     if not nodes and control.problem:
-        raise CommandError(control.problem, EXIT_ERROR)
+        raise CommandError(control.problem, EXIT_NO_ROS)
     if not nodes and control.lists_loggers:
         _say("no nodes are registered with the master")
         return EXIT_NOT_FOUND

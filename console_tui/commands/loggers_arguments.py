@@ -19,8 +19,9 @@ EXIT_INTERRUPTED = 130
 
 EXIT_CODES = f"""exit status:
   {EXIT_OK}    done
-  {EXIT_ERROR}    ROS 2 (rclpy) is not available, no ROS 1 master answers, or an unexpected error
-  {EXIT_USAGE}    bad command line: unknown level name, a node name that matches several nodes
+  {EXIT_ERROR}    an unexpected error
+  {EXIT_USAGE}    bad command line: unknown level name, a node name that matches several nodes;
+       or ROS is not available: ROS 2 (rclpy) cannot be imported, no ROS 1 master answers
   {EXIT_NOT_FOUND}    the node is not in the ROS graph, or it has no logger services; list: no node found
   {EXIT_FAILED}    the call failed: no answer in time, node gone, level refused by the node
   {EXIT_INTERRUPTED}  interrupted (a temporary level is put back first)"""

@@ -21,7 +21,7 @@ from ..model.formats.rotating_file import RotatingFile
 from ..model.text import plural
 from ..sources.live import RosUnavailable, start_ros2
 from ..sources.log_dir import ros_log_dir
-from .arguments import parse_size, positive_int, size_text
+from .arguments import DOCS_URL, EXIT_NO_ROS, command_parser, parse_size, positive_int, size_text
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -35,18 +35,22 @@ LOG_NAME = "rosout.log"
 def build_parser() -> argparse.ArgumentParser:
     from ..sources.ros2.aggregator import DEFAULT_DEPTH, DEFAULT_NODE_NAME, DEFAULT_REPORT_S
 
-    parser = argparse.ArgumentParser(
-        prog="console-tui rosout",
-        description=(
+    parser = command_parser(
+        "rosout",
+        (
             "The rosout node for ROS 2. Takes every node's /rosout messages (with the console's QoS, "
             "so none is missed), republishes each on /rosout_agg (RELIABLE, TRANSIENT_LOCAL, a deep "
             "history: a console started later gets it at once) and appends it to rosout.log in a new "
             "directory under the ROS log directory ($ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log). "
             "It never reads /rosout_agg, so aggregators never feed each other. Runs until Ctrl-C or "
-            "SIGTERM. The file's format is described in the README ('The rosout node')."
+            "SIGTERM. The file's format is described in the documentation (link below)."
         ),
-        epilog=f"exit status: {EXIT_OK} stopped by Ctrl-C or SIGTERM; {EXIT_ERROR} ROS 2 unavailable or "
-        f"rosout.log cannot be created; {EXIT_USAGE} bad command line",
+        f"""exit status:
+  {EXIT_OK}  stopped by Ctrl-C or SIGTERM
+  {EXIT_ERROR}  rosout.log cannot be created
+  {EXIT_USAGE}  bad command line, or ROS 2 (rclpy) is not available (the same number in every command)
+
+documentation: {DOCS_URL}headless/#the-rosout-node-console-tui-rosout""",
     )
     parser.add_argument(
         "--depth",
@@ -106,7 +110,7 @@ def main(argv: Sequence[str]) -> int:
         runtime = start_ros2()
     except RosUnavailable as error:
         print(f"console-tui rosout: {error}", file=sys.stderr)
-        return EXIT_ERROR
+        return EXIT_NO_ROS
     log = None
     if not args.no_log:
         directory = Path(args.log_dir) if args.log_dir else run_directory(ros_log_dir())

@@ -32,12 +32,14 @@ from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merg
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_live
 from .arguments import (
+    EXIT_NO_ROS,
     add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
     check_rule_arguments,
     command_parser,
 )
+from .watch_options import add_watch_arguments, apply_watch_arguments
 
 EXIT_OK = 0
 EXIT_FILES = 1
@@ -59,7 +61,7 @@ EPILOG = f"""--format tokens, mixed as you like (\\n and \\t are decoded):
 exit status:
   {EXIT_OK}  done, stopped by Ctrl-C, or the pipe closed
   {EXIT_FILES}  a FILE could not be read
-  {EXIT_USAGE}  bad command line, or no ROS for the live stream"""
+  {EXIT_USAGE}  bad command line, or ROS is not available for the live stream (the same number in every command)"""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -101,14 +103,17 @@ def build_parser() -> argparse.ArgumentParser:
     output.add_argument(
         "--json", action="store_true", help="one JSON object a line: stamp_ns, level, node, msg, file, function, line"
     )
-    parser.add_argument(
+    colour = parser.add_mutually_exclusive_group()
+    colour.add_argument(
         "--color",
         choices=("auto", "always", "never"),
         default="auto",
-        help="colour by severity: auto (on a terminal) by default; never when NO_COLOR is set",
+        help="colour by severity: auto (on a terminal, and NO_COLOR not set) by default; always and never win over NO_COLOR",
     )
+    colour.add_argument("--no-color", dest="color", action="store_const", const="never", help="same as --color never")
     parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
     add_log_format_argument(parser)
+    add_watch_arguments(parser)
     return parser
 
 
@@ -141,12 +146,13 @@ class Printer:
 
 
 def use_color(choice: str, stream: object, environ: dict[str, str] | os._Environ[str]) -> bool:
-    """Colour for ``--color choice``: never with NO_COLOR set (to anything but ""), else
-    always, never, or (auto) when the stream is a terminal that is not 'dumb'."""
-    if environ.get("NO_COLOR"):
-        return False
+    """Colour for ``--color choice``: always or never as asked (a flag wins over the
+    environment, as no-color.org says); auto: not with NO_COLOR set (to anything but ""),
+    else when the stream is a terminal that is not 'dumb'."""
     if choice != "auto":
         return choice == "always"
+    if environ.get("NO_COLOR"):
+        return False
     isatty = getattr(stream, "isatty", None)
     return bool(isatty and isatty()) and environ.get("TERM", "") != "dumb"
 
@@ -154,6 +160,7 @@ def use_color(choice: str, stream: object, environ: dict[str, str] | os._Environ
 def main(argv: Sequence[str]) -> int:
     parser = build_parser()
     args = parser.parse_args(list(argv))
+    apply_watch_arguments(parser, args)
     check_rule_arguments(parser, args)
     if args.last:
         try:
@@ -209,7 +216,7 @@ class _Run:
                 live = open_live(self.queue, topic=args.topic, ros=args.ros)
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
-                return EXIT_USAGE
+                return EXIT_NO_ROS
         try:
             followed: list[FollowedFile] = []
             if args.files:

@@ -148,7 +148,7 @@ def test_a_busy_node_times_out_with_status_4(nodes, ros_env):
     assert "console-tui loggers: /alpha did not answer within 0.5 s" in result.stderr
 
 
-def test_without_rclpy_exit_1_with_advice(capsys, monkeypatch):
+def test_without_rclpy_exit_2_with_advice(capsys, monkeypatch):
     from console_tui.sources.ros2 import runtime
     from console_tui.sources.ros2.rclpy_loader import HOW_TO_GET_ROS2, RosUnavailable
 
@@ -157,4 +157,4 @@ def test_without_rclpy_exit_1_with_advice(capsys, monkeypatch):
 
     monkeypatch.setattr(runtime, "load_rclpy", unavailable)
     status, out, err = run(capsys, "list")
-    assert status == 1 and out == "" and "source /opt/ros" in err
+    assert status == 2 and out == "" and "source /opt/ros" in err

@@ -137,4 +137,4 @@ def test_get_loggers_on_roscpp_as_debian_12_does_it(roscore, ros1_nodes, roscpp_
 
 def test_no_master_is_said_plainly(ros1_env, capsys):
     status, _, err = run(capsys, "list", "--ros1")
-    assert status == 1 and "waiting for master at" in err and ros1_env["ROS_MASTER_URI"] in err
+    assert status == 2 and "waiting for master at" in err and ros1_env["ROS_MASTER_URI"] in err

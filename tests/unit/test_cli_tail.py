@@ -198,7 +198,10 @@ def test_colour_on_a_terminal_only_and_never_with_no_color(tmp_path):
     assert b"\x1b[" not in run_on_terminal([path], {**ENV, "TERM": "xterm", "NO_COLOR": "1"})
     assert b"\x1b[" not in tail(path).stdout  # a pipe
     assert b"\x1b[31m" in tail(path, "--color", "always").stdout
-    assert b"\x1b[" not in tail(path, "--color", "always", env={**ENV, "NO_COLOR": "1"}).stdout
+    # A flag wins over the environment (no-color.org): --color always colours despite NO_COLOR.
+    assert b"\x1b[31m[ERROR]" in tail(path, "--color", "always", env={**ENV, "NO_COLOR": "1"}).stdout
+    assert b"\x1b[" not in run_on_terminal([path, "--color", "never"], {**ENV, "TERM": "xterm"})
+    assert b"\x1b[" not in run_on_terminal([path, "--no-color"], {**ENV, "TERM": "xterm"})
 
 
 def test_use_color():
@@ -211,7 +214,8 @@ def test_use_color():
     assert not use_color("auto", Tty(), {"NO_COLOR": "1"})
     assert use_color("auto", Tty(), {"NO_COLOR": ""})
     assert not use_color("auto", object(), {})
-    assert not use_color("always", object(), {"NO_COLOR": "x"})
+    assert use_color("always", object(), {"NO_COLOR": "x"})
+    assert not use_color("never", Tty(), {"TERM": "xterm"})
 
 
 def test_follow_a_growing_and_rotated_file(tmp_path):
