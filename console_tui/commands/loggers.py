@@ -15,7 +15,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
-from ..model.levels import Severity, severity_name
+from ..model.levels import SEVERITY_TABLE, Severity, severity_name
 from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from ..model.text import plural
 from .arguments import EXIT_NO_ROS
@@ -48,16 +48,20 @@ def main(argv: Sequence[str], runtime: Any = None) -> int:
     default one is made and shut down again.
     """
     args = build_parser().parse_args(list(argv))
+    if args.command == "levels":
+        return _levels()
     try:
         if args.command == "set":
-            level_request = _level_request(args.rest)
+            args.node, logger, level = _set_request(args.words, args.every_node, args.duration)
         with _interruptible(), _ros_control(args, runtime) as control:
             if args.command == "list":
                 return _list(control, args)
+            if args.command == "set" and args.every_node:
+                return _set_all(control, level, args.wait)
             node = _find_node(control, args.node, args.wait)
             if args.command == "get":
                 return _get(control, node, args)
-            return _set(control, node, *level_request, args.duration)
+            return _set(control, node, logger, level, args.duration)
     except CommandError as error:
         _say(str(error))
         return error.status
@@ -66,17 +70,45 @@ def main(argv: Sequence[str], runtime: Any = None) -> int:
         return EXIT_INTERRUPTED
 
 
-def _level_request(rest: list[str]) -> tuple[str | None, int]:
-    if len(rest) > 2:
-        raise CommandError(f"too many arguments: {' '.join(rest)}; use: set NODE [LOGGER] LEVEL", EXIT_USAGE)
-    logger = logger_argument(rest[0]) if len(rest) == 2 else None
+def _levels() -> int:
+    """``levels``: the levels a logger can have, as ``ros2 log levels`` lists them."""
+    for row in SEVERITY_TABLE:
+        print(f"{row.name}\t{int(row.severity)}\t{row.ros1}")
+    print(f"UNSET\t{int(Severity.UNSET)}\t-")
+    return EXIT_OK
+
+
+def _set_request(words: list[str], every_node: bool, duration: float | None) -> tuple[str, str | None, int]:
+    """``set``'s words as (node, logger or None for the node's own, level): ``NODE LEVEL
+    [LOGGER]`` (``ros2 log set``), ``NODE [LOGGER] LEVEL`` (a level last wins when both
+    words are levels), or with ``--all`` only ``LEVEL``."""
+    usage = "use: set NODE LEVEL [LOGGER], set NODE [LOGGER] LEVEL, or set --all LEVEL"
+    if every_node:
+        if len(words) != 1:
+            raise CommandError(f"--all takes only a LEVEL, not {' '.join(words)}; {usage}", EXIT_USAGE)
+        if duration is not None:
+            raise CommandError("--for sets one node's level for a while: not with --all", EXIT_USAGE)
+        node, rest = "", words
+    elif len(words) in (2, 3):
+        node, rest = words[0], words[1:]
+    else:
+        raise CommandError(
+            f"{'too many' if words[3:] else 'too few'} arguments: {' '.join(words)}; {usage}", EXIT_USAGE
+        )
+    logger: str | None = None
     try:
         level = parse_level(rest[-1])
+        if len(rest) == 2:
+            logger = logger_argument(rest[0])
     except ValueError as error:
-        raise CommandError(str(error), EXIT_USAGE) from None
+        try:
+            level = parse_level(rest[0])  # ros2 log set NODE LEVEL LOGGER
+        except ValueError:
+            raise CommandError(str(error), EXIT_USAGE) from None
+        logger = logger_argument(rest[1])
     if logger == DEFAULT_LOGGER and level == Severity.UNSET:
         raise CommandError("the process default logger cannot be unset: give it a level", EXIT_USAGE)
-    return logger, level
+    return node, logger, level
 
 
 @contextmanager
@@ -228,17 +260,48 @@ def _get(control: Any, node: GraphNode, args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _own_logger(control: Any, node: GraphNode) -> str:
+    """The logger a node's own messages go through: ROS 2, its node logger; ROS 1, ``rosout``
+    (rospy) or ``ros`` (roscpp), asked of the node."""
+    if not control.lists_loggers:
+        return node.logger_name
+    try:
+        return str(control.own_logger(node.fqn))
+    except Exception as error:  # LoggerCallError: the text says why
+        raise CommandError(str(error), EXIT_FAILED) from None
+
+
+def _check_level(control: Any, level: int) -> None:
+    if control.lists_loggers and level == Severity.UNSET:
+        raise CommandError("ROS 1 loggers cannot be unset: give a level", EXIT_USAGE)
+
+
+def _set_all(control: Any, level: int, wait: float) -> int:
+    """``set --all LEVEL``: every node with logger services, its own logger; one line per node
+    (``NODE LOGGER LEVEL``); a node that fails is said on stderr, and the status is then 4."""
+    _check_level(control, level)
+    seen = control.wait_for_graph(wait)
+    nodes = [node for node in seen.nodes if node.has_logger_services]
+    if not nodes and control.problem:
+        raise CommandError(control.problem, EXIT_NO_ROS)
+    if not nodes:
+        raise CommandError(f"no node with logger services found (waited {wait:g} s)", EXIT_NOT_FOUND)
+    status = EXIT_OK
+    for node in nodes:
+        try:
+            logger = _own_logger(control, node)
+            _result(control.set_level(node.fqn, logger, level))
+        except CommandError as error:
+            _say(str(error))
+            status = EXIT_FAILED
+            continue
+        print(f"{node.fqn}\t{shown_logger(logger)}\t{level_text(level)}", flush=True)
+    return status
+
+
 def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration: float | None) -> int:
-    if control.lists_loggers:  # ROS 1
-        if logger is None:
-            raise CommandError(
-                f"ROS 1: name the logger ('console-tui loggers get {node.fqn}' lists them; rospy nodes "
-                "log through 'rosout', roscpp nodes through 'ros.<package>')",
-                EXIT_USAGE,
-            )
-        if level == Severity.UNSET:
-            raise CommandError("ROS 1 loggers cannot be unset: give a level", EXIT_USAGE)
-    logger = node.logger_name if logger is None else logger
+    _check_level(control, level)
+    logger = _own_logger(control, node) if logger is None else logger
     if duration is None:
         _result(control.set_level(node.fqn, logger, level))
         print(f"{shown_logger(logger)}\t{level_text(level)}", flush=True)

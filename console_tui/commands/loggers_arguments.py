@@ -44,7 +44,7 @@ def build_parser() -> argparse.ArgumentParser:
         "ROS 1 when ROS_VERSION=1 or a master answers at ROS_MASTER_URI, else ROS 2 (or say --ros1, --ros2).",
         EXIT_CODES,
     )
-    commands = parser.add_subparsers(dest="command", required=True, metavar="{list,get,set}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="{list,levels,get,set}")
 
     def add(
         name: str, help_text: str, wait: float, usage: str | None = None, wait_help: str = ""
@@ -72,6 +72,13 @@ def build_parser() -> argparse.ArgumentParser:
     listing.add_argument("--all", action="store_true", help="include hidden nodes (names starting with _)")
     listing.add_argument("--json", action="store_true", help="print JSON")
 
+    add_subcommand(
+        commands,
+        "levels",
+        "print the levels a logger can have: name, ROS 2 number, ROS 1 number (as 'ros2 log levels')",
+        epilog=EXIT_CODES,
+    )
+
     getting = add("get", "print loggers' levels: 'inherited' when a logger has none of its own", DEFAULT_WAIT_S)
     getting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
     getting.add_argument(
@@ -94,16 +101,29 @@ def build_parser() -> argparse.ArgumentParser:
 
     setting = add(
         "set",
-        "set a logger's level (LOGGER defaults to the node's own logger; ROS 1 needs it named)",
+        "set a logger's level: NODE LEVEL [LOGGER] as 'ros2 log set' takes it, or NODE [LOGGER] LEVEL; "
+        "LOGGER defaults to the node's own logger (ROS 1: rosout for rospy nodes, ros for roscpp ones); "
+        "--all LEVEL sets every node's own logger",
         DEFAULT_WAIT_S,
-        usage="%(prog)s [-h] [--wait SECONDS] [--timeout SECONDS] [--for SECONDS] NODE [LOGGER] LEVEL",
+        usage=(
+            "%(prog)s [-h] [--wait SECONDS] [--timeout SECONDS] [--for SECONDS]\n"
+            "       (NODE LEVEL [LOGGER] | NODE [LOGGER] LEVEL | --all LEVEL)"
+        ),
     )
-    setting.add_argument("node", metavar="NODE", help="/ns/name, or a name that matches one node")
     setting.add_argument(
-        "rest",
+        "words",
         nargs="+",
-        metavar="[LOGGER] LEVEL",
-        help="debug, info, warn, error, fatal (any case), or unset to inherit again (ROS 2 only)",
+        metavar="NODE LEVEL [LOGGER]",
+        help=(
+            "NODE: /ns/name, or a name that matches one node; LEVEL: debug, info, warn, error, fatal "
+            "(any case), or unset to inherit again (ROS 2 only)"
+        ),
+    )
+    setting.add_argument(
+        "--all",
+        dest="every_node",
+        action="store_true",
+        help="every node with logger services, its own logger: give only LEVEL",
     )
     setting.add_argument(
         "--timeout",

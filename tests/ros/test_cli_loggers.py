@@ -44,6 +44,48 @@ def test_unknown_level_names_the_accepted_ones(capsys):
     assert "unknown level 'loud'" in err and "debug, info, warn, error, fatal" in err
 
 
+@pytest.mark.parametrize(
+    "argv",
+    [["set", "--all", "/x", "debug"], ["set", "--all", "debug", "--for", "2"], ["set", "/x"]],
+)
+def test_bad_set_all_and_short_lines_exit_2(capsys, argv):
+    status, out, err = run(capsys, *argv)
+    assert status == EXIT_USAGE and out == "" and err.startswith("console-tui loggers: ")
+
+
+def test_levels_lists_the_levels_without_ros(capsys):
+    status, out, _ = run(capsys, "levels")
+    assert status == EXIT_OK
+    assert out.splitlines() == [
+        "DEBUG\t10\t1",
+        "INFO\t20\t2",
+        "WARN\t30\t4",
+        "ERROR\t40\t8",
+        "FATAL\t50\t16",
+        "UNSET\t0\t-",
+    ]
+
+
+@pytest.mark.ros2
+def test_ros2_log_set_forms(nodes, ros_runtime, capsys):
+    """``ros2 log set <node> <level> [<logger>]`` and ``set --all LEVEL`` with a real node."""
+    nodes.start("talker.py", "--name", "talker").expect("ready")
+    assert run(capsys, "set", "/talker", "DEBUG", "--wait", "15", runtime=ros_runtime)[:2] == (
+        EXIT_OK,
+        "talker\tDEBUG\n",
+    )
+    assert run(capsys, "set", "/talker", "error", "talker.sub", runtime=ros_runtime)[:2] == (
+        EXIT_OK,
+        "talker.sub\tERROR\n",
+    )
+    status, out, err = run(capsys, "get", "/talker", "talker", "talker.sub", runtime=ros_runtime)
+    assert (status, out.splitlines()) == (EXIT_OK, ["talker\tDEBUG\tDEBUG", "talker.sub\tERROR\tERROR"]), err
+    status, out, err = run(capsys, "set", "--all", "warn", runtime=ros_runtime)
+    assert status == EXIT_OK, err
+    assert "/talker\ttalker\tWARN" in out.splitlines()
+    assert run(capsys, "get", "/talker", "talker", runtime=ros_runtime)[1] == "talker\tWARN\tWARN\n"
+
+
 def test_usage_errors_exit_2(capsys):
     with pytest.raises(SystemExit) as exited:
         main(["frobnicate"])

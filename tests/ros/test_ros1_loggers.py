@@ -72,10 +72,28 @@ def test_get_lists_every_logger_of_a_rospy_node(roscore, ros1_nodes, capsys):
     assert '"name": "rosout"' in out
 
 
+def test_set_node_level_sets_the_nodes_own_logger_as_on_ros2(roscore, ros1_nodes, roscpp_binary, capsys):
+    """``loggers set NODE LEVEL`` (no logger) works on ROS 1 too: rospy nodes log through
+    ``rosout``, roscpp nodes through ``ros.<package>`` under ``ros``; told without get_loggers.
+    And ``ros2 log set``'s order, NODE LEVEL LOGGER."""
+    ros1_nodes.rospy("rospy_node.py", "talker", "--period", "0.1").expect("ready")
+    ros1_nodes.roscpp("talk", "cpp", "100").expect("ready")
+    with Collected() as got:
+        got.wait_for("/talker", "info ")
+        got.wait_for("/cpp", "info ")
+        assert run(capsys, "set", "/talker", "DEBUG")[:2] == (0, "rosout\tDEBUG\n")
+        got.wait(lambda c: len(debug_rows(c, "/talker")) >= 3, what="DEBUG rows from the rospy node")
+        assert run(capsys, "set", "/cpp", "DEBUG")[:2] == (0, "ros\tDEBUG\n")
+        got.wait(lambda c: len(debug_rows(c, "/cpp")) >= 3, what="DEBUG rows from the roscpp node")
+        assert run(capsys, "set", "cpp", "warn", ROSCPP_LOGGER)[:2] == (0, f"{ROSCPP_LOGGER}\tWARN\n")
+        assert run(capsys, "set", "talker", "info", "rosout")[:2] == (0, "rosout\tINFO\n")
+    assert run(capsys, "get", "talker", "rosout")[1] == "rosout\tINFO\tINFO\n"
+
+
 def test_ros1_refusals_are_explicit(roscore, ros1_nodes, capsys):
     ros1_nodes.rospy("rospy_node.py", "strict", "--period", "0").expect("ready")
-    status, _, err = run(capsys, "set", "strict", "debug")
-    assert status == 2 and "name the logger" in err
+    status, _, err = run(capsys, "set", "strict", "unset")
+    assert status == 2 and "cannot be unset" in err
     status, _, err = run(capsys, "set", "strict", "rosout", "unset")
     assert status == 2 and "cannot be unset" in err
     status, _, err = run(capsys, "get", "nobody", "--wait", "0.5")

@@ -40,10 +40,13 @@ from .logger_services import (
     encode_set_level,
     level_of_word,
 )
-from .master import Master, Ros1CallError
+from .master import ROSCPP, ROSPY, Master, Ros1CallError, client_library
 from .tcpros import ServiceFailed, TcprosError, call_service
 
 NO_SERVICES_HINT = "only roscpp and rospy nodes offer ~get_loggers and ~set_logger_level"
+#: The logger a node's own messages go through, by its client library: rospy logs through
+#: ``rosout``; roscpp through ``ros.<package>``, whose parent ``ros`` has the level in force.
+OWN_LOGGER = {ROSPY: "rosout", ROSCPP: "ros"}
 WORKERS = 4
 _SERVICE = {GET: GET_LOGGERS, SET: SET_LOGGER_LEVEL}
 _MD5 = {GET: GET_LOGGERS_MD5, SET: SET_LOGGER_LEVEL_MD5}
@@ -100,6 +103,22 @@ class Ros1LoggerControl(LoggerControl):
             return failed_future(LevelRefused(node, bad))
         request = [(name, LEVEL_WORDS[level]) for name, level in levels.items()]
         return then(self._submit(node, SET, request, restore), lambda _reply: levels)
+
+    def own_logger(self, node: str) -> str:
+        """The logger ``node``'s own messages go through (``OWN_LOGGER``), told by the server
+        software of its slave API: no ``get_loggers`` call, which can crash roscpp nodes.
+        Blocks for at most two calls' timeouts; ``LoggerCallError`` when it cannot tell."""
+        try:
+            library = client_library(self._master.lookup_node(node), self.caller_id, self.call_timeout)
+        except Ros1CallError as error:
+            raise LoggerCallError(node, f"{node}: cannot tell its client library ({error.reason})") from None
+        if library is None:
+            raise LoggerCallError(
+                node,
+                f"{node} is neither a roscpp nor a rospy node: name the logger "
+                f"('console-tui loggers get {node}' lists them)",
+            )
+        return OWN_LOGGER[library]
 
     # -- the loggers thread ----------------------------------------------------------------------
 

@@ -40,9 +40,21 @@ class _TimeoutTransport(xmlrpc.client.Transport):
         return connection
 
 
-def xmlrpc_call(uri: str, method: str, *args: Any, timeout: float = CALL_TIMEOUT_S) -> Any:
+class _ServerNamingTransport(_TimeoutTransport):
+    """Keeps the ``Server`` header of the last answer: the software behind a slave API."""
+
+    server = ""
+
+    def parse_response(self, response: http.client.HTTPResponse) -> Any:
+        self.server = response.getheader("Server") or ""
+        return super().parse_response(response)
+
+
+def xmlrpc_call(
+    uri: str, method: str, *args: Any, timeout: float = CALL_TIMEOUT_S, transport: _TimeoutTransport | None = None
+) -> Any:
     """``method(*args)`` at ``uri``; the value of a code-1 answer, else ``Ros1CallError``."""
-    proxy = xmlrpc.client.ServerProxy(uri, transport=_TimeoutTransport(timeout))
+    proxy = xmlrpc.client.ServerProxy(uri, transport=transport or _TimeoutTransport(timeout))
     try:
         answer = getattr(proxy, method)(*args)
     except TimeoutError:
@@ -59,6 +71,23 @@ def xmlrpc_call(uri: str, method: str, *args: Any, timeout: float = CALL_TIMEOUT
     if code != 1:
         raise Ros1CallError(uri, f"{method}: {message or 'failed'} (code {code})")
     return value
+
+
+#: A node's client library, told by the ``Server`` header its slave API answers with.
+ROSCPP = "roscpp"
+ROSPY = "rospy"
+
+
+def client_library(uri: str, caller_id: str, timeout: float = CALL_TIMEOUT_S) -> str | None:
+    """Which client library serves the slave API at ``uri``: roscpp (its xmlrpcpp answers as
+    ``XMLRPC++``), rospy (Python's ``BaseHTTP``), None for anything else; ``Ros1CallError``."""
+    transport = _ServerNamingTransport(timeout)
+    xmlrpc_call(uri, "getPid", caller_id, timeout=timeout, transport=transport)
+    if transport.server.startswith("XMLRPC++"):
+        return ROSCPP
+    if transport.server.startswith("BaseHTTP/"):
+        return ROSPY
+    return None
 
 
 def _reason(error: BaseException) -> str:
