@@ -1,9 +1,11 @@
+# PYTHON_ARGCOMPLETE_OK
 """The ``console-tui`` command line."""
 
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 
@@ -46,12 +48,15 @@ EPILOG = "\n".join(
         "install extras: [ros] (ROS 2 Kilted from PyPI) or [jazzy] (ROS 2 Jazzy), never both; [files] for",
         "recordings (.bag, .mcap, .db3). The [ros] and [jazzy] wheels exist for x86_64 Linux only: elsewhere",
         "(aarch64 robots) source your ROS first.",
+        'shell completion (bash, zsh): eval "$(register-python-argcomplete console-tui)" in ~/.bashrc',
         f"documentation: {DOCS_URL} (the query line: {DOCS_URL}rules/#the-query-line)",
     ]
 )
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
+    """The app's parser; without ``files``, no FILE arguments (for completion, where the
+    subcommands take the first word)."""
     parser = argparse.ArgumentParser(
         prog="console-tui",
         description=(
@@ -62,16 +67,17 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=EPILOG,
     )
     parser.add_argument("--version", action="version", version=f"console-tui {__version__}")
-    parser.add_argument(
-        "files",
-        nargs="*",
-        metavar="FILE",
-        help=(
-            "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
-            "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
-            "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it"
-        ),
-    )
+    if files:
+        parser.add_argument(
+            "files",
+            nargs="*",
+            metavar="FILE",
+            help=(
+                "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
+                "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
+                "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it"
+            ),
+        )
     add_log_format_argument(parser)
     add_last_argument(parser)
     parser.add_argument(
@@ -120,6 +126,30 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def completion_parser() -> argparse.ArgumentParser:
+    """The app's parser with every subcommand's own parser under it, for shell completion
+    (argcomplete); running ``console-tui VERB`` hands the words to the verb's parser instead."""
+    parser = build_parser(files=False)
+    commands = parser.add_subparsers(dest="verb", metavar="VERB")
+    for verb, what in SUBCOMMANDS.items():
+        commands.add_parser(verb, help=what)
+        commands.choices[verb] = importlib.import_module(f"{__package__}.commands.{verb}").build_parser()
+    for alias, verb in ALIASES.items():
+        commands.add_parser(alias, help=f"the same as {verb}")
+        commands.choices[alias] = commands.choices[verb]
+    return parser
+
+
+def complete() -> None:
+    """When a shell asks (argcomplete's ``_ARGCOMPLETE`` in the environment): print the
+    completions of its command line and exit; else return at once."""
+    if "_ARGCOMPLETE" not in os.environ:
+        return
+    import argcomplete
+
+    argcomplete.autocomplete(completion_parser())
+
+
 def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
     """``--last``: the newest run's folder (and its ROS 2 nodes' logs) joins ``args.files``;
     no run found exits 2 saying where it looked."""
@@ -137,6 +167,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """The ``console-tui`` command. ``argv`` None: this process's command line, and a live
     session ends the process itself once everything it started has stopped (see
     ``launch.end_now``); with ``argv`` given (a caller in the same process), it returns."""
+    complete()
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS.keys() | ALIASES.keys():
         verb = ALIASES.get(args_list[0], args_list[0])
