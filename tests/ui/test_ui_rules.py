@@ -26,6 +26,7 @@ make_app = partial(ui.make_app, count=300)
 def own_config(tmp_path, monkeypatch):
     """Rule sets and query history of these tests stay in a folder of their own."""
     monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "config"))
+    monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
 
 
 def shown(app: ConsoleApp) -> list:
@@ -92,7 +93,7 @@ async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
         assert not app.query_bar.is_open and len(app.view) == before
 
 
-async def test_query_history_walks_back_and_is_kept_between_runs():
+async def test_query_history_walks_back_and_is_kept_between_runs(tmp_path):
     app = make_app(remember_rules=True)
     async with app.run_test(size=(160, 40)) as pilot:
         for text in ("level:error", "node:count*", "-msg:scan"):
@@ -108,8 +109,12 @@ async def test_query_history_walks_back_and_is_kept_between_runs():
         assert line_with(app, "-msg:scan") and "level:error" not in screen_text(app)
         await pilot.press("escape")
         assert "-msg:scan" not in screen_text(app), "the query line is closed"
+    # Kept as state, in $XDG_STATE_HOME, not with the settings.
+    state = tmp_path / "state" / "console-tui"
+    assert (query_history_path(), last_rules_path()) == (state / "query-history.txt", state / "last-rules.toml")
     assert query_history_path().read_text().split("\n")[:3] == ["level:error", "node:count*", "-msg:scan"]
     assert 'kind = "message"' in last_rules_path().read_text() and "scan" in last_rules_path().read_text()
+    assert not (tmp_path / "config" / "console-tui" / "last-rules.toml").exists()
 
 
 async def test_query_given_at_start():

@@ -24,6 +24,7 @@ from console_tui.model.rules.rulesfile import (
     loads_rules,
     query_history_path,
     save_rules,
+    state_dir,
 )
 
 EVERY_KIND = RuleSet(
@@ -101,8 +102,40 @@ def test_unreadable_files(tmp_path):
 def test_config_paths_follow_xdg(monkeypatch, tmp_path):
     monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path))
     assert config_dir() == tmp_path / "console-tui"
-    assert last_rules_path() == tmp_path / "console-tui" / "last-rules.toml"
-    assert query_history_path().parent == config_dir()
     for unset in ("", "relative/dir"):
         monkeypatch.setenv("XDG_CONFIG_HOME", unset)
         assert config_dir() == Path.home() / ".config" / "console-tui"
+
+
+def test_state_paths_follow_xdg_state_home(monkeypatch, tmp_path):
+    monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
+    assert state_dir() == tmp_path / "state" / "console-tui"
+    assert last_rules_path() == state_dir() / "last-rules.toml"
+    assert query_history_path() == state_dir() / "query-history.txt"
+    for unset in ("", "relative/dir"):
+        monkeypatch.setenv("XDG_STATE_HOME", unset)
+        assert state_dir() == Path.home() / ".local" / "state" / "console-tui"
+
+
+def test_an_older_versions_files_move_from_the_config_folder_once(monkeypatch, tmp_path):
+    monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
+    old = config_dir()
+    old.mkdir(parents=True)
+    (old / "last-rules.toml").write_text(dumps_rules(EVERY_KIND))
+    (old / "query-history.txt").write_text("level>=warn\n")
+    assert load_rules(last_rules_path()) == EVERY_KIND
+    assert query_history_path().read_text() == "level>=warn\n"
+    assert not (old / "last-rules.toml").exists() and not (old / "query-history.txt").exists()
+    # Once there, the state directory's file is the one: a later file in the old place stays put.
+    (old / "last-rules.toml").write_text("stale")
+    assert last_rules_path().read_text() != "stale" and (old / "last-rules.toml").read_text() == "stale"
+
+
+def test_what_is_not_a_plain_file_of_ours_is_not_moved(monkeypatch, tmp_path):
+    monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
+    old = config_dir()
+    old.mkdir(parents=True)
+    (tmp_path / "elsewhere.toml").write_text("x")
+    (old / "last-rules.toml").symlink_to(tmp_path / "elsewhere.toml")
+    assert last_rules_path() == state_dir() / "last-rules.toml" and not last_rules_path().exists()
+    assert (old / "last-rules.toml").is_symlink() and (tmp_path / "elsewhere.toml").read_text() == "x"

@@ -23,9 +23,13 @@ booleans, whole numbers, lists of text and nested rule tables).
 from __future__ import annotations
 
 import os
+import shutil
+import stat
 import sys
 from pathlib import Path
 from typing import Any
+
+import platformdirs
 
 from ..formats.atomic import atomic_output
 from ..timefmt import full_text
@@ -51,13 +55,42 @@ def config_dir() -> Path:
     return root / APP_DIR
 
 
+def state_dir() -> Path:
+    """Where what a session leaves for the next one is kept: ``$XDG_STATE_HOME/console-tui``,
+    by default ``~/.local/state/console-tui`` (platformdirs' user state directory; a
+    relative ``$XDG_STATE_HOME`` is ignored, as the XDG specification says)."""
+    path = Path(platformdirs.user_state_dir(APP_DIR, appauthor=False))
+    return path if path.is_absolute() else Path.home() / ".local" / "state" / APP_DIR
+
+
 def last_rules_path() -> Path:
     """Where the rule set in use is saved on exit, to be restored at the next start."""
-    return config_dir() / "last-rules.toml"
+    return _state_file("last-rules.toml")
 
 
 def query_history_path() -> Path:
-    return config_dir() / "query-history.txt"
+    return _state_file("query-history.txt")
+
+
+def _state_file(name: str) -> Path:
+    """``state_dir() / name``; a file of that name left in the configuration directory by an
+    older console-tui moves there the first time (only a regular file of this user's)."""
+    path = state_dir() / name
+    old = config_dir() / name
+    if path.exists() or path.is_symlink():
+        return path
+    try:
+        info = old.lstat()
+    except OSError:
+        return path
+    if not stat.S_ISREG(info.st_mode) or info.st_uid != os.getuid():
+        return path
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(old, path)
+    except OSError:
+        return old  # no state directory to be had: read and write it where it is
+    return path
 
 
 def loads_rules(text: str, name: str = "rules") -> RuleSet:
