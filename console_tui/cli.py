@@ -54,6 +54,16 @@ EPILOG = "\n".join(
 )
 
 
+class _Version(argparse.Action):
+    """``--version``: console-tui's, then Textual's and the work-arounds skipped on it."""
+
+    def __call__(self, parser: argparse.ArgumentParser, *_args: object, **_kwargs: object) -> None:
+        from .ui.textual_fixes import fixes_text
+
+        print(f"console-tui {__version__}\n{fixes_text()}")
+        parser.exit()
+
+
 def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     """The app's parser; without ``files``, no FILE arguments (for completion, where the
     subcommands take the first word)."""
@@ -66,7 +76,9 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=EPILOG,
     )
-    parser.add_argument("--version", action="version", version=f"console-tui {__version__}")
+    parser.add_argument(
+        "--version", action=_Version, nargs=0, help="print the version, and the Textual work-arounds in use, and exit"
+    )
     if files:
         parser.add_argument(
             "files",

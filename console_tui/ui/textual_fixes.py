@@ -1,5 +1,12 @@
 """Work-arounds for Textual bugs, until they are fixed upstream (each with a test).
 
+Each patches a private part of Textual, so each checks at import that what it replaces is
+what it was written against (the function's qualified name and a hash of its source, as in
+the Textual release tested); one that does not match is not installed, and
+``console-tui --version`` says which (``fixes_text``). The Textual releases pyproject.toml
+admits are the ones tested; moving that range means checking each fix again (its test
+fails on a new hash) and updating ``source_hash`` below.
+
 - ``OptionList._move_page`` (PageUp/PageDown) looks up the highlighted option's line in a
   table that is only built once the list has a size: on a list with options, one
   highlighted, but no size yet (the command palette's while its results come in), it ends
@@ -34,12 +41,17 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+import hashlib
+import inspect
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
 
+import textual
 from rich.style import Style
 from textual.binding import BindingsMap, Keymap, KeymapApplyResult
 from textual.drivers._writer_thread import WriterThread
 from textual.drivers.linux_driver import LinuxDriver
+from textual.reactive import Reactive
 from textual.screen import Screen
 from textual.strip import Strip
 from textual.widgets import OptionList
@@ -129,12 +141,143 @@ def _divide(self: Strip, cuts: Iterable[int]) -> Sequence[Strip]:
     return _original_divide(self, cuts)
 
 
-def apply() -> None:
-    """Install the work-arounds (idempotent)."""
-    OptionList._move_page = _move_page  # type: ignore[method-assign]
-    BindingsMap.apply_keymap = _apply_keymap  # type: ignore[method-assign]
-    WriterThread.run = _write_until_stopped  # type: ignore[method-assign]
-    LinuxDriver._sigcont_application = _sigcont_application  # type: ignore[method-assign]
-    Strip.crop_extend = _crop_extend  # type: ignore[method-assign]
-    Strip.divide = _divide  # type: ignore[method-assign]
+def _set_attribute(owner: type, name: str, value: object) -> Callable[[], None]:
+    def install() -> None:
+        setattr(owner, name, value)
+
+    return install
+
+
+def _no_focus_repaint() -> None:
     Screen.focused._repaint = False  # a change of focus: no repaint of the whole screen
+
+
+@dataclass(frozen=True)
+class Fix:
+    """One work-around: what it relies on, how it is installed, where it stands upstream."""
+
+    #: What it patches, as ``--version`` names it.
+    name: str
+    #: The Textual function the fix replaces or relies on, and its ``__qualname__``.
+    target: Callable[..., object]
+    qualname: str
+    #: The first 16 hex digits of the SHA-256 of ``inspect.getsource(target)`` in the
+    #: Textual release tested.
+    source_hash: str
+    install: Callable[[], None]
+    #: The upstream issue or pull request, or "not yet reported — <the bug in one line>".
+    upstream: str
+
+
+FIXES: tuple[Fix, ...] = (
+    Fix(
+        "OptionList._move_page",
+        _original_move_page,
+        "OptionList._move_page",
+        "85f7f33005763486",
+        _set_attribute(OptionList, "_move_page", _move_page),
+        "not yet reported — OptionList PageUp/PageDown raises KeyError: 0 on a list with a "
+        "highlighted option that has no size yet (the command palette while results arrive)",
+    ),
+    Fix(
+        "BindingsMap.apply_keymap",
+        _original_apply_keymap,
+        "BindingsMap.apply_keymap",
+        "9b73d1d65f808636",
+        _set_attribute(BindingsMap, "apply_keymap", _apply_keymap),
+        "not yet reported — apply_keymap moves every rebound binding to the end of the map, "
+        "so the Footer shows it last (cut off)",
+    ),
+    Fix(
+        "WriterThread.run",
+        WriterThread.run,
+        "WriterThread.run",
+        "314021aab4f52726",
+        _set_attribute(WriterThread, "run", _write_until_stopped),
+        "not yet reported — after the terminal goes away (SIGHUP, EIO) the output thread dies "
+        "and App.exit blocks for ever on its full queue",
+    ),
+    Fix(
+        "LinuxDriver._sigcont_application",
+        _original_sigcont,
+        "LinuxDriver._sigcont_application",
+        "1d7463a74df118a4",
+        _set_attribute(LinuxDriver, "_sigcont_application", _sigcont_application),
+        "not yet reported — SIGCONT resumes application mode in a driver that was never "
+        "suspended (a second output thread, terminal modes written again)",
+    ),
+    Fix(
+        "Strip.crop_extend",
+        Strip.crop_extend,
+        "Strip.crop_extend",
+        "5e83b1f823fcb361",
+        _set_attribute(Strip, "crop_extend", _crop_extend),
+        "not yet reported — Strip.crop_extend caches a strip in itself when the crop is the "
+        "whole strip: a reference cycle per strip drawn, freed only by a full collection",
+    ),
+    Fix(
+        "Strip.divide",
+        _original_divide,
+        "Strip.divide",
+        "f6764f25c39e144b",
+        _set_attribute(Strip, "divide", _divide),
+        "not yet reported — Strip.divide with one cut at the end caches [self] in the strip: "
+        "a reference cycle per strip drawn",
+    ),
+    Fix(
+        "Screen.focused repaint",
+        Reactive._set,
+        "Reactive._set",
+        "8fa5e86bc412a062",
+        _no_focus_repaint,
+        "not yet reported — Screen.focused is a repainting reactive, so every change of focus "
+        "repaints the whole screen though the widgets concerned repaint themselves",
+    ),
+)
+
+
+def check(fix: Fix) -> str | None:
+    """Why ``fix`` must not be installed on this Textual (its target is not what it was
+    written against), or None."""
+    qualname = getattr(fix.target, "__qualname__", None)
+    if qualname != fix.qualname:
+        return f"{fix.qualname} is now {qualname}"
+    try:
+        source = inspect.getsource(fix.target)
+    except (OSError, TypeError):
+        return f"the source of {fix.qualname} cannot be read"
+    if hashlib.sha256(source.encode()).hexdigest()[:16] != fix.source_hash:
+        return f"{fix.qualname} changed in Textual {textual.__version__}"
+    return None
+
+
+#: Checked once, at import, before anything is patched.
+_CHECKED: dict[Fix, str | None] = {fix: check(fix) for fix in FIXES}
+
+
+def install(fixes: Iterable[Fix]) -> dict[str, str]:
+    """Install each fix whose target checks (idempotent); the others' names and reasons."""
+    skipped = {}
+    for fix in fixes:
+        reason = _CHECKED[fix] if fix in _CHECKED else check(fix)
+        if reason is None:
+            fix.install()
+        else:
+            skipped[fix.name] = reason
+    return skipped
+
+
+def apply() -> dict[str, str]:
+    """Install the work-arounds (idempotent); the skipped ones' names and reasons."""
+    return install(FIXES)
+
+
+def fixes_text() -> str:
+    """A line for ``--version``: the Textual release, and which fixes are skipped and why."""
+    skipped = {fix.name: reason for fix, reason in _CHECKED.items() if reason is not None}
+    text = f"Textual {textual.__version__}: {len(FIXES) - len(skipped)} of {len(FIXES)} work-arounds in use"
+    if skipped:
+        text += "; skipped, as what they patch is not what they were written for: " + "; ".join(
+            f"{name} ({reason})" for name, reason in skipped.items()
+        )
+    return text
