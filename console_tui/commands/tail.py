@@ -257,7 +257,7 @@ class _Run:
         return followed
 
     def keep_reading(self, followed: list[FollowedFile], live: LiveIntake | None) -> None:
-        shown_problem, shown_lost, lost_told_at = "", 0, 0.0
+        shown_problem, shown_lost, lost_told_at, slow_told = "", 0, 0.0, False
         try:
             while not self.stop.wait(POLL_S):
                 if followed:
@@ -271,6 +271,9 @@ class _Run:
                     if status.problem and status.problem != shown_problem:
                         _complain(status.problem)
                     shown_problem = status.problem
+                    if status.path_note and not slow_told:
+                        _complain(status.slow_path_text())
+                        slow_told = True
                     now = time.monotonic()
                     if status.lost > shown_lost and now - lost_told_at >= LOSS_REPORT_S:
                         _complain(status.loss_text())

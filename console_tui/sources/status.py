@@ -41,6 +41,18 @@ class SourceStatus:
         meaning = _PATHS.get(self.path, "")
         return f"{self.path}: {meaning}" if meaning else self.path
 
+    def slow_path_text(self) -> str:
+        """What is lost on the slower intake path (no take loop in C), said once at start;
+        "" on the fast path (or where there is no faster one)."""
+        if not self.path_note:
+            return ""
+        return (
+            f"slower intake: the take loop in C is not used ({self.path_note}); messages are taken "
+            "through rclpy, at 2-3 times the CPU a message, so a high message rate is kept up with "
+            "less well and more may be lost. The fast path needs a C compiler (cc) and Python's "
+            "headers (python3-dev)."
+        )
+
     def loss_text(self) -> str:
         """The loss for a status bar: "" when nothing was lost, else the total and its causes."""
         if not self.lost:

@@ -81,6 +81,8 @@ class IntakeActions(AppPart):
         self._arrivals: deque[tuple[float, int]] = deque()
         #: The threads stopping the sources, once quitting began.
         self._stopping: list[threading.Thread] = []
+        #: The slower intake path was said (``tell_slow_intake``).
+        self._slow_intake_told = False
 
     # -- the sources ------------------------------------------------------------------------------
 
@@ -130,8 +132,21 @@ class IntakeActions(AppPart):
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()
+        self.tell_slow_intake()
         self.show_overview()
         self.collection_policy.tick()
+
+    def tell_slow_intake(self) -> None:
+        """The first time a live source takes the slower path (no take loop in C), say so
+        once, with what it costs (the summary, S, keeps saying it)."""
+        if self._slow_intake_told:
+            return
+        for source in self.sources:
+            text = source.status.slow_path_text()
+            if text:
+                self._slow_intake_told = True
+                self.notify(text[0].upper() + text[1:], severity="warning", timeout=15, markup=False)
+                return
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
         self.add_batches([records if isinstance(records, list) else list(records)])

@@ -103,3 +103,30 @@ def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env)
         assert tail.stop() == 0, b"".join(tail.stderr)[-2000:]
     assert len(lines) == 2 and all(line.split()[1] == "/py_tailed" for line in lines)
     assert {line.split()[0] for line in lines} <= {"WARN", "ERROR", "FATAL"}
+
+
+def test_the_slower_intake_path_is_said_once_on_stderr(nodes, ros_env):
+    """Without the take loop in C (here switched off, as on a machine without cc or
+    python3-dev) tail says so once, with what it costs, and prints as ever."""
+    talker = nodes.start("talker.py", "--name", "slow_path")
+    talker.expect("ready")
+    tail = TailProcess({**ros_env, "CONSOLE_TUI_COMPILED_TAKE": "0"}, "--topic", "/rosout", "--format", "{message}")
+    try:
+        lines: list[str] = []
+
+        def printed() -> bool:
+            talker.send({"cmd": "log", "level": "info", "msg": "tick"})
+            talker.expect_next("logged")
+            lines.extend(tail.take_text(1, timeout=1))
+            return "tick" in lines
+
+        assert wait_until(printed, 60)
+        assert tail.stop() == 0
+    finally:
+        tail.stop()
+    said = [line for line in b"".join(tail.stderr).decode().splitlines() if "slower intake" in line]
+    assert len(said) == 1, said
+    assert said[0].startswith(
+        "console-tui tail: slower intake: the take loop in C is not used (CONSOLE_TUI_COMPILED_TAKE=0)"
+    )
+    assert "python3-dev" in said[0]
