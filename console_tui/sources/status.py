@@ -47,10 +47,9 @@ class SourceStatus:
         if not self.path_note:
             return ""
         return (
-            f"slower intake: the take loop in C is not used ({self.path_note}); messages are taken "
-            "through rclpy, at 2-3 times the CPU a message, so a high message rate is kept up with "
-            "less well and more may be lost. The fast path needs a C compiler (cc) and Python's "
-            "headers (python3-dev)."
+            f"slower intake: the take loop in C is not used ({self.path_note}): rclpy's take costs "
+            "2-3 times the CPU a message, so high rates are kept up with less well. The fast path "
+            "needs a C compiler (cc) and Python's headers (python3-dev)."
         )
 
     def loss_text(self) -> str:

@@ -30,7 +30,7 @@ def test_the_status_says_what_the_slower_path_costs():
     assert SourceStatus(path="tcpros").slow_path_text() == ""
     text = SourceStatus(path="raw+cdr", path_note=NOTE).slow_path_text()
     assert text.startswith(f"slower intake: the take loop in C is not used ({NOTE})")
-    assert "2-3 times the CPU" in text and "cc" in text and "python3-dev" in text
+    assert "2-3 times the CPU a message" in text and "(cc)" in text and "(python3-dev)" in text
 
 
 async def test_the_app_says_it_once_on_screen():
