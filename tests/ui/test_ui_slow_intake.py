@@ -3,6 +3,8 @@ what it costs; the fast path says nothing."""
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.store import LogStore
 from console_tui.sources.status import SourceStatus
@@ -14,15 +16,9 @@ from support.ui import screen_text, until
 NOTE = "no C compiler (cc)"
 
 
-class Source:
-    def __init__(self, status: SourceStatus) -> None:
-        self.status = status
-
-    def start(self) -> None:
-        pass
-
-    def stop(self) -> None:
-        pass
+def reporting(status: SourceStatus) -> SimpleNamespace:
+    """A live source that only reports ``status``."""
+    return SimpleNamespace(status=status, start=lambda: None, stop=lambda: None)
 
 
 def test_the_status_says_what_the_slower_path_costs():
@@ -35,7 +31,7 @@ def test_the_status_says_what_the_slower_path_costs():
 
 async def test_the_app_says_it_once_on_screen():
     queue = IntakeQueue()
-    source = Source(SourceStatus(origin="ROS 2 domain 7", path="raw+cdr", path_note=NOTE, running=True))
+    source = reporting(SourceStatus(origin="ROS 2 domain 7", path="raw+cdr", path_note=NOTE, running=True))
     app = ConsoleApp(store=LogStore(), queue=queue, sources=[source], utc=True)
     told = []
     notify = app.notify
@@ -56,7 +52,7 @@ async def test_the_app_says_it_once_on_screen():
 
 async def test_the_fast_path_says_nothing():
     queue = IntakeQueue()
-    source = Source(SourceStatus(origin="ROS 2 domain 7", path="c+cdr", running=True))
+    source = reporting(SourceStatus(origin="ROS 2 domain 7", path="c+cdr", running=True))
     app = ConsoleApp(store=LogStore(), queue=queue, sources=[source], utc=True)
     async with app.run_test(size=(120, 40), notifications=True) as pilot:
         queue.put(records(5))
