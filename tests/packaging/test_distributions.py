@@ -7,6 +7,7 @@ package index for the build's setuptools; about 15-30 s."""
 from __future__ import annotations
 
 import email
+import shutil
 import subprocess
 import sys
 import tarfile
@@ -16,6 +17,22 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
+#: What a working tree holds beside the sources (venvs, caches, builds).
+NOT_SOURCES = (
+    ".git",
+    ".venv*",
+    "__pycache__",
+    "*.egg-info",
+    "build",
+    "dist",
+    "site",
+    ".*_cache",
+    "mutants",
+    ".hypothesis",
+    "*.so",
+    ".coverage*",
+    "htmlcov",
+)
 
 pytest.importorskip("build", reason="pip install build (the test extra) to build the distributions")
 
@@ -23,8 +40,11 @@ pytest.importorskip("build", reason="pip install build (the test extra) to build
 @pytest.fixture(scope="module")
 def dist(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("dist")
+    # Built from a copy: tests running beside this one write caches into the tree.
+    tree = tmp_path_factory.mktemp("tree") / "console-tui"
+    shutil.copytree(REPO, tree, ignore=shutil.ignore_patterns(*NOT_SOURCES))
     result = subprocess.run(
-        [sys.executable, "-m", "build", "--outdir", str(out), str(REPO)],
+        [sys.executable, "-m", "build", "--outdir", str(out), str(tree)],
         capture_output=True,
         text=True,
         timeout=600,
