@@ -4,6 +4,7 @@ logger names as typed and printed."""
 from __future__ import annotations
 
 import argparse
+import textwrap
 
 from ..model.levels import Severity, parse_severity
 from ..model.logger_levels import DEFAULT_LOGGER
@@ -49,7 +50,9 @@ def build_parser() -> argparse.ArgumentParser:
     def add(
         name: str, help_text: str, wait: float, usage: str | None = None, wait_help: str = ""
     ) -> argparse.ArgumentParser:
-        sub = add_subcommand(commands, name, help_text, epilog=EXIT_CODES, usage=usage)
+        sub = add_subcommand(
+            commands, name, help_text, epilog=EXIT_CODES, description=textwrap.fill(help_text), usage=usage
+        )
         sub.add_argument(
             "--wait",
             type=seconds,
