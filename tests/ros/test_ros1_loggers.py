@@ -87,6 +87,10 @@ def test_set_node_level_sets_the_nodes_own_logger_as_on_ros2(roscore, ros1_nodes
         got.wait(lambda c: len(debug_rows(c, "/cpp")) >= 3, what="DEBUG rows from the roscpp node")
         assert run(capsys, "set", "cpp", "warn", ROSCPP_LOGGER)[:2] == (0, f"{ROSCPP_LOGGER}\tWARN\n")
         assert run(capsys, "set", "talker", "info", "rosout")[:2] == (0, "rosout\tINFO\n")
+        # set --all: every node's own logger, rospy and roscpp alike (roscore's /rosout is roscpp)
+        status, out, err = run(capsys, "set", "--all", "info")
+        assert status == 0, err
+        assert {"/talker\trosout\tINFO", "/cpp\tros\tINFO", "/rosout\tros\tINFO"} <= set(out.splitlines())
     assert run(capsys, "get", "talker", "rosout")[1] == "rosout\tINFO\tINFO\n"
 
 
