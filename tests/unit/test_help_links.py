@@ -4,20 +4,13 @@ heading of docs/, as MkDocs names them."""
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import pytest
 
 from console_tui.cli import SUBCOMMANDS, build_parser, completion_parser
 from console_tui.commands.arguments import DOCS_URL
 
-DOCS = Path(__file__).resolve().parents[2] / "docs"
-
-
-def slug(heading: str) -> str:
-    """A heading's anchor as Python-Markdown's toc makes it."""
-    text = re.sub(r"[^\w\s-]", "", heading).strip().lower()
-    return re.sub(r"[-\s]+", "-", text)
+from support.docs import DOCS, slug
 
 
 def help_texts() -> list[str]:
