@@ -4,10 +4,11 @@ A ``LogView`` maps row numbers to store seqs under a ``RuleSet``. With no active
 kept record is a row (no index is built). Otherwise an index of the seqs that pass is kept:
 
 - records that arrive are tested once, in ``update()``;
-- when the rules change (``set_rules``) the newest rows are filtered at once (the first
-  screen) and the rest by ``refilter_step(budget)``, newest first, in small pieces that the
-  caller runs from a timer or when idle. Meanwhile the rows are the newest ones done so far
-  plus everything that arrived since; records evicted meanwhile simply drop out.
+- when the rules change (``set_rules``) the rows around a seq (``around``: the record the
+  reader is on; else the newest) are filtered at once (the first screen), and the rest by
+  ``refilter_step(budget)``, outwards from there, in small pieces that the caller runs from a
+  timer or when idle. Meanwhile the rows are those done so far; records that arrive wait
+  until the records before them are done; records evicted meanwhile simply drop out.
 
 Each rule's match mask is kept per store chunk, so counts per rule are cheap, a rule is never
 tested twice on a record, and switching entries on and off, inverting them or moving them
@@ -21,7 +22,6 @@ goes on under the rules without it and lists it in ``switched_off`` for the call
 
 from __future__ import annotations
 
-import sys
 from array import array
 from bisect import bisect_left, bisect_right
 from itertools import compress
@@ -31,6 +31,7 @@ from time import perf_counter
 from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
 from .rules.time_limit import MatchTimeout, alarms, time_limit
+from .consecutive import consecutive
 from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 from .text import plural
 
@@ -67,6 +68,8 @@ class LogView:
         self._indexed = False
         self._reset_index()
         self._piece = _START_PIECE
+        #: The seq the rows were last filtered around (None: the newest).
+        self.around: int | None = None
         self.set_rules(rules or RuleSet())
 
     def _reset_index(self) -> None:
@@ -79,6 +82,8 @@ class LogView:
         self._start = 0  # first live entry of _back
         self._pending_lo = self._pending_hi = self.store.first_seq  # seqs still to refilter
         self._indexed_to = self.store.end_seq  # seqs below this are in the index (or pending)
+        #: Records from ``_indexed_to`` on are still to refilter (oldest first, into ``_back``).
+        self._rising = False
 
     # -- rules ------------------------------------------------------------------------------
 
@@ -97,9 +102,12 @@ class LogView:
         *,
         first_screen: int = FIRST_SCREEN_ROWS,
         budget_s: float = FIRST_SCREEN_BUDGET_S,
+        around: int | None = None,
     ) -> None:
-        """Use new rules: the newest ``first_screen`` rows at once (within ``budget_s``),
-        the rest by ``refilter_step``. A rule too slow to test is switched off (``switched_off``)."""
+        """Use new rules: ``first_screen`` rows each side of seq ``around`` (the newest when
+        None) at once (within ``budget_s``), the rest by ``refilter_step``. A rule too slow to
+        test is switched off (``switched_off``)."""
+        self.around = around
         with alarms():
             while True:
                 try:
@@ -124,7 +132,7 @@ class LogView:
         """Switch off the rules still being applied (the rules before them stay); returns them."""
         unfinished = [rule for rule in self.rules.active_rules() if rule in self._unfinished]
         if unfinished and self.refiltering:
-            self.set_rules(self.rules.without_rules(set(unfinished)))
+            self.set_rules(self.rules.without_rules(set(unfinished)), around=self.around)
             return unfinished
         return []
 
@@ -144,12 +152,20 @@ class LogView:
         self._indexed = bool(active)
         self._reset_index()
         if self._indexed:
-            self._pending_lo, self._pending_hi = store.first_seq, store.end_seq
+            origin = store.end_seq if self.around is None else min(max(self.around + 1, store.first_seq), store.end_seq)
+            self._pending_lo, self._pending_hi = store.first_seq, origin
+            self._indexed_to, self._rising = origin, origin < store.end_seq
             deadline = perf_counter() + budget_s
-            while self.refiltering and len(self._front) < first_screen and perf_counter() < deadline:
-                self._refilter_piece(self._piece)
+            while perf_counter() < deadline:
+                if self._rising_pending and len(self._back) < first_screen:
+                    self._rise_piece(self._piece)
+                elif self._falling_pending and len(self._front) < first_screen:
+                    self._refilter_piece(self._piece)
+                else:
+                    break
         if not self.refiltering:
             self._unfinished.clear()
+            self._rising = False
 
     def rebuild(self) -> None:
         """Re-index from scratch (after the store was cleared)."""
@@ -157,14 +173,27 @@ class LogView:
         self.set_rules(self.rules)
 
     @property
-    def refiltering(self) -> bool:
-        """Older records are still to be filtered under the current rules."""
+    def _falling_pending(self) -> bool:
+        """Records older than those done are still to be filtered."""
         return self._pending_hi > max(self._pending_lo, self.store.first_seq)
+
+    @property
+    def _rising_pending(self) -> bool:
+        """Records newer than those done (there when the rules changed, or since) are still to be filtered."""
+        return self._rising and self._indexed_to < self.store.end_seq
+
+    @property
+    def refiltering(self) -> bool:
+        """Records are still to be filtered under the current rules."""
+        return self._falling_pending or self._rising_pending
 
     @property
     def pending(self) -> int:
         """Records still to be filtered under the current rules."""
-        return max(self._pending_hi - max(self._pending_lo, self.store.first_seq), 0)
+        first = self.store.first_seq
+        falling = max(self._pending_hi - max(self._pending_lo, first), 0)
+        rising = self.store.end_seq - max(self._indexed_to, first) if self._rising_pending else 0
+        return falling + rising
 
     def refilter_step(self, budget_s: float = 0.008) -> bool:
         """Filter older records, newest first, for about ``budget_s``; True when all are done."""
@@ -172,10 +201,11 @@ class LogView:
             with alarms():
                 done = self._refilter_step(budget_s)
         except _TooSlow as slow:
-            self.set_rules(self._switch_off(slow))
+            self.set_rules(self._switch_off(slow), around=self.around)
             done = not self.refiltering
         if done:
             self._unfinished.clear()
+            self._rising = False
         return done
 
     def _refilter_step(self, budget_s: float) -> bool:
@@ -185,7 +215,10 @@ class LogView:
         deadline = perf_counter() + budget_s
         while self.refiltering:
             began = perf_counter()
-            rows = self._refilter_piece(self._piece)
+            if self._rising_pending:
+                rows = self._rise_piece(self._piece)
+            else:
+                rows = self._refilter_piece(self._piece)
             now = perf_counter()
             if rows:
                 # Size pieces to about a quarter of the budget, so a step overshoots little.
@@ -210,16 +243,33 @@ class LogView:
         self._pending_hi = lo
         return hi - lo
 
+    def _rise_piece(self, rows: int) -> int:
+        """Filter about ``rows`` records from ``_indexed_to`` on (to the end of a chunk)."""
+        store = self.store
+        lo = max(self._indexed_to, store.first_seq)
+        hi = min(lo + rows, store.end_seq)
+        chunk_end = store.chunk_start(lo) + CHUNK_SIZE
+        if chunk_end - lo <= 4 * rows:
+            hi = min(max(hi, chunk_end), store.end_seq)
+        for span in store.spans(lo, hi):
+            seqs, highlighted = self._evaluate(span)
+            self._back.extend(seqs)
+            self._back_marks.extend(highlighted)
+        self._indexed_to = hi
+        if hi >= store.end_seq:
+            self._rising = False
+        return hi - lo
+
     def update(self) -> None:
         """Take in records appended (and forget those evicted) since the last call."""
         try:
             with alarms():
                 self._update()
         except _TooSlow as slow:
-            self.set_rules(self._switch_off(slow))
+            self.set_rules(self._switch_off(slow), around=self.around)
 
     def _update(self) -> None:
-        if not self._indexed:
+        if not self._indexed or self._rising_pending:  # newer ones wait for those before them
             return
         store = self.store
         self._trim()
@@ -374,23 +424,3 @@ class LogView:
             at = bisect_left(back, seq, self._start)
             found = at < len(back) and back[at] == seq and self._back_marks[at]
         return "highlight" if found else "dim"
-
-
-#: 1 in every 8-byte lane, and each lane's index, for CHUNK_SIZE lanes (``consecutive``).
-_LANES = 8 * CHUNK_SIZE
-_ONES = int.from_bytes(array("q", [1] * CHUNK_SIZE).tobytes(), sys.byteorder)
-_INDEXES = int.from_bytes(array("q", range(CHUNK_SIZE)).tobytes(), sys.byteorder)
-
-
-def consecutive(first: int, count: int, *, descending: bool = False) -> array:
-    """``array("q", range(first, first + count))`` (reversed when ``descending``), built as
-    one big integer, one 64-bit lane per seq, instead of one Python int per seq."""
-    if count > CHUNK_SIZE or count <= 0:
-        values = range(first, first + count)
-        return array("q", reversed(values) if descending else values)
-    keep = (1 << (64 * count)) - 1
-    ones, indexes = _ONES & keep, _INDEXES & keep
-    value = (first + count - 1) * ones - indexes if descending else first * ones + indexes
-    seqs = array("q")
-    seqs.frombytes(value.to_bytes(8 * count, sys.byteorder))
-    return seqs

@@ -91,7 +91,7 @@ class OverviewActions(AppPart):
                 if self.view.refiltering:
                     await asyncio.sleep(0.05)  # the view decides the oldest rows first
                     continue
-                with self.table.keeping_position():
+                with self.table.keeping_position(cursor_line=True):
                     self.storms.sync(CATCH_UP_BUDGET_S)
                 self.timeline.sync(CATCH_UP_BUDGET_S / 3)
                 await pause_between_slices(CATCH_UP_PAUSE_S)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+from collections.abc import Callable
 
 from textual import work
 
@@ -43,15 +44,20 @@ class RuleActions(AppPart):
     query_bar: QueryBar
     rules_pane: RulesPane
     query_history: QueryHistory
+    follow_overview: Callable[[], None]
 
     #: The rules in force; a new set replaces it whole (rule sets are values).
     rules: RuleSet = RuleSet()
     _counts_at = 0.0
 
     def apply_rules(self, rules: RuleSet) -> None:
-        """Put ``rules`` in force: the newest screenful at once, the rest in the background."""
-        with self.table.keeping_position():
-            self.view.set_rules(rules)
+        """Put ``rules`` in force: the screenful around the selected row (the newest while
+        following the tail) at once, the rest in the background; the selected record stays
+        on its line (or the nearest shown in time)."""
+        table = self.table
+        around = None if table.following and table.paused_end is None else table.cursor_seq
+        with table.keeping_position(cursor_line=True):
+            self.view.set_rules(rules, around=around)
         self.rules_changed()
 
     def rules_changed(self) -> None:
@@ -61,6 +67,8 @@ class RuleActions(AppPart):
         rules = self.rules = self.view.rules
         table.decoration_of = self.view.decoration_of if rules.highlighting else None
         table.restyle()
+        with table.keeping_position(cursor_line=True):
+            self.follow_overview()  # the storms and the timeline count again under these rules
         for rule, why in self.view.take_switched_off():
             self.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
         if self.view.refiltering:
@@ -70,7 +78,7 @@ class RuleActions(AppPart):
 
     def action_stop_filtering(self) -> None:
         """Esc while rules are being applied: switch off the rules not applied yet."""
-        with self.table.keeping_position():
+        with self.table.keeping_position(cursor_line=True):
             stopped = self.view.stop_filtering()
         if stopped:
             described = "; ".join(rule.describe() for rule in stopped)
@@ -84,7 +92,7 @@ class RuleActions(AppPart):
         await asyncio.sleep(REFILTER_FIRST_PAUSE_S)  # the newest screenful is drawn first
         shown_at = self.clock()
         while True:
-            with self.table.keeping_position():
+            with self.table.keeping_position(cursor_line=True):
                 done = self.view.refilter_step(REFILTER_BUDGET_S)
             if self.view.switched_off:
                 self.rules_changed()  # filters again under the rules left, in a new worker

@@ -259,16 +259,21 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         return max(self.scrollable_content_region.height - 1, 1)
 
     @contextmanager
-    def keeping_position(self) -> Iterator[None]:
-        """Wrap a store/view update: the rows under the cursor and at the top stay put."""
+    def keeping_position(self, *, cursor_line: bool = False) -> Iterator[None]:
+        """Wrap a store/view update: the rows under the cursor and at the top stay put. With
+        ``cursor_line`` (rows come and go above and below it: the rules changed) the cursor's
+        record stays on its line of the screen instead, or the nearest shown in time."""
         top = int(self.scroll_y)
         top_seq = self.view.seq_at(top) if 0 <= top < self.row_count else None
         cursor_seq = self.cursor_seq
         shown = self._shown_seqs(top)
+        line = self.cursor_row - top if cursor_line and cursor_seq is not None else None
         yield
-        self._after_update(top_seq, cursor_seq, shown)
+        self._after_update(top_seq, cursor_seq, shown, line)
 
-    def _after_update(self, top_seq: int | None, cursor_seq: int | None, shown: tuple | None = None) -> None:
+    def _after_update(
+        self, top_seq: int | None, cursor_seq: int | None, shown: tuple | None = None, line: int | None = None
+    ) -> None:
         rows = self.row_count
         top: int | None
         if self.following and self.paused_end is None:
@@ -276,10 +281,12 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
             top = self._end_top()
         else:
             if cursor_seq is not None:
-                self.cursor_row = min(self.view.row_of(cursor_seq), max(rows - 1, 0))
+                self.cursor_row = min(self._place_of(cursor_seq, line is not None), max(rows - 1, 0))
             else:
                 self.cursor_row = min(self.cursor_row, max(rows - 1, 0))
             top = self.view.row_of(top_seq) if top_seq is not None else None
+            if line is not None:
+                top = max(self.cursor_row - line, 0)
         if shown is not None and top is not None:
             now = self._shown_seqs(top)
             changed = _badges_changed(shown, now, badges=self.badge_of is not None)
@@ -298,6 +305,23 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
             self.set_scroll(None, top)
         self.refresh()
         self.post_message(self.StateChanged())
+
+    def _place_of(self, seq: int, nearest: bool) -> int:
+        """The row of ``seq``; when no row shows it, the next row, or (``nearest``) the
+        row nearest it in time."""
+        view, store = self.view, self.store
+        if not nearest:
+            return view.row_of(seq)
+        shown = view.row_shown(seq)
+        if shown is not None:
+            return shown
+        after = view.row_of(seq)
+        if after == 0 or after >= self.row_count or seq not in store:
+            return after
+        stamp = store.stamp_of(seq)
+        before_gap = stamp - store.stamp_of(view.seq_at(after - 1))
+        after_gap = store.stamp_of(view.seq_at(after)) - stamp
+        return after - 1 if before_gap <= after_gap else after
 
     def _shown_seqs(self, top: int) -> tuple[object, ...]:
         """The cursor's seq and those of the rows on screen with ``top`` as the first row."""

@@ -1,0 +1,88 @@
+"""Narrowing a loaded run down (issue 28): on a 20,213-line ``rosout.log`` with 330 storms
+of 50 repeats, every rule change recounts the storms and the timeline, the selected record
+keeps its line on the screen, and the level keys compose."""
+
+from __future__ import annotations
+
+from console_tui.ui.app import ConsoleApp
+
+from support.storm_log import error_cycles, error_number, rows_before, write_storm_log
+from support.ui import cursor_number, line_with, screen_text, table_rows, until
+
+LINES = 20_213
+
+
+def status(app) -> str:
+    return screen_text(app).splitlines()[app.status_bar.region.y]
+
+
+def strip_lines(app) -> list[str]:
+    y = app.timeline_strip.region.y
+    return screen_text(app).splitlines()[y : y + app.timeline_strip.region.height]
+
+
+def settled(app) -> bool:
+    """Every count caught up with the rules (the view, the storms, the timeline)."""
+    return not (app.loading or app.view.refiltering or app.storms.behind or app.timeline.behind)
+
+
+async def loaded(pilot, app) -> None:
+    await until(pilot, lambda: f"{LINES:,}/{LINES:,} shown" in status(app) and settled(app), what="the file")
+
+
+def storm_log_app(tmp_path) -> ConsoleApp:
+    path = tmp_path / "rosout.log"
+    assert write_storm_log(path) == LINES
+    return ConsoleApp(files=[str(path)], utc=True)
+
+
+async def test_storms_and_the_timeline_are_recounted_after_every_rule_change(tmp_path):
+    app = storm_log_app(tmp_path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        assert "330 storms" in status(app)
+        assert any("×50" in line for _, line in table_rows(app).values())
+        full_label = strip_lines(app)[0]
+        await pilot.press("2")  # hide INFO: no storm is left (each WARN says another plan)
+        await until(pilot, lambda: "413/20,213 shown" in status(app) and settled(app), what="INFO hidden")
+        assert "storm" not in status(app)
+        assert not any("×" in line for _, line in table_rows(app).values())
+        assert "shown rows only" in strip_lines(app)[0] and strip_lines(app)[0] != full_label
+        await pilot.press("2")  # INFO again: the same 330 storms, each one row
+        await until(pilot, lambda: "20,213/20,213 shown" in status(app) and settled(app), what="INFO shown again")
+        assert "330 storms" in status(app)
+        rows = [line for _, line in table_rows(app).values()]
+        assert any("×50" in line and "queue full in burst 329" in line for line in rows)
+        assert sum("queue full in burst 329" in line for line in rows) == 1
+        await pilot.press("2", "3", "4")  # every level in the file hidden
+        await until(pilot, lambda: "0/20,213 shown" in status(app) and settled(app), what="every level hidden")
+        strip = strip_lines(app)
+        assert "no rows shown" in strip[0]
+        assert not any(mark in "".join(strip) for mark in "EW▇█")
+        assert "storm" not in status(app)
+
+
+async def test_the_selected_record_keeps_its_line_through_rule_changes(tmp_path):
+    app = storm_log_app(tmp_path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        cycle = error_cycles()[40]  # an ERROR far from either end: row 1,972 of 3,998
+        number = error_number(cycle)
+        await pilot.press("home", *["pagedown"] * (rows_before(cycle) // 24))
+        while cursor_number(app) != number:
+            await pilot.press("down")
+        text = f"plan failed {cycle}"
+        y = line_with(app, text)[0]
+        for keys, shown in ((("2",), "413/"), (("2",), "20,213/"), (("3", "2"), "83/"), (("2", "3"), "20,213/")):
+            await pilot.press(*keys)
+            await until(pilot, lambda shown=shown: f"{shown}20,213 shown" in status(app) and settled(app))
+            assert cursor_number(app) == number, f"after {keys}: the cursor left the ERROR"
+            assert line_with(app, text)[0] == y, f"after {keys}: the ERROR moved on the screen"
+        # A record the rules hide: the cursor goes to the shown record nearest in time.
+        await pilot.press("up")  # the WARN of that cycle, 1 s before the ERROR
+        warn = f"slow plan {cycle}"
+        await until(pilot, lambda: cursor_number(app) == int(line_with(app, warn)[1].split()[0]))
+        y = line_with(app, warn)[0]
+        await pilot.press("3")  # WARN hidden: the ERROR 1 s later is nearer than the INFO 1.1 s before
+        await until(pilot, lambda: "19,883/20,213 shown" in status(app) and settled(app))
+        assert cursor_number(app) == number and line_with(app, text)[0] == y
