@@ -28,10 +28,10 @@ from itertools import compress
 from operator import neg
 from time import perf_counter
 
+from .consecutive import consecutive
 from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
 from .rules.time_limit import MatchTimeout, alarms, time_limit
-from .consecutive import consecutive
 from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 from .text import plural
 
