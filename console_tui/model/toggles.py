@@ -76,30 +76,38 @@ def with_minimum(rules: RuleSet, level: int) -> RuleSet:
 
 
 def raise_minimum(rules: RuleSet) -> RuleSet:
-    """Hide one more level from below (never FATAL)."""
+    """Hide the lowest level shown, and those below it (never FATAL); the levels hidden on
+    their own above it stay hidden."""
+    hidden = hidden_levels(rules)
     lowest = minimum_level(rules)
-    above = [level for level in _ORDER if level > lowest]
-    return with_minimum(rules, above[0] if above else _ORDER[-1])
+    above = [level for level in _ORDER if level > lowest and level not in hidden]
+    if not above:
+        return rules
+    return with_hidden_levels(rules, hidden | {level for level in _ORDER if level < above[0]})
 
 
 def lower_minimum(rules: RuleSet) -> RuleSet:
-    """Show one more level below the lowest shown."""
-    lowest = minimum_level(rules)
-    below = [level for level in _ORDER if level < lowest]
-    return with_minimum(rules, below[-1] if below else _ORDER[0])
+    """Show the level just below the lowest shown (the levels hidden on their own above it
+    stay hidden)."""
+    hidden = hidden_levels(rules)
+    below = [level for level in _ORDER if level < minimum_level(rules)]
+    return with_hidden_levels(rules, hidden - {below[-1]}) if below else rules
 
 
 def levels_text(rules: RuleSet) -> str:
-    """The status line's words: ``""`` (every level), ``level≥WARN``, ``hiding INFO, ERROR``."""
+    """The status line's words: ``""`` (every level), ``level≥WARN``, ``hiding INFO, ERROR``,
+    ``level≥INFO, hiding ERROR``."""
     hidden = hidden_levels(rules)
     if not hidden:
         return ""
     if hidden == ALL_LEVELS:
         return "every level hidden"
     lowest = minimum_level(rules)
-    if hidden == frozenset(level for level in _ORDER if level < lowest):
-        return f"level≥{severity_name(lowest)}"
-    return "hiding " + ", ".join(severity_name(level) for level in _ORDER if level in hidden)
+    others = [severity_name(level) for level in _ORDER if level in hidden and level > lowest]
+    if lowest == _ORDER[0]:
+        return "hiding " + ", ".join(others)
+    minimum = f"level≥{severity_name(lowest)}"
+    return f"{minimum}, hiding {', '.join(others)}" if others else minimum
 
 
 # -- nodes ------------------------------------------------------------------------------------

@@ -86,3 +86,22 @@ async def test_the_selected_record_keeps_its_line_through_rule_changes(tmp_path)
         await pilot.press("3")  # WARN hidden: the ERROR 1 s later is nearer than the INFO 1.1 s before
         await until(pilot, lambda: "19,883/20,213 shown" in status(app) and settled(app))
         assert cursor_number(app) == number and line_with(app, text)[0] == y
+
+
+async def test_the_minimum_level_never_shows_a_level_hidden_on_its_own(tmp_path):
+    app = storm_log_app(tmp_path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        await pilot.press("2")  # INFO hidden
+        await until(pilot, lambda: "hiding INFO" in status(app) and settled(app))
+        await pilot.press("greater_than_sign")  # the minimum above DEBUG: INFO stays hidden
+        await until(pilot, lambda: "level≥WARN" in status(app) and settled(app))
+        assert "413/20,213 shown" in status(app)
+        assert not any(" INFO " in line for _, line in table_rows(app).values())
+        await pilot.press("0", "3", "greater_than_sign")  # WARN hidden, then the minimum up: to INFO
+        await until(pilot, lambda: "level≥INFO, hiding WARN" in status(app) and settled(app))
+        assert "19,883/20,213 shown" in status(app)
+        await pilot.press("greater_than_sign")  # past WARN (hidden already): ERROR
+        await until(pilot, lambda: "level≥ERROR" in status(app) and settled(app))
+        assert "83/20,213 shown" in status(app)
+        assert {line.split()[2] for _, line in table_rows(app).values()} == {"ERROR"}

@@ -46,7 +46,7 @@ def test_level_toggles_are_one_rule_in_the_rule_set():
     rules = toggles.toggle_level(rules, 20)
     assert shown_levels(rules) == [10, 30, 40, 50]
     assert toggles.levels_text(rules) == "hiding INFO"
-    rules = toggles.raise_minimum(toggles.raise_minimum(rules))
+    rules = toggles.raise_minimum(rules)  # above DEBUG, the lowest shown: INFO stays hidden
     assert shown_levels(rules) == [30, 40, 50] and toggles.levels_text(rules) == "level≥WARN"
     assert len(rules.entries) == 2 and rules.entries[1].toggle == toggles.LEVELS
     assert rules.entries[1].describe() == "severity DEBUG, INFO"
@@ -63,6 +63,22 @@ def test_level_toggles_are_one_rule_in_the_rule_set():
     assert toggles.hidden_levels(rules) == frozenset() and shown_levels(rules) == [10, 20, 30, 40, 50]
     rules = toggles.toggle_level(rules, 10)
     assert shown_levels(rules) == [20, 30, 40, 50] and len(rules.entries) == 2
+
+
+def test_the_minimum_level_and_the_level_toggles_compose():
+    rules = toggles.toggle_level(RuleSet(), 30)  # WARN hidden on its own
+    rules = toggles.raise_minimum(rules)
+    assert shown_levels(rules) == [20, 40, 50] and toggles.levels_text(rules) == "level≥INFO, hiding WARN"
+    rules = toggles.raise_minimum(rules)  # past WARN, hidden already: to ERROR
+    assert shown_levels(rules) == [40, 50] and toggles.levels_text(rules) == "level≥ERROR"
+    rules = toggles.lower_minimum(rules)
+    assert shown_levels(rules) == [30, 40, 50]
+    rules = toggles.toggle_level(toggles.toggle_level(RuleSet(), 40), 10)
+    assert toggles.levels_text(rules) == "level≥INFO, hiding ERROR"
+    rules = toggles.lower_minimum(rules)  # DEBUG again, ERROR still hidden
+    assert shown_levels(rules) == [10, 20, 30, 50] and toggles.levels_text(rules) == "hiding ERROR"
+    rules = toggles.with_hidden_levels(RuleSet(), frozenset({10, 20, 30, 40}))
+    assert toggles.raise_minimum(rules) == rules  # FATAL, the last shown, stays
 
 
 def test_solo_and_mute_are_exact_and_exclusive():
