@@ -314,6 +314,17 @@ class ConsoleApp(
         )
         self.status_bar.show_facts(facts)
         table.show_hint(empty_hint(facts, self.view.refiltering))
+        self._refresh_footer()
+
+    _footer_state: tuple[bool | None, ...] = ()
+
+    def _refresh_footer(self) -> None:
+        """The footer's keys that come and go (``check_action``) follow the app's state when
+        it changes (a load ends, filtering is done), not only when the focus moves."""
+        state = tuple(self.check_action(action, ()) for action in ("cancel_load", "stop_filtering", "clear_search"))
+        if state != self._footer_state:
+            self._footer_state = state
+            self.refresh_bindings()
 
     async def on_event(self, event: events.Event) -> None:
         # Keys typed ahead go where they were meant (see focus.py): they wait while the screen

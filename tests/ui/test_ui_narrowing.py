@@ -40,6 +40,8 @@ async def test_storms_and_the_timeline_are_recounted_after_every_rule_change(tmp
     app = storm_log_app(tmp_path)
     async with app.run_test(size=(100, 30)) as pilot:
         await loaded(pilot, app)
+        # The load is over: the footer no longer offers to cancel it (the focus never moved).
+        await until(pilot, lambda: "Cancel load" not in screen_text(app).splitlines()[-1], what="the footer")
         assert "330 storms" in status(app)
         assert any("×50" in line for _, line in table_rows(app).values())
         full_label = strip_lines(app)[0]
