@@ -246,6 +246,13 @@ class Search:
             return len(older) + len(newer)
         return len(older) - bisect_right(older, -limit, key=neg) + bisect_left(newer, limit)
 
+    def between(self, lo: int, hi: int) -> list[int]:
+        """The matches found with ``lo <= seq < hi``, oldest first."""
+        older, newer = self._older, self._newer
+        found = list(reversed(older[bisect_right(older, -hi, key=neg) : bisect_right(older, -lo, key=neg)]))
+        found += newer[bisect_left(newer, lo) : bisect_left(newer, hi)]
+        return found
+
     def index(self, seq: int) -> int | None:
         """1-based place of match ``seq`` among all matches, when known (it is a match and
         every older record has been looked at); else None."""

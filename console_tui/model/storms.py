@@ -344,6 +344,10 @@ class StormRows(ShownFollower):
             gone = set(members)
             rows[lo:hi] = array("q", [seq for seq in rows[lo:hi] if seq not in gone])
 
+    def collapsed_storms(self) -> list[Storm]:
+        """The storms shown as one row each, oldest first."""
+        return sorted((storm for storm in self._storms.values() if not storm.expanded), key=lambda storm: storm.head)
+
     @property
     def storm_count(self) -> int:
         """Storms (runs of two or more) among the rows."""

@@ -15,6 +15,8 @@ from textual.binding import Binding
 from ..model.marks import Marks
 from ..model.rules.time_limit import MatchTimeout, time_limit
 from ..model.search import PENDING, Search, describe_search, display_pattern, parse_search
+from ..model.search_rows import MatchRows
+from ..model.storms import StormRows
 from ..model.text import plural
 from .app_part import AppPart
 from .focus import focus_now
@@ -61,12 +63,14 @@ class SearchActions(AppPart):
     # What else it uses of the app (``ConsoleApp`` sets them).
     search_bar: SearchBar
     marks: Marks
+    storms: StormRows
 
     search: Search | None = None
     _search_rules: object = None
     _search_origin: tuple[int | None, bool] | None = None
     _jump: _Jump | None = None
     _search_text = ""
+    _match_rows: tuple[tuple, MatchRows] | None = None
 
     # -- the search line ----------------------------------------------------------------------
 
@@ -136,7 +140,7 @@ class SearchActions(AppPart):
         if search is None:
             self.notify("No search yet: f finds a text or a /regex/.", timeout=4)
             return
-        seq = self.table.cursor_last_seq if forward else self.table.cursor_seq
+        seq = self.table.cursor_seq
         if seq is None:
             return
         self._jump = _Jump(seq, forward)
@@ -163,6 +167,11 @@ class SearchActions(AppPart):
             return True
         limit = self.table.paused_end
         found = search.nearest(jump.seq, forward=jump.forward, inclusive=jump.inclusive, limit=limit)
+        if jump.forward and not jump.inclusive:
+            # Row to row: past the matches the cursor's row shows (a collapsed storm's repeats).
+            row = self.table.cursor_row
+            while found is not None and found != PENDING and self.storms.row_showing(found) <= row:
+                found = search.nearest(found, forward=True, limit=limit)
         if found == PENDING:
             return False
         if found is None and jump.either_way:
@@ -272,7 +281,32 @@ class SearchActions(AppPart):
         if not found:
             return f"no match {what}"
         seq = self.table.cursor_seq
-        index = search.index(seq) if seq is not None else None
+        if limit is None:  # counted as rows: a collapsed storm's matches are one
+            rows = self._rows_of(search)
+            index = rows.index(seq) if seq is not None else None
+            messages = f"in {rows.rows:,} rows, {plural(rows.messages, 'message')}" if rows.rows != found else ""
+            found = rows.rows
+        else:
+            index = search.index(seq) if seq is not None else None
+            messages = ""
         if index is not None:
-            return f"match {index:,} of {found:,} {what}"
-        return f"{plural(found, 'match', 'matches')} {what}"
+            said = f"match {index:,} of {found:,} {what}"
+        else:
+            said = f"{plural(found, 'match', 'matches')} {what}"
+        return f"{said}: {messages}" if messages else said
+
+    def _rows_of(self, search: Search) -> MatchRows:
+        """The rows holding matches (counted again when the matches or the storms changed)."""
+        storms = self.storms
+        key = (
+            search,
+            search.count(),
+            storms.done_to,
+            len(storms),
+            storms.storm_count,
+            storms.mask_digits,
+            storms.enabled,
+        )
+        if self._match_rows is None or self._match_rows[0] != key:
+            self._match_rows = (key, MatchRows(search, storms))
+        return self._match_rows[1]

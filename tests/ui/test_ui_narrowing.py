@@ -7,7 +7,7 @@ from __future__ import annotations
 from console_tui.ui.app import ConsoleApp
 
 from support.storm_log import error_cycles, error_number, rows_before, write_storm_log
-from support.ui import cursor_number, line_with, screen_text, table_rows, until
+from support.ui import cursor_number, line_with, screen_text, table_rows, type_text, until
 
 LINES = 20_213
 
@@ -107,3 +107,34 @@ async def test_the_minimum_level_never_shows_a_level_hidden_on_its_own(tmp_path)
         await until(pilot, lambda: "level≥ERROR" in status(app) and settled(app))
         assert "83/20,213 shown" in status(app)
         assert {line.split()[2] for _, line in table_rows(app).values()} == {"ERROR"}
+
+
+def on_row(app, text: str) -> bool:
+    """Whether the cursor is on the row showing ``text`` (the # column names its record)."""
+    number = next(word for word in line_with(app, text)[1].split() if word.isdigit())
+    return app.table.cursor_seq == int(number) - 1
+
+
+async def test_the_search_counts_rows_and_goes_row_to_row(tmp_path):
+    app = storm_log_app(tmp_path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        await pilot.press("f")
+        await type_text(pilot, "/burst (30|31|32),/")
+        await pilot.press("enter")
+        what = "/burst (30|31|32),/"
+        await until(
+            pilot, lambda: f"match 3 of 3 {what}: in 3 rows, 150 messages" in status(app), what=lambda: status(app)
+        )
+        assert "×50" in line_with(app, "burst 32,")[1]
+        assert on_row(app, "burst 32,")
+        await pilot.press("N")
+        await until(pilot, lambda: "match 2 of 3" in status(app), what=lambda: status(app))
+        assert on_row(app, "burst 31,")
+        await pilot.press("N")
+        await until(pilot, lambda: "match 1 of 3" in status(app), what=lambda: status(app))
+        await pilot.press("n")  # past burst 30's 49 repeats, to the next row holding a match
+        await until(pilot, lambda: "match 2 of 3" in status(app), what=lambda: status(app))
+        assert on_row(app, "burst 31,")
+        await pilot.press("Z")  # storms not collapsed: every message a row
+        await until(pilot, lambda: "of 150" in status(app) and "rows" not in status(app), what=lambda: status(app))

@@ -235,7 +235,7 @@ async def test_level_keys_hide_levels_and_say_so_in_the_status_line():
         assert severities <= {"WARN", "ERROR", "FATAL"}, severities
         await pilot.press("4")  # hide ERROR too
         await pilot.pause()
-        assert "hiding DEBUG, INFO, ERROR" in status_line(app)
+        assert "level≥WARN, hiding ERROR" in status_line(app)
         await pilot.press("r")  # the toggles are a rule in the rules pane
         await pilot.pause()
         line_with(app, "hide severity DEBUG, INFO, ERROR  (level")
