@@ -4,6 +4,8 @@ keeps its line on the screen, and the level keys compose."""
 
 from __future__ import annotations
 
+import random
+
 from console_tui.ui.app import ConsoleApp
 
 from support.storm_log import error_cycles, error_number, rows_before, write_storm_log
@@ -138,3 +140,28 @@ async def test_the_search_counts_rows_and_goes_row_to_row(tmp_path):
         assert on_row(app, "burst 31,")
         await pilot.press("Z")  # storms not collapsed: every message a row
         await until(pilot, lambda: "of 150" in status(app) and "rows" not in status(app), what=lambda: status(app))
+
+
+async def test_random_rule_changes_keep_the_selected_record_selected(tmp_path):
+    """Level keys, ``>``/``<``, solo/mute of the row's node (the palette's), storms on and off, in a seeded
+    random order: whenever the rules still show the selected record, it stays selected, on
+    its line of the screen."""
+    app = storm_log_app(tmp_path)
+    keys = ["1", "2", "3", "4", "greater_than_sign", "less_than_sign", "0", "Z", "solo_row_node", "mute_row_node"]
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        await pilot.press("home", *["pagedown"] * 80)
+        chosen = random.Random(28)
+        for _ in range(14):
+            key = chosen.choice(keys)
+            selected, line = app.table.cursor_seq, app.table.cursor_row - int(app.table.scroll_y)
+            if "_" in key:  # the palette's actions on the row's node
+                await app.run_action(key)
+            else:
+                await pilot.press(key)
+            await until(pilot, lambda: settled(app), what=f"the rules after {key}")
+            await pilot.pause()
+            if selected is not None and app.view.row_shown(selected) is not None:
+                number = f"{selected + 1} "
+                assert app.table.cursor_seq == selected, f"{key}: the selected record lost"
+                assert number in screen_text(app).splitlines()[app.table.region.y + 1 + line], f"{key}: moved"

@@ -306,23 +306,6 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         self.refresh()
         self.post_message(self.StateChanged())
 
-    def _place_of(self, seq: int, nearest: bool) -> int:
-        """The row of ``seq``; when no row shows it, the next row, or (``nearest``) the
-        row nearest it in time."""
-        view, store = self.view, self.store
-        if not nearest:
-            return view.row_of(seq)
-        shown = view.row_shown(seq)
-        if shown is not None:
-            return shown
-        after = view.row_of(seq)
-        if after == 0 or after >= self.row_count or seq not in store:
-            return after
-        stamp = store.stamp_of(seq)
-        before_gap = stamp - store.stamp_of(view.seq_at(after - 1))
-        after_gap = store.stamp_of(view.seq_at(after)) - stamp
-        return after - 1 if before_gap <= after_gap else after
-
     def _shown_seqs(self, top: int) -> tuple[object, ...]:
         """The cursor's seq and those of the rows on screen with ``top`` as the first row."""
         seq_at = self.view.seq_at

@@ -1,5 +1,5 @@
 """The log table's cursor and the rows selected with it: moving by keys and clicks, jumping
-to a record's row, and which rows (and seqs) are selected.
+to a record's row (or the one nearest it in time), and which rows (and seqs) are selected.
 
 A part of ``LogTable`` (it mixes this in).
 """
@@ -15,6 +15,7 @@ from textual.message import Message
 from textual.scroll_view import ScrollView
 
 if TYPE_CHECKING:
+    from ...model.store import LogStore
     from .log_table import TableRows
 
 
@@ -23,6 +24,7 @@ class TableCursor(ScrollView):
     mixes this in)."""
 
     # What it reads of the table (``LogTable`` sets them).
+    store: LogStore
     view: TableRows
     following: bool
     paused_end: int | None
@@ -64,6 +66,23 @@ class TableCursor(ScrollView):
             self.following = True
         self.refresh()
         self.post_message(self.StateChanged())
+
+    def _place_of(self, seq: int, nearest: bool) -> int:
+        """The row of ``seq``; when no row shows it, the next row, or (``nearest``) the
+        row nearest it in time."""
+        view, store = self.view, self.store
+        if not nearest:
+            return view.row_of(seq)
+        shown = view.row_shown(seq)
+        if shown is not None:
+            return shown
+        after = view.row_of(seq)
+        if after == 0 or after >= self.row_count or seq not in store:
+            return after
+        stamp = store.stamp_of(seq)
+        before_gap = stamp - store.stamp_of(view.seq_at(after - 1))
+        after_gap = store.stamp_of(view.seq_at(after)) - stamp
+        return after - 1 if before_gap <= after_gap else after
 
     def jump_to_seq(self, seq: int) -> bool:
         """Put the cursor on the row of ``seq`` (a third down the screen when it was off the

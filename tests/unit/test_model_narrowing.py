@@ -1,0 +1,127 @@
+"""Narrowing a loaded run down (issue 28), as a property: after any sequence of rule changes
+(level toggles, ``>``/``<``, solo/mute, query edits, storms on and off), each applied around
+a selected record while the last one is still being worked through, the rows, the storms, the
+count of shown messages and the timeline's totals equal those computed from scratch under the
+final rules; and the rows around the selected record are decided at once."""
+
+from __future__ import annotations
+
+from functools import cache
+from pathlib import Path
+
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from console_tui.model import toggles
+from console_tui.model.formats.rosout_log import parse_rosout_record
+from console_tui.model.rules.query import parse_query
+from console_tui.model.rules.ruleset import RuleSet
+from console_tui.model.store import LogStore
+from console_tui.model.storms import StormRows
+from console_tui.model.timeline import Timeline
+from console_tui.model.view import LogView
+
+from support.storm_log import write_storm_log
+
+NODES = ["/talker", "/listener", "/planner"]
+QUERIES = ["", "burst", "heard 1", "-failed", "level>=warn", "node:/talker,/planner", "/burst [0-9]+0,/", "+plan"]
+
+
+@cache
+def loaded_store() -> LogStore:
+    """The 20,213 records of the storm log (``support.storm_log``), read as the loader reads them."""
+    path = Path(__file__).with_name(".narrowing-rosout.log")
+    try:
+        write_storm_log(path)
+        records = [parse_rosout_record(line, "rosout.log") for line in path.read_text().splitlines()]
+    finally:
+        path.unlink(missing_ok=True)
+    store = LogStore()
+    store.extend(records)
+    return store
+
+
+def rows_of(rows) -> list[int]:
+    return [rows.seq_at(row) for row in range(len(rows))]
+
+
+def from_scratch(store: LogStore, rules: RuleSet, storms_on: bool):
+    view = LogView(store, rules)
+    while not view.refilter_step(1.0):
+        pass
+    storms = StormRows(store, view, enabled=storms_on)
+    timeline = Timeline(store, view)
+    assert storms.sync() and timeline.sync()
+    return view, storms, timeline
+
+
+def apply(rules: RuleSet, op: tuple) -> RuleSet:
+    kind, arg = op
+    if kind == "level":
+        return toggles.toggle_level(rules, arg)
+    if kind == "raise":
+        return toggles.raise_minimum(rules)
+    if kind == "lower":
+        return toggles.lower_minimum(rules)
+    if kind == "solo":
+        return toggles.toggle_solo(rules, arg)
+    if kind == "mute":
+        return toggles.toggle_mute(rules, arg)
+    if kind == "query":
+        return rules.with_query(parse_query(arg, utc=True))
+    return rules
+
+
+OPS = st.one_of(
+    st.tuples(st.just("level"), st.sampled_from([10, 20, 30, 40, 50])),
+    st.tuples(st.sampled_from(["raise", "lower", "storms"]), st.none()),
+    st.tuples(st.sampled_from(["solo", "mute"]), st.sampled_from(NODES)),
+    st.tuples(st.just("query"), st.sampled_from(QUERIES)),
+)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    ops=st.lists(st.tuples(OPS, st.integers(0, 4), st.floats(0, 1)), min_size=1, max_size=8),
+    selected=st.integers(0, 20_212),
+)
+def test_any_rule_changes_end_where_the_final_rules_computed_afresh_do(ops, selected):
+    store = loaded_store()
+    view = LogView(store)
+    storms = StormRows(store, view)
+    timeline = Timeline(store, view)
+    assert storms.sync() and timeline.sync()
+    rules = RuleSet()
+    for op, steps, where in ops:
+        if op[0] == "storms":
+            storms.set_enabled(not storms.enabled)
+        else:
+            rules = apply(rules, op)
+            # Around a record shown now (the table's selected row), or the newest (following).
+            around = view.seq_at(int(where * (len(view) - 1))) if where < 0.9 and len(view) else None
+            view.set_rules(rules, around=around)
+            if around is not None and view.rules.filtering:
+                # The rows around it are decided at once: its row, and the rows each side of it.
+                row = view.row_of(around)
+                shown = rows_of(LogView(store, rules))  # ... as the rules decide them afresh
+                at = shown.index(around) if around in shown else None
+                if at is not None:
+                    assert view.seq_at(row) == around
+                    lo, hi = max(at - 20, 0), min(at + 20, len(shown))
+                    assert [view.seq_at(row - at + i) for i in range(lo, hi)] == shown[lo:hi]
+        for _ in range(steps):  # part of the work done before the next change
+            view.refilter_step(0.0005)
+            storms.sync(0.0005)
+            timeline.sync(0.0005)
+    while not view.refilter_step(1.0):
+        pass
+    assert storms.sync() and timeline.sync()
+    fresh_view, fresh_storms, fresh_timeline = from_scratch(store, view.rules, storms.enabled)
+    assert rows_of(view) == rows_of(fresh_view)
+    assert len(view) == len(fresh_view)  # the status line's "N/20,213 shown"
+    assert rows_of(storms) == rows_of(fresh_storms)
+    assert storms.storm_count == fresh_storms.storm_count
+    assert [storms.badge(seq) for seq in rows_of(storms)] == [fresh_storms.badge(seq) for seq in rows_of(fresh_storms)]
+    assert timeline.total == fresh_timeline.total == len(fresh_view)
+    columns, fresh_columns = timeline.columns(100), fresh_timeline.columns(100)
+    assert (columns and columns.totals()) == (fresh_columns and fresh_columns.totals())
