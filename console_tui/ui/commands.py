@@ -3,11 +3,16 @@
 An entry names an app action (run with ``App.run_action``) and, when a key does the same,
 the id of that key's binding: the palette shows the key as the bindings (and the user's
 keymap) say. A new feature adds its entries to ``palette_commands``.
+
+What a person types is looked for in the title, then in the words people use for the entry
+(``words``: "search" finds Find, "editor" the source file), then in its help; an entry that
+ends an action (``ends``: clear the search) ranks below the one that starts it.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+import re
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from functools import partial
 from typing import TYPE_CHECKING, cast
@@ -31,6 +36,10 @@ class PaletteCommand:
     action: str
     #: The id of the binding that does the same, whose key is shown.
     key: str | None = None
+    #: Other words people look for it by (searched as the title is).
+    words: str = ""
+    #: It ends or undoes what another entry starts (it ranks below that one).
+    ends: bool = False
 
 
 def palette_commands() -> list[PaletteCommand]:
@@ -40,10 +49,16 @@ def palette_commands() -> list[PaletteCommand]:
         C("Pause / resume", "Stop the view; messages keep arriving", "toggle_pause", "console.pause"),
         C("Follow tail", "Jump to the newest message and follow it", "follow", "table.follow"),
         C("Clear", "Drop every message", "clear", "console.clear"),
-        C("Details", "Every field of the selected message", "details", "table.details"),
+        C("Details", "Every field of the selected message; y copies it", "details", "table.details", "copy yank"),
         C("Columns", "Choose the table's columns", "columns", "console.columns"),
         C("Open files", "Log files and recordings, merged by time", "open", "console.open"),
-        C("Save", "Save the rows shown, or everything (rqt_console CSV or JSON Lines)", "save", "console.save"),
+        C(
+            "Save",
+            "Save the rows shown, or everything (rqt_console CSV or JSON Lines)",
+            "save",
+            "console.save",
+            "export write",
+        ),
         C("Load problems", "What went wrong while loading files, and where", "problems", "console.problems"),
         *(
             C(
@@ -61,9 +76,21 @@ def palette_commands() -> list[PaletteCommand]:
             "loggers_for_row",
             "console.loggers_for_row",
         ),
-        C("Query", 'Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"', "query", "console.query"),
-        C("Rules", "Show or hide the rules pane: every rule, its switches and counts", "toggle_rules", "console.rules"),
-        C("Add a rule", "A new exclude or highlight rule of any kind", "add_rule"),
+        C(
+            "Query",
+            'Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"',
+            "query",
+            "console.query",
+            "filter",
+        ),
+        C(
+            "Rules",
+            "Show or hide the rules pane: every rule, its switches and counts",
+            "toggle_rules",
+            "console.rules",
+            "filter",
+        ),
+        C("Add a rule", "A new exclude or highlight rule of any kind", "add_rule", words="filter"),
         C(
             "Hide messages like the selected rows",
             "Exclude their nodes, severities, messages or location",
@@ -85,7 +112,7 @@ def palette_commands() -> list[PaletteCommand]:
         C("Save rules", "Save the rule set to a TOML file", "save_rules"),
         C("Open rules", "Load a rule set from a TOML file", "load_rules"),
         C("Restore the last rules", "The rule set in force when console-tui last exited", "restore_rules"),
-        C("Clear rules", "Remove every rule", "clear_rules"),
+        C("Clear rules", "Remove every rule", "clear_rules", words="filter", ends=True),
         *navigation_commands(),
         C(
             "Timeline: pick a time",
@@ -126,10 +153,16 @@ def navigation_commands() -> list[PaletteCommand]:
     """Search, jumps, marks, level and node toggles, time formats, the source file."""
     C = PaletteCommand
     return [
-        C("Find", "Search a text or /regex/ in the messages; the rows stay, matches are marked", "search", "nav.find"),
+        C(
+            "Find",
+            "Search a text or /regex/ in the messages; the rows stay, matches are marked",
+            "search",
+            "nav.find",
+            "search grep look",
+        ),
         C("Next match", "The next row the search matches, below", "next_match", "nav.next_match"),
         C("Previous match", "The previous row the search matches, above", "previous_match", "nav.previous_match"),
-        C("Clear the search", "No search: no marks, no counter", "clear_search", "console.clear_search"),
+        C("Clear the search", "No search: no marks, no counter", "clear_search", "console.clear_search", ends=True),
         C("Next error", "The next ERROR or FATAL below", "next_level(40)", "nav.next_error"),
         C("Previous error", "The previous ERROR or FATAL above", "previous_level(40)", "nav.previous_error"),
         C("Next warning", "The next WARN or worse below", "next_level(30)", "nav.next_warning"),
@@ -155,7 +188,7 @@ def navigation_commands() -> list[PaletteCommand]:
         ),
         C("Minimum level up", "Hide the lowest level shown", "raise_minimum", "levels.up"),
         C("Minimum level down", "Show one more level", "lower_minimum", "levels.down"),
-        C("Every level", "Show every level again", "all_levels", "levels.all"),
+        C("Every level", "Show every level again", "all_levels", "levels.all", "severity level"),
         C("Nodes", "The node panel: every node, its counts and rate; solo, mute", "toggle_nodes", "console.nodes"),
         C("Solo this row's node", "Show only the selected row's node (again: undo)", "solo_row_node"),
         C("Mute this row's node", "Hide the selected row's node (again: undo)", "mute_row_node"),
@@ -175,7 +208,13 @@ def navigation_commands() -> list[PaletteCommand]:
             "time.format",
         ),
         C("Time in UTC / local time", "The wall clock in UTC, or local time", "toggle_utc", "time.utc"),
-        C("Open the source file", "The row's file in $VISUAL / $EDITOR at its line", "open_source", "nav.source"),
+        C(
+            "Open the source file",
+            "The row's file in $VISUAL / $EDITOR at its line",
+            "open_source",
+            "nav.source",
+            "editor code vim",
+        ),
     ]
 
 
@@ -202,7 +241,7 @@ class ConsoleCommands(Provider):
     async def search(self, query: str) -> Hits:
         matcher = self.matcher(query)
         for command, help_text in self._entries():
-            score = matcher.match(command.title)
+            score = palette_score(command, query, matcher.match)
             if score > 0:
                 yield Hit(
                     score,
@@ -211,3 +250,28 @@ class ConsoleCommands(Provider):
                     text=command.title,
                     help=help_text,
                 )
+
+
+def _words(text: str) -> list[str]:
+    return re.findall(r"[a-z0-9]+", text.lower())
+
+
+def palette_score(command: PaletteCommand, query: str, fuzzy: Callable[[str], float]) -> float:
+    """How well ``command`` answers what was typed (0: not at all): every typed word starting
+    a word of the title scores highest, of its other words next, of its help after them; else
+    the title's fuzzy match (``fuzzy``), lower. An entry that ends an action ranks lower."""
+    typed = _words(query)
+
+    def holds(text: str) -> bool:
+        words = _words(text)
+        return bool(typed) and all(any(word.startswith(part) for word in words) for part in typed)
+
+    if holds(command.title):
+        score = 1.0
+    elif holds(command.words):
+        score = 0.9
+    elif holds(command.help):
+        score = 0.8
+    else:
+        score = 0.7 * fuzzy(command.title)
+    return score * 0.6 if command.ends else score

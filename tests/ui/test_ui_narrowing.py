@@ -165,3 +165,23 @@ async def test_random_rule_changes_keep_the_selected_record_selected(tmp_path):
                 number = f"{selected + 1} "
                 assert app.table.cursor_seq == selected, f"{key}: the selected record lost"
                 assert number in screen_text(app).splitlines()[app.table.region.y + 1 + line], f"{key}: moved"
+
+
+async def test_the_palette_finds_what_a_person_types(tmp_path):
+    app = storm_log_app(tmp_path)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        await pilot.press("ctrl+p")
+        await type_text(pilot, "search")
+        await until(pilot, lambda: "Clear the search" in screen_text(app), what="the palette's entries")
+        lines = screen_text(app).splitlines()
+        first = next(y for y, line in enumerate(lines) if "Find" in line or "Clear the search" in line)
+        assert "Find" in lines[first], "the entry that starts a search comes before the one that ends it"
+        await pilot.press("enter")  # Find: the search line, where the next letters go
+        await type_text(pilot, "burst 7,")
+        await until(pilot, lambda: "'burst 7,'" in status(app), what=lambda: status(app))
+        assert "Save messages to" not in screen_text(app)
+        await pilot.press("escape")
+        await pilot.press("ctrl+p")
+        await type_text(pilot, "editor")
+        await until(pilot, lambda: "Open the source file" in screen_text(app), what="the editor's entry")
