@@ -1,6 +1,6 @@
 """Rules benchmark: re-filtering a full store of 1,000,000 records when the rules change.
 
-    .venv/bin/python benchmarks/rules.py [--records 1000000] [--step-ms 15] [--app]
+    .venv/bin/python benchmarks/rules.py [--records 1000000] [--step-ms 15] [--app [--middle]]
 
 Fills a ``LogStore`` with realistic records (60 nodes, 90 files, 120 functions, a ROS-like
 mix of severities, 60-120 character messages with numbers), then for each rule change
@@ -12,8 +12,10 @@ background task):
 - longest step: the longest single blocking call (``set_rules`` or one ``refilter_step``),
   which is the longest the event loop would stall.
 With ``--app`` the same changes are then made in the running app, headless, and measured
-there: the first frame drawn, the end of the background filtering, the longest event-loop
-stall (a probe task).
+there: the first frame drawn, the end of the background work (the filtering, and the storms
+and the timeline counted again), the longest event-loop stall (a probe task). With
+``--middle`` the app's selected row is in the middle of the history (not following the
+tail): its screenful is the first screen.
 Prints a table with the targets beside the figures. Not a test: figures depend on the machine.
 """
 
@@ -159,7 +161,16 @@ def measure(view: LogView, rules: RuleSet, step_s: float) -> tuple[float, float,
     return (first_screen if first_screen is not None else complete), complete, longest, len(view)
 
 
-async def measure_in_app(store: LogStore) -> list[tuple[str, float, float, float, int]]:
+def _screen_rows(app) -> list[int]:
+    """The seqs of the rows around the table's cursor (the newest rows while it follows)."""
+    view = app.table.view
+    if app.table.following:
+        return [view.seq_at(r) for r in range(max(len(view) - SCREEN_ROWS, 0), len(view))]
+    row = app.table.cursor_row
+    return [view.seq_at(r) for r in range(max(row - SCREEN_ROWS // 2, 0), min(row + SCREEN_ROWS // 2, len(view)))]
+
+
+async def measure_in_app(store: LogStore, middle: bool = False) -> list[tuple[str, float, float, float, int]]:
     """The same rule changes made in the running app (headless, 160x48): from the change to
     the first frame showing the final newest rows, to the end of the background filtering,
     and the longest the event loop was busy meanwhile (a probe task sleeping 1 ms)."""
@@ -173,6 +184,8 @@ async def measure_in_app(store: LogStore) -> list[tuple[str, float, float, float
     results = []
     async with app.run_test(size=(160, 48)) as pilot:
         await pilot.pause(0.5)
+        if middle:
+            app.table.jump_to_seq(store.first_seq + len(store) // 2)
         frames = count_frames(app.table)
         for name, rules in scenarios():
             probe = StallProbe()
@@ -180,15 +193,15 @@ async def measure_in_app(store: LogStore) -> list[tuple[str, float, float, float
             await asyncio.sleep(0.05)
             began = time.perf_counter()
             app.apply_rules(rules)  # as the query line, the pane or a quick rule does
-            shown_first = [app.view.seq_at(r) for r in range(max(len(app.view) - SCREEN_ROWS, 0), len(app.view))]
+            shown_first = _screen_rows(app)
             while not frames or frames[-1] < began:
                 await asyncio.sleep(0.001)
             first_frame = frames[-1] - began
-            while app.view.refiltering:
+            while app.view.refiltering or app.storms.behind or app.timeline.behind:
                 await asyncio.sleep(0.005)
             complete = time.perf_counter() - began
             stalls = await probe.stop()
-            final = [app.view.seq_at(r) for r in range(max(len(app.view) - SCREEN_ROWS, 0), len(app.view))]
+            final = _screen_rows(app)
             # Nothing arrives meanwhile, so a first screen that was already final stays so.
             first = first_frame if shown_first == final else complete
             results.append((name, first * 1000, complete * 1000, max(stalls) * 1000, len(app.view)))
@@ -217,6 +230,7 @@ def main() -> None:
     parser.add_argument("--records", type=int, default=1_000_000)
     parser.add_argument("--step-ms", type=float, default=15.0)
     parser.add_argument("--app", action="store_true", help="also make the changes in the running app (headless)")
+    parser.add_argument("--middle", action="store_true", help="in the app: the selected row mid-history")
     args = parser.parse_args()
 
     t0 = time.perf_counter()
@@ -239,7 +253,7 @@ def main() -> None:
         import asyncio
 
         view.set_rules(RuleSet())
-        rows = asyncio.run(measure_in_app(store))
+        rows = asyncio.run(measure_in_app(store, args.middle))
         print_table(
             "In the running app (headless 160x48; the first screen is the first frame drawn):", rows, "longest stall"
         )
