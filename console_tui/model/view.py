@@ -152,17 +152,21 @@ class LogView:
         self._indexed = bool(active)
         self._reset_index()
         if self._indexed:
-            origin = store.end_seq if self.around is None else min(max(self.around + 1, store.first_seq), store.end_seq)
+            origin = store.end_seq if self.around is None else min(max(self.around, store.first_seq), store.end_seq)
             self._pending_lo, self._pending_hi = store.first_seq, origin
             self._indexed_to, self._rising = origin, origin < store.end_seq
             deadline = perf_counter() + budget_s
-            while perf_counter() < deadline:
-                if self._rising_pending and len(self._back) < first_screen:
+            pieces = 0  # a piece each way at least (``around``'s own first), then while there is time
+            while pieces < 2 or perf_counter() < deadline:
+                rise = self._rising_pending and len(self._back) < first_screen
+                fall = self._falling_pending and len(self._front) < first_screen
+                if rise and (pieces % 2 == 0 or not fall):
                     self._rise_piece(self._piece)
-                elif self._falling_pending and len(self._front) < first_screen:
+                elif fall:
                     self._refilter_piece(self._piece)
                 else:
                     break
+                pieces += 1
         if not self.refiltering:
             self._unfinished.clear()
             self._rising = False

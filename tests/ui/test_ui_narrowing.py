@@ -5,6 +5,10 @@ keeps its line on the screen, and the level keys compose."""
 from __future__ import annotations
 
 import random
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+
+from textual.pilot import Pilot
 
 from console_tui.ui.app import ConsoleApp
 
@@ -32,16 +36,19 @@ async def loaded(pilot, app) -> None:
     await until(pilot, lambda: f"{LINES:,}/{LINES:,} shown" in status(app) and settled(app), what="the file")
 
 
-def storm_log_app(tmp_path) -> ConsoleApp:
+@asynccontextmanager
+async def storm_log_loaded(tmp_path) -> AsyncIterator[tuple[ConsoleApp, Pilot]]:
+    """The app at 100x30 with the storm log loaded (``support.storm_log``), every count done."""
     path = tmp_path / "rosout.log"
     assert write_storm_log(path) == LINES
-    return ConsoleApp(files=[str(path)], utc=True)
+    app = ConsoleApp(files=[str(path)], utc=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await loaded(pilot, app)
+        yield app, pilot
 
 
 async def test_storms_and_the_timeline_are_recounted_after_every_rule_change(tmp_path):
-    app = storm_log_app(tmp_path)
-    async with app.run_test(size=(100, 30)) as pilot:
-        await loaded(pilot, app)
+    async with storm_log_loaded(tmp_path) as (app, pilot):
         # The load is over: the footer no longer offers to cancel it (the focus never moved).
         await until(pilot, lambda: "Cancel load" not in screen_text(app).splitlines()[-1], what="the footer")
         assert "330 storms" in status(app)
@@ -67,9 +74,7 @@ async def test_storms_and_the_timeline_are_recounted_after_every_rule_change(tmp
 
 
 async def test_the_selected_record_keeps_its_line_through_rule_changes(tmp_path):
-    app = storm_log_app(tmp_path)
-    async with app.run_test(size=(100, 30)) as pilot:
-        await loaded(pilot, app)
+    async with storm_log_loaded(tmp_path) as (app, pilot):
         cycle = error_cycles()[40]  # an ERROR far from either end: row 1,972 of 3,998
         number = error_number(cycle)
         await pilot.press("home", *["pagedown"] * (rows_before(cycle) // 24))
@@ -93,9 +98,7 @@ async def test_the_selected_record_keeps_its_line_through_rule_changes(tmp_path)
 
 
 async def test_the_minimum_level_never_shows_a_level_hidden_on_its_own(tmp_path):
-    app = storm_log_app(tmp_path)
-    async with app.run_test(size=(100, 30)) as pilot:
-        await loaded(pilot, app)
+    async with storm_log_loaded(tmp_path) as (app, pilot):
         await pilot.press("2")  # INFO hidden
         await until(pilot, lambda: "hiding INFO" in status(app) and settled(app))
         await pilot.press("greater_than_sign")  # the minimum above DEBUG: INFO stays hidden
@@ -118,9 +121,7 @@ def on_row(app, text: str) -> bool:
 
 
 async def test_the_search_counts_rows_and_goes_row_to_row(tmp_path):
-    app = storm_log_app(tmp_path)
-    async with app.run_test(size=(100, 30)) as pilot:
-        await loaded(pilot, app)
+    async with storm_log_loaded(tmp_path) as (app, pilot):
         await pilot.press("f")
         await type_text(pilot, "/burst (30|31|32),/")
         await pilot.press("enter")
@@ -146,10 +147,8 @@ async def test_random_rule_changes_keep_the_selected_record_selected(tmp_path):
     """Level keys, ``>``/``<``, solo/mute of the row's node (the palette's), storms on and off, in a seeded
     random order: whenever the rules still show the selected record, it stays selected, on
     its line of the screen."""
-    app = storm_log_app(tmp_path)
     keys = ["1", "2", "3", "4", "greater_than_sign", "less_than_sign", "0", "Z", "solo_row_node", "mute_row_node"]
-    async with app.run_test(size=(100, 30)) as pilot:
-        await loaded(pilot, app)
+    async with storm_log_loaded(tmp_path) as (app, pilot):
         await pilot.press("home", *["pagedown"] * 80)
         chosen = random.Random(28)
         for _ in range(14):
@@ -168,9 +167,7 @@ async def test_random_rule_changes_keep_the_selected_record_selected(tmp_path):
 
 
 async def test_the_palette_finds_what_a_person_types(tmp_path):
-    app = storm_log_app(tmp_path)
-    async with app.run_test(size=(100, 30)) as pilot:
-        await loaded(pilot, app)
+    async with storm_log_loaded(tmp_path) as (app, pilot):
         await pilot.press("ctrl+p")
         await type_text(pilot, "search")
         await until(pilot, lambda: "Clear the search" in screen_text(app), what="the palette's entries")
