@@ -99,6 +99,7 @@ class OverviewActions(AppPart):
         finally:
             self._catching_up = False
         self.show_overview(force=True)
+        self.update_status()  # the storms counted
 
     def show_overview(self, *, force: bool = False) -> None:
         """The strip follows the counts and the table's place a few times a second, or now
