@@ -10,9 +10,9 @@ kept record is a row (no index is built). Otherwise an index of the seqs that pa
   timer or when idle. Meanwhile the rows are those done so far; records that arrive wait
   until the records before them are done; records evicted meanwhile simply drop out.
 
-Each rule's match mask is kept per store chunk, so counts per rule are cheap, a rule is never
-tested twice on a record, and switching entries on and off, inverting them or moving them
-between exclude and highlight only recombines masks.
+Each rule's match mask is kept per store chunk (``rule_masks.py``), so counts per rule are
+cheap, a rule is never tested twice on a record, and switching entries on and off, inverting
+them or moving them between exclude and highlight only recombines masks.
 
 No rule can freeze the caller: each test of a span runs under a time limit (``time_limit``),
 and a rule that runs past it (a catastrophic regex) is switched off, not applied: the view
@@ -29,6 +29,7 @@ from operator import neg
 from time import perf_counter
 
 from .consecutive import consecutive
+from .rule_masks import RuleMasks
 from .rules.rule import Rule, SpanTest
 from .rules.ruleset import Decoration, RuleSet
 from .rules.time_limit import MatchTimeout, alarms, time_limit
@@ -62,9 +63,7 @@ class LogView:
         #: Active rules whose answers over the kept records are not complete yet.
         self._unfinished: set[Rule] = set()
         self._tests: dict[Rule, SpanTest] = {}
-        #: chunk base seq -> rule -> [first offset covered, mask bytes from there]
-        self._masks: dict[int, dict[Rule, list]] = {}
-        self._masks_from = store.first_seq
+        self._masks = RuleMasks(store.first_seq)
         self._indexed = False
         self._reset_index()
         self._piece = _START_PIECE
@@ -145,10 +144,7 @@ class LogView:
             self._piece = min(self._piece, _START_PIECE)  # a new rule's cost is not known yet
         self._unfinished = {rule for rule in active if rule in self._unfinished} | set(fresh)
         self._tests = {rule: self._tests.get(rule) or rule.compile(store) for rule in active}
-        known = {entry.rule for entry in rules.entries}
-        for per_chunk in self._masks.values():
-            for rule in [rule for rule in per_chunk if rule not in known]:
-                del per_chunk[rule]
+        self._masks.keep_only(entry.rule for entry in rules.entries)
         self._indexed = bool(active)
         self._reset_index()
         if self._indexed:
@@ -292,7 +288,7 @@ class LogView:
         chunk, lo, hi, seq = span
         size = hi - lo
         base = seq - lo
-        masks = {rule: self._rule_mask(base, chunk, rule, lo, hi) for rule in self._tests}
+        masks = {rule: self._masks.mask(base, chunk, rule, lo, hi, self._test) for rule in self._tests}
         shown, highlighted = self.rules.decide(masks, size)
         if shown.count(0) == 0:  # every record shown (highlight rules only, say): no per-record work
             seqs = consecutive(seq, size, descending=descending)
@@ -302,23 +298,6 @@ class LogView:
             if descending:
                 seqs.reverse()
         return seqs, highlighted[::-1] if descending else highlighted
-
-    def _rule_mask(self, base: int, chunk: Chunk, rule: Rule, lo: int, hi: int) -> bytes:
-        """The rule's matches over ``chunk[lo:hi]``, testing only records not tested before."""
-        per_chunk = self._masks.setdefault(base, {})
-        cached = per_chunk.get(rule)
-        if cached is None:
-            mask = self._test(rule, chunk, lo, hi)
-            per_chunk[rule] = [lo, bytearray(mask)]
-            return mask
-        start, mask = cached
-        if lo < start:
-            mask[0:0] = self._test(rule, chunk, lo, start)
-            cached[0] = start = lo
-        end = start + len(mask)
-        if hi > end:
-            mask.extend(self._test(rule, chunk, end, hi))
-        return bytes(mask[lo - start : hi - start])
 
     def _test(self, rule: Rule, chunk: Chunk, lo: int, hi: int) -> bytes:
         """The rule's test of ``chunk[lo:hi]``, abandoned past ``rule_limit_s``."""
@@ -331,22 +310,12 @@ class LogView:
     def match_counts(self) -> list[int | None]:
         """For each entry of the rules: kept records its rule matches (inverted: does not
         match), among those tested so far; ``None`` for entries that are not active."""
-        first = self.store.first_seq
-        self._drop_evicted_masks()
         counts: list[int | None] = []
         for entry in self.rules.entries:
             if not entry.active or entry.rule not in self._tests:
                 counts.append(None)
                 continue
-            matched = tested = 0
-            for base, per_chunk in self._masks.items():
-                cached = per_chunk.get(entry.rule)
-                if cached is None:
-                    continue
-                start, mask = cached
-                skip = min(max(first - base - start, 0), len(mask))
-                matched += mask.count(1, skip)
-                tested += len(mask) - skip
+            matched, tested = self._masks.count(entry.rule, self.store.first_seq)
             counts.append(tested - matched if entry.inverted else matched)
         return counts
 
@@ -366,14 +335,7 @@ class LogView:
             del back[: self._start]
             del self._back_marks[: self._start]
             self._start = 0
-        self._drop_evicted_masks()
-
-    def _drop_evicted_masks(self) -> None:
-        first = self.store.first_seq
-        if first - self._masks_from >= CHUNK_SIZE:
-            for base in [base for base in self._masks if base + CHUNK_SIZE <= first]:
-                del self._masks[base]
-            self._masks_from = first
+        self._masks.drop_evicted(first)
 
     # -- rows -------------------------------------------------------------------------------
 
