@@ -24,6 +24,7 @@ from __future__ import annotations
 
 from array import array
 from bisect import bisect_left, bisect_right
+from collections.abc import Callable
 from itertools import compress
 from operator import neg
 from time import perf_counter
@@ -58,6 +59,8 @@ class LogView:
         self.store = store
         self.rules = RuleSet()
         self.rule_limit_s = rule_limit_s
+        #: Seconds, for the budgets of ``set_rules`` and ``refilter_step`` (and a search's): tests set their own.
+        self.clock: Callable[[], float] = perf_counter
         #: Rules switched off because they were too slow, with why (taken by ``take_switched_off``).
         self.switched_off: list[tuple[Rule, str]] = []
         #: Active rules whose answers over the kept records are not complete yet.
@@ -151,9 +154,9 @@ class LogView:
             origin = store.end_seq if self.around is None else min(max(self.around, store.first_seq), store.end_seq)
             self._pending_lo, self._pending_hi = store.first_seq, origin
             self._indexed_to, self._rising = origin, origin < store.end_seq
-            deadline = perf_counter() + budget_s
+            deadline = self.clock() + budget_s
             pieces = 0  # a piece each way at least (``around``'s own first), then while there is time
-            while pieces < 2 or perf_counter() < deadline:
+            while pieces < 2 or self.clock() < deadline:
                 rise = self._rising_pending and len(self._back) < first_screen
                 fall = self._falling_pending and len(self._front) < first_screen
                 if rise and (pieces % 2 == 0 or not fall):
@@ -212,14 +215,15 @@ class LogView:
         if not self.refiltering:
             return True
         self._trim()
-        deadline = perf_counter() + budget_s
+        clock = self.clock
+        deadline = clock() + budget_s
         while self.refiltering:
-            began = perf_counter()
+            began = clock()
             if self._rising_pending:
                 rows = self._rise_piece(self._piece)
             else:
                 rows = self._refilter_piece(self._piece)
-            now = perf_counter()
+            now = clock()
             if rows:
                 # Size pieces to about a quarter of the budget, so a step overshoots little.
                 per_row = max(now - began, 1e-9) / rows

@@ -20,6 +20,8 @@ from console_tui.model.seek import Seeker, level_hits, view_shows
 from console_tui.model.store import CHUNK_SIZE, LogStore
 from console_tui.model.view import LogView
 
+from support.clock import TickingClock
+
 WORDS = ["Timeout waiting", "timed out", "goal reached", "Größe 3", "ok", "scan done", "TIMEOUT"]
 
 
@@ -89,6 +91,7 @@ def test_the_nearest_match_is_known_before_the_search_completes():
     store.extend([LogRecord(stamp_ns=0, level=20, node="n", msg="the needle")])
     store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg="hay") for _ in range(CHUNK_SIZE))
     view = LogView(store)
+    view.clock = TickingClock(0.001)  # a step of 1 ms walks one piece, on any machine
     search = Search(view, parse_search("needle"), store.first_seq)
     assert search.nearest(store.first_seq, forward=True) == PENDING
     assert search.nearest(store.first_seq, forward=False) is None  # nothing older than the first row
