@@ -269,7 +269,7 @@ def run_intake_subscriber(kind: str) -> None:
 
     def loss() -> dict[str, Any]:
         status = source.status
-        return {"lost_reported": status.lost, "path": status.path, "stored": len(store), "cpu": cpu_seconds(source)}
+        return {"lost_reported": status.lost, "path": status.path, "stored": store.end_seq, "cpu": cpu_seconds(source)}
 
     serve_commands(lambda: queue.received, lambda: source.status.publishers, loss)
     stop.set()
