@@ -1,11 +1,16 @@
 """A real rclpy node for tests, driven by JSON commands on stdin, reporting on stdout.
 
-    talker.py --name NAME [--namespace NS] [--volatile] [--no-logger-service] [--debug]
+    talker.py --name NAME [--namespace NS] [--volatile] [--own-rosout [DEPTH]] [--no-logger-service] [--debug]
 
 ``--volatile`` makes the node's ``/rosout`` publisher VOLATILE: through ``rosout_qos_profile``
 where rclpy has it (Kilted), else (Jazzy) the node's logger does not publish and the node
 publishes each message on ``/rosout`` itself with the same fields, through a VOLATILE publisher
-of its own.
+of its own. ``--own-rosout`` makes the node publish on ``/rosout`` itself that way with rosout's
+own QoS (RELIABLE, TRANSIENT_LOCAL, depth 1000, or DEPTH): then ``burst`` waits until every
+subscriber has acknowledged every message before it answers (``"acked": true``), so a test
+knows that the burst has reached the subscribers' histories. A DEPTH as large as a burst keeps
+all of it until then: rosout's 1,000 does not when the machine is busy (the node's own sends
+fall behind, the oldest are dropped unsent, and subscribers count them as lost).
 
 Prints ``{"event": "ready", "logger": ..., "pid": ...}`` once up. Commands (one JSON object a
 line): ``{"cmd": "log_all", "tag": T}`` logs one message at each severity, from a function
@@ -14,7 +19,8 @@ of its own each, and prints ``{"event": "logged", "messages": [...]}`` with ever
 through the child logger ``<node logger>.NAME``; ``{"cmd": "periodic", "period": S}`` logs
 DEBUG and INFO ``tick N`` every S seconds; ``{"cmd": "block", "seconds": S}`` keeps the
 node's executor busy for S seconds (services go unanswered), printing ``{"event":
-"blocking"}`` as it starts. EOF on stdin ends it.
+"blocking"}`` as it starts; ``{"cmd": "burst", "count": N}`` logs INFO ``burst 0`` to ``burst N-1``
+at once and prints ``{"event": "burst", "count": N, "acked": ...}``. EOF on stdin ends it.
 """
 
 from __future__ import annotations
@@ -27,6 +33,7 @@ import sys
 import threading
 
 import rclpy
+from rclpy.duration import Duration
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.logging import LoggingSeverity
 from rclpy.node import Node
@@ -100,6 +107,7 @@ def main() -> None:
     parser.add_argument("--name", required=True)
     parser.add_argument("--namespace", default="")
     parser.add_argument("--volatile", action="store_true", help="rosout QoS VOLATILE")
+    parser.add_argument("--own-rosout", type=int, nargs="?", const=1000, help="publish /rosout itself, keeping DEPTH")
     parser.add_argument("--no-logger-service", action="store_true")
     parser.add_argument("--debug", action="store_true", help="start with the logger at DEBUG")
     args = parser.parse_args()
@@ -107,7 +115,12 @@ def main() -> None:
     rclpy.init()
     options = {"enable_logger_service": not args.no_logger_service}
     volatile = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
-    own_rosout = args.volatile and "rosout_qos_profile" not in inspect.signature(Node.__init__).parameters
+    durable = QoSProfile(
+        depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL
+    )
+    own_rosout = args.own_rosout or (
+        args.volatile and "rosout_qos_profile" not in inspect.signature(Node.__init__).parameters
+    )
     if own_rosout:
         options["enable_rosout"] = False
     elif args.volatile:
@@ -117,7 +130,7 @@ def main() -> None:
     if own_rosout:
         from rcl_interfaces.msg import Log
 
-        OWN_ROSOUT[:] = [node, node.create_publisher(Log, "/rosout", volatile)]
+        OWN_ROSOUT[:] = [node, node.create_publisher(Log, "/rosout", volatile if args.volatile else durable)]
     if args.debug:
         logger.set_level(LoggingSeverity.DEBUG)
     executor = SingleThreadedExecutor()
@@ -148,8 +161,12 @@ def main() -> None:
             elif kind == "burst":
                 count = int(command.get("count", 1000))
                 for number in range(count):
-                    logger.info(f"burst {number}")
-                say(event="burst", count=count)
+                    if OWN_ROSOUT:
+                        log_info(logger, f"burst {number}")
+                    else:
+                        logger.info(f"burst {number}")
+                acked = OWN_ROSOUT[1].wait_for_all_acked(Duration(seconds=60)) if OWN_ROSOUT else None
+                say(event="burst", count=count, acked=acked)
             elif kind == "periodic":
                 state["timer"] = node.create_timer(float(command.get("period", 0.1)), tick)
                 say(event="periodic")

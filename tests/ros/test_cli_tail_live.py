@@ -49,7 +49,7 @@ def test_live_formats_json_and_inert_text(nodes, ros_env, ros_runtime):
         logged = talker.expect("logged")["messages"]
         talker.send({"cmd": "log", "level": "warn", "msg": HOSTILE})
         talker.expect_next("logged")
-        out = {name: tail.take(6 if name != "errors" else 2, timeout=20) for name, tail in tails.items()}
+        out = {name: tail.take(6 if name != "errors" else 2) for name, tail in tails.items()}
         for name, tail in tails.items():
             assert tail.stop() == 0, (name, b"".join(tail.stderr)[-2000:])
     finally:
@@ -98,7 +98,7 @@ def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env)
         ros1_env, "--ros1", "--query", "node:*py_tailed level>=warn", "--format", "${severity} ${node} ${message}"
     )
     try:
-        lines = [line.decode() for line in tail.take(2, timeout=30)]
+        lines = [line.decode() for line in tail.take(2)]
     finally:
         assert tail.stop() == 0, b"".join(tail.stderr)[-2000:]
     assert len(lines) == 2 and all(line.split()[1] == "/py_tailed" for line in lines)

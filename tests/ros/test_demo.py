@@ -81,4 +81,4 @@ def test_demo_nodes_end_when_the_console_dies(ros_env):
     time.sleep(1.0)
     parent.kill()  # no chance to clean up: the children must notice on their own
     parent.wait()
-    assert wait_until(lambda: not any(pid_alive(pid) for pid in pids), timeout=15)
+    assert wait_until(lambda: not any(pid_alive(pid) for pid in pids))

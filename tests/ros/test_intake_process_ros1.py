@@ -30,7 +30,7 @@ def test_records_and_status_of_a_ros1_master_come_through_the_pipe(roscore, ros1
 
     source.start()
     try:
-        assert wait_until(lambda: levels() == {10, 20, 30, 40, 50}, timeout=30), source.status
+        assert wait_until(lambda: levels() == {10, 20, 30, 40, 50}), source.status
         status = source.status
         assert (status.topic, status.publishers, status.problem, status.lost) == (ROSOUT_AGG, 1, "", 0)
         assert status.origin == f"ROS 1 {roscore.uri}" and status.running

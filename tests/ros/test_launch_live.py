@@ -47,7 +47,7 @@ def test_live_topic_shows_a_nodes_messages_and_exit_stops_everything(nodes, monk
     assert "ERROR" in seen["row"] and "launch_talker" in seen["row"] and "talker.py" in seen["row"]
     assert "ROS 2 domain" in str(seen["status"]), seen["status"]
     assert len(seen["threads"]) > len(before), "the intake (and logger) threads ran"
-    assert wait_until(lambda: console_threads() == before, timeout=10), console_threads()
+    assert wait_until(lambda: console_threads() == before), console_threads()
     assert apps[0].sources == []
 
 
@@ -64,4 +64,4 @@ def test_demo_starts_its_nodes_and_they_end_with_the_app(ros_env, monkeypatch):
 
     code, _ = run_main(monkeypatch, ["--demo", "--utc"], script, size=(140, 30))
     assert code == 0 and len(pids) == 4
-    assert wait_until(lambda: not any(pid_alive(pid) for pid in pids), timeout=15)
+    assert wait_until(lambda: not any(pid_alive(pid) for pid in pids))

@@ -50,8 +50,8 @@ def test_demo_nodes_log_through_their_own_roscore_and_stop_with_it(ros1_env):
         assert len(master_and_rosout) == 2 and len(_group_pids(core)) == 2  # the watchdog and roscore
     finally:
         demo.stop()
-    assert wait_until(lambda: not any(_alive(pid) for pid in pids + master_and_rosout), 10)
-    assert wait_until(lambda: not _group_pids(core), 10)
+    assert wait_until(lambda: not any(_alive(pid) for pid in pids + master_and_rosout))
+    assert wait_until(lambda: not _group_pids(core))
 
 
 def test_demo_roscore_and_nodes_end_when_the_console_dies(ros1_env):
@@ -78,5 +78,5 @@ def test_demo_roscore_and_nodes_end_when_the_console_dies(ros1_env):
         parent.kill()
         parent.wait(5)
     assert len(nodes) == 3  # rosmaster, rosout, the node
-    assert wait_until(lambda: not any(_alive(pid) for pid in nodes), 30), "demo processes outlived the console"
-    assert wait_until(lambda: not _group_pids(core), 30), "roscore outlived the console"
+    assert wait_until(lambda: not any(_alive(pid) for pid in nodes)), "demo processes outlived the console"
+    assert wait_until(lambda: not _group_pids(core)), "roscore outlived the console"

@@ -138,7 +138,7 @@ def test_master_restarted_mid_run(roscore, ros1_nodes):
         got.wait_for("/before", "info ")
         roscore.restart()
         ros1_nodes.rospy("rospy_node.py", "after", "--period", "0.1").expect("ready")
-        got.wait_for("/after", "info ", timeout=30)
+        got.wait_for("/after", "info ")
         # registered again with the new master, under the same name, on /rosout_agg once the
         # restarted rosout node publishes it again (until then it may read /rosout directly)
         got.wait(
@@ -155,16 +155,14 @@ def test_master_unreachable_then_started(tmp_path, ros1_env, ros1_nodes):
 
     port = int(ros1_env["ROS_MASTER_URI"].rsplit(":", 1)[1])
     with Collected() as got:
-        started = time.monotonic()
-        got.wait(lambda c: "waiting for master at" in c.status.problem, timeout=2.0, what="the waiting line")
-        assert time.monotonic() - started < 2.0
+        got.wait(lambda c: "waiting for master at" in c.status.problem, what="the waiting line")
         time.sleep(1.5)  # it keeps trying
         assert got.status.running and ros1_env["ROS_MASTER_URI"] in got.status.problem
         master = Ros1Master(tmp_path, port, ros1_env)
         master.start()
         try:
             ros1_nodes.rospy("rospy_node.py", "finally", "--period", "0.1").expect("ready")
-            got.wait_for("/finally", "info ", timeout=30)
+            got.wait_for("/finally", "info ")
             assert got.status.problem == ""
         finally:
             ros1_nodes.stop_all()
@@ -196,9 +194,8 @@ def test_rosnode_info_ping_and_kill_treat_the_console_as_a_node(roscore, ros1_no
 def test_unregisters_on_stop(roscore):
     with Collected() as got:
         got.wait(lambda c: c.status.topic == ROSOUT_AGG, what="registration")
-        time.sleep(0.3)
         name = got.source.node_name
-        assert name in roscore.subscribers(ROSOUT_AGG)
+        got.wait(lambda c: name in roscore.subscribers(ROSOUT_AGG), what="the subscription registered")
     assert name not in roscore.subscribers(ROSOUT_AGG)
 
 

@@ -14,7 +14,7 @@ from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
 from console_tui.sources.ros2.runtime import uses_fast_dds_2
 
-from support.rosproc import wait_until
+from support.rosproc import PATIENCE_S, wait_until
 
 pytestmark = pytest.mark.ros2
 
@@ -52,7 +52,7 @@ def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue 
     assert source._thread is not None and not source._thread.is_alive(), "the intake thread did not stop"
 
 
-def collect(source, enough, timeout: float = 15.0) -> list[LogRecord]:
+def collect(source, enough, timeout: float = PATIENCE_S) -> list[LogRecord]:
     records: list[LogRecord] = []
 
     def done() -> bool:
@@ -60,6 +60,21 @@ def collect(source, enough, timeout: float = 15.0) -> list[LogRecord]:
         return enough(records)
 
     wait_until(done, timeout)
+    return records
+
+
+def log_until_one_arrives(talker, source, text: str) -> list[LogRecord]:
+    """What arrives while ``talker`` logs ``TEXT N`` (WARN) again and again until one arrives:
+    a VOLATILE publisher's messages reach only subscriptions already matched."""
+    records: list[LogRecord] = []
+    deadline = time.monotonic() + PATIENCE_S
+    number = 0
+    while not any(r.msg.startswith(text) for r in records) and time.monotonic() < deadline:
+        talker.send({"cmd": "log", "level": "warn", "msg": f"{text} {number}"})
+        talker.expect_next("logged")
+        number += 1
+        records += collect(source, lambda got: any(r.msg.startswith(text) for r in got), timeout=0.5)
+    assert any(r.msg.startswith(text) for r in records), f"nothing of {text!r} arrived"
     return records
 
 
@@ -142,18 +157,9 @@ def test_volatile_publishers_are_read_through_the_second_subscription(nodes):
     talker.expect("ready")
     with live_source() as source:
         assert wait_until(lambda: source.status.publishers >= 1)
-        records: list[LogRecord] = []
-        sent = []
-        # A VOLATILE publisher's messages reach only subscriptions already matched: log until one arrives.
-        for number in range(40):
-            sent.append(f"from a volatile node {number}")
-            talker.send({"cmd": "log", "level": "warn", "msg": sent[-1]})
-            talker.expect("logged")
-            records += collect(source, lambda got: any(r.msg in sent for r in got), timeout=0.5)
-            if any(r.msg in sent for r in records):
-                break
+        records = log_until_one_arrives(talker, source, "from a volatile node")
         status = source.status
-    arrived = [r.msg for r in records if r.msg in sent]
+    arrived = [r.msg for r in records if r.msg.startswith("from a volatile node")]
     assert arrived and len(arrived) == len(set(arrived)), "nothing arrived, or something arrived twice"
     assert (status.lost, status.incompatible, status.path) == (0, 0, "c+cdr")
 
@@ -205,16 +211,18 @@ def test_loss_the_middleware_never_reports_is_counted_and_stays_shown_after_the_
         pytest.skip("Jazzy's rclpy gives no publisher GID with a message: gaps cannot be told apart by publisher")
     take_by(path, monkeypatch)
     monkeypatch.setattr(module, "QUEUE_DEPTH", 10)
-    talker = nodes.start("talker.py", "--name", "gap_talker")
+    # The talker publishes its /rosout itself, so that it can tell when the reader has every
+    # message of the burst (in its history of 10, which keeps the last 10), however busy the
+    # machine is.
+    talker = nodes.start("talker.py", "--name", "gap_talker", "--own-rosout")
     talker.expect("ready")
     queue = StalledQueue()
     with live_source(queue=queue) as source:
         assert wait_until(lambda: source.status.publishers >= 1)
         talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
-        assert queue.stalled.wait(15)
+        assert queue.stalled.wait(PATIENCE_S)
         talker.send({"cmd": "burst", "count": 100})
-        talker.expect("burst")
-        time.sleep(1.0)  # all of it in the reader's history of 10 by now
+        assert talker.expect("burst")["acked"], "the reader never acknowledged the whole burst"
         queue.release.set()
         records = collect(source, lambda got: any(r.msg == "burst 99" for r in got))
         assert [r.msg for r in records][-10:] == [f"burst {n}" for n in range(90, 100)]
@@ -241,14 +249,7 @@ def test_a_node_that_logs_as_it_starts_beside_a_volatile_one_arrives_once(nodes,
     volatile.expect("ready")
     with live_source() as source:
         assert wait_until(lambda: source.status.publishers >= 1)
-        records: list[LogRecord] = []
-        for number in range(40):  # until the second subscription has matched the volatile node
-            volatile.send({"cmd": "log", "level": "warn", "msg": f"volatile {number}"})
-            volatile.expect_next("logged")
-            records += collect(source, lambda got: any(r.msg.startswith("volatile") for r in got), timeout=0.5)
-            if any(r.msg.startswith("volatile") for r in records):
-                break
-        assert any(r.msg.startswith("volatile") for r in records)
+        records = log_until_one_arrives(volatile, source, "volatile")  # the second subscription matched it
         newcomer = nodes.start("talker.py", "--name", "eager_newcomer")
         newcomer.expect("ready")
         newcomer.send({"cmd": "log_all", "tag": "at once"})
@@ -293,7 +294,7 @@ def publisher_gid(node, name: str) -> bytes:
         ]
         return bool(found)
 
-    assert wait_until(seen, 15), f"{name}'s /rosout publisher never showed in the graph"
+    assert wait_until(seen), f"{name}'s /rosout publisher never showed in the graph"
     return found[0]
 
 

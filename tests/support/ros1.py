@@ -14,7 +14,7 @@ import time
 import xmlrpc.client
 from pathlib import Path
 
-from support.rosproc import NODES, NodeProcess, NodeProcesses, wait_until
+from support.rosproc import NODES, PATIENCE_S, NodeProcess, NodeProcesses, wait_until
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 ROSCPP_SOURCE = NODES / "roscpp_node.cpp"
@@ -214,7 +214,7 @@ def _pkg_config(packages: str) -> list[str]:
     ]
 
 
-def wait_for(condition, timeout: float = 20.0, what: str = "the condition") -> None:
+def wait_for(condition, timeout: float = PATIENCE_S, what: str = "the condition") -> None:
     assert wait_until(condition, timeout), f"timed out waiting for {what}"
 
 

@@ -8,6 +8,8 @@ from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
 from console_tui.sources.ros1.live_source import Ros1LiveSource
 
+from support.rosproc import PATIENCE_S
+
 
 class Collected:
     """A started ``Ros1LiveSource`` and every record it delivered so far (``records``)."""
@@ -33,7 +35,7 @@ class Collected:
     def status(self):
         return self.source.status
 
-    def wait(self, condition, timeout: float = 20.0, what: str = "the records") -> None:
+    def wait(self, condition, timeout: float = PATIENCE_S, what: str = "the records") -> None:
         deadline = time.monotonic() + timeout
         while not condition(self):
             if time.monotonic() > deadline:
@@ -46,7 +48,7 @@ class Collected:
     def has(self, node: str, msg: str) -> bool:
         return any(r.node == node and r.msg == msg for r in self.records)
 
-    def wait_for(self, node: str, msg_prefix: str, timeout: float = 20.0) -> None:
+    def wait_for(self, node: str, msg_prefix: str, timeout: float = PATIENCE_S) -> None:
         self.wait(
             lambda c: any(r.node == node and r.msg.startswith(msg_prefix) for r in c.records),
             timeout,

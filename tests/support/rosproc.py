@@ -15,6 +15,9 @@ from pathlib import Path
 from typing import Any
 
 NODES = Path(__file__).parent.parent / "nodes"
+#: The longest a test waits for something to happen (a node to start, discovery, a message):
+#: generous, for a machine busy with other work; a wait ends as soon as its condition holds.
+PATIENCE_S = 60.0
 
 
 def ros_available() -> bool:
@@ -56,7 +59,7 @@ class NodeProcess:
         self._stderr_reader = threading.Thread(target=self._read_stderr, daemon=True)
         self._stderr_reader.start()
 
-    def expect(self, key: str, timeout: float = 20.0) -> dict[str, Any]:
+    def expect(self, key: str, timeout: float = PATIENCE_S) -> dict[str, Any]:
         """Read stdout until an object with ``"event": key`` arrives; return it."""
         for line in self.lines:
             if line.get("event") == key:
@@ -92,7 +95,7 @@ class NodeProcess:
         for line in self.process.stderr:
             self.stderr_tail.append(line)
 
-    def expect_next(self, key: str, timeout: float = 20.0) -> dict[str, Any]:
+    def expect_next(self, key: str, timeout: float = PATIENCE_S) -> dict[str, Any]:
         """Like ``expect``, but only an object that was not read before."""
         self.lines = [line for line in self.lines if line.get("event") != key]
         return self.expect(key, timeout)
@@ -141,7 +144,7 @@ class NodeProcesses:
         self.started.clear()
 
 
-def wait_until(condition, timeout: float = 15.0, interval: float = 0.05) -> bool:
+def wait_until(condition, timeout: float = PATIENCE_S, interval: float = 0.05) -> bool:
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if condition():

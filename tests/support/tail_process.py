@@ -10,6 +10,8 @@ import sys
 import threading
 import time
 
+from support.rosproc import PATIENCE_S
+
 
 class TailProcess:
     def __init__(self, env: dict[str, str], *args: str) -> None:
@@ -34,7 +36,7 @@ class TailProcess:
             self.lines.put(line)
         self.lines.put(None)
 
-    def take(self, count: int, timeout: float = 30) -> list[bytes]:
+    def take(self, count: int, timeout: float = PATIENCE_S) -> list[bytes]:
         """The next ``count`` lines, ``\\n`` and all; fewer when it ends or ``timeout`` passes."""
         got: list[bytes] = []
         deadline = time.monotonic() + timeout
@@ -48,7 +50,7 @@ class TailProcess:
             got.append(line)
         return got
 
-    def take_text(self, count: int, timeout: float = 30) -> list[str]:
+    def take_text(self, count: int, timeout: float = PATIENCE_S) -> list[str]:
         """``take``, decoded, without the ``\\n``."""
         return [line.decode().rstrip("\n") for line in self.take(count, timeout)]
 

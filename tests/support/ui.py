@@ -14,6 +14,7 @@ from console_tui.model.store import DEFAULT_MAX_MESSAGES, LogStore
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import records
+from support.rosproc import PATIENCE_S
 
 
 def make_app(count: int = 100, *, max_messages: int = DEFAULT_MAX_MESSAGES, **options) -> ConsoleApp:
@@ -25,7 +26,7 @@ def make_app(count: int = 100, *, max_messages: int = DEFAULT_MAX_MESSAGES, **op
 
 
 async def until(
-    pilot, condition: Callable[[], object], timeout: float = 20.0, what: str | Callable[[], str] = "the app"
+    pilot, condition: Callable[[], object], timeout: float = PATIENCE_S, what: str | Callable[[], str] = "the app"
 ) -> None:
     """Let the app run until ``condition()`` holds; fail after ``timeout`` seconds, saying
     ``what`` was awaited (a callable: what it says at that moment)."""

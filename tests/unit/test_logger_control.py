@@ -39,7 +39,7 @@ def test_waiting_for_the_graph_lasts_until_no_node_came_for_the_quiet_time():
     control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
     control.start()
     try:
-        assert wait_until(lambda: control.nodes, 5)
+        assert wait_until(lambda: control.nodes)
         seen = []
         waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(10.0)))
         waiter.start()
@@ -48,10 +48,10 @@ def test_waiting_for_the_graph_lasts_until_no_node_came_for_the_quiet_time():
             clock.now = when
             if arriving:
                 control.graph[arriving] = MemoryNode(arriving)
-                assert wait_until(lambda: control.node(arriving) is not None, 5)
+                assert wait_until(lambda: control.node(arriving) is not None)
             else:
                 looks = control._graph.refreshes
-                assert wait_until(lambda: control._graph.refreshes > looks, 5)
+                assert wait_until(lambda: control._graph.refreshes > looks)
 
         at(1.0, "/b")
         at(3.5)  # quiet for 2.5 s, but not watched for 5 s yet
@@ -76,7 +76,7 @@ def test_a_graph_that_came_at_once_is_watched_for_the_minimum_time():
         seen = []
         waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(10.0)))
         waiter.start()
-        assert wait_until(lambda: len(control.nodes) == 2, 5)
+        assert wait_until(lambda: len(control.nodes) == 2)
         clock.now = 4.9
         waiter.join(0.3)
         assert waiter.is_alive()
@@ -95,7 +95,7 @@ def test_waiting_for_an_empty_graph_ends_at_the_deadline_unsettled():
         seen = []
         waiter = threading.Thread(target=lambda: seen.append(control.wait_for_graph(4.0)))
         waiter.start()
-        assert wait_until(lambda: control._graph.refreshes > 0, 5)
+        assert wait_until(lambda: control._graph.refreshes > 0)
         clock.now = 3.9
         waiter.join(0.3)
         assert waiter.is_alive()
@@ -135,7 +135,7 @@ def test_temporary_levels_end_on_time_and_keep_the_first_previous_level(control)
     control.set_temporary("/ns/alpha", "ns.alpha", 10, 60).result(timeout=5)
     entry = control.set_temporary("/ns/alpha", "ns.alpha", 40, 0.2).result(timeout=5)
     assert (entry.level, entry.previous) == (40, 30) and alpha.levels["ns.alpha"] == 40
-    assert wait_until(lambda: any(isinstance(e, TemporaryEnded) for e in control.events), timeout=5)
+    assert wait_until(lambda: any(isinstance(e, TemporaryEnded) for e in control.events))
     ended = next(e for e in control.events if isinstance(e, TemporaryEnded))
     assert ended.entry == entry and ended.error is None
     assert alpha.levels["ns.alpha"] == 30 and control.temporaries() == ()
