@@ -4,7 +4,7 @@ Runs in a process of its own, so that its RosRuntime is the first to start Fast 
 reads its profiles once per process). The intake's first batch blocks in ``put`` until a
 line arrives on stdin, as if the UI had stopped taking records; then everything the
 middleware held is taken. Prints ``ready`` once a publisher is matched, then ``received``
-with the count and the loss the source saw.
+with the count, the loss the source saw and which ``burst N`` messages are missing.
 """
 
 import json
@@ -15,6 +15,9 @@ import time
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.sources.ros2.live_source import LiveLogSource
 from console_tui.sources.ros2.runtime import RosRuntime
+
+#: Nothing more arrived or was counted lost for this long: the middleware holds no more.
+QUIET_S = 5.0
 
 
 class StalledQueue(IntakeQueue):
@@ -32,6 +35,18 @@ class StalledQueue(IntakeQueue):
         super().put(batch)
 
 
+def missing_bursts(records, count: int) -> list[list[int]]:
+    """Which of ``burst 0`` to ``burst COUNT-1`` did not arrive, as ``[first, last]`` runs."""
+    arrived = {int(r.msg.split()[1]) for r in records if r.msg.startswith("burst ")}
+    runs: list[list[int]] = []
+    for number in sorted(set(range(count)) - arrived):
+        if runs and runs[-1][1] == number - 1:
+            runs[-1][1] = number
+        else:
+            runs.append([number, number])
+    return runs
+
+
 def main() -> None:
     runtime = RosRuntime()
     queue = StalledQueue()
@@ -45,13 +60,22 @@ def main() -> None:
     sys.stdin.readline()  # the publisher's burst is over
     queue.release.set()
     expected = int(sys.argv[1])
-    deadline = time.monotonic() + 20
-    received = 0
-    while time.monotonic() < deadline and received < expected:
-        received += len(queue.drain())
+    # Until every message is here or counted lost, or nothing more came for QUIET_S (Fast DDS
+    # may report the last gap late, or never), within a deadline generous for a busy machine.
+    records: list = []
+    deadline = time.monotonic() + 60
+    progress_at, seen = time.monotonic(), (0, 0)
+    while len(records) + source.status.lost < expected and time.monotonic() < deadline:
+        records += queue.drain()
+        now = (len(records), source.status.lost)
+        if now != seen:
+            progress_at, seen = time.monotonic(), now
+        elif time.monotonic() - progress_at > QUIET_S:
+            break
         time.sleep(0.05)
-    time.sleep(0.5)
-    received += len(queue.drain())
+    time.sleep(0.5)  # anything beyond what was sent would show
+    records += queue.drain()
+    received = len(records)
     status = source.status
     print(
         json.dumps(
@@ -63,6 +87,7 @@ def main() -> None:
                 # What each count saw (lost_qos is the larger), for a failure to show.
                 "loss_events": source.counts.lost_qos,
                 "sequence_gaps": source.counts.lost_gaps,
+                "missing": missing_bursts(records, expected - 1)[:20],
             }
         ),
         flush=True,

@@ -5,6 +5,8 @@ import pytest
 from console_tui.sources.ros2.rclpy_loader import RosUnavailable
 from console_tui.sources.ros2.runtime import FASTDDS_PROFILE, check_domain_id, reader_profile_environment
 
+from support.rosproc import NODES, PATIENCE_S, NodeProcess
+
 
 def test_profile_added_under_fast_dds_when_the_user_has_none(tmp_path):
     profile = str(FASTDDS_PROFILE)
@@ -24,26 +26,41 @@ def test_the_users_own_profiles_and_other_rmws_are_left_alone(tmp_path):
     assert reader_profile_environment({}, tmp_path) == {}
 
 
-def burst_into_a_stalled_intake(nodes, count: int) -> dict:
+def burst_into_a_stalled_intake(nodes, count: int, *, keep_it_all: bool = False) -> dict:
     """A talker logs one message, on which the intake stalls, then ``count`` more in a burst;
-    then the intake goes on. Returns what it says it received (``count``, ``lost``, ``lost_qos``)."""
-    talker = nodes.start("talker.py", "--name", "burst_talker")
+    then the intake goes on. Returns what it says it received (``count``, ``lost``, ``lost_qos``).
+
+    ``keep_it_all``: the talker keeps the whole burst in its writer until the console has it
+    (its own /rosout publisher, as deep as the burst, with room for it in Fast DDS)."""
+    if keep_it_all:
+        profile = str(NODES / "deep_writer_profile.xml")
+        env = {**nodes.env, "FASTDDS_DEFAULT_PROFILES_FILE": profile, "FASTRTPS_DEFAULT_PROFILES_FILE": profile}
+        args = ("--own-rosout", str(count + 1))
+        talker = nodes.add(NodeProcess("talker.py", "--name", "burst_talker", *args, env=env))
+    else:
+        talker = nodes.start("talker.py", "--name", "burst_talker")
     talker.expect("ready")
     reader = nodes.start("stalled_intake.py", str(count + 1))
-    reader.expect("ready", timeout=30)
+    reader.expect("ready")
     talker.send({"cmd": "log", "level": "info", "msg": "first: the intake stalls on it"})
     reader.expect("stalled")
     talker.send({"cmd": "burst", "count": count})
-    talker.expect("burst", timeout=60)
+    talker.expect("burst", timeout=2 * PATIENCE_S)
     reader.send({"cmd": "go"})
-    return reader.expect("received", timeout=60)
+    return reader.expect("received", timeout=2 * PATIENCE_S)
 
 
 def test_a_stalled_console_loses_nothing_of_a_burst_of_20000(nodes):
     """The intake stops taking (as when the UI hogs the interpreter) while a node logs
-    20,000 messages; Fast DDS holds them all for the console (its default holds 5,000)."""
-    result = burst_into_a_stalled_intake(nodes, 20_000)
-    assert (result["count"], result["lost"]) == (20_001, 0), result
+    20,000 messages; Fast DDS holds them all for the console (its default holds 5,000).
+
+    The node keeps the whole burst in its writer until the console has it. A node's rosout
+    publisher keeps 1,000: on a busy machine (seen on Jazzy, Fast DDS 2.14) some of the node's
+    own sends fail while its thread waits for a CPU, and by the time the console asks for them
+    again the node has dropped them; the console counts them lost (none was dropped at its
+    sockets, and its reader had room). That is the node's loss, not the console's."""
+    result = burst_into_a_stalled_intake(nodes, 20_000, keep_it_all=True)
+    assert (result["count"], result["lost"]) == (20_001, 0), f"{result}"
 
 
 def test_with_fast_dds_defaults_a_stalled_console_counts_what_it_lost(nodes, tmp_path):
