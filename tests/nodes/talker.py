@@ -116,9 +116,11 @@ def main() -> None:
     options = {"enable_logger_service": not args.no_logger_service}
     volatile = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.VOLATILE)
     durable = QoSProfile(
-        depth=1000, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL
+        depth=args.own_rosout or 1000,
+        reliability=ReliabilityPolicy.RELIABLE,
+        durability=DurabilityPolicy.TRANSIENT_LOCAL,
     )
-    own_rosout = args.own_rosout or (
+    own_rosout = bool(args.own_rosout) or (
         args.volatile and "rosout_qos_profile" not in inspect.signature(Node.__init__).parameters
     )
     if own_rosout:
