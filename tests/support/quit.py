@@ -13,6 +13,8 @@ import termios
 import time
 from pathlib import Path
 
+from support.rosproc import PATIENCE_S
+
 
 def children(pid: int) -> set[int]:
     found = set()
@@ -42,7 +44,7 @@ def run_and_quit(env: dict[str, str], *args: str, others_expected: int = 0) -> t
     others: set[int] = set()
     seen = b""
     try:
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + PATIENCE_S
         while time.monotonic() < deadline and not (intake and b"Message" in seen and len(others) >= others_expected):
             if select.select([fd], [], [], 0.1)[0]:
                 seen += os.read(fd, 65536)
@@ -51,7 +53,7 @@ def run_and_quit(env: dict[str, str], *args: str, others_expected: int = 0) -> t
         assert intake, "no intake process seen"
         time.sleep(1.0)
         os.write(fd, b"q")
-        deadline = time.monotonic() + 20
+        deadline = time.monotonic() + PATIENCE_S
         status = None
         while time.monotonic() < deadline:
             done, status = os.waitpid(pid, os.WNOHANG)
