@@ -99,6 +99,18 @@ def log_fatal(logger, msg: str) -> dict:
     return _logged(logger, record)
 
 
+def publish_burst(logger, count: int) -> None:
+    """``burst 0`` to ``burst COUNT-1`` at INFO through the node's own /rosout publisher only."""
+    from rcl_interfaces.msg import Log
+
+    node, publisher = OWN_ROSOUT
+    clock = node.get_clock()
+    for number in range(count):
+        publisher.publish(
+            Log(stamp=clock.now().to_msg(), level=20, name=logger.name, msg=f"burst {number}", file=FILE, line=number)
+        )
+
+
 BY_LEVEL = {"debug": log_debug, "info": log_info, "warn": log_warning, "error": log_error, "fatal": log_fatal}
 
 
@@ -162,10 +174,10 @@ def main() -> None:
                 say(event="logged", messages=[message])
             elif kind == "burst":
                 count = int(command.get("count", 1000))
-                for number in range(count):
-                    if OWN_ROSOUT:
-                        log_info(logger, f"burst {number}")
-                    else:
+                if OWN_ROSOUT:
+                    publish_burst(logger, count)
+                else:
+                    for number in range(count):
                         logger.info(f"burst {number}")
                 acked = OWN_ROSOUT[1].wait_for_all_acked(Duration(seconds=60)) if OWN_ROSOUT else None
                 say(event="burst", count=count, acked=acked)
