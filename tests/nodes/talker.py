@@ -9,8 +9,8 @@ of its own. ``--own-rosout`` makes the node publish on ``/rosout`` itself that w
 own QoS (RELIABLE, TRANSIENT_LOCAL, depth 1000, or DEPTH): then ``burst`` waits until every
 subscriber has acknowledged every message before it answers (``"acked": true``), so a test
 knows that the burst has reached the subscribers' histories. A DEPTH as large as a burst keeps
-all of it until then: rosout's 1,000 does not when the machine is busy (the node's own sends
-fall behind, the oldest are dropped unsent, and subscribers count them as lost).
+all of it until then (with Fast DDS room for it: deep_writer_profile.xml); with rosout's 1,000,
+on a busy machine, subscribers were told that some of a 20,000 burst were lost.
 
 Prints ``{"event": "ready", "logger": ..., "pid": ...}`` once up. Commands (one JSON object a
 line): ``{"cmd": "log_all", "tag": T}`` logs one message at each severity, from a function

@@ -55,10 +55,10 @@ def test_a_stalled_console_loses_nothing_of_a_burst_of_20000(nodes):
     20,000 messages; Fast DDS holds them all for the console (its default holds 5,000).
 
     The node keeps the whole burst in its writer until the console has it. A node's rosout
-    publisher keeps 1,000: on a busy machine (seen on Jazzy, Fast DDS 2.14) some of the node's
-    own sends fail while its thread waits for a CPU, and by the time the console asks for them
-    again the node has dropped them; the console counts them lost (none was dropped at its
-    sockets, and its reader had room). That is the node's loss, not the console's."""
+    publisher keeps 1,000: on a busy machine (Jazzy, Fast DDS 2.14) the console was told that
+    some of the burst were lost (Fast DDS's message-lost events, as many as the gaps in the
+    sequence numbers) while its reader had room for all and none was dropped at its sockets;
+    with the node keeping the whole burst nothing is lost. That loss is the node's, and counted."""
     result = burst_into_a_stalled_intake(nodes, 20_000, keep_it_all=True)
     assert (result["count"], result["lost"]) == (20_001, 0), f"{result}"
 
