@@ -25,6 +25,7 @@ A graph thread does everything that waits on the network (each call with a timeo
 from __future__ import annotations
 
 import queue
+import resource
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -40,12 +41,23 @@ from .master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
 from .slave_server import SlaveServer
 from .subscribed_topic import SubscribedTopic
 from .tcpros import TcprosError, open_subscription
+from .xmlrpc import shown
+
+
+def _open_files_limit() -> int:
+    soft, _hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    return soft if soft > 0 else 1024
+
 
 GRAPH_PERIOD_S = 1.0
 MASTER_RETRY_S = 1.0
 #: How long both topics are read when moving between /rosout and /rosout_agg, at most.
 OVERLAP_S = 2.0
-CONNECT_WORKERS = 4
+#: Publishers asked for a connection at once; a slow one holds a worker for its calls'
+#: timeouts at most, and retries back off, so slow peers cannot keep the others waiting long.
+CONNECT_WORKERS = 16
+#: Connections (open or being opened) at most, so many publishers cannot use up the file handles.
+MAX_CONNECTIONS = max(16, min(512, _open_files_limit() // 4))
 UNREGISTER_TIMEOUT_S = 1.0
 PATH = "tcpros"
 
@@ -191,8 +203,15 @@ class Ros1LiveSource:
                 for topic in self._topics.values():
                     topic.registered = False
                 self._master_key = key
+            problem = ""
             if self.requested_topic is None:
-                self._choose_topic(master.system_state().publishers.get(ROSOUT_AGG, []))
+                try:
+                    self._choose_topic(master.system_state().publishers.get(ROSOUT_AGG, []))
+                except Ros1CallError as error:
+                    if error.unreachable:
+                        raise
+                    problem = error.reason  # the graph unknown this time: keep the topic read so far
+                    self._current = self._current or ROSOUT
             elif not self._current:
                 self._current = self.requested_topic
             for topic in list(self._topics.values()):
@@ -200,15 +219,21 @@ class Ros1LiveSource:
                     self._register(topic)
             if self._current not in self._topics:
                 self._register(self._subscribe(self._current))
+        except (ValueError, TypeError) as error:  # an answer of a shape not foreseen: that call's problem
+            self._master_problem = self._odd(f"an odd answer: {error}")
+            return
         except Ros1CallError as error:
             if error.unreachable:
                 self._master_ok = False
                 self._master_problem = self._waiting(error.reason)
             else:
-                self._master_problem = f"the master at {self.environment.master_uri} refused: {error.reason}"
+                self._master_problem = self._odd(error.reason)
             return
         self._master_ok = True
-        self._master_problem = ""
+        self._master_problem = self._odd(problem) if problem else ""
+
+    def _odd(self, reason: str) -> str:
+        return f"the master at {self.environment.master_uri}: {reason} (trying again)"
 
     def _waiting(self, reason: str) -> str:
         text = f"waiting for master at {self.environment.master_uri}"
@@ -274,10 +299,18 @@ class Ros1LiveSource:
 
     def _connect_due(self) -> None:
         now = time.monotonic()
+        room = MAX_CONNECTIONS - sum(len(t.connected) + len(t.connecting) for t in self._topics.values())
         for topic in self._topics.values():
-            for uri in topic.due(now):
+            for uri in topic.due(now, max(room, 0)):
                 assert self._pool is not None
+                room -= 1
                 self._pool.submit(self._connect, topic.name, uri)
+
+    def _not_read(self) -> int:
+        """Publishers left unread because ``MAX_CONNECTIONS`` are open or opening."""
+        if sum(len(t.connected) + len(t.connecting) for t in self._topics.values()) < MAX_CONNECTIONS:
+            return 0
+        return sum(len(t.publishers - t.connected - t.connecting) for t in self._topics.values())
 
     def _next_retry(self) -> float:
         times = [when for topic in self._topics.values() for when in topic.retry_at.values()]
@@ -285,18 +318,24 @@ class Ros1LiveSource:
 
     def _connect(self, topic: str, uri: str) -> None:
         """On a pool thread: ask the publisher for a connection and open it."""
+        deadline = time.monotonic() + self.call_timeout
         try:
             answer = xmlrpc_call(uri, "requestTopic", self.node_name, topic, [["TCPROS"]], timeout=self.call_timeout)
-            if not isinstance(answer, (list, tuple)) or len(answer) < 3 or answer[0] != "TCPROS":
-                raise TcprosError(f"{uri} offers no TCPROS connection: {answer!r:.80}")
+            if (
+                not isinstance(answer, (list, tuple))
+                or len(answer) < 3
+                or answer[0] != "TCPROS"
+                or not isinstance(answer[2], int)
+            ):
+                raise TcprosError(f"{uri} offers no TCPROS connection: {shown(answer)}")
             sock, header = open_subscription(
                 str(answer[1]),
-                int(answer[2]),
+                answer[2],
                 caller_id=self.node_name,
                 topic=topic,
                 msg_type=TYPE,
                 md5sum=MD5SUM,
-                timeout=self.call_timeout,
+                timeout=max(deadline - time.monotonic(), 0.001),
             )
         except (Ros1CallError, TcprosError, ValueError, TypeError) as error:
             refused = isinstance(error, TcprosError) and error.refused_by_peer
@@ -347,6 +386,9 @@ class Ros1LiveSource:
             problems.append(f"a publisher at {uri} refused {topic.name}: {reason}")
         if intake is not None and intake.last_problem and intake.lost_undecodable:
             problems.append(intake.last_problem)
+        not_read = self._not_read()
+        if not_read:
+            problems.append(f"{not_read} publishers not read: at most {MAX_CONNECTIONS} connections at once")
         lost_undecodable = intake.lost_undecodable if intake is not None else 0
         lost_queue = self.queue.dropped
         changes = {

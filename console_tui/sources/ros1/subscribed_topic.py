@@ -40,10 +40,12 @@ class SubscribedTopic:
         for uri in self.publishers - self.connected - self.connecting:
             self.retry_at.setdefault(uri, now)
 
-    def due(self, now: float) -> list[str]:
-        """The publishers to connect to now, each marked as connecting."""
-        uris = []
+    def due(self, now: float, limit: int) -> list[str]:
+        """The publishers to connect to now (``limit`` at most), each marked as connecting."""
+        uris: list[str] = []
         for uri, when in list(self.retry_at.items()):
+            if len(uris) >= limit:
+                break
             if when <= now and uri not in self.connecting and uri not in self.connected:
                 del self.retry_at[uri]
                 self.connecting.add(uri)

@@ -7,7 +7,7 @@ uint32 length and the message's bytes. A service client sends ``callerid, servic
 md5sum, persistent=0``, gets a header back, sends the request (length-prefixed) and reads
 one ok byte and a length-prefixed body (the error text when ok is 0).
 
-Every blocking step has a timeout; failures raise ``TcprosError`` with a text to show.
+Every exchange has one deadline for all its steps (connect, send, the whole reply); failures raise ``TcprosError`` with a text to show.
 """
 
 from __future__ import annotations
@@ -91,6 +91,18 @@ def read_exact(sock: socket.socket, count: int, deadline: float) -> bytes:
     return b"".join(chunks)
 
 
+def _send(sock: socket.socket, deadline: float, data: bytes) -> None:
+    """All of ``data`` before ``deadline`` (monotonic)."""
+    remaining = deadline - time.monotonic()
+    if remaining <= 0:
+        raise TcprosError("no answer in time")
+    sock.settimeout(remaining)
+    try:
+        sock.sendall(data)
+    except TimeoutError:
+        raise TcprosError("no answer in time") from None
+
+
 def read_header(sock: socket.socket, deadline: float) -> dict[str, str]:
     (length,) = _U32.unpack(read_exact(sock, 4, deadline))
     if length > MAX_HEADER_BYTES:
@@ -125,7 +137,9 @@ def open_subscription(
     deadline = time.monotonic() + timeout
     sock = _connect(host, port, timeout)
     try:
-        sock.sendall(encode_header({"callerid": caller_id, "topic": topic, "type": msg_type, "md5sum": md5sum}))
+        _send(
+            sock, deadline, encode_header({"callerid": caller_id, "topic": topic, "type": msg_type, "md5sum": md5sum})
+        )
         fields = read_header(sock, deadline)
     except (OSError, TcprosError) as error:
         sock.close()
@@ -156,11 +170,15 @@ def call_service(
     deadline = time.monotonic() + timeout
     sock = _connect(parts.hostname, parts.port, timeout)
     try:
-        sock.sendall(encode_header({"callerid": caller_id, "service": service, "md5sum": md5sum, "persistent": "0"}))
+        _send(
+            sock,
+            deadline,
+            encode_header({"callerid": caller_id, "service": service, "md5sum": md5sum, "persistent": "0"}),
+        )
         fields = read_header(sock, deadline)
         if "error" in fields:
             raise TcprosError(fields["error"] or "refused without a reason", refused_by_peer=True)
-        sock.sendall(prefixed(request))
+        _send(sock, deadline, prefixed(request))
         ok = read_exact(sock, 1, deadline)[0]
         (length,) = _U32.unpack(read_exact(sock, 4, deadline))
         if length > MAX_REPLY_BYTES:
