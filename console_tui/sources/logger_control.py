@@ -113,6 +113,10 @@ class LoggerControl(ABC):
         self._listeners: list[Callable[[LoggerEvent], None]] = []
         self._stop = threading.Event()
         self._woken = threading.Event()
+        self._watched = threading.Event()
+        self._watched.set()
+        #: Turns of the loggers thread so far (for tests: time passing without a clock).
+        self.passes = 0
         self._closed = False
         self._thread: threading.Thread | None = None
         #: A one-line problem for the status bar, or "".
@@ -144,6 +148,20 @@ class LoggerControl(ABC):
         return NoLoggerServices(node, self.no_services_hint)
 
     # -- the graph -----------------------------------------------------------------------------
+
+    @property
+    def graph_watched(self) -> bool:
+        return self._watched.is_set()
+
+    def watch_graph(self, watched: bool) -> None:
+        """Look at the graph every ``GRAPH_PERIOD_S`` only while ``watched`` (the default):
+        the UI looks only while its logger pane is open. A call to an unknown node still
+        looks once."""
+        if watched and not self._watched.is_set():
+            self._watched.set()
+            self._trigger()
+        elif not watched:
+            self._watched.clear()
 
     @property
     def nodes(self) -> tuple[GraphNode, ...]:
@@ -296,7 +314,8 @@ class LoggerControl(ABC):
             self._open()
             while True:
                 now = self.clock()
-                if now >= next_graph:
+                self.passes += 1
+                if now >= next_graph and self._watched.is_set():
                     next_graph = now + (STARTUP_GRAPH_PERIOD_S if now - started < STARTUP_S else GRAPH_PERIOD_S)
                     self._refresh_graph(now)
                 with self._lock:
@@ -313,7 +332,7 @@ class LoggerControl(ABC):
                         break
                 else:
                     self._restore_due()
-                self._wait(self._idle_time(calls, next_graph))
+                self._wait(self._idle_time(calls, next_graph if self._watched.is_set() else now + MAX_IDLE_S))
         except Exception as error:  # the ROS went down under us, or a bug: say so, never hang
             if not self._stop.is_set():
                 self.problem = f"logger levels stopped: {type(error).__name__}: {error}"

@@ -12,6 +12,7 @@ import pytest
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.sources.ros1.environment import Ros1Environment
 from console_tui.sources.ros1.live_source import Ros1LiveSource
+from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 from console_tui.sources.ros1.master import Ros1CallError, xmlrpc_call
 
 from support.hostile_ros1 import (
@@ -134,3 +135,19 @@ def test_a_huge_system_state_is_refused_with_memory_bounded():
             wait_for(lambda: running.good_rows() >= 3, 30, "the good publisher's rows")
             assert running.source.status.running
         assert rss_peak_mb() - before < 250, f"peak RSS grew by {rss_peak_mb() - before:.0f} MB"
+
+
+def test_the_logger_control_asks_the_master_only_while_watched():
+    with FakeMaster(
+        [], getSystemState=[[], [], [["/n/get_loggers", ["/n"]], ["/n/set_logger_level", ["/n"]]]]
+    ) as master:
+        control = Ros1LoggerControl(Ros1Environment(master.uri, "127.0.0.1", "127.0.0.1"), call_timeout=1.0)
+        control.watch_graph(False)  # the UI's logger pane, closed
+        control.start()
+        try:
+            wait_for(lambda: control.passes >= 30, 30, "the loggers thread turning")
+            assert master.calls["getSystemState"] == 0
+            control.watch_graph(True)  # the pane opened
+            wait_for(lambda: [n.fqn for n in control.nodes] == ["/n"], 30, "the nodes")
+        finally:
+            control.close()

@@ -206,3 +206,21 @@ async def test_temporary_level_dialog():
         await pilot.press("escape")
         await until(pilot, lambda: title not in screen_text(app), what="the dialog cancelled")
         assert results[-1] is None
+
+
+async def test_the_graph_is_watched_only_while_the_pane_is_open():
+    from support.memory_control import MemoryControl, MemoryNode
+
+    control = MemoryControl([MemoryNode("/watched_node")])
+    app = make_app(logger_control=control)
+    try:
+        async with app.run_test(size=(120, 30)) as pilot:
+            await until(pilot, lambda: cursor_number(app) == 100, what="the table")
+            assert not control.graph_watched  # closed: the master is not asked for nodes
+            await pilot.press("l")
+            await until(pilot, lambda: pane_says(app, "watched_node"), what="the node listed")
+            assert control.graph_watched
+            await pilot.press("l")
+            await until(pilot, lambda: not control.graph_watched, what="the watch ended")
+    finally:
+        control.close()

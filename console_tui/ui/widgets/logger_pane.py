@@ -153,11 +153,14 @@ class LoggerPane(RightPane):
 
     def on_mount(self) -> None:
         if self.requests.control is not None:
+            self.requests.control.watch_graph(self.is_open)
             self.requests.listen()
             self.show_nodes(self.requests.control.nodes)
         self._render_all()
 
     def when_opened(self) -> None:
+        if self.requests.control is not None:
+            self.requests.control.watch_graph(True)
         if self.requests.opened():
             self._render_checking()
         if self.selected is None and self.node_list.option_count:
@@ -167,6 +170,8 @@ class LoggerPane(RightPane):
         self._update_ticker()
 
     def when_closed(self) -> None:
+        if self.requests.control is not None:
+            self.requests.control.watch_graph(False)  # the master is asked only while someone looks
         self._update_ticker()
 
     def focus_target(self) -> Widget:
