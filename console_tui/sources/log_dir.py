@@ -10,6 +10,12 @@ variables). What they put there differs:
   symlink to the newest;
 - ``console-tui rosout`` a directory per start (``rosout-2026-11-22-10-08-41-4242/``).
 
+What ``purge`` may remove is decided by shape: a ROS 1 run (a UUID-named directory), a
+``ros2 launch`` directory, a console-tui rosout directory, a ROS 2 node log file, and the
+``latest`` link (``is_ros_entry``). Anything else at the top means the directory is not
+(only) a log directory (``foreign_entries``); ``/``, the home directory and the directories
+above it are never taken as one (``refused_log_dir``).
+
 Each entry of the log directory is one *run*: a directory with everything under it, or a
 single file. Symlinks are never followed: a symlink in the directory is an entry of its
 own, of size 0, that is removed as a link (what it points to is never touched). Sizes are
@@ -77,8 +83,41 @@ class LogRun:
         return "directory"
 
 
+#: The kinds of entry that are ROS logs by their shape (``LogRun.kind``).
+ROS_KINDS = frozenset({"ROS 1 run", "ros2 launch", "console-tui rosout", "ROS 2 node log"})
+#: The link ROS 1 keeps to its newest run.
+LATEST_LINK = "latest"
+
+
+def is_ros_entry(run: LogRun) -> bool:
+    """Whether ``run`` is a ROS log by its shape: the only entries ``purge`` removes."""
+    if run.type == "symlink":
+        return run.name == LATEST_LINK
+    return run.kind in ROS_KINDS
+
+
+def foreign_entries(runs: list[LogRun]) -> list[LogRun]:
+    """The entries that are not ROS logs by their shape."""
+    return [run for run in runs if not is_ros_entry(run)]
+
+
+def refused_log_dir(log_dir: Path, home: str | None = None) -> str:
+    """Why ``log_dir`` (resolved) can never be a log directory to clean, or "": it is ``/``,
+    the home directory, or a directory above the home directory."""
+    real = log_dir.resolve()
+    home_dir = Path(home or os.path.expanduser("~")).resolve()
+    if real == Path(real.anchor):
+        return f"{real} is the root directory, not a log directory"
+    if real == home_dir:
+        return f"{real} is the home directory, not a log directory"
+    if real in home_dir.parents:
+        return f"{real} holds the home directory, not a log directory"
+    return ""
+
+
 def scan_runs(log_dir: Path) -> list[LogRun]:
-    """The runs in ``log_dir``, oldest first; an empty list if it does not exist."""
+    """The runs in ``log_dir``, oldest first; an empty list if it does not exist. A
+    directory that is not a ROS log by its shape is not walked: its size and time are its own."""
     runs: list[LogRun] = []
     try:
         entries = list(os.scandir(log_dir))
@@ -92,8 +131,11 @@ def scan_runs(log_dir: Path) -> list[LogRun]:
         if stat.S_ISLNK(info.st_mode):
             runs.append(LogRun(entry.name, "symlink", 0, info.st_mtime, 0))
         elif stat.S_ISDIR(info.st_mode):
-            size, mtime, files = _tree(entry.path, info.st_mtime)
-            runs.append(LogRun(entry.name, "directory", size, mtime, files))
+            run = LogRun(entry.name, "directory", 0, info.st_mtime, 0)
+            if is_ros_entry(run):  # what is not a ROS log is never walked (a mis-set ROS_LOG_DIR=/opt)
+                size, mtime, files = _tree(entry.path, info.st_mtime)
+                run = LogRun(entry.name, "directory", size, mtime, files)
+            runs.append(run)
         else:
             runs.append(LogRun(entry.name, "file", info.st_size, info.st_mtime, 1))
     runs.sort(key=lambda run: (run.mtime, run.name))

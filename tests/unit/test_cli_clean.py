@@ -76,10 +76,11 @@ def test_check_prints_total_and_largest(tree, capsys):
     log, _ = tree
     assert main(["clean", "check", "--dir", str(log), "--top", "2"]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert out[0] == f"{log}: 10K in 7 runs"
-    assert out[1] == "Largest runs:"
-    assert "4.9K" in out[2] and out[2].endswith("0b8c1f2e-1111-2222-3333-444455556666")
-    assert "2.9K" in out[3] and "ROS 1 run" in out[3] and len(out) == 4
+    assert out[0] == f"{log}: 10K in 5 runs"  # the latest link is no run
+    assert out[1] == "Also 1 entry that is not a ROS log (out): never removed."
+    assert out[2] == "Largest runs:"
+    assert "4.9K" in out[3] and out[3].endswith("0b8c1f2e-1111-2222-3333-444455556666")
+    assert "2.9K" in out[4] and "ROS 1 run" in out[4] and len(out) == 5
 
 
 def names(log: Path) -> set[str]:
@@ -112,22 +113,22 @@ def names(log: Path) -> set[str]:
 )
 def test_purge_by_age_and_by_size(tree, capsys, options, kept, removed):
     log, outside = tree
-    assert main(["clean", "purge", "--dir", str(log), *options, "--yes"]) == 0
+    assert main(["clean", "purge", "--dir", str(log), *options, "--yes", "--force"]) == 0
     assert names(log) == kept
     assert (outside / "precious.log").stat().st_size == 5000
     assert f"Removed {removed}" in capsys.readouterr().out
 
 
-def test_purge_all_removes_links_never_their_targets(tree):
+def test_purge_all_removes_ros_logs_and_links_never_their_targets(tree):
     log, outside = tree
-    assert main(["clean", "purge", "--dir", str(log), "--yes"]) == 0
-    assert names(log) == set()
+    assert main(["clean", "purge", "--dir", str(log), "--yes", "--force"]) == 0
+    assert names(log) == {"out"}  # not a ROS log: left alone
     assert sorted(p.name for p in outside.iterdir()) == ["precious.log"]
 
 
 def test_purge_removing_the_latest_run_removes_the_dangling_latest_link(tree):
     log, _ = tree
-    assert main(["clean", "purge", "--dir", str(log), "--older-than", "1d", "--yes"]) == 0
+    assert main(["clean", "purge", "--dir", str(log), "--older-than", "1d", "--yes", "--force"]) == 0
     assert names(log) == {"listener_99_1700000000001.log", "out"}
 
 
@@ -135,7 +136,7 @@ def test_purge_asks_and_refuses_without_a_terminal(tree, capsys, monkeypatch):
     log, _ = tree
     before = names(log)
     monkeypatch.setattr("sys.stdin", open(os.devnull))
-    assert main(["clean", "purge", "--dir", str(log)]) == 3
+    assert main(["clean", "purge", "--dir", str(log), "--force"]) == 3
     assert names(log) == before
     assert "pass --yes" in capsys.readouterr().err
 
