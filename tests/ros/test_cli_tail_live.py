@@ -130,3 +130,23 @@ def test_the_slower_intake_path_is_said_once_on_stderr(nodes, ros_env):
         "console-tui tail: slower intake: the take loop in C is not used (CONSOLE_TUI_COMPILED_TAKE=0)"
     )
     assert "python3-dev" in said[0]
+
+
+def test_a_hanging_compiler_does_not_blind_the_intake(nodes, ros_env, ros_runtime, tmp_path):
+    """Issue 33 item 10: with ``CC`` hanging and no built take loop cached, ``tail`` takes
+    through rclpy meanwhile: what is logged arrives long before the compiler's time limit."""
+    compiler = tmp_path / "hanging-cc"
+    compiler.write_text("#!/bin/sh\nsleep 100 &\nwait\n")
+    compiler.chmod(0o755)
+    env = {**ros_env, "CC": str(compiler), "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    talker = nodes.start("talker.py", "--name", "while_building")
+    talker.expect("ready")
+    tail = TailProcess(env, "--topic", "/rosout", "--format", "{message}")
+    try:
+        probe = ros_runtime.create_node("probe_building")
+        assert wait_until(lambda: subscribed(probe, 1), 40)
+        talker.send({"cmd": "log", "level": "warn", "msg": "logged while the compiler hangs"})
+        lines = tail.take_text(1, timeout=40)  # the build's limit is 60 s, the compiler 100 s
+        assert lines == ["logged while the compiler hangs"]
+    finally:
+        tail.stop()

@@ -28,6 +28,7 @@ def take_by(path: str, monkeypatch) -> bool:
     from console_tui.sources.ros2 import compiled_take
 
     monkeypatch.setattr(compiled_take, "_loaded", None)
+    monkeypatch.setattr(compiled_take, "_loading", None)
     if path == "raw+cdr":
         monkeypatch.setenv(compiled_take.SWITCH, "0")
     elif path == "c+cdr":

@@ -12,6 +12,17 @@ and the PyPI wheels lay them out), with the C compiler Python was built with, in
 everything it was built from; later starts load it from there. Without a compiler,
 Python's headers or rcl's (or with ``CONSOLE_TUI_COMPILED_TAKE=0``) the intake takes
 through rclpy, as before: ``load()`` returns ``None`` and says why.
+
+What the cache trusts: a built file is loaded only from a cache directory that is a real
+directory (not a link) owned by the user and writable by nobody else, and only if the file
+itself is a regular file owned by the user and writable by nobody else. Otherwise the loop
+is built into a fresh private directory, loaded from there, and ``load()`` says why. Files
+of the loop's shape that no start has used for ``PRUNE_AFTER_S`` (other venvs, other rcl
+versions) are removed from the cache.
+
+The build is bounded (``BUILD_TIMEOUT_S``, the compiler's whole process group killed at
+the end of it) and runs beside the intake: ``start_loading()`` starts it, ``loaded_now()``
+says whether it is done, and meanwhile the intake takes through rclpy.
 """
 
 from __future__ import annotations
@@ -20,11 +31,16 @@ import hashlib
 import importlib.machinery
 import importlib.util
 import os
+import re
 import shutil
+import signal
+import stat
 import subprocess
 import sys
 import sysconfig
 import tempfile
+import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -33,43 +49,137 @@ MODULE = "console_tui_take_loop"
 #: ``0`` keeps rclpy's take (to compare the two, or if the compiled one misbehaves).
 SWITCH = "CONSOLE_TUI_COMPILED_TAKE"
 BUILD_TIMEOUT_S = 60.0
+#: A built loop no start has used for this long is removed from the cache.
+PRUNE_AFTER_S = 30 * 86400.0
+_BUILT = re.compile(r"take_loop_[0-9a-f]{16}\..*so\Z")
 _LIBRARIES = ("rcl", "rmw", "rcutils")
 
 #: ``take(pointer, limit, last_seen[, infos]) -> (messages, lost)``; see take_loop.c.
 TakeFunction = Callable[..., tuple[list[bytes], int]]
 
 _loaded: tuple[TakeFunction | None, str] | None = None
+_build_lock = threading.Lock()
+_state_lock = threading.Lock()
+_loading: threading.Thread | None = None
 
 
 def load() -> tuple[TakeFunction | None, str]:
-    """The compiled take function and ``""``, or ``None`` and why not (built once, then cached)."""
+    """The compiled take function and ``""`` (or a note on how it was built), or ``None``
+    and why not (built once, then cached)."""
     global _loaded
-    if _loaded is None:
-        try:
-            _loaded = _load()
-        except Exception as error:  # never worth stopping the intake for
-            _loaded = (None, f"{type(error).__name__}: {error}")
+    with _build_lock:
+        if _loaded is None:
+            _loaded = _guarded(_load) or (None, "not built")
+        return _loaded
+
+
+def start_loading() -> None:
+    """What ``load()`` does, at once when nothing needs building, else on a thread of its
+    own (once); ``loaded_now()`` says when it is done."""
+    global _loading, _loaded
+    with _state_lock:
+        if _loaded is not None or _loading is not None:
+            return
+        _loading = threading.Thread(target=load, name="console-tui-take-loop-build", daemon=True)
+    quick = _guarded(lambda: _load(may_build=False))
+    if quick is not None:
+        _loaded = quick
+    else:
+        _loading.start()
+
+
+def _guarded(
+    how: Callable[[], tuple[TakeFunction | None, str] | None],
+) -> tuple[TakeFunction | None, str] | None:
+    try:
+        return how()
+    except Exception as error:  # never worth stopping the intake for
+        return None, f"{type(error).__name__}: {error}"
+
+
+def loaded_now() -> tuple[TakeFunction | None, str] | None:
+    """What ``load()`` gave, or ``None`` while it is still building."""
     return _loaded
 
 
-def _load() -> tuple[TakeFunction | None, str]:
+def _load(*, may_build: bool = True) -> tuple[TakeFunction | None, str] | None:
+    """What ``load()`` gives; ``None`` (only when not ``may_build``) when it must build."""
     if os.environ.get(SWITCH, "1") == "0":
         return None, f"{SWITCH}=0"
     library = loaded_rcl()
     if library is None:
         return None, "rclpy's librcl.so is not among this process's libraries"
-    built = cache_dir() / f"take_loop_{build_key(library)}{_suffix()}"
+    name = f"take_loop_{build_key(library)}{_suffix()}"
+    cache = cache_dir()
+    distrust = untrusted(cache, directory=True) if os.path.lexists(cache) else ""
+    if distrust:
+        if not may_build:
+            return None
+        with tempfile.TemporaryDirectory(prefix="console-tui-take-") as private:  # mode 0700
+            built = Path(private) / name
+            problem = build(library, built)
+            if problem:
+                return None, f"{distrust}; building elsewhere: {problem}"
+            return _import(built), f"built into a private directory, as {distrust}"
+    built = cache / name
+    if built.exists() or built.is_symlink():
+        distrust = untrusted(built, directory=False)
+        if distrust:
+            built.unlink()  # ours to remove: the directory is ours and no one else's
     if not built.exists():
+        if not may_build:
+            return None
         problem = build(library, built)
         if problem:
             return None, problem
+    os.utime(built)  # used now: not pruned
+    prune(cache, keep=built)
+    return _import(built), ""
+
+
+def untrusted(path: Path, *, directory: bool) -> str:
+    """Why ``path`` must not be trusted to load code from, or "": it must be ours (this
+    user's), writable by no one else, and a real directory or regular file (not a link)."""
+    try:
+        info = os.lstat(path)
+    except OSError as error:
+        return f"{path}: {error.strerror or error}"
+    kind_ok = stat.S_ISDIR(info.st_mode) if directory else stat.S_ISREG(info.st_mode)
+    if not kind_ok:
+        return f"{path} is not a {'directory' if directory else 'regular file'}"
+    if info.st_uid != os.geteuid():
+        return f"{path} belongs to another user (uid {info.st_uid})"
+    if info.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+        return f"{path} is writable by others"
+    return ""
+
+
+def prune(cache: Path, *, keep: Path, now: float | None = None) -> None:
+    """Remove built loops of ours that no start has used for ``PRUNE_AFTER_S``."""
+    limit = (time.time() if now is None else now) - PRUNE_AFTER_S
+    try:
+        entries = list(os.scandir(cache))
+    except OSError:
+        return
+    for entry in entries:
+        if entry.name == keep.name or not _BUILT.match(entry.name):
+            continue
+        try:
+            info = entry.stat(follow_symlinks=False)
+            if stat.S_ISREG(info.st_mode) and info.st_uid == os.geteuid() and info.st_mtime < limit:
+                os.unlink(entry.path)
+        except OSError:
+            pass
+
+
+def _import(built: Path) -> TakeFunction:
     loader = importlib.machinery.ExtensionFileLoader(MODULE, str(built))
     spec = importlib.util.spec_from_file_location(MODULE, built, loader=loader)
     assert spec is not None
     module = importlib.util.module_from_spec(spec)
     loader.exec_module(module)
     take: TakeFunction = module.take
-    return take, ""
+    return take
 
 
 def loaded_rcl() -> Path | None:
@@ -139,12 +249,32 @@ def build(library: Path, target: Path) -> str:
             *(f"-l{name}" for name in _LIBRARIES),
             f"-Wl,-rpath,{lib_dir}",
         ]
-        try:
-            done = subprocess.run(command, capture_output=True, text=True, timeout=BUILD_TIMEOUT_S, check=False)
-        except (OSError, subprocess.TimeoutExpired) as error:
-            return f"compiling take_loop.c: {error}"
-        if done.returncode != 0:
-            lines = [line for line in done.stderr.splitlines() if line.strip()]
-            return f"compiling take_loop.c failed: {lines[-1] if lines else done.returncode}"
+        returncode, stderr = _run_bounded(command)
+        if returncode is None:
+            return f"compiling take_loop.c took longer than {BUILD_TIMEOUT_S:g} s: stopped"
+        if returncode != 0:
+            lines = [line for line in stderr.splitlines() if line.strip()]
+            return f"compiling take_loop.c failed: {lines[-1] if lines else returncode}"
         os.replace(partial, target)  # whole or not at all, when two processes build at once
     return ""
+
+
+def _run_bounded(command: list[str]) -> tuple[int | None, str]:
+    """Run the compiler in a process group of its own; its status and stderr, or ``None``
+    when it took longer than ``BUILD_TIMEOUT_S`` (the whole group is killed then)."""
+    try:
+        process = subprocess.Popen(
+            command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, start_new_session=True
+        )
+    except OSError as error:
+        return 1, f"compiling take_loop.c: {error.strerror or error}"
+    try:
+        _out, stderr = process.communicate(timeout=BUILD_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        try:
+            os.killpg(process.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        process.communicate()
+        return None, ""
+    return process.returncode, stderr

@@ -36,6 +36,8 @@ UNKNOWN_PUBLISHER_REFRESH_S = 0.2
 PATH_RAW = "raw+cdr"
 PATH_COMPILED = "c+cdr"
 PATH_TYPED = "typed"
+#: ``path_note`` while the take loop in C is being built (rclpy takes meanwhile).
+BUILDING = "being built (taken through rclpy meanwhile)"
 
 
 def gid_bytes(gid: Any) -> bytes:
@@ -68,8 +70,14 @@ class TopicReader:
         self.topic = topic
         self.counts = counts
         self.decoder = LogDecoder() if raw else None
-        #: The take loop in C (``None``: rclpy's take), and why not when it is missing.
-        self.compiled, self.compiled_problem = compiled_take.load() if raw else (None, "")
+        #: The take loop in C (``None``: rclpy's take, also while it is being built), and
+        #: why not when it is missing (or how it was built).
+        self.compiled: compiled_take.TakeFunction | None = None
+        self.compiled_problem = ""
+        self._compiled_pending = raw
+        if raw:
+            compiled_take.start_loading()
+            self._adopt_compiled()
         self.publisher_count = 0
         #: Set by an incompatible-QoS event on the main subscription: look at the graph now.
         self.graph_changed = False
@@ -101,6 +109,13 @@ class TopicReader:
         self._gidless = False
         self._unknown_refreshed_at = 0.0
 
+    def _adopt_compiled(self) -> None:
+        """Take through the loop in C from the moment its build is done."""
+        done = compiled_take.loaded_now()
+        if done is not None:
+            self._compiled_pending = False
+            self.compiled, self.compiled_problem = done
+
     @property
     def path(self) -> str:
         if self.decoder is None:
@@ -109,8 +124,10 @@ class TopicReader:
 
     @property
     def path_note(self) -> str:
-        """Why the take loop in C is not used, or "" (it is, or the path is ``typed``)."""
-        return self.compiled_problem if self.decoder is not None and self.compiled is None else ""
+        """Why the take loop in C is not used (or how it was built), or "" (the path is ``typed``)."""
+        if self._compiled_pending:
+            return BUILDING
+        return self.compiled_problem if self.decoder is not None else ""
 
     def _subscribe(self, qos: Any, *, main: bool) -> Any:
         """A subscription with loss and incompatibility events, as far as this rclpy and RMW have them."""
@@ -240,6 +257,8 @@ class TopicReader:
 
     def take_all(self, limit: int) -> RecordColumns:
         """Every message waiting (up to ``limit``), as records in columns, oldest first per subscription."""
+        if self._compiled_pending:
+            self._adopt_compiled()
         parts: list[RecordColumns] = []
         taken = self._take_into(parts, self.main, limit, None)
         if self.extra is not None and taken < limit:

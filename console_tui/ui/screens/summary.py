@@ -179,7 +179,13 @@ class SummaryScreen(ModalScreen[int | None]):
             lines = [
                 status.origin,
                 f"taken by {status.path_text()}" if status.path else "",
-                f"the take loop in C is not used: {status.path_note}" if status.path_note else "",
+                (
+                    f"the take loop in C: {status.path_note}"
+                    if status.path == "c+cdr"
+                    else f"the take loop in C is not used: {status.path_note}"
+                )
+                if status.path_note
+                else "",
                 f"lost: {status.loss_text() or 'none known'}",
                 f"{status.decoded_by_rclpy:,} read by rclpy (the direct decoder refused them)"
                 if status.decoded_by_rclpy
