@@ -131,11 +131,13 @@ def main(argv: Sequence[str]) -> int:
         print(f"console-tui rosout: /rosout -> /rosout_agg (history {args.depth:,}){where}", file=sys.stderr)
         aggregator.run(stop)
         counts = aggregator.counts()
-        print(
+        summary = (
             f"console-tui rosout: {plural(counts.received, 'message')} republished, {counts.written:,} written, "
-            f"{counts.lost:,} lost",
-            file=sys.stderr,
+            f"{counts.lost + counts.not_written:,} lost"
         )
+        if counts.not_written and log is not None:
+            summary += f" ({counts.not_written:,} not written to rosout.log: {log.error or 'write failed'})"
+        print(summary, file=sys.stderr)
     finally:
         for sig, handler in previous.items():
             signal.signal(sig, handler)

@@ -293,3 +293,32 @@ def test_the_counts_are_reported_on_its_own_rosout_as_often_as_asked(aggregators
     assert wait_until(lambda: len(reports()) >= before + 2), aggregator.path.read_text()[-2000:]
     assert aggregator.stop() == 0
     assert [r.msg for r in aggregator.records() if r.node == "reported"] == [f"counted {n}" for n in range(3)]
+
+
+def test_records_not_written_are_counted_lost_in_the_summary(ros_env, nodes, tmp_path):
+    """Issue 33 item 9: rosout.log stops growing (a file size limit, as a full disk): the exit
+    summary counts what was not written as lost, and says why."""
+    log_dir = tmp_path / "full"
+    limited = (
+        "import resource, runpy, signal, sys; signal.signal(signal.SIGXFSZ, signal.SIG_IGN); "
+        "resource.setrlimit(resource.RLIMIT_FSIZE, (3000, resource.getrlimit(resource.RLIMIT_FSIZE)[1])); "
+        "sys.argv = ['console-tui', 'rosout', '--log-dir', sys.argv[1]]; runpy.run_module('console_tui', run_name='__main__')"
+    )
+    process = subprocess.Popen(
+        [sys.executable, "-c", limited, str(log_dir)], stdin=subprocess.DEVNULL, stderr=subprocess.PIPE, env=ros_env
+    )
+    try:
+        assert wait_until(lambda: (log_dir / "rosout.log").exists(), 30)
+        process_talker = talker(nodes, "filling")
+        process_talker.send({"cmd": "burst", "count": 200})
+        process_talker.expect("burst")
+        assert wait_until(lambda: (log_dir / "rosout.log").stat().st_size >= 2900, 30)
+    finally:
+        process.send_signal(signal.SIGINT)
+        process.wait(30)
+    err = process.stderr.read().decode()
+    found = re.search(r"([\d,]+) messages? republished, ([\d,]+) written, ([\d,]+) lost \(([\d,]+) not written", err)
+    assert found, err
+    received, written, lost, not_written = (int(g.replace(",", "")) for g in found.groups())
+    assert not_written > 0 and lost >= not_written and written + not_written == received
+    assert "File too large" in err

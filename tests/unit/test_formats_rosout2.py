@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import json
 import os
+import re
+import subprocess
+import sys
 
 import pytest
 from hypothesis import given, settings
@@ -186,21 +190,55 @@ def test_a_file_that_cannot_be_opened_is_tried_again_after_a_while(tmp_path, mon
     assert list(problems) == [] and [r.stamp_ns for r in back] == [7]
 
 
-def test_a_full_disk_loses_lines_counted_in_write_flush_and_close():
-    # /dev/full takes the open and fails every write with ENOSPC, as a full disk does.
-    big = RotatingFile("/dev/full", max_bytes=10**9, keep=1)
-    big.write(lines(400))  # more than the write buffer: written (and refused) at once
-    assert big.lost == 400 and "No space left" in big.error
-    big.write(lines(1))  # no file until the retry time
-    assert big.lost == 401
-    flushed = RotatingFile("/dev/full", max_bytes=10**9, keep=1)
-    flushed.write(lines(1))  # buffered
-    flushed.flush()
-    assert "No space left" in flushed.error
-    closed = RotatingFile("/dev/full", max_bytes=10**9, keep=1)
-    closed.write(lines(1))
-    closed.close()
-    assert "No space left" in closed.error
+_FULL_DISK = """
+import json, resource, signal, sys
+from console_tui.model.formats import rotating_file
+from console_tui.model.formats.rotating_file import RotatingFile
+
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails (EFBIG), as on a full disk
+rotating_file.RETRY_S = 0.0
+_, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
+log = RotatingFile(sys.argv[1], max_bytes=10**9, keep=1, header="HEADER\\n")
+resource.setrlimit(resource.RLIMIT_FSIZE, (5000, hard))
+for n in range(100):
+    log.write([f"line {n:04d} " + "x" * 80 + "\\n"])
+    if n % 7 == 0:
+        log.flush()
+error = log.error
+resource.setrlimit(resource.RLIMIT_FSIZE, (hard, hard))  # the space freed
+for n in range(100, 110):
+    log.write([f"line {n:04d} " + "x" * 80 + "\\n"])
+log.close()
+print(json.dumps({"written": log.written, "lost": log.lost, "error": error}))
+"""
+
+
+def test_a_full_disk_never_glues_a_record_to_a_cut_one_and_counts_each_line_once(tmp_path):
+    path = tmp_path / "rosout.log"
+    done = subprocess.run([sys.executable, "-c", _FULL_DISK, str(path)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    counts = json.loads(done.stdout)
+    assert "File too large" in counts["error"]
+    text = path.read_text()
+    whole = re.compile(r"line \d{4} x{80}\Z")
+    rows = text.split("\n")
+    assert rows[0] == "HEADER" and rows[-1] == ""
+    complete = [row for row in rows[1:-1] if whole.match(row)]
+    cut = [row for row in rows[1:-1] if not whole.match(row)]
+    assert len(cut) == 1 and len(cut[0]) < 90, "the cut line stands alone"
+    assert [row[5:9] for row in complete][-10:] == [f"{n:04d}" for n in range(100, 110)]  # after: whole lines
+    assert counts["written"] == len(complete) and counts["written"] + counts["lost"] == 110
+
+
+def test_a_fifo_in_place_of_the_file_is_refused_not_waited_on(tmp_path):
+    path = tmp_path / "rosout.log"
+    os.mkfifo(path)
+    script = (
+        "import sys; from console_tui.model.formats.rotating_file import RotatingFile; "
+        "log = RotatingFile(sys.argv[1], max_bytes=10000, keep=1); print(log.error)"
+    )
+    done = subprocess.run([sys.executable, "-c", script, str(path)], capture_output=True, text=True, timeout=60)
+    assert "not a regular file" in done.stdout, done.stderr
 
 
 def test_a_rotation_that_cannot_move_the_files_counts_the_lines(tmp_path):

@@ -94,7 +94,7 @@ class RosoutAggregator:
         self.queue = IntakeQueue(limit=QUEUE_LIMIT)
         self.source = LiveLogSource(runtime, self.queue, topic=ROSOUT)
         self.encoder = LogEncoder()
-        self._received = self._published = self._written = self._unencodable = 0
+        self._received = self._published = self._unencodable = 0
         self._lock = threading.Lock()
         self._aggregators = 1
         self._reported_lost = 0
@@ -149,15 +149,10 @@ class RosoutAggregator:
             published += 1
             lines.append(rosout_log_text(record))
         if self.log is not None:
-            lost_before = self.log.lost
             self.log.write(lines)
-            written = len(lines) - (self.log.lost - lost_before)
-        else:
-            written = 0
         with self._lock:
             self._received += len(batch)
             self._published += published
-            self._written += written
             self._unencodable += unencodable
 
     # -- reporting --------------------------------------------------------------------------
@@ -165,12 +160,8 @@ class RosoutAggregator:
     def counts(self) -> AggregatorCounts:
         status = self.source.status
         with self._lock:
-            received, published, written, unencodable = (
-                self._received,
-                self._published,
-                self._written,
-                self._unencodable,
-            )
+            received, published, unencodable = self._received, self._published, self._unencodable
+        written = self.log.written if self.log is not None else 0
         try:
             subscribers = self.publisher.get_subscription_count()
         except Exception:
