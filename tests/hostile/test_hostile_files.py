@@ -10,6 +10,7 @@ import subprocess
 import sys
 import threading
 import tracemalloc
+from pathlib import Path
 
 import pytest
 
@@ -174,3 +175,48 @@ def test_rotated_parts_none_of_which_can_be_read_name_the_first_failure(tmp_path
         open_log_paths(LogPaths((binary, missing), "node.log"))
     with pytest.raises(FormatError, match=r"^node\.log: node\.log: cannot read: No such file"):
         open_log_paths(LogPaths((missing, binary), "node.log"))
+
+
+_AS_ANOTHER_USER = """
+import contextlib, io, os, sys
+from console_tui.cli import main
+with contextlib.redirect_stderr(io.StringIO()):  # everything it imports, loaded while we may
+    main(["convert", sys.argv[1] + "/a", "-o", sys.argv[2] + ".warm", "--format", "jsonl"])
+if os.geteuid() == 0:  # root enters every folder: become nobody, for whom the folder is closed
+    os.setgid(65534)
+    os.setuid(65534)
+sys.exit(main(["convert", sys.argv[1], "-o", sys.argv[2], "--format", "jsonl"]))
+"""
+
+
+def test_a_subfolder_that_cannot_be_entered_is_skipped_and_reported(tmp_path):
+    """Issue 33 item 8: ``convert runs/`` with one closed subfolder loads the rest and names it."""
+    import tempfile
+
+    base = Path(tempfile.mkdtemp(prefix="console-tui-closed-"))  # outside pytest's private tmp
+    try:
+        base.chmod(0o777)
+        runs = base / "runs"
+        for name in ("a", "b", "closed"):
+            (runs / name).mkdir(parents=True)
+            (runs / name / "rosout.log").write_text(
+                f"1700000000.000000000 INFO /n{name} [f.py:1(g)] [topics: /rosout] hello from {name}\n"
+            )
+        for path in (runs, runs / "a", runs / "b"):
+            path.chmod(0o755)
+        (runs / "a" / "rosout.log").chmod(0o644)
+        (runs / "b" / "rosout.log").chmod(0o644)
+        (runs / "closed").chmod(0o600)  # listable by its owner only, enterable by none but root
+        out = base / "out.jsonl"
+        done = subprocess.run(
+            [sys.executable, "-c", _AS_ANOTHER_USER, str(runs), str(out)], capture_output=True, text=True, timeout=120
+        )
+        assert "Traceback" not in done.stderr, done.stderr
+        assert "closed" in done.stderr and "Permission denied" in done.stderr
+        text = out.read_text()
+        assert "hello from a" in text and "hello from b" in text
+    finally:
+        (base / "runs" / "closed").chmod(0o700)
+        import shutil
+
+        shutil.rmtree(base, ignore_errors=True)

@@ -103,8 +103,12 @@ def expand_paths(paths: Sequence[str | os.PathLike[str]]) -> Expansion:
 
 
 def is_recording_folder(path: Path) -> bool:
-    """Whether a folder is a rosbag2 recording (one recording, not a folder of logs)."""
-    return (path / "metadata.yaml").is_file()
+    """Whether a folder is a rosbag2 recording (one recording, not a folder of logs); a
+    folder that cannot be entered is not (walking it then reports it unreadable)."""
+    try:
+        return (path / "metadata.yaml").is_file()
+    except OSError:
+        return False
 
 
 def _logs_in(folder: Path, expansion: Expansion) -> list[tuple[tuple[Path, ...], str]]:
