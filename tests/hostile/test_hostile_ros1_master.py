@@ -9,15 +9,14 @@ import sys
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
 from console_tui.sources.ros1.environment import Ros1Environment
-from console_tui.sources.ros1.live_source import Ros1LiveSource
 from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 from console_tui.sources.ros1.master import Ros1CallError, xmlrpc_call
 
 from support.hostile_ros1 import (
     FakeMaster,
     FakePublisher,
+    RunningSource,
     drip,
     huge_system_state,
     in_turn,
@@ -27,27 +26,6 @@ from support.hostile_ros1 import (
 from support.ros1 import wait_for
 
 GOOD_STATE = [[["/rosout", ["/good"]]], [], []]
-
-
-class _Running:
-    """A ``Ros1LiveSource`` reading from ``master``; ``records`` so far."""
-
-    def __init__(self, master: FakeMaster, topic: str | None = None, call_timeout: float = 1.0) -> None:
-        environment = Ros1Environment(master.uri, "127.0.0.1", "127.0.0.1")
-        self.queue = IntakeQueue()
-        self.source = Ros1LiveSource(self.queue, topic, environment, call_timeout=call_timeout)
-        self.records: list = []
-
-    def __enter__(self) -> _Running:
-        self.source.start()
-        return self
-
-    def __exit__(self, *_exc) -> None:
-        self.source.stop()
-
-    def good_rows(self) -> int:
-        self.records.extend(self.queue.drain())
-        return sum(1 for r in self.records if r.node == "/good" and r.msg.startswith("good "))
 
 
 @pytest.mark.parametrize(
@@ -62,14 +40,14 @@ class _Running:
 def test_one_malformed_master_answer_is_that_call_s_problem(answers):
     with FakePublisher() as good:
         answers = {k: (in_turn(v.values[0], [good.uri]) if v.values[-1] is None else v) for k, v in answers.items()}
-        with FakeMaster([good.uri], **answers) as master, _Running(master) as running:
+        with FakeMaster([good.uri], **answers) as master, RunningSource(master) as running:
             wait_for(lambda: running.good_rows() >= 3, 30, "the good publisher's rows")
             assert running.source.status.running
             assert good.slave.calls["requestTopic"] >= 1
 
 
 def test_a_master_always_malformed_is_said_and_asked_again():
-    with FakeMaster([], getPid="4242x") as master, _Running(master) as running:
+    with FakeMaster([], getPid="4242x") as master, RunningSource(master) as running:
         wait_for(lambda: master.calls["getPid"] >= 3, 30, "getPid asked again")
         status = running.source.status
         assert status.running
@@ -77,7 +55,7 @@ def test_a_master_always_malformed_is_said_and_asked_again():
 
 
 def test_a_dripping_master_is_cut_off_at_the_call_s_deadline():
-    with FakeMaster([], getPid=drip(4242, pause=0.2)) as master, _Running(master, call_timeout=0.5) as running:
+    with FakeMaster([], getPid=drip(4242, pause=0.2)) as master, RunningSource(master, call_timeout=0.5) as running:
         wait_for(lambda: "no answer within 0.5 s" in running.source.status.problem, 30, "the reason")
         assert running.source.status.running
         assert "waiting for master" in running.source.status.problem
@@ -114,7 +92,7 @@ def test_trickling_publishers_do_not_starve_a_good_one():
         with (
             FakePublisher() as good,
             FakeMaster([p.uri for p in tricklers]) as master,
-            _Running(master, topic="/rosout") as running,
+            RunningSource(master, topic="/rosout") as running,
         ):
             wait_for(lambda: sum(p.slave.calls["requestTopic"] for p in tricklers) >= 16, 30, "the tricklers asked")
             master.publishers = [*master.publishers, good.uri]
@@ -130,7 +108,7 @@ def test_a_huge_system_state_is_refused_with_memory_bounded():
     with FakePublisher() as good, FakeMaster([good.uri], getSystemState=huge_system_state(600 << 20)) as master:
         reset_rss_peak()
         before = rss_peak_mb()
-        with _Running(master, call_timeout=60) as running:
+        with RunningSource(master, call_timeout=60) as running:
             wait_for(lambda: "MB refused" in running.source.status.problem, 120, "the refusal")
             wait_for(lambda: running.good_rows() >= 3, 30, "the good publisher's rows")
             assert running.source.status.running

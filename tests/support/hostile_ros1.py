@@ -22,6 +22,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from console_tui.model.formats.ros1_log_msg import encode_log
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.sources.ros1.environment import Ros1Environment
+from console_tui.sources.ros1.live_source import Ros1LiveSource
 from console_tui.sources.ros1.tcpros import decode_header, encode_header
 
 
@@ -274,3 +277,24 @@ def rss_peak_mb() -> float:
 def reset_rss_peak() -> None:
     with open("/proc/self/clear_refs", "w") as refs:
         refs.write("5")
+
+
+class RunningSource:
+    """A ``Ros1LiveSource`` reading from ``master``; ``records`` so far."""
+
+    def __init__(self, master: FakeMaster, topic: str | None = None, call_timeout: float = 1.0) -> None:
+        environment = Ros1Environment(master.uri, "127.0.0.1", "127.0.0.1")
+        self.queue = IntakeQueue()
+        self.source = Ros1LiveSource(self.queue, topic, environment, call_timeout=call_timeout)
+        self.records: list = []
+
+    def __enter__(self) -> RunningSource:
+        self.source.start()
+        return self
+
+    def __exit__(self, *_exc) -> None:
+        self.source.stop()
+
+    def good_rows(self) -> int:
+        self.records.extend(self.queue.drain())
+        return sum(1 for r in self.records if r.node == "/good" and r.msg.startswith("good "))

@@ -32,6 +32,9 @@ SELECT_TIMEOUT_S = 0.2
 COALESCE_BELOW = 64
 COALESCE_S = 0.002
 _ids = itertools.count(1)
+#: Why a connection ended: the publisher closed it between messages (a plain end), or in one.
+CLOSED = "the publisher closed the connection"
+CLOSED_MID_MESSAGE = "the publisher closed the connection in the middle of a message"
 
 
 @dataclass(eq=False)
@@ -177,7 +180,8 @@ class Ros1Intake:
                     self._ended(connection, error.strerror or str(error))
                     continue
                 if not data:
-                    self._ended(connection, "the publisher closed the connection")
+                    cut = len(connection.pending)
+                    self._ended(connection, f"{CLOSED_MID_MESSAGE} ({cut:,} bytes of it came)" if cut else CLOSED)
                     continue
                 connection.bytes_received += len(data)
                 if connection.pending:

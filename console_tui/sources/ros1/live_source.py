@@ -36,7 +36,7 @@ from ...model.intake_queue import IntakeQueue
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
 from .environment import Ros1Environment, new_node_name
-from .intake import Connection, Ros1Intake
+from .intake import CLOSED, Connection, Ros1Intake
 from .master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
 from .slave_server import SlaveServer
 from .subscribed_topic import SubscribedTopic
@@ -339,7 +339,8 @@ class Ros1LiveSource:
             )
         except (Ros1CallError, TcprosError, ValueError, TypeError) as error:
             refused = isinstance(error, TcprosError) and error.refused_by_peer
-            self._events.put(("failed", topic, uri, str(error), refused))
+            gone = isinstance(error, Ros1CallError) and error.gone  # a killed node's registration
+            self._events.put(("failed", topic, uri, str(error), refused, not gone))
             return
         self._events.put(("connected", topic, uri, sock, header))
 
@@ -362,15 +363,15 @@ class Ros1LiveSource:
             topic.on_connected(uri)
             self._intake.add(Connection(sock, name, uri, header.get("callerid", uri)))
         elif kind == "failed":
-            _, name, uri, reason, refused = event
+            _, name, uri, reason, refused, trouble = event
             topic = self._topics.get(name)
             if topic is not None:
-                topic.on_failed(uri, reason, refused)
+                topic.on_failed(uri, reason, refused, trouble)
         elif kind == "closed":
-            _, name, uri, _reason = event
+            _, name, uri, reason = event
             topic = self._topics.get(name)
             if topic is not None:
-                topic.on_closed(uri)
+                topic.on_closed(uri, "" if reason == CLOSED else reason)
         elif kind == "shutdown":
             _, caller, reason = event
             self._ended = f"ROS 1 intake stopped by {caller}" + (f": {reason}" if reason else "")
@@ -386,6 +387,10 @@ class Ros1LiveSource:
             problems.append(f"a publisher at {uri} refused {topic.name}: {reason}")
         if intake is not None and intake.last_problem and intake.lost_undecodable:
             problems.append(intake.last_problem)
+        if topic is not None and topic.trouble:
+            uri, reason = next(iter(topic.trouble.items()))
+            more = len(topic.trouble) - 1
+            problems.append(f"publisher {uri} not read: {reason}" + (f" (and {more} more)" if more else ""))
         not_read = self._not_read()
         if not_read:
             problems.append(f"{not_read} publishers not read: at most {MAX_CONNECTIONS} connections at once")

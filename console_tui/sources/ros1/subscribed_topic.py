@@ -26,6 +26,9 @@ class SubscribedTopic:
     attempts: dict[str, int] = field(default_factory=dict)
     #: Publishers that answered our header with an error, and what they said.
     refused: dict[str, str] = field(default_factory=dict)
+    #: Publishers not read because of what they did (a broken stream, no whole answer in
+    #: time, a malformed answer), and what that was; not those simply gone.
+    trouble: dict[str, str] = field(default_factory=dict)
     registered: bool = False
 
     def set_publishers(self, publishers: list[str]) -> None:
@@ -36,6 +39,7 @@ class SubscribedTopic:
                 del self.retry_at[uri]
                 self.attempts.pop(uri, None)
                 self.refused.pop(uri, None)
+                self.trouble.pop(uri, None)
         now = time.monotonic()
         for uri in self.publishers - self.connected - self.connecting:
             self.retry_at.setdefault(uri, now)
@@ -58,15 +62,22 @@ class SubscribedTopic:
         self.connected.add(uri)
         self.attempts.pop(uri, None)
         self.refused.pop(uri, None)
+        self.trouble.pop(uri, None)
 
-    def on_failed(self, uri: str, reason: str, refused: bool) -> None:
+    def on_failed(self, uri: str, reason: str, refused: bool, trouble: bool = True) -> None:
+        """A connection could not be made; ``trouble`` unless the publisher is simply gone."""
         self.connecting.discard(uri)
         if refused:
             self.refused[uri] = reason
+        elif trouble:
+            self.trouble[uri] = reason
         self.retry_later(uri)
 
-    def on_closed(self, uri: str) -> None:
+    def on_closed(self, uri: str, trouble: str = "") -> None:
+        """The connection ended: ``trouble`` says what was wrong with it ("" for a plain end)."""
         self.connected.discard(uri)
+        if trouble:
+            self.trouble[uri] = trouble
         self.attempts[uri] = 0
         self.retry_later(uri)
 

@@ -32,12 +32,14 @@ _READ_BYTES = 1 << 16
 class Ros1CallError(Exception):
     """An XML-RPC call failed; ``str()`` says which URI and why, ``reason`` just why."""
 
-    def __init__(self, uri: str, reason: str, *, unreachable: bool = False) -> None:
+    def __init__(self, uri: str, reason: str, *, unreachable: bool = False, gone: bool = False) -> None:
         super().__init__(f"{uri}: {reason}")
         self.uri = uri
         self.reason = reason
         #: No answer at all (refused, timed out, not XML-RPC), rather than an answer saying no.
-        self.unreachable = unreachable
+        self.unreachable = unreachable or gone
+        #: Nothing listens there any more (a killed node's registration, say).
+        self.gone = gone
 
 
 class ReplyTooLarge(Exception):
@@ -132,7 +134,7 @@ def xmlrpc_call(
     except TimeoutError:
         raise Ros1CallError(uri, f"no answer within {timeout:g} s", unreachable=True) from None
     except ConnectionRefusedError:
-        raise Ros1CallError(uri, "connection refused (nothing listens there)", unreachable=True) from None
+        raise Ros1CallError(uri, "connection refused (nothing listens there)", gone=True) from None
     except ReplyTooLarge:
         reason = f"{method}: a reply over {max_bytes >> 20} MB refused (not read further)"
         raise Ros1CallError(uri, reason) from None
