@@ -30,9 +30,10 @@ from console_tui.sources.ros1.tcpros import decode_header, encode_header
 
 @dataclass
 class Reply:
-    """Raw bytes for an answer: ``chunks`` sent one after another, ``pause`` s apart."""
+    """Raw bytes for an answer: what ``chunks()`` gives (afresh for each call), sent one
+    after another, ``pause`` s apart."""
 
-    chunks: Iterable[bytes]
+    chunks: Callable[[], Iterable[bytes]]
     pause: float = 0.0
 
 
@@ -47,7 +48,7 @@ def http_answer(body: bytes) -> bytes:
 def drip(value: Any, pause: float = 0.2) -> Reply:
     """A whole, correct answer sent one byte at a time, ``pause`` s apart."""
     data = http_answer(xml_answer(value))
-    return Reply((data[i : i + 1] for i in range(len(data))), pause)
+    return Reply(lambda: (data[i : i + 1] for i in range(len(data))), pause)
 
 
 def huge_system_state(total_bytes: int, node: str = "/n") -> Reply:
@@ -56,17 +57,15 @@ def huge_system_state(total_bytes: int, node: str = "/n") -> Reply:
     head = b"<?xml version='1.0'?><methodResponse><params><param><value><array><data><value><int>1</int></value><value><string></string></value><value><array><data><value><array><data>"
     tail = b"</data></array></value><value><array><data></data></array></value><value><array><data></data></array></value></data></array></value></data></array></value></param></params></methodResponse>"
 
+    chunk = "".join(row.format(n) for n in range(5000)).encode()  # made once: sending costs no Python work
+
     def chunks() -> Iterator[bytes]:
         yield b"HTTP/1.0 200 OK\r\nContent-Type: text/xml\r\n\r\n" + head
-        sent = 0
-        counter = itertools.count()
-        while sent < total_bytes:
-            chunk = "".join(row.format(next(counter)) for _ in range(2000)).encode()
-            sent += len(chunk)
+        for _ in range(total_bytes // len(chunk) + 1):
             yield chunk
         yield tail
 
-    return Reply(chunks())
+    return Reply(chunks)
 
 
 class _Server:
@@ -143,6 +142,8 @@ class XmlRpcPeer(_Server):
     def __init__(self, answers: dict[str, Any]) -> None:
         self.answers = dict(answers)
         self.calls: Counter[str] = Counter()
+        #: Calls by ``(method, caller id)``.
+        self.callers: Counter[tuple[str, str]] = Counter()
         super().__init__()
         self.uri = f"http://127.0.0.1:{self.port}/"
 
@@ -157,9 +158,10 @@ class XmlRpcPeer(_Server):
     def serve(self, sock: socket.socket) -> None:
         method, params = _read_request(sock)
         self.calls[method] += 1
+        self.callers[(method, str(params[0]) if params else "")] += 1
         answer = self.answer(method, params)
         if isinstance(answer, Reply):
-            for chunk in answer.chunks:
+            for chunk in answer.chunks():
                 if self.closed.is_set():
                     return
                 sock.sendall(chunk)

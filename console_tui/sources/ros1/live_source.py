@@ -51,6 +51,8 @@ def _open_files_limit() -> int:
 
 GRAPH_PERIOD_S = 1.0
 MASTER_RETRY_S = 1.0
+#: A refused ``getSystemState`` (malformed, too large) is asked again after 1, 2, 4 ... s, this at most.
+STATE_RETRY_MAX_S = 30.0
 #: How long both topics are read when moving between /rosout and /rosout_agg, at most.
 OVERLAP_S = 2.0
 #: Publishers asked for a connection at once; a slow one holds a worker for its calls'
@@ -94,6 +96,10 @@ class Ros1LiveSource:
         self._master_key: tuple[str, int] | None = None
         self._master_ok = False
         self._master_problem = ""
+        #: After a refused ``getSystemState``: when to ask again, the wait, and why.
+        self._state_after = 0.0
+        self._state_backoff = 0.0
+        self._state_problem = ""
         self._ended = ""
         self._server: SlaveServer | None = None
         self._intake: Ros1Intake | None = None
@@ -204,14 +210,20 @@ class Ros1LiveSource:
                     topic.registered = False
                 self._master_key = key
             problem = ""
-            if self.requested_topic is None:
+            if self.requested_topic is None and time.monotonic() >= self._state_after:
                 try:
                     self._choose_topic(master.system_state().publishers.get(ROSOUT_AGG, []))
+                    self._state_backoff = 0.0
                 except Ros1CallError as error:
                     if error.unreachable:
                         raise
-                    problem = error.reason  # the graph unknown this time: keep the topic read so far
+                    # The graph unknown this time: keep the topic read so far, ask later.
+                    problem = self._state_problem = error.reason
                     self._current = self._current or ROSOUT
+                    self._state_backoff = min(self._state_backoff * 2 or MASTER_RETRY_S, STATE_RETRY_MAX_S)
+                    self._state_after = time.monotonic() + self._state_backoff
+            elif self.requested_topic is None:
+                problem = self._state_problem
             elif not self._current:
                 self._current = self.requested_topic
             for topic in list(self._topics.values()):

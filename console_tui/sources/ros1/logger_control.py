@@ -48,6 +48,10 @@ NO_SERVICES_HINT = "only roscpp and rospy nodes offer ~get_loggers and ~set_logg
 #: ``rosout``; roscpp through ``ros.<package>``, whose parent ``ros`` has the level in force.
 OWN_LOGGER = {ROSPY: "rosout", ROSCPP: "ros"}
 WORKERS = 4
+#: After a failed look at the graph (a master refusing, or sending what is refused), the next
+#: comes this much later, doubling up to the most: a hostile master costs little.
+LOOK_RETRY_FIRST_S = 1.0
+LOOK_RETRY_MAX_S = 30.0
 _SERVICE = {GET: GET_LOGGERS, SET: SET_LOGGER_LEVEL}
 _MD5 = {GET: GET_LOGGERS_MD5, SET: SET_LOGGER_LEVEL_MD5}
 
@@ -76,6 +80,8 @@ class Ros1LoggerControl(LoggerControl):
         self._master = Master(self.environment.master_uri, self.caller_id, call_timeout)
         self._pool: ThreadPoolExecutor | None = None
         self._last_look: tuple[list[GraphNode], frozenset[str]] = ([], frozenset())
+        self._look_after = 0.0
+        self._look_backoff = 0.0
 
     # -- requests and replies: any thread --------------------------------------------------------
 
@@ -126,11 +132,20 @@ class Ros1LoggerControl(LoggerControl):
         self._pool = ThreadPoolExecutor(WORKERS, thread_name_prefix="console-tui-ros1-loggers")
 
     def _look(self) -> tuple[Iterable[GraphNode], frozenset[str]]:
+        now = self.clock()
+        if now < self._look_after:  # the last look failed: the master is asked again later
+            return self._last_look
         try:
             state = self._master.system_state()
         except Ros1CallError as error:
-            self.problem = f"waiting for master at {self.environment.master_uri}: {error.reason}"
+            if error.unreachable:
+                self.problem = f"waiting for master at {self.environment.master_uri}: {error.reason}"
+            else:
+                self.problem = f"the master at {self.environment.master_uri}: {error.reason}"
+            self._look_backoff = min(self._look_backoff * 2 or LOOK_RETRY_FIRST_S, LOOK_RETRY_MAX_S)
+            self._look_after = self.clock() + self._look_backoff
             return self._last_look
+        self._look_backoff = 0.0
         self.problem = ""
         providers: dict[str, set[str]] = {}
         for service, names in state.services.items():

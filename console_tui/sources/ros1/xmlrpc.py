@@ -105,14 +105,15 @@ class _BoundedTransport(xmlrpc.client.Transport):
         length = response.getheader("Content-Length")
         if length is not None and length.isdigit() and int(length) > self._max_bytes:
             raise ReplyTooLarge(int(length))
-        parser, unmarshaller = self.getparser()
-        read = 0
+        body = bytearray()
         while data := response.read1(_READ_BYTES):
-            read += len(data)
-            if read > self._max_bytes:
-                raise ReplyTooLarge(read)
-            parser.feed(data)
+            body += data
+            if len(body) > self._max_bytes:
+                raise ReplyTooLarge(len(body))  # refused before any of it is parsed
         response.close()
+        parser, unmarshaller = self.getparser()
+        parser.feed(body)
+        del body
         parser.close()
         return unmarshaller.close()
 
