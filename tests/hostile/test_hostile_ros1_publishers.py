@@ -11,7 +11,7 @@ import time
 import pytest
 
 from console_tui.model.formats.ros1_log_msg import encode_log
-from console_tui.sources.ros1 import live_source
+from console_tui.sources.ros1 import subscribed_topic
 from console_tui.sources.ros1.tcpros import encode_header
 
 from support.hostile_ros1 import FakeMaster, FakePublisher, RunningSource
@@ -65,7 +65,7 @@ def test_a_broken_publisher_is_named_with_its_reason(stream, said):
 
 
 def test_connections_are_bounded_and_the_rest_counted(monkeypatch):
-    monkeypatch.setattr(live_source, "MAX_CONNECTIONS", 3)
+    monkeypatch.setattr(subscribed_topic, "MAX_CONNECTIONS", 3)
     publishers = [FakePublisher(name=f"/p{i}", period=0.2) for i in range(5)]
     try:
         with FakeMaster([p.uri for p in publishers]) as master, RunningSource(master, topic="/rosout") as running:

@@ -25,7 +25,6 @@ A graph thread does everything that waits on the network (each call with a timeo
 from __future__ import annotations
 
 import queue
-import resource
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -39,15 +38,9 @@ from .environment import Ros1Environment, new_node_name
 from .intake import CLOSED, Connection, Ros1Intake
 from .master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
 from .slave_server import SlaveServer
-from .subscribed_topic import SubscribedTopic
+from .subscribed_topic import SubscribedTopic, connection_room, not_read_text
 from .tcpros import TcprosError, open_subscription
 from .xmlrpc import shown
-
-
-def _open_files_limit() -> int:
-    soft, _hard = resource.getrlimit(resource.RLIMIT_NOFILE)
-    return soft if soft > 0 else 1024
-
 
 GRAPH_PERIOD_S = 1.0
 MASTER_RETRY_S = 1.0
@@ -58,8 +51,6 @@ OVERLAP_S = 2.0
 #: Publishers asked for a connection at once; a slow one holds a worker for its calls'
 #: timeouts at most, and retries back off, so slow peers cannot keep the others waiting long.
 CONNECT_WORKERS = 16
-#: Connections (open or being opened) at most, so many publishers cannot use up the file handles.
-MAX_CONNECTIONS = max(16, min(512, _open_files_limit() // 4))
 UNREGISTER_TIMEOUT_S = 1.0
 PATH = "tcpros"
 
@@ -311,18 +302,12 @@ class Ros1LiveSource:
 
     def _connect_due(self) -> None:
         now = time.monotonic()
-        room = MAX_CONNECTIONS - sum(len(t.connected) + len(t.connecting) for t in self._topics.values())
+        room = connection_room(self._topics.values())
         for topic in self._topics.values():
-            for uri in topic.due(now, max(room, 0)):
+            for uri in topic.due(now, room):
                 assert self._pool is not None
                 room -= 1
                 self._pool.submit(self._connect, topic.name, uri)
-
-    def _not_read(self) -> int:
-        """Publishers left unread because ``MAX_CONNECTIONS`` are open or opening."""
-        if sum(len(t.connected) + len(t.connecting) for t in self._topics.values()) < MAX_CONNECTIONS:
-            return 0
-        return sum(len(t.publishers - t.connected - t.connecting) for t in self._topics.values())
 
     def _next_retry(self) -> float:
         times = [when for topic in self._topics.values() for when in topic.retry_at.values()]
@@ -400,18 +385,14 @@ class Ros1LiveSource:
         if intake is not None and intake.last_problem and intake.lost_undecodable:
             problems.append(intake.last_problem)
         if topic is not None and topic.trouble:
-            uri, reason = next(iter(topic.trouble.items()))
-            more = len(topic.trouble) - 1
-            problems.append(f"publisher {uri} not read: {reason}" + (f" (and {more} more)" if more else ""))
-        not_read = self._not_read()
-        if not_read:
-            problems.append(f"{not_read} publishers not read: at most {MAX_CONNECTIONS} connections at once")
+            problems.append(topic.trouble_text())
+        problems.append(not_read_text(self._topics.values()))
         lost_undecodable = intake.lost_undecodable if intake is not None else 0
         lost_queue = self.queue.dropped
         changes = {
             "topic": self._current,
             "publishers": len(topic.connected) if topic is not None else 0,
-            "problem": "; ".join(problems),
+            "problem": "; ".join(problem for problem in problems if problem),
             "lost": lost_undecodable + lost_queue,
             "lost_queue": lost_queue,
             "lost_undecodable": lost_undecodable,

@@ -3,15 +3,28 @@
 The master lists a topic's publishers (at registration, then by ``publisherUpdate``); the
 live source connects to each. One that cannot be reached, or whose connection ends, is tried
 again, backing off from ``RETRY_FIRST_S`` to ``RETRY_MAX_S``, while the master lists it.
+At most ``MAX_CONNECTIONS`` are open or being opened over all topics (``connection_room``);
+the publishers left unread for that are counted in the status (``not_read_text``).
 """
 
 from __future__ import annotations
 
+import resource
 import time
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 RETRY_FIRST_S = 0.5
 RETRY_MAX_S = 10.0
+
+
+def _open_files_limit() -> int:
+    soft, _hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    return soft if soft > 0 else 1024
+
+
+#: Connections (open or being opened) at most, so many publishers cannot use up the file handles.
+MAX_CONNECTIONS = max(16, min(512, _open_files_limit() // 4))
 
 
 @dataclass
@@ -96,3 +109,27 @@ class SubscribedTopic:
             and all(self.attempts.get(uri, 0) >= 1 for uri in self.publishers)
             and not self.refused
         )
+
+    def trouble_text(self) -> str:
+        """The first publisher not read because of what it did, and why (and how many more)."""
+        uri, reason = next(iter(self.trouble.items()))
+        more = len(self.trouble) - 1
+        return f"publisher {uri} not read: {reason}" + (f" (and {more} more)" if more else "")
+
+
+def _open(topics: Iterable[SubscribedTopic]) -> int:
+    return sum(len(topic.connected) + len(topic.connecting) for topic in topics)
+
+
+def connection_room(topics: Iterable[SubscribedTopic]) -> int:
+    """How many more connections may be opened now."""
+    return max(MAX_CONNECTIONS - _open(topics), 0)
+
+
+def not_read_text(topics: Iterable[SubscribedTopic]) -> str:
+    """How many publishers are left unread because ``MAX_CONNECTIONS`` are open, or ""."""
+    topics = list(topics)
+    if _open(topics) < MAX_CONNECTIONS:
+        return ""
+    waiting = sum(len(t.publishers - t.connected - t.connecting) for t in topics)
+    return f"{waiting} publishers not read: at most {MAX_CONNECTIONS} connections at once" if waiting else ""
