@@ -129,3 +129,20 @@ def test_the_logger_control_asks_the_master_only_while_watched():
             wait_for(lambda: [n.fqn for n in control.nodes] == ["/n"], 30, "the nodes")
         finally:
             control.close()
+
+
+def test_a_large_answer_of_pythons_xmlrpc_server_as_rosmaster_is_read():
+    """rosmaster is Python's XML-RPC server, which gzips large replies to a client that
+    accepts it: the bounded call asks for them plain (the limit is of what is parsed)."""
+    import threading
+    from xmlrpc.server import SimpleXMLRPCServer
+
+    server = SimpleXMLRPCServer(("127.0.0.1", 0), logRequests=False)
+    server.register_function(lambda *_args: [1, "", [["/t", ["/n" * 1000]]] * 100], "getSystemState")
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        state = xmlrpc_call(f"http://127.0.0.1:{server.server_address[1]}/", "getSystemState", "/me")
+        assert len(state) == 100
+    finally:
+        server.shutdown()
+        server.server_close()

@@ -88,6 +88,10 @@ class _DeadlineConnection(http.client.HTTPConnection):
 
 
 class _BoundedTransport(xmlrpc.client.Transport):
+    #: Replies uncompressed: the size limit is of what is parsed (no gzip bomb), and rosmaster
+    #: (Python's XML-RPC server) would otherwise gzip every reply over 1,400 bytes.
+    accept_gzip_encoding = False
+
     def __init__(self, deadline: float, max_bytes: int) -> None:
         super().__init__()
         self._deadline = deadline
