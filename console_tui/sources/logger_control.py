@@ -87,6 +87,9 @@ class LoggerControl(ABC):
     #: How long the graph must be watched, and then stay unchanged, to be taken as complete
     #: (``wait_for_graph``); a ROS whose graph comes whole from one place (a ROS 1 master) may
     #: make them shorter.
+    #: Looking at the graph asks a peer over the network (a ROS 1 master), rather than
+    #: reading what this process already knows (ROS 2's discovery): ``watch_graph``.
+    remote_graph = False
     graph_min_s = GRAPH_MIN_S
     graph_quiet_s = GRAPH_QUIET_S
     #: A read answers with every logger the node has, not only the names asked for (ROS 1).
@@ -154,13 +157,13 @@ class LoggerControl(ABC):
         return self._watched.is_set()
 
     def watch_graph(self, watched: bool) -> None:
-        """Look at the graph every ``GRAPH_PERIOD_S`` only while ``watched`` (the default):
-        the UI looks only while its logger pane is open. A call to an unknown node still
-        looks once."""
+        """Look at the graph every ``GRAPH_PERIOD_S`` only while ``watched`` (the default),
+        when looking asks a peer over the network (``remote_graph``): the UI watches only
+        while its logger pane is open. A call to an unknown node still looks once."""
         if watched and not self._watched.is_set():
             self._watched.set()
             self._trigger()
-        elif not watched:
+        elif not watched and self.remote_graph:
             self._watched.clear()
 
     @property

@@ -212,6 +212,7 @@ async def test_the_graph_is_watched_only_while_the_pane_is_open():
     from support.memory_control import MemoryControl, MemoryNode
 
     control = MemoryControl([MemoryNode("/watched_node")])
+    control.remote_graph = True  # as a ROS 1 master's
     app = make_app(logger_control=control)
     try:
         async with app.run_test(size=(120, 30)) as pilot:
@@ -222,5 +223,24 @@ async def test_the_graph_is_watched_only_while_the_pane_is_open():
             assert control.graph_watched
             await pilot.press("l")
             await until(pilot, lambda: not control.graph_watched, what="the watch ended")
+    finally:
+        control.close()
+
+
+async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_comes():
+    from support.memory_control import MemoryControl, MemoryNode
+
+    control = MemoryControl([MemoryNode("/power/battery_monitor")])  # the last row's node
+    control.remote_graph = True  # as a ROS 1 master's: nothing known until the pane opens
+    app = make_app(logger_control=control)
+    try:
+        async with app.run_test(size=(140, 30)) as pilot:
+            await until(pilot, lambda: cursor_number(app) == 100, what="the table")
+            assert not control.graph_watched and not app.logger_pane.view.nodes
+            await pilot.press("L")
+            await until(
+                pilot, lambda: app.logger_pane.selected == "/power/battery_monitor", what="the row's node selected"
+            )
+            assert pane_says(app, "battery_monitor")
     finally:
         control.close()

@@ -65,6 +65,8 @@ class Ros1LoggerControl(LoggerControl):
     graph_quiet_s = 0.0
     lists_loggers = True
     read_when_asked = True
+    #: The graph is the master's ``getSystemState``: asked only while someone looks.
+    remote_graph = True
 
     def __init__(
         self,

@@ -133,6 +133,8 @@ class LoggerPane(RightPane):
         self.requests = LoggerRequests(control, self._from_control_thread, seen_loggers=seen_loggers)
         self.view = self.requests.view
         self._ticker: Timer | None = None
+        #: A row's logger asked for (``L``) before the graph was known.
+        self._pending_logger: str | None = None
         self.node_list = GraphNodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
         self.name_input = Input(placeholder="add a logger: type its name, Enter", id="logger-name", compact=True)
@@ -200,7 +202,10 @@ class LoggerPane(RightPane):
         had_selection = self.selected is not None
         self.requests.set_nodes(nodes, checking)
         self._render_nodes()
-        if not had_selection and self.is_open and self.view.nodes:
+        pending, self._pending_logger = self._pending_logger, None
+        if pending is not None and self.is_open and self.view.nodes and self.open_for_logger(pending):
+            pass  # the row's node, asked for before the graph came
+        elif not had_selection and self.is_open and self.view.nodes:
             self.node_list.highlighted = 0  # the first nodes since the pane opened: show one
         self._render_loggers()
         self._update_ticker()
@@ -239,9 +244,12 @@ class LoggerPane(RightPane):
         self.open(focus=False)
         node = self.view.node_logging_as(logger)
         if node is None:
+            # No graph yet (a ROS 1 master is asked only once the pane is open): when it comes.
+            self._pending_logger = logger if not self.view.nodes else None
             self._render_notice()  # says so
             self.node_list.focus()
             return False
+        self._pending_logger = None
         self.select_node(node.fqn, None if logger == node.fqn else logger)
         self.logger_list.focus()
         return True
