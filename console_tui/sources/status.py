@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+#: ``path_note`` while the take loop in C is being built (rclpy takes meanwhile).
+PATH_NOTE_BUILDING = "being built (taken through rclpy meanwhile)"
+
 
 @dataclass
 class SourceStatus:
@@ -44,8 +47,8 @@ class SourceStatus:
     def slow_path_text(self) -> str:
         """What is lost on the slower intake path (no take loop in C), said once at start;
         "" on the fast path (or where there is no faster one)."""
-        if not self.path_note:
-            return ""
+        if not self.path_note or self.path_note == PATH_NOTE_BUILDING or self.path == "c+cdr":
+            return ""  # the fast path, on its way or in use (the note says how it was built)
         return (
             f"slower intake: the take loop in C is not used ({self.path_note}): rclpy's take costs "
             "2-3 times the CPU a message, so high rates are kept up with less well. The fast path "

@@ -17,3 +17,11 @@ def test_the_path_in_words():
     assert SourceStatus(path="raw+cdr").path_text() == "raw+cdr: rclpy's take, the CDR decoded directly"
     assert SourceStatus(path="tcpros").path_text() == "tcpros: ROS 1's TCPROS, read directly"
     assert SourceStatus(path="starting").path_text() == "starting"
+
+
+def test_the_slower_path_is_not_said_while_the_loop_is_built_or_when_it_is_in_use():
+    from console_tui.sources.status import PATH_NOTE_BUILDING
+
+    assert SourceStatus(path="raw+cdr", path_note=PATH_NOTE_BUILDING).slow_path_text() == ""
+    assert SourceStatus(path="c+cdr", path_note="built into a private directory, as X").slow_path_text() == ""
+    assert SourceStatus(path="raw+cdr", path_note="no C compiler (cc)").slow_path_text().startswith("slower intake")

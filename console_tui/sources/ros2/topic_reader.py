@@ -28,6 +28,7 @@ from ...model.logger_levels import node_logger_name
 from ...model.record import LogRecord
 from ...model.record_batch import RecordColumns
 from ..log_message import log_to_record
+from ..status import PATH_NOTE_BUILDING
 from . import compiled_take
 from .loss_counts import LossCounts, SequenceGaps
 
@@ -36,8 +37,6 @@ UNKNOWN_PUBLISHER_REFRESH_S = 0.2
 PATH_RAW = "raw+cdr"
 PATH_COMPILED = "c+cdr"
 PATH_TYPED = "typed"
-#: ``path_note`` while the take loop in C is being built (rclpy takes meanwhile).
-BUILDING = "being built (taken through rclpy meanwhile)"
 
 
 def gid_bytes(gid: Any) -> bytes:
@@ -126,7 +125,7 @@ class TopicReader:
     def path_note(self) -> str:
         """Why the take loop in C is not used (or how it was built), or "" (the path is ``typed``)."""
         if self._compiled_pending:
-            return BUILDING
+            return PATH_NOTE_BUILDING
         return self.compiled_problem if self.decoder is not None else ""
 
     def _subscribe(self, qos: Any, *, main: bool) -> Any:
