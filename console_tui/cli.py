@@ -175,6 +175,24 @@ def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
         parser.error(f"--last: {one_line(str(error))}")
 
 
+#: What ``console-tui`` says, and exits 2 with, when there is no terminal to draw on or read keys from.
+NOT_A_TERMINAL = (
+    "console-tui: not a terminal: the console needs one for its screen and keys (standard input and "
+    "standard error).\n"
+    "  To print the log stream or log files instead, use 'console-tui tail' (console-tui tail --help)."
+)
+
+
+def on_a_terminal() -> bool:
+    """Whether the app can run here: keys come from standard input and the screen goes to
+    standard error (Textual's), both a terminal. Under nohup, cron or systemd they are not, and
+    the app would read an empty standard input in a loop, a core busy for ever."""
+    try:
+        return os.isatty(sys.stdin.fileno()) and os.isatty(sys.stderr.fileno())
+    except (AttributeError, OSError, ValueError):  # closed or replaced streams
+        return False
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """The ``console-tui`` command. ``argv`` None: this process's command line, and a live
     session ends the process itself once everything it started has stopped (see
@@ -191,6 +209,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     check_rule_arguments(parser, args)
     if args.last:
         add_latest_run(parser, args)
+    if argv is None and not on_a_terminal():
+        print(NOT_A_TERMINAL, file=sys.stderr)
+        return 2
     from .launch import run_app
 
     return run_app(args, end_process=argv is None)
