@@ -177,6 +177,8 @@ class ConsoleApp(
         self.load_bar = LoadBar(id="load-bar")
         self.file_queue = IntakeQueue()
         self.loads: list[FileLoad] = []
+        #: Every file and folder opened: the run's folders, where ``v`` looks for a bare file name.
+        self.opened_paths: list[str] = []
         self.problems: list[str] = []
         self.source_notes: dict[str, list[str]] = {}
         self._initial_files = list(files)

@@ -33,6 +33,7 @@ class FileActions(AppPart):
     #: File loads: their records come through a queue of their own, ahead of live ones.
     file_queue: IntakeQueue
     loads: list[FileLoad]
+    opened_paths: list[str]
     #: What went wrong while loading, for the problems screen.
     problems: list[str]
     #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
@@ -47,6 +48,7 @@ class FileActions(AppPart):
     def open_files(self, paths: Sequence[str], *, log_format: str | None = None) -> FileLoad:
         """Read files in the background into the table, merged by time."""
         load = FileLoad(paths, self.file_queue, log_format=log_format)
+        self.opened_paths.extend(paths)  # where ``v`` looks for a source file's bare name
         self.loads.append(load)
         load.start()
         self.table.set_column_shown("source", True)

@@ -8,9 +8,6 @@ million rows away never freezes the screen.
 
 from __future__ import annotations
 
-import os
-import shlex
-import shutil
 import subprocess
 from collections.abc import Callable
 
@@ -25,6 +22,7 @@ from ..model.text import one_line
 from .app_part import AppPart
 from .screens.mark_list import MarksScreen
 from .slicing import pause_between_slices
+from .source_file import editor_command, find_source, run_editor, run_folders
 
 #: A jump looks this long at once, then goes on in slices of the same length.
 SEEK_BUDGET_S = 0.008
@@ -33,6 +31,10 @@ SEEK_PAUSE_S = 0.001
 
 class JumpActions(AppPart):
     """Jumps to errors, warnings and marks; the source of a message in the editor."""
+
+    # What it uses of the app (``ConsoleApp`` sets it).
+    #: Every file and folder opened: where a message's bare file name may resolve.
+    opened_paths: list[str]
 
     #: Its keys (``ConsoleApp.BINDINGS`` places them, for the footer's order).
     KEYS = [
@@ -141,44 +143,25 @@ class JumpActions(AppPart):
         if seq is None or seq not in self.store:
             return
         record = self.store.get(seq)
-        path = record.file
-        if not path:
+        if not record.file:
             self.notify("This message names no source file.", timeout=4)
             return
-        if not os.path.isfile(path):
-            self.notify(
-                f"{one_line(path, 300)} is not on this machine (logged elsewhere, on a robot?).",
-                severity="warning",
-                timeout=6,
-            )
+        path, why = find_source(record.file, run_folders(self.opened_paths))
+        if path is None:
+            self.notify(why, severity="warning", timeout=8)
             return
-        command = editor_command(path, record.line)
+        command, why = editor_command(path, record.line)
         if command is None:
-            self.notify("No editor: set $VISUAL or $EDITOR (vi is not installed either).", severity="error", timeout=8)
+            self.notify(why, severity="error", timeout=8)
             return
         try:
-            try:
-                with self.suspend():  # the terminal is the editor's until it exits
-                    result = subprocess.run(command, check=False)
-            except SuspendNotSupported:  # no terminal to hand over (a headless run)
-                result = subprocess.run(command, check=False, stdin=subprocess.DEVNULL)
-        except OSError as error:
-            self.notify(f"Could not run the editor {one_line(command[0], 200)}: {error}", severity="error", timeout=8)
+            with self.suspend():  # the terminal is the editor's until it exits
+                result = run_editor(command)
+        except SuspendNotSupported:  # no terminal to hand over (a headless run)
+            result = run_editor(command, stdin=subprocess.DEVNULL)
+        if isinstance(result, OSError):
+            self.notify(f"Could not run the editor {one_line(command[0], 200)}: {result}", severity="error", timeout=8)
             return
         self.refresh()
         if result.returncode:
             self.notify(f"The editor exited with status {result.returncode}.", severity="warning", timeout=5)
-
-
-def editor_command(path: str, line: int) -> list[str] | None:
-    """``$VISUAL`` (else ``$EDITOR``, else ``vi``) at ``line`` of ``path``: ``vim +42 file``."""
-    editor = os.environ.get("VISUAL") or os.environ.get("EDITOR") or ""
-    try:
-        words = shlex.split(editor)
-    except ValueError:  # unbalanced quotes: the whole value names the editor
-        words = [editor.strip()]
-    if not words:
-        if shutil.which("vi") is None:
-            return None
-        words = ["vi"]
-    return [*words, *([f"+{line}"] if line > 0 else []), path]

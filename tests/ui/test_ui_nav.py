@@ -407,6 +407,60 @@ async def test_the_source_opens_in_the_editor_at_its_line(tmp_path, fake_editor)
         line_with(app, "/opt/robot/src/x.cpp")
 
 
+async def test_an_editor_that_is_not_installed_is_named_and_the_table_stays(tmp_path, monkeypatch):
+    source = tmp_path / "planner.cpp"
+    source.write_text("int main() {}\n")
+    monkeypatch.delenv("VISUAL", raising=False)
+    monkeypatch.setenv("EDITOR", "no-such-editor-nvim --clean")
+    store = LogStore()
+    store.append(LogRecord(stamp_ns=BASE_NS, level=40, node="planner", msg="here", file=str(source), line=3))
+    app = ConsoleApp(store=store, utc=True)
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await pilot.press("v")
+        await until(pilot, lambda: "was not found" in screen_text(app), what="the editor not found")
+        line_with(app, "no-such-editor-nvim ($EDITOR)")
+        line_with(app, "here")  # the table is still there, and the keys still work
+        await pilot.press("j")
+
+
+def bare_name_store() -> LogStore:
+    store = LogStore()
+    store.append(
+        LogRecord(stamp_ns=BASE_NS, level=20, node="/r1node", msg="tick", file="r1node.py", line=9, source="r1.log")
+    )
+    return store
+
+
+async def test_a_bare_file_name_never_opens_from_the_working_directory(tmp_path, monkeypatch, fake_editor):
+    elsewhere = tmp_path / "cwd"
+    elsewhere.mkdir()
+    (elsewhere / "r1node.py").write_text("# another file of the same name\n")
+    monkeypatch.chdir(elsewhere)
+    app = ConsoleApp(store=bare_name_store(), utc=True)
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await pilot.press("v")
+        await until(pilot, lambda: "names no folder" in screen_text(app), what="the bare name refused")
+        line_with(app, "working directory is not searched")
+    assert not fake_editor.exists()
+
+
+async def test_a_bare_file_name_opens_under_the_run_folder(tmp_path, monkeypatch, fake_editor):
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "r1node.py").write_text("print('hi')\n" * 20)
+    (run / "r1.log").write_text("")
+    elsewhere = tmp_path / "cwd"
+    elsewhere.mkdir()
+    (elsewhere / "r1node.py").write_text("# another file of the same name\n")
+    monkeypatch.chdir(elsewhere)
+    app = ConsoleApp(store=bare_name_store(), utc=True)
+    app.opened_paths.append(str(run / "r1.log"))
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await pilot.press("v")
+        await until(pilot, fake_editor.exists, what="the editor")
+    assert json.loads(fake_editor.read_text()) == ["--wait", "+9", str(run.resolve() / "r1node.py")]
+
+
 # -- palette, help, keymap -----------------------------------------------------------------------
 
 
