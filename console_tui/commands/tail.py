@@ -174,7 +174,8 @@ def main(argv: Sequence[str]) -> int:
     if not args.json:
         template = args.format if args.format is not None else (os.environ.get(FORMAT_VARIABLE) or None)
         try:
-            line = PrintFormat(template, utc=args.utc, color=use_color(args.color, sys.stdout, os.environ))
+            color = use_color(args.color, sys.stdout, os.environ)
+            line = PrintFormat(template, utc=args.utc, color=color, strict=args.format is not None)
         except TemplateError as error:
             parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
     stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))

@@ -81,8 +81,8 @@ def test_rosconsole_and_rcutils_tokens(tmp_path):
         "INFO|1700000000000000000|2023-11-14 22:13:20.000|/src/t.py:42:tick|talker|hello",
         "ERROR|1700000001500000000|2023-11-14 22:13:21.500|p.cpp:7:plan|nav.planner|failed",
     ]
-    mixed = tail(path, "--format", "[${severity}] {name}\\t{message} {unknown}")
-    assert mixed.stdout.decode().splitlines()[0] == "[INFO] talker\thello {unknown}"
+    mixed = tail(path, "--format", "[${severity}] {name}\\t{message}")
+    assert mixed.stdout.decode().splitlines()[0] == "[INFO] talker\thello"
     bad = tail(path, "--format", "${thread} ${message}")
     assert bad.returncode == 2 and b"${thread}" in bad.stderr and b"not in a log message" in bad.stderr
 
@@ -91,6 +91,21 @@ def test_environment_format_is_the_default(tmp_path):
     path = str(write_log(tmp_path / "rosout.log", RECORDS))
     result = tail(path, env={**ENV, "RCUTILS_CONSOLE_OUTPUT_FORMAT": "{severity}: {message}"})
     assert result.stdout.decode().splitlines()[0] == "INFO: hello"
+    # As ROS prints it: rcutils leaves an unknown {...} in the environment's format as text.
+    lenient = tail(path, env={**ENV, "RCUTILS_CONSOLE_OUTPUT_FORMAT": "{message} {unknown}"})
+    assert lenient.returncode == 0 and lenient.stdout.decode().splitlines()[0] == "hello {unknown}"
+
+
+@pytest.mark.parametrize("template", ["{nmae}: {message}", "${nope} ${message}"])
+def test_an_unknown_token_in_format_is_refused_with_the_list(tmp_path, template):
+    path = str(write_log(tmp_path / "rosout.log", RECORDS))
+    result = tail(path, "--format", template)
+    assert result.returncode == 2 and result.stdout == b""
+    err = result.stderr.decode()
+    assert "--format: unknown token" in err and "Traceback" not in err
+    assert "{message}" in err or "${message}" in err  # the tokens there are
+    if "nmae" in template:
+        assert "did you mean {name}?" in err
 
 
 def test_json_lines_are_the_apps_jsonl(tmp_path):

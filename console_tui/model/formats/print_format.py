@@ -6,7 +6,9 @@ A format may use the tokens of ROS 2's ``RCUTILS_CONSOLE_OUTPUT_FORMAT`` (``{sev
 ``ROSCONSOLE_FORMAT`` (``${severity}``, ``${time}``, ``${time:STRFTIME}``, ``${walltime}``,
 ``${node}``, ``${logger}``, ``${message}``, ``${file}``, ``${function}``, ``${line}``), in
 any mix. As in rcutils, ``\\n``, ``\\t`` and the other escapes are decoded and any other
-``{...}`` is plain text; an unknown ``${...}`` is an error (``TemplateError``).
+``{...}`` is plain text (``strict=False``, for ``$RCUTILS_CONSOLE_OUTPUT_FORMAT``, which
+ROS prints that way); a format typed for us (``strict=True``) refuses an unknown ``{name}``,
+as an unknown ``${...}`` always is (``TemplateError``).
 ``${node}`` and ``${logger}`` are both the logger name a message carries; ``${walltime}``
 is its stamp too (a log message carries no other time). The default is ROS 2's:
 ``[{severity}] [{time}] [{name}]: {message}``.
@@ -34,7 +36,7 @@ from .jsonl import record_to_json
 from .rcutils_log import DEFAULT_TEMPLATE, TOKENS, decode_template
 
 _ROS1_TOKEN = re.compile(r"\$\{([A-Za-z_]+)(?::([^}]*))?\}")
-_RCUTILS_TOKEN = re.compile(r"\{([a-z_]+)\}")
+_RCUTILS_TOKEN = re.compile(r"\{([A-Za-z_]+)\}")
 ROS1_TOKENS = ("severity", "time", "walltime", "node", "logger", "message", "file", "function", "line")
 
 _RESET = "\x1b[0m"
@@ -101,13 +103,15 @@ _ROS1_FIELDS = {
 class PrintFormat:
     """Prints records with one format (see the module docstring)."""
 
-    def __init__(self, template: str | None = None, *, utc: bool = False, color: bool = False) -> None:
+    def __init__(
+        self, template: str | None = None, *, utc: bool = False, color: bool = False, strict: bool = False
+    ) -> None:
         self.template = DEFAULT_TEMPLATE if template is None else template
         self.color = color
-        self._parts = self._compile(decode_template(self.template), utc)
+        self._parts = self._compile(decode_template(self.template), utc, strict)
 
     @staticmethod
-    def _compile(template: str, utc: bool) -> list[str | Field]:
+    def _compile(template: str, utc: bool, strict: bool) -> list[str | Field]:
         parts: list[str | Field] = []
         literal: list[str] = []
         i = 0
@@ -134,6 +138,8 @@ class PrintFormat:
                 name = rcutils.group(1)
                 field = _date_time_with_ms(utc) if name == "date_time_with_ms" else _FIELDS[name]
                 end = rcutils.end()
+            elif rcutils is not None and strict:
+                raise TemplateError(_unknown_token(rcutils.group(1)))
             if field is None:
                 literal.append(template[i])
                 i += 1
@@ -155,6 +161,18 @@ class PrintFormat:
             return line
         start = _DECORATIONS.get(decoration or "", "") + severity_level(record.level).ansi
         return f"{start}{line}{_RESET}" if start else line
+
+
+def _unknown_token(name: str) -> str:
+    """Why ``{name}`` is refused: the tokens there are, and the nearest one."""
+    from difflib import get_close_matches
+
+    known = (*TOKENS, *ROS1_TOKENS)
+    near = get_close_matches(name.lower(), known, n=1)
+    hint = f" (did you mean {{{near[0]}}}?)" if near and near[0] in TOKENS else ""
+    hint = hint or (f" (did you mean ${{{near[0]}}}?)" if near else "")
+    tokens = ", ".join(f"{{{token}}}" for token in TOKENS)
+    return f"unknown token {{{name}}}{hint}: RCUTILS_CONSOLE_OUTPUT_FORMAT tokens are {tokens}"
 
 
 def json_text(record: LogRecord) -> str:
