@@ -19,6 +19,7 @@ from ..model.levels import SEVERITY_TABLE, Severity, severity_name
 from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from ..model.text import plural
 from .arguments import EXIT_NO_ROS
+from .closed_pipe import quiet_on_closed_pipe
 from .loggers_arguments import (
     DEFAULT_TIMEOUT_S,
     EXIT_FAILED,
@@ -41,6 +42,7 @@ class CommandError(Exception):
         self.status = status
 
 
+@quiet_on_closed_pipe
 def main(argv: Sequence[str], runtime: Any = None) -> int:
     """Run ``console-tui loggers ARGV``; returns the exit status.
 

@@ -39,6 +39,7 @@ from .arguments import (
     check_rule_arguments,
     command_parser,
 )
+from .closed_pipe import quiet_stdout, reader_gone
 from .watch_options import add_watch_arguments, apply_watch_arguments
 
 EXIT_OK = 0
@@ -144,6 +145,15 @@ class Printer:
             raise PipeClosed from None
         self.printed += len(texts)
 
+    def check_reader(self) -> None:
+        """``PipeClosed`` when nobody reads the stream any more, though nothing was written."""
+        try:
+            fd = self.stream.fileno()
+        except (AttributeError, OSError, ValueError):
+            return
+        if reader_gone(fd):
+            raise PipeClosed
+
 
 def use_color(choice: str, stream: object, environ: dict[str, str] | os._Environ[str]) -> bool:
     """Colour for ``--color choice``: always or never as asked (a flag wins over the
@@ -184,7 +194,7 @@ def main(argv: Sequence[str]) -> int:
     try:
         return run.main(args)
     except PipeClosed:
-        _quiet_stdout()
+        quiet_stdout()
         return EXIT_OK
     finally:
         for sig, handler in previous.items():
@@ -261,6 +271,7 @@ class _Run:
         shown_problem, shown_lost, lost_told_at, slow_told = "", 0, 0.0, False
         try:
             while not self.stop.wait(POLL_S):
+                self.printer.check_reader()
                 if followed:
                     batch = [record for f in followed for record in f.read()]
                     batch.sort(key=_stamp)
@@ -297,14 +308,3 @@ def _stamp(record: LogRecord) -> int:
 
 def _complain(text: str) -> None:
     print(f"console-tui tail: {one_line(text, 500)}", file=sys.stderr, flush=True)
-
-
-def _quiet_stdout() -> None:
-    """After a closed pipe: point stdout at /dev/null, so that Python's last flush at exit
-    does not complain."""
-    try:
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        os.close(devnull)
-    except (OSError, ValueError):
-        pass

@@ -200,3 +200,18 @@ def test_without_rclpy_exit_2_with_advice(capsys, monkeypatch):
     monkeypatch.setattr(runtime, "load_rclpy", unavailable)
     status, out, err = run(capsys, "list")
     assert status == 2 and out == "" and "source /opt/ros" in err
+
+
+def closed_pipe(env: dict, *args: str) -> subprocess.CompletedProcess:
+    """``console-tui loggers ARGS | true``: the reader is gone before anything is printed."""
+    command = f"set -o pipefail; {sys.executable} -m console_tui loggers {' '.join(args)} | true"
+    return subprocess.run(["bash", "-c", command], env=env, capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.ros2
+def test_a_closed_pipe_ends_list_and_get_quietly(nodes, ros_env):
+    nodes.start("talker.py", "--name", "piped").expect("ready")
+    for args in (("list",), ("get", "piped", "--wait", "15")):
+        result = closed_pipe(ros_env, *args)
+        assert result.returncode == EXIT_OK, result.stderr
+        assert "Traceback" not in result.stderr and "BrokenPipe" not in result.stderr

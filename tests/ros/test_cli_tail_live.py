@@ -91,6 +91,25 @@ def test_head_closing_the_pipe_ends_it_with_status_0(nodes, ros_env):
     assert result.stderr == b""
 
 
+def test_head_ends_it_at_once_on_a_quiet_graph(nodes, ros_env, ros_runtime):
+    """One message, then nothing: ``tail | head -1`` ends without waiting for a second."""
+    talker = nodes.start("talker.py", "--name", "lonely")
+    talker.expect("ready")
+    command = f"set -o pipefail; {sys.executable} -m console_tui tail --topic /rosout | head -1"
+    pipeline = subprocess.Popen(["bash", "-c", command], env=ros_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        probe = ros_runtime.create_node("tail_probe")
+        assert wait_until(lambda: subscribed(probe, 1), timeout=60), "the tail never subscribed"
+        talker.send({"cmd": "log", "level": "info", "msg": "the only message"})
+        out, err = pipeline.communicate(timeout=60)  # no second message ever comes
+    finally:
+        if pipeline.poll() is None:
+            pipeline.kill()
+            pipeline.wait()
+    assert pipeline.returncode == 0, err[-2000:]
+    assert out.endswith(b"[lonely]: the only message\n") and err == b""
+
+
 @pytest.mark.ros1
 def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env):
     ros1_nodes.rospy("rospy_node.py", "py_tailed", "--period", "0.1").expect("ready")

@@ -6,6 +6,7 @@ from __future__ import annotations
 import time
 
 import pytest
+from test_cli_loggers import closed_pipe
 
 from console_tui.commands.loggers import main as loggers_main
 from console_tui.sources.logger_calls import SET
@@ -160,3 +161,11 @@ def test_get_loggers_on_roscpp_as_debian_12_does_it(roscore, ros1_nodes, roscpp_
 def test_no_master_is_said_plainly(ros1_env, capsys):
     status, _, err = run(capsys, "list", "--ros1")
     assert status == 2 and "waiting for master at" in err and ros1_env["ROS_MASTER_URI"] in err
+
+
+def test_a_closed_pipe_ends_list_and_get_quietly(roscore, ros1_nodes, ros1_env):
+    ros1_nodes.rospy("rospy_node.py", "piped", "--period", "0.5").expect("ready")
+    for args in (("list", "--ros1"), ("get", "piped", "--ros1", "--wait", "15")):
+        result = closed_pipe(ros1_env, *args)
+        assert result.returncode == 0, result.stderr
+        assert "Traceback" not in result.stderr and "BrokenPipe" not in result.stderr
