@@ -17,6 +17,7 @@ from .commands.arguments import (
     add_log_format_argument,
     add_ros_version_arguments,
     check_rule_arguments,
+    domain_id,
     positive_int,
 )
 from .model.store import DEFAULT_MAX_MESSAGES
@@ -103,6 +104,15 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         help=(
             "start demo nodes in child processes and show their messages: ROS 2 nodes, or with --ros1 "
             "rospy nodes on a roscore of their own (needs ROS 1's roscore and rospy)"
+        ),
+    )
+    parser.add_argument(
+        "--demo-domain",
+        metavar="N",
+        type=domain_id,
+        help=(
+            "with --demo (ROS 2): the ROS_DOMAIN_ID its nodes run on (default: a domain nothing on this "
+            "machine uses, never yours, so that the demo stays out of your graph)"
         ),
     )
     add_ros_version_arguments(parser)
@@ -207,6 +217,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(args_list)
     check_rule_arguments(parser, args)
+    if args.demo_domain is not None and not args.demo:
+        parser.error("--demo-domain goes with --demo")
     if args.last:
         add_latest_run(parser, args)
     if argv is None and not on_a_terminal():

@@ -105,9 +105,16 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
             except Ros1DemoUnavailable as error:
                 raise RosUnavailable(str(error)) from None
         else:
+            from .demo.domain import NoFreeDomain, free_domain
             from .demo.launcher import DEMO_ENVIRONMENT
 
-            os.environ.update(DEMO_ENVIRONMENT)
+            domain = getattr(args, "demo_domain", None)
+            try:
+                domain = free_domain() if domain is None else domain
+            except NoFreeDomain as error:
+                raise RosUnavailable(str(error)) from None
+            # Out of the user's graph: the demo nodes, the intake and the levels all on it.
+            os.environ.update(DEMO_ENVIRONMENT, ROS_DOMAIN_ID=str(domain))
     live = open_live(queue, topic=args.topic, ros=ros)
     cleanups.append(live.close)
     sources.append(live.source)
@@ -124,5 +131,6 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
     if args.demo:
         from .demo.launcher import DemoNodes
 
-        sources.append(DemoNodes())  # the app starts it after its first frame, and stops it
+        # the app starts it after its first frame, and stops it
+        sources.append(DemoNodes(domain=int(os.environ["ROS_DOMAIN_ID"])))
     return logger_control

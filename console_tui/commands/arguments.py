@@ -49,6 +49,17 @@ def positive_int(text: str) -> int:
     return value
 
 
+def domain_id(text: str) -> int:
+    """A ROS 2 domain id, 0 to 232 (the ports of higher ones do not fit)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a domain id: {text!r} (0 to 232)") from None
+    if not 0 <= value <= 232:
+        raise argparse.ArgumentTypeError(f"not a domain id: {text!r} (0 to 232)")
+    return value
+
+
 _SIZE_UNITS = {"": 1, "b": 1, "k": 1 << 10, "m": 1 << 20, "g": 1 << 30, "t": 1 << 40}
 
 

@@ -23,11 +23,14 @@ class DemoNodes:
     (starting a process stalls the caller until it runs, a second and more each on a busy
     machine, and the caller is the app's event loop); ``wait_started`` waits for them."""
 
-    def __init__(self, names: list[str] | None = None) -> None:
+    def __init__(self, names: list[str] | None = None, *, domain: int | None = None) -> None:
         self.names = names or list(DEMO_NODES)
         self.processes: list[subprocess.Popen] = []
-        #: Shown in the status line while the app runs the demo.
-        self.status = SourceStatus(path=f"demo: {plural(len(self.names), 'node')}")
+        #: Shown in the status line while the app runs the demo: its nodes, and the domain
+        #: they run on (``ROS_DOMAIN_ID`` is set for them when ``domain`` is given).
+        self.domain = domain
+        where = f" on domain {domain}" if domain is not None else ""
+        self.status = SourceStatus(path=f"demo: {plural(len(self.names), 'node')}{where}")
         self._lock = threading.Lock()
         self._stopping = False
         self._starter: threading.Thread | None = None
@@ -42,6 +45,8 @@ class DemoNodes:
 
     def _start_all(self) -> None:
         env = {**os.environ, **DEMO_ENVIRONMENT, "RCUTILS_LOGGING_USE_STDOUT": "0"}
+        if self.domain is not None:
+            env["ROS_DOMAIN_ID"] = str(self.domain)
         for name in self.names:
             with self._lock:
                 if self._stopping:

@@ -4,6 +4,7 @@ the pipe; and ``console-tui`` ends with ``q``, its intake process (and demo node
 from __future__ import annotations
 
 import pytest
+from conftest import next_domain_id
 from test_ros2_live_source import serialized_log
 
 from console_tui.model.intake_queue import IntakeQueue
@@ -67,6 +68,8 @@ def test_every_field_and_the_loss_counts_come_through_the_pipe(nodes):
 
 @pytest.mark.parametrize("args", [(), ("--demo",)], ids=["live", "demo"])
 def test_q_ends_console_tui_and_its_intake_process(ros_env, args):
+    if args:
+        args = (*args, "--demo-domain", str(next_domain_id()))  # within the tests' domains
     intake, others, code = run_and_quit(ros_env, *args, others_expected=4 if args else 0)
     assert code == 0
     assert not any(pid_alive(pid) for pid in intake | others), "a child of console-tui outlived it"

@@ -7,6 +7,7 @@ import asyncio
 import threading
 
 import pytest
+from conftest import next_domain_id
 
 from support.launch import run_main
 from support.rosproc import pid_alive, wait_until
@@ -62,6 +63,43 @@ def test_demo_starts_its_nodes_and_they_end_with_the_app(ros_env, monkeypatch):
         await asyncio.sleep(0)
         await pilot.press("q")
 
-    code, _ = run_main(monkeypatch, ["--demo", "--utc"], script, size=(140, 30))
+    domain = str(next_domain_id())  # within the tests' domains
+    code, _ = run_main(monkeypatch, ["--demo", "--demo-domain", domain, "--utc"], script, size=(140, 30))
     assert code == 0 and len(pids) == 4
     assert wait_until(lambda: not any(pid_alive(pid) for pid in pids))
+
+
+def test_the_demo_stays_out_of_the_users_graph(nodes, ros_env, ros_runtime, monkeypatch):
+    """A second console on the user's domain, running all along, sees the user's own node and
+    none of the demo's messages, which run on a domain of their own (shown in the status line)."""
+    from test_cli_tail_live import subscribed
+
+    from support.tail_process import TailProcess
+
+    user_domain = ros_env["ROS_DOMAIN_ID"]
+    demo_domain = str(next_domain_id())
+    assert demo_domain != user_domain
+    second = TailProcess(ros_env, "--topic", "/rosout", "--format", "{name}: {message}")
+    seen: dict[str, str] = {}
+    try:
+        probe = ros_runtime.create_node("probe")
+        assert wait_until(lambda: subscribed(probe, 1), 60), "the second console never subscribed"
+
+        async def script(pilot) -> None:
+            app = pilot.app
+            await until(pilot, lambda: "count_and_log" in screen_text(app), timeout=60, what="a demo message")
+            await until(pilot, lambda: "navigation.planner" in screen_text(app), timeout=60, what="the planner")
+            seen["status"] = screen_text(app).splitlines()[-2]
+            await pilot.press("q")
+
+        code, _ = run_main(monkeypatch, ["--demo", "--demo-domain", demo_domain, "--utc"], script, size=(200, 30))
+        assert code == 0
+        # The user's own node on the user's domain: the second console hears it, and only it.
+        talker = nodes.start("talker.py", "--name", "users_own")
+        talker.expect("ready")
+        talker.send({"cmd": "log", "level": "info", "msg": "the user's own message"})
+        lines = second.take_text(1, timeout=60)
+    finally:
+        second.stop()
+    assert lines == ["users_own: the user's own message"], lines
+    assert f"domain {demo_domain}" in seen["status"] and f"domain {user_domain}" not in seen["status"], seen
