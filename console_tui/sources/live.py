@@ -77,7 +77,8 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
     """
     from .intake_process.parent import ProcessSource
 
-    if choose_ros(ros).version == ROS1:
+    choice = choose_ros(ros)
+    if choice.version == ROS1:
         from .ros1.environment import Ros1Environment
 
         origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
@@ -87,4 +88,6 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
     except RosUnavailable as error:
         raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
+    if choice.master_silent:  # a ROS 1 user would wonder why ROS 2: say so where they look
+        origin += f" · no ROS 1 master answered at {choice.master_silent} (--ros1 waits for it)"
     return LiveIntake(ProcessSource(queue, "ros2", topic=topic, origin=origin), runtime, [runtime.shutdown])

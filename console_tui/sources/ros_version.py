@@ -22,6 +22,8 @@ class RosChoice:
     version: int
     #: Why, in a few words ("--ros1", "ROS_VERSION=1", "a master answers at URI", ...).
     reason: str
+    #: ROS 2 chosen though ``ROS_MASTER_URI`` is set: that URI, where no master answered; else "".
+    master_silent: str = ""
 
 
 def rclpy_installed() -> bool:
@@ -54,4 +56,6 @@ def choose_ros(
             return RosChoice(ROS1, f"a ROS 1 master answers at {master}")
         if not has_rclpy():
             return RosChoice(ROS1, f"ROS_MASTER_URI is set ({master}) and there is no rclpy")
-    return RosChoice(ROS2, "no ROS 1 master answers" if master else "ROS_MASTER_URI is not set")
+    if master:
+        return RosChoice(ROS2, "no ROS 1 master answers", master_silent=master)
+    return RosChoice(ROS2, "ROS_MASTER_URI is not set")

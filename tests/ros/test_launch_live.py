@@ -103,3 +103,23 @@ def test_the_demo_stays_out_of_the_users_graph(nodes, ros_env, ros_runtime, monk
         second.stop()
     assert lines == ["users_own: the user's own message"], lines
     assert f"domain {demo_domain}" in seen["status"] and f"domain {user_domain}" not in seen["status"], seen
+
+
+def test_a_silent_ros1_master_uri_is_said_in_the_status_line(ros_env, monkeypatch):
+    """ROS_MASTER_URI set, nothing there: ROS 2 is read, and the status line says why."""
+    from support.ros1 import free_port
+
+    uri = f"http://127.0.0.1:{free_port()}/"
+    monkeypatch.setenv("ROS_MASTER_URI", uri)
+    seen: dict[str, str] = {}
+
+    async def script(pilot) -> None:
+        app = pilot.app
+        await until(pilot, lambda: "ROS 2 domain" in screen_text(app), timeout=30, what="the live source")
+        seen["screen"] = screen_text(app)
+        await pilot.press("q")
+
+    code, _ = run_main(monkeypatch, ["--utc"], script, size=(200, 30))
+    assert code == 0
+    status = seen["screen"].splitlines()[-2]
+    assert f"no ROS 1 master answered at {uri} (--ros1 waits for it)" in status, status
