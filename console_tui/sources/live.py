@@ -88,6 +88,7 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
     except RosUnavailable as error:
         raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
-    if choice.master_silent:  # a ROS 1 user would wonder why ROS 2: say so where they look
-        origin += f" · no ROS 1 master answered at {choice.master_silent} (--ros1 waits for it)"
-    return LiveIntake(ProcessSource(queue, "ros2", topic=topic, origin=origin), runtime, [runtime.shutdown])
+    # A ROS 1 user would wonder why ROS 2: the status line says so.
+    remark = f"no ROS 1 master answered at {choice.master_silent} (--ros1 waits for it)" if choice.master_silent else ""
+    source = ProcessSource(queue, "ros2", topic=topic, origin=origin, remark=remark)
+    return LiveIntake(source, runtime, [runtime.shutdown])

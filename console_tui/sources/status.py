@@ -16,6 +16,9 @@ class SourceStatus:
     publishers: int = 0
     #: Which ROS and where, for example ``ROS 1 http://robot:11311/`` or ``ROS 2 domain 7``.
     origin: str = ""
+    #: Why this ROS and not the other, when the user may have expected the other, or "": for
+    #: example that no ROS 1 master answered at ``ROS_MASTER_URI``.
+    remark: str = ""
     #: How messages are taken and decoded, for example ``raw+cdr`` or ``typed``.
     path: str = ""
     #: Why the path is not the fastest there is, or "": for example why the take loop in C
@@ -54,6 +57,12 @@ class SourceStatus:
             "2-3 times the CPU a message, so high rates are kept up with less well. The fast path "
             "needs a C compiler (cc) and Python's headers (python3-dev)."
         )
+
+    @property
+    def take_path(self) -> bool:
+        """Whether ``path`` says how messages are taken (``c+cdr``...), a detail, rather than
+        what the source is (``demo: 4 nodes``, ``starting``)."""
+        return self.path in _PATHS
 
     def loss_text(self) -> str:
         """The loss for a status bar: "" when nothing was lost, else the total and its causes."""

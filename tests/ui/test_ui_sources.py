@@ -3,6 +3,8 @@ that reports losses and a problem. Each says so on the screen; none takes the ap
 
 from __future__ import annotations
 
+import re
+
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.store import LogStore
 from console_tui.sources.status import SourceStatus
@@ -37,7 +39,10 @@ class CannotStart(Source):
 
 
 def status_line(app: ConsoleApp) -> str:
-    return next(line for line in screen_text(app).splitlines() if " shown " in line)
+    """The status line: it starts with the state (at 80 columns, "3/3 shown" may read "3/3")."""
+    return next(
+        line for line in screen_text(app).splitlines() if line.lstrip().startswith(("FOLLOW", "SCROLL", "PAUSED"))
+    )
 
 
 async def test_a_source_that_cannot_start_is_named_on_screen_and_the_rest_runs():
@@ -51,7 +56,7 @@ async def test_a_source_that_cannot_start_is_named_on_screen_and_the_rest_runs()
         assert good.calls == ["start"], "the next source started all the same"
         queue.put(records(3))
         await until(pilot, lambda: "3/3 shown" in status_line(app), what="records from the queue")
-        assert "/rosout 2 pubs raw+cdr" in status_line(app)
+        assert "/rosout 2 pubs  raw+cdr" in status_line(app)
         await pilot.press("space")
         assert "PAUSED" in status_line(app), "keys still work"
     assert broken.calls == ["start", "stop"] and good.calls == ["start", "stop"]
@@ -88,7 +93,7 @@ async def test_losses_and_a_problem_of_a_source_show_in_the_status_line():
         assert "12 lost (7 in the middleware, 5 UI behind)" in line
         assert "offer a QoS no subscription can match" in line and line.rstrip().endswith("typed")
         source.status = SourceStatus(topic="/rosout_agg", publishers=3, path="typed", running=True)
-        await until(pilot, lambda: "/rosout_agg 3 pubs typed" in status_line(app), what="the new status")
+        await until(pilot, lambda: "/rosout_agg 3 pubs  typed" in status_line(app), what="the new status")
         assert "lost" not in status_line(app)
 
 
@@ -137,7 +142,7 @@ async def test_the_summary_says_what_each_source_reads_how_and_what_it_lost():
     app = ConsoleApp(store=LogStore(), queue=queue, sources=[Source(status), helper], utc=True)
     async with app.run_test(size=(80, 24)) as pilot:
         queue.put(records(3))
-        await until(pilot, lambda: "3/3 shown" in status_line(app), what="records from the queue")
+        await until(pilot, lambda: " 3/3" in status_line(app), what="records from the queue")
         await pilot.press("S")
         await until(pilot, lambda: "Summary: 3 messages kept" in screen_text(app), what="the summary")
         lines = [line.strip(" █▊▎") for line in screen_text(app).splitlines()]
@@ -149,3 +154,33 @@ async def test_the_summary_says_what_each_source_reads_how_and_what_it_lost():
         "lost: 12 lost (12 in the middleware)",
     ]
     assert sum(line.startswith("Source:") for line in lines) == 1, "the demo's nodes are no source of messages"
+
+
+def ros1_demo_sources() -> list[Source]:
+    """What ``console-tui --demo --ros1`` runs: its roscore and nodes, and the live source."""
+    demo = SourceStatus(path="demo: roscore on port 41231, 4 rospy nodes", running=True)
+    live = SourceStatus(
+        topic="/rosout_agg", publishers=5, origin="ROS 1 http://127.0.0.1:41231/", path="tcpros", running=True
+    )
+    return [Source(demo), Source(live)]
+
+
+async def test_the_status_line_keeps_source_and_state_at_100_and_80_columns():
+    """Narrow terminals: the parts that matter least are shortened, then left out; the
+    state, the topic, its publishers and the master stay (they showed only at 170 columns)."""
+    store = LogStore()
+    store.extend(records(40))
+    for size, expected, gone in [
+        ((100, 30), ["FOLLOW", "40/40", "/rosout_agg 5 pubs", "127.0.0.1:41231", "demo"], ["roscore on port"]),
+        ((80, 24), ["FOLLOW", "40/40", "/rosout_agg 5", "ROS 1 127.0.0.1:41231"], ["roscore on port"]),
+        ((220, 30), ["40/40 shown", "demo: roscore on port 41231, 4 rospy nodes", "ROS 1 http://127.0.0.1:41231/"], []),
+    ]:
+        app = ConsoleApp(store=store, queue=IntakeQueue(), sources=ros1_demo_sources())
+        async with app.run_test(size=size) as pilot:
+            await until(pilot, lambda app=app: "/rosout_agg" in screen_text(app), what="the status line")
+            line = next(line for line in screen_text(app).splitlines() if "FOLLOW" in line)
+            assert all(part in line for part in expected), (size, line)
+            assert not any(part in line for part in gone), (size, line)
+            assert "…" not in line, (size, line)  # shortened by parts, never cut in the middle
+            footer = screen_text(app).splitlines()[-1]
+            assert not re.search(r"(^|\s)\S ?▏", footer), footer  # a key never shows without what it does

@@ -46,6 +46,7 @@ class ProcessSource:
         args: Sequence[str] = (),
         env: Mapping[str, str] | None = None,
         origin: str = "",
+        remark: str = "",
     ) -> None:
         self.queue = queue
         self.kind = kind
@@ -53,7 +54,8 @@ class ProcessSource:
         self.args = list(args)
         self.env = dict(os.environ if env is None else env)
         self.origin = origin
-        self.status = SourceStatus(topic=topic or "", origin=origin, path="starting")
+        self.remark = remark
+        self.status = SourceStatus(topic=topic or "", origin=origin, path="starting", remark=remark)
         self.process: subprocess.Popen | None = None
         self._child_status = self.status
         self._lock = threading.Lock()
@@ -156,11 +158,12 @@ class ProcessSource:
         self._show(replace(self._child_status, problem=problem, running=False))
 
     def _show(self, child: SourceStatus) -> None:
-        """The child's status, with this side's drops added and our own origin."""
+        """The child's status, with this side's drops added and our own origin and remark."""
         dropped = self.queue.dropped
         self.status = replace(
             child,
             origin=child.origin or self.origin,
+            remark=child.remark or self.remark,
             lost=child.lost + dropped,
             lost_queue=child.lost_queue + dropped,
         )

@@ -123,14 +123,13 @@ class KeyFooter(Widget, can_focus=False):
         room = width - sum(len(segment.text) for segment in palette)
         keys: list[Segment] = []
         used = 0
-        for entry in self.entries:
-            for segment in self._key_segments(entry, look, style):
-                text = segment.text[: room - used]
-                if text:
-                    keys.append(Segment(text, segment.style))
-                    used += len(text)
-            if used >= room:
+        for entry in self.entries:  # whole keys only: never a key without what it does
+            segments = self._key_segments(entry, look, style)
+            needed = sum(len(segment.text) for segment in segments)
+            if used + needed > room:
                 break
+            keys += segments
+            used += needed
         if used < room:
             keys.append(Segment(" " * (room - used), style))
         return Strip([*keys, *palette]).crop(0, width)

@@ -3,7 +3,7 @@ and node toggles, counts per severity, rate, the sources, the rules and storms, 
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
 from rich.style import Style
@@ -15,6 +15,7 @@ from ...model.levels import SEVERITY_TABLE
 from ...model.text import one_line, plural
 from ...sources.status import SourceStatus
 from ..severity_styles import severity_classes, severity_css
+from .status_fit import COUNTS, DEMO, DETAIL, RATE, SOURCE, STATE, WHERE, Part, fit
 
 
 @dataclass
@@ -93,10 +94,17 @@ class StatusBar(Widget):
         super().__init__(id=id)
         self._styles: dict[str, Style] = {}
         self._styles_key: object = None
+        self._facts: StatusFacts | None = None
 
     def show_facts(self, facts: StatusFacts) -> None:
         """Redrawn only when what it says (or how) changed: ``content`` compares text and spans."""
-        self.content = render_status(facts, self.component_styles())
+        self._facts = facts
+        width = self.content_region.width or None  # not laid out yet: everything, in full
+        self.content = render_status(facts, self.component_styles(), width)
+
+    def on_resize(self) -> None:
+        if self._facts is not None:
+            self.show_facts(self._facts)
 
     def component_styles(self) -> dict[str, Style]:
         """The component classes' styles, looked up again when the theme changes."""
@@ -137,48 +145,81 @@ def empty_hint(facts: StatusFacts, filtering: bool = False) -> str:
     return ""
 
 
-def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None) -> Text:
-    """The status line's text; ``styles`` are the component classes' (plain text without them)."""
+def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None, width: int | None = None) -> Text:
+    """The status line's text; ``styles`` are the component classes' (plain text without them).
+    In ``width`` cells, the less important parts shortened first, then left out (``status_fit``)."""
     look = (lambda name: styles.get(f"status-bar--{name}", _PLAIN)) if styles else (lambda name: _PLAIN)
-    text = Text(no_wrap=True, overflow="ellipsis")
+
+    def styled(*spans: tuple[str, str | None]) -> Text:
+        return Text.assemble(*((text, look(style) if style else _PLAIN) for text, style in spans))
+
+    parts: list[Part] = []
     if facts.paused:
-        text.append(" PAUSED ", style=look("paused"))
-        text.append(f" +{facts.new_while_paused:,} new", style=look("severity-warn"))
-    elif facts.following:
-        text.append(" FOLLOW ", style=look("follow"))
+        new = f" +{facts.new_while_paused:,} new"
+        parts.append(Part(styled((" PAUSED ", "paused"), (new, "severity-warn")), STATE, gap=""))
     else:
-        text.append(" SCROLL ", style=look("scroll"))
-    text.append(f"  {facts.shown:,}/{facts.total:,} shown  ")
+        state = " FOLLOW " if facts.following else " SCROLL "
+        parts.append(Part(styled((state, "follow" if facts.following else "scroll")), STATE, gap=""))
+    shown = f"{facts.shown:,}/{facts.total:,}"
+    parts.append(Part(Text(f"{shown} shown"), COUNTS, Text(shown)))
     if facts.search:
-        text.append(f"{one_line(facts.search, 120)}", style=look("search"))
-        text.append("  ")
+        search = one_line(facts.search, 120)
+        parts.append(Part(styled((search, "search")), SOURCE, styled((one_line(search, 24), "search"))))
     if facts.toggles:
-        text.append(f"{one_line(facts.toggles, 200)}", style=look("toggles"))
-        text.append("  ")
-    for level in SEVERITY_TABLE:
-        text.append(
-            f"{level.letter}{facts.counts.get(int(level.severity), 0):,}", style=look(f"severity-{level.style}")
-        )
-        text.append(" ")
-    text.append(f" {facts.rate:,.0f}/s")
+        toggles = one_line(facts.toggles, 200)
+        parts.append(Part(styled((toggles, "toggles")), WHERE, styled((one_line(toggles, 24), "toggles"))))
+    counts = [
+        (f"{level.letter}{facts.counts.get(int(level.severity), 0):,}", f"severity-{level.style}")
+        for level in SEVERITY_TABLE
+    ]
+    spaced = [span for count in counts for span in (count, (" ", None))][:-1]
+    worse = [span for count in counts[2:] for span in (count, (" ", None))][:-1]  # WARN and worse
+    parts.append(Part(styled(*spaced), COUNTS, styled(*worse)))
+    parts.append(Part(Text(f"{facts.rate:,.0f}/s"), RATE))
     for status in facts.sources:
-        if status.topic:
-            text.append(f"  {one_line(status.topic, 200)}", style=look("topic"))
-            text.append(f" {plural(status.publishers, 'pub')}")
-        loss = status.loss_text()
-        if loss:
-            text.append(f"  {loss}", style=look("problem"))
-        if status.problem:
-            text.append(f"  {one_line(status.problem, 300)}", style=look("problem"))
-        where = one_line(" ".join(part for part in (status.path, status.origin) if part), 300)
-        if where:
-            spaced = f" {where}" if status.topic and not loss and not status.problem else f"  {where}"
-            text.append(spaced, style=look("where"))
+        parts += _source_parts(status, styled)
     if facts.note:
-        text.append(f"  {facts.note}", style=look("note"))
+        parts.append(Part(styled((facts.note, "note")), DETAIL, styled((one_line(facts.note, 24), "note"))))
     if facts.time:
-        text.append(f"  {facts.time}", style=look("note"))
-    return text
+        parts.append(Part(styled((facts.time, "note")), DEMO))
+    return fit(parts, width)
+
+
+def _source_parts(status: SourceStatus, styled: Callable[..., Text]) -> list[Part]:
+    """A source's parts: its topic and publishers, losses and problem (which matter most),
+    where it reads (ROS 2's domain, ROS 1's master), why this ROS, then how (``c+cdr``)."""
+    parts: list[Part] = []
+    if status.topic:
+        topic = one_line(status.topic, 200)
+        publishers = plural(status.publishers, "pub")
+        short = styled((one_line(topic, 24), "topic"), (f" {status.publishers}p", None))
+        parts.append(Part(styled((topic, "topic"), (f" {publishers}", None)), SOURCE, short))
+    loss = status.loss_text()
+    if loss:
+        parts.append(Part(styled((loss, "problem")), SOURCE, styled((f"{status.lost:,} lost", "problem"))))
+    if status.problem:
+        problem = one_line(status.problem, 300)
+        parts.append(Part(styled((problem, "problem")), STATE, styled((one_line(problem, 40), "problem"))))
+    if status.origin:
+        origin = one_line(status.origin, 300)
+        parts.append(Part(styled((origin, "where")), WHERE, styled((_short_origin(origin), "where"))))
+    if status.remark:
+        remark = one_line(status.remark, 300)
+        brief = remark.split(" at ", 1)[0] + " (--ros1 waits)" if "(--ros1" in remark else one_line(remark, 40)
+        parts.append(Part(styled((remark, "where")), WHERE, styled((brief, "where"))))
+    if status.path:
+        path = one_line(status.path, 200)
+        demo = path.startswith("demo")
+        priority = DETAIL if status.take_path else DEMO if demo else WHERE
+        parts.append(Part(styled((path, "where")), priority, styled(("demo", "where")) if demo else None))
+    return parts
+
+
+def _short_origin(origin: str) -> str:
+    """``ROS 2 domain 11`` as ``domain 11``; ``ROS 1 http://robot:11311/`` as ``ROS 1 robot:11311``."""
+    if origin.startswith("ROS 2 domain "):
+        return origin.removeprefix("ROS 2 ")
+    return origin.replace("http://", "").rstrip("/")
 
 
 _PLAIN = Style()

@@ -1,0 +1,33 @@
+"""The status line in a given width: short forms first, the least important first; parts left
+out only when every short form is not enough, and the room that makes given back."""
+
+from __future__ import annotations
+
+from rich.text import Text
+
+from console_tui.ui.widgets.status_fit import COUNTS, DETAIL, SOURCE, STATE, Part, fit
+
+
+def parts() -> list[Part]:
+    return [
+        Part(Text(" FOLLOW "), STATE, gap=""),
+        Part(Text("40/40 shown"), COUNTS, Text("40/40")),
+        Part(Text("/rosout_agg 5 pubs"), SOURCE, Text("/rosout_agg 5p")),
+        Part(Text("tcpros"), DETAIL),
+        Part(Text("a very long problem that never goes"), STATE, Text("a problem")),
+    ]
+
+
+def test_everything_in_full_when_it_fits():
+    full = " FOLLOW   40/40 shown  /rosout_agg 5 pubs  tcpros  a very long problem that never goes"
+    assert fit(parts(), None).plain == full
+    assert fit(parts(), len(full)).plain == full
+
+
+def test_the_least_important_shortened_first_then_left_out():
+    assert fit(parts(), 80).plain == " FOLLOW   40/40  /rosout_agg 5 pubs  tcpros  a very long problem that never goes"
+    # The problem's short form leaves room: the parts before it in full again.
+    assert fit(parts(), 60).plain == " FOLLOW   40/40 shown  /rosout_agg 5 pubs  tcpros  a problem"
+    assert fit(parts(), 45).plain == " FOLLOW   40/40  /rosout_agg 5p  a problem"  # tcpros out
+    assert fit(parts(), 35).plain == " FOLLOW   /rosout_agg 5p  a problem"
+    assert fit(parts(), 5).plain == " FOLLOW   a problem"  # the state and a problem never go
