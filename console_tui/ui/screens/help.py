@@ -58,7 +58,8 @@ class HelpScreen(ModalScreen[None]):
     DEFAULT_CSS = """
     HelpScreen { align: center middle; }
     HelpScreen > VerticalScroll {
-        width: 96; max-width: 95%; height: 85%; border: thick $primary; background: $surface; padding: 1 2;
+        width: 96; max-width: 95%; height: 85%; border: thick $primary; background: $surface; padding: 1 0 1 2;
+        scrollbar-size-vertical: 1;  /* at the box's edge, not a stray mark inside it */
     }
     HelpScreen .keymap-note { color: $text-muted; }
     """

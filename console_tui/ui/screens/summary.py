@@ -30,9 +30,9 @@ from ..severity_styles import severity_classes, severity_css
 from ..widgets.timeline_drawing import span_text
 
 _NAME_WIDTH = 28
-#: The dialog's room for text: its width less its border and padding, the list's border,
-#: an option's padding and the scrollbar.
-_FRAME = 10
+#: The dialog's room for text: its width less its border and left padding, an option's
+#: padding and the scrollbar (one cell).
+_FRAME = 6
 
 
 class SummaryScreen(ModalScreen[int | None]):
@@ -51,11 +51,16 @@ class SummaryScreen(ModalScreen[int | None]):
     DEFAULT_CSS = """
     SummaryScreen { align: center middle; }
     SummaryScreen > Vertical {
-        width: 100; max-width: 96%; height: 90%; border: thick $primary; background: $surface; padding: 0 1;
+        width: 100; max-width: 96%; height: 90%; border: thick $primary; background: $surface; padding: 0 0 0 1;
     }
     SummaryScreen #summary-title { text-style: bold; width: 1fr; }
     SummaryScreen #summary-keys { color: $text-muted; width: 1fr; }
-    SummaryScreen OptionList { height: 1fr; border: none; padding: 0; }
+    /* Lines cut where the list ends; its scrollbar at the box's edge, one cell wide, not a
+       stray mark inside the box. */
+    SummaryScreen OptionList, SummaryScreen OptionList:focus {
+        height: 1fr; border: none; padding: 0; text-wrap: nowrap; text-overflow: ellipsis;
+        scrollbar-size-vertical: 1;
+    }
     """ + severity_css("SummaryScreen", "summary--severity")
     COMPONENT_CLASSES = severity_classes("summary--severity")
     BINDINGS = [
@@ -199,8 +204,8 @@ class SummaryScreen(ModalScreen[int | None]):
         return options
 
     def _target_option(self, line: Text, target: str | None) -> Option:
-        """A line that jumps to ``target`` (``seq:N``, ``node:ID``); none: a line only."""
-        line.truncate(self._room(), overflow="ellipsis")
+        """A line that jumps to ``target`` (``seq:N``, ``node:ID``); none: a line only. The
+        list cuts it where its width ends (its CSS: one line each, ``…`` at the end)."""
         if target is None:
             return Option(line, disabled=True)
         option_id = f"line-{len(self._targets)}"

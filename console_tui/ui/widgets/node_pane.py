@@ -13,6 +13,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from rich.console import Console, ConsoleOptions, RenderResult
+from rich.measure import Measurement
 from rich.style import Style
 from rich.table import Table
 from rich.text import Text
@@ -27,7 +29,7 @@ from textual.widgets.option_list import Option
 
 from ...model.levels import SEVERITY_TABLE
 from ...model.node_stats import NodeCounts, NodeStats
-from ...model.text import one_line
+from ...model.text import one_line, shorten_name
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..severity_styles import severity_classes, severity_css
@@ -96,6 +98,21 @@ def column_widths(rows: Sequence[NodeCounts]) -> tuple[int, ...]:
     return tuple(widths)
 
 
+class NodeName:
+    """A node's name in the width its column gets, shortened as the table shortens it: its end
+    kept (``/na…/planner``), which tells ``/navigation/planner`` from ``/navigation/planning``."""
+
+    def __init__(self, name: str, style: str = "") -> None:
+        self.name = name
+        self.style = style
+
+    def __rich_console__(self, console: Console, options: ConsoleOptions) -> RenderResult:
+        yield Text(shorten_name(self.name, options.max_width), style=self.style, no_wrap=True)
+
+    def __rich_measure__(self, console: Console, options: ConsoleOptions) -> Measurement:
+        return Measurement(1, len(self.name))
+
+
 def _grid(widths: Sequence[int]) -> Table:
     grid = Table.grid(expand=True)
     grid.add_column(width=2, no_wrap=True)
@@ -122,7 +139,7 @@ def node_line(
     ]
     grid.add_row(
         Text(state, style="bold reverse" if state else ""),
-        Text(one_line(row.node, 200), style=name_style),
+        NodeName(one_line(row.node, 200), name_style),
         *counts,
         Text(rate_cell(row.rate), style=look("rate")),
     )
