@@ -12,10 +12,24 @@ import argparse
 import asyncio
 import os
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+
+
+class Frozen:
+    """A source that only shows a status (another app's, as it was): for the narrow shots."""
+
+    def __init__(self, status) -> None:
+        self.status = status
+
+    def start(self) -> None:
+        pass
+
+    def stop(self) -> None:
+        pass
 
 
 async def capture(out: Path, seconds: float) -> list[Path]:
@@ -26,12 +40,13 @@ async def capture(out: Path, seconds: float) -> list[Path]:
     from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
-    demo = DemoNodes()
+    demo = DemoNodes(domain=int(os.environ["ROS_DOMAIN_ID"]))  # as --demo shows it
     demo.start()
     runtime = RosRuntime()
     queue = IntakeQueue()
     control = Ros2LoggerControl(runtime)
-    app = ConsoleApp(queue=queue, sources=[LiveLogSource(runtime, queue)], logger_control=control)
+    live = LiveLogSource(runtime, queue)
+    app = ConsoleApp(queue=queue, sources=[live], logger_control=control)
     saved: list[Path] = []
 
     async def shot(pilot, name: str) -> None:
@@ -70,10 +85,22 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await shot(pilot, "search")
             await pilot.press("escape", "home", "t", "t", "t")  # the time since the first message
             await shot(pilot, "time-since-first")
-        narrow = ConsoleApp(store=app.store)
-        async with narrow.run_test(size=(80, 24)) as pilot:
-            await pilot.pause(1.0)
-            await shot(pilot, "live-table-80x24")
+        # Narrow terminals: the status line by priority, the node panel, the summary, the help,
+        # over the same messages and the sources as they were (their status, frozen).
+        origin = f"ROS 2 domain {os.environ['ROS_DOMAIN_ID']}"  # as the intake process says it
+        frozen = [Frozen(replace(live.status, origin=origin)), Frozen(demo.status)]
+        for width, height in ((80, 24), (100, 30)):
+            narrow = ConsoleApp(store=app.store, sources=frozen)
+            size = f"{width}x{height}"
+            async with narrow.run_test(size=(width, height)) as pilot:
+                await pilot.pause(1.0)
+                await shot(pilot, f"live-table-{size}")
+                await pilot.press("ctrl+n")
+                await shot(pilot, f"node-panel-{size}")
+                await pilot.press("escape", "ctrl+n", "S")
+                await shot(pilot, f"summary-{size}")
+                await pilot.press("escape", "question_mark")
+                await shot(pilot, f"help-{size}")
     finally:
         control.close()
         runtime.shutdown()
