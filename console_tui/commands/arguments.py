@@ -39,25 +39,25 @@ def add_last_argument(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def positive_int(text: str) -> int:
+def whole_number(text: str, what: str = "a whole number") -> int:
     try:
-        value = int(text)
+        return int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 1:
+        raise argparse.ArgumentTypeError(f"not {what}: {text!r}") from None
+
+
+def positive_int(text: str) -> int:
+    if whole_number(text) < 1:
         raise argparse.ArgumentTypeError("must be at least 1")
-    return value
+    return int(text)
 
 
 def domain_id(text: str) -> int:
     """A ROS 2 domain id, 0 to 232 (the ports of higher ones do not fit)."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a domain id: {text!r} (0 to 232)") from None
-    if not 0 <= value <= 232:
-        raise argparse.ArgumentTypeError(f"not a domain id: {text!r} (0 to 232)")
-    return value
+    what = "a domain id (0 to 232)"
+    if not 0 <= whole_number(text, what) <= 232:
+        raise argparse.ArgumentTypeError(f"not {what}: {text!r}")
+    return int(text)
 
 
 _SIZE_UNITS = {"": 1, "b": 1, "k": 1 << 10, "m": 1 << 20, "g": 1 << 30, "t": 1 << 40}
