@@ -196,7 +196,10 @@ NOT_A_TERMINAL = (
 def on_a_terminal() -> bool:
     """Whether the app can run here: keys come from standard input and the screen goes to
     standard error (Textual's), both a terminal. Under nohup, cron or systemd they are not, and
-    the app would read an empty standard input in a loop, a core busy for ever."""
+    the app would read an empty standard input in a loop, a core busy for ever. Another driver
+    (``TEXTUAL_DRIVER``: ``console-tui serve``'s browser consoles) needs no terminal."""
+    if os.environ.get("TEXTUAL_DRIVER"):
+        return True
     try:
         return os.isatty(sys.stdin.fileno()) and os.isatty(sys.stderr.fileno())
     except (AttributeError, OSError, ValueError):  # closed or replaced streams

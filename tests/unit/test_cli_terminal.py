@@ -71,3 +71,11 @@ def test_without_a_terminal_it_says_so_and_exits(args, stdin_null):
 def test_help_and_version_need_no_terminal():
     status, out, err, _ = run_without_terminal(["--version"])
     assert status == 0 and out.startswith(b"console-tui ") and err == b""
+
+
+def test_another_driver_needs_no_terminal(monkeypatch):
+    """``console-tui serve`` runs each browser's console with Textual's web driver, on pipes."""
+    from console_tui.cli import on_a_terminal
+
+    monkeypatch.setenv("TEXTUAL_DRIVER", "textual.drivers.web_driver:WebDriver")
+    assert on_a_terminal()
