@@ -13,6 +13,8 @@ in a module of its own.
 
 from __future__ import annotations
 
+import signal
+import sys
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import contextmanager
@@ -38,7 +40,7 @@ from ..model.view import LogView
 from ..sources.files import FileLoad
 from . import textual_fixes
 from .commands import ConsoleCommands
-from .exit_signals import ExitSignals
+from .exit_signals import ExitSignals, terminal_gone
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
@@ -249,6 +251,8 @@ class ConsoleApp(
 
     def on_mount(self) -> None:
         self.exit_signals.install()
+        if not self.is_headless and sys.__stdin__ is not None and sys.__stdin__.isatty():
+            self.set_interval(1.0, self._watch_terminal)
         self.collection_policy.start()
         if self._keymap_problems:
             listed = "\n".join(self._keymap_problems[:5])
@@ -279,6 +283,11 @@ class ConsoleApp(
         if self.remember_rules_at_exit:
             self.remember_rules()
         self.cancel_loads()
+
+    def _watch_terminal(self) -> None:
+        """A hung-up terminal whose SIGHUP never came: end as on SIGHUP (``exit_signals``)."""
+        if terminal_gone(sys.__stdin__.fileno()):  # type: ignore[union-attr]
+            self._exit_on_signal(signal.SIGHUP)
 
     def _exit_on_signal(self, signum: int) -> None:
         """SIGTERM or SIGHUP (the SSH session dropped): put temporary logger levels back

@@ -79,3 +79,46 @@ def test_another_driver_needs_no_terminal(monkeypatch):
 
     monkeypatch.setenv("TEXTUAL_DRIVER", "textual.drivers.web_driver:WebDriver")
     assert on_a_terminal()
+
+
+def test_a_terminal_that_goes_away_without_a_hangup_signal_ends_it():
+    """An SSH session dropping while its shell ignores SIGHUP: the kernel signals only the
+    session leader, so the console gets no SIGHUP, and reads from the terminal return nothing
+    at once. It ends, as on SIGHUP, instead of spinning a core for ever."""
+    import pty
+    import select
+    import signal
+
+    console = str(Path(sys.executable).parent / "console-tui")
+    pid, fd = pty.fork()
+    if pid == 0:  # the child: a shell that ignores SIGHUP, the console its child (not a session leader)
+        os.execve("/bin/sh", ["sh", "-c", 'trap "" HUP; "$0" "$1"; exit 0', console, str(DATA)], ENV)
+    try:
+        seen = b""
+        deadline = time.monotonic() + 40
+        while b"FOLLOW" not in seen and time.monotonic() < deadline:
+            if select.select([fd], [], [], 0.2)[0]:
+                try:
+                    seen += os.read(fd, 65536)
+                except OSError:
+                    break
+        assert b"FOLLOW" in seen, seen[-2000:]
+        os.close(fd)  # the terminal goes away; no SIGHUP reaches the console
+        deadline = time.monotonic() + 60  # generous (within pytest's timeout): a spinning console never ends
+        while time.monotonic() < deadline:
+            done, status, usage = os.wait4(pid, os.WNOHANG)
+            if done:
+                break
+            time.sleep(0.2)
+        else:
+            pytest.fail("the console did not end when its terminal went away")
+    finally:
+        try:
+            reaped = os.waitpid(pid, os.WNOHANG)[0]
+        except ChildProcessError:  # reaped above
+            reaped = pid
+        if not reaped:  # the shell and the console, ended
+            os.killpg(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+    assert usage.ru_utime + usage.ru_stime < 60  # the shell and the console: no core spun
