@@ -43,8 +43,9 @@ EPILOG = "\n".join(
         "",
         "exit status:",
         "  0  done",
-        f"  {EXIT_NO_ROS}  bad command line, or ROS is not available (no rclpy in this Python, no roscore for",
-        f"     --demo --ros1); ROS not available is {EXIT_NO_ROS} in every subcommand too",
+        f"  {EXIT_NO_ROS}  bad command line, no terminal (the console needs one: use 'console-tui tail'), or ROS",
+        "     is not available (no rclpy in this Python, no roscore for --demo --ros1); ROS not available",
+        f"     is {EXIT_NO_ROS} in every subcommand too",
         "",
         "install extras: [ros] (ROS 2 Kilted from PyPI) or [jazzy] (ROS 2 Jazzy), never both; [files] for",
         "recordings (.bag, .mcap, .db3). The [ros] and [jazzy] wheels exist for x86_64 Linux only: elsewhere",
@@ -226,7 +227,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         add_latest_run(parser, args)
     if argv is None and not on_a_terminal():
         print(NOT_A_TERMINAL, file=sys.stderr)
-        return 2
+        return EXIT_NO_ROS  # the same status as a missing ROS: this environment cannot run it
     from .launch import run_app
 
     return run_app(args, end_process=argv is None)
