@@ -1,5 +1,6 @@
-"""The status line in a given width: short forms first, the least important first; parts left
-out only when every short form is not enough, and the room that makes given back."""
+"""The status line in a given width: the least important parts first, each shortened if it can
+be, else left out; shortened parts left out only when that is not enough; the room that
+makes given back to the most important."""
 
 from __future__ import annotations
 
@@ -24,10 +25,11 @@ def test_everything_in_full_when_it_fits():
     assert fit(parts(), len(full)).plain == full
 
 
-def test_the_least_important_shortened_first_then_left_out():
-    assert fit(parts(), 80).plain == " FOLLOW   40/40  /rosout_agg 5 pubs  tcpros  a very long problem that never goes"
+def test_the_least_important_shortened_or_left_out_first():
+    # tcpros, the least important, has no short form: it goes, and the rest fits in full.
+    assert fit(parts(), 80).plain == " FOLLOW   40/40 shown  /rosout_agg 5 pubs  a very long problem that never goes"
     # The problem's short form leaves room: the parts before it in full again.
-    assert fit(parts(), 60).plain == " FOLLOW   40/40 shown  /rosout_agg 5 pubs  tcpros  a problem"
-    assert fit(parts(), 45).plain == " FOLLOW   40/40  /rosout_agg 5p  a problem"  # tcpros out
-    assert fit(parts(), 35).plain == " FOLLOW   /rosout_agg 5p  a problem"
+    assert fit(parts(), 60).plain == " FOLLOW   40/40 shown  /rosout_agg 5 pubs  a problem"
+    assert fit(parts(), 45).plain == " FOLLOW   40/40  /rosout_agg 5p  a problem"
+    assert fit(parts(), 35).plain == " FOLLOW   /rosout_agg 5p  a problem"  # shortened, then gone
     assert fit(parts(), 5).plain == " FOLLOW   a problem"  # the state and a problem never go

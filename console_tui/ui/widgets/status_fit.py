@@ -1,8 +1,9 @@
 """Fitting the status line into the terminal's width: each part has a priority and, often, a
-short form. When the line is too long, the least important parts take their short forms
-first; only when every short form is not enough do parts go, the least important first (and
-the room that leaves gives the most important parts their full forms back).
-The state (FOLLOW, PAUSED) and a source's problem never go.
+short form. When the line is too long, parts are taken in turn, the least important first:
+each is shortened when it has a short form (a part is always shortened before it goes), else
+left out. When every short form is not enough, the shortened parts go too, the least
+important first; and the room that leaves gives the most important parts their full forms
+back. The state (FOLLOW, PAUSED) and a source's problem never go.
 """
 
 from __future__ import annotations
@@ -39,16 +40,19 @@ def fit(parts: Sequence[Part], width: int | None) -> Text:
         total = sum(part.width(False) for part in parts)
         # The least important first; among equals, the rightmost first.
         order = sorted(range(len(parts)), key=lambda i: (-parts[i].priority, -i))
-        for i in order:
+        for i in order:  # each part shortened if it can be, else left out (the state never)
             if total <= width:
                 break
             if parts[i].short is not None:
                 total -= parts[i].width(False) - parts[i].width(True)
                 shortened[i] = True
-        for i in order:
+            elif parts[i].priority > STATE:
+                total -= parts[i].width(False)
+                kept[i] = False
+        for i in order:  # still too long: shortened parts go too
             if total <= width:
                 break
-            if parts[i].priority > STATE:
+            if kept[i] and parts[i].priority > STATE:
                 total -= parts[i].width(shortened[i])
                 kept[i] = False
         for i in reversed(order):  # room made by leaving parts out: the most important in full again
