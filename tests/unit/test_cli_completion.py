@@ -42,7 +42,7 @@ def completions(tmp_path: Path, line: str) -> list[str]:
         ("console-tui loggers s", ["set"]),
         ("console-tui loggers l", ["levels", "list"]),
         ("console-tui wat", ["watch"]),
-        ("console-tui --de", ["--demo"]),
+        ("console-tui --de", ["--demo", "--demo-domain"]),
         ("console-tui tail --no-", ["--no-color", "--no-timestamp"]),
         ("console-tui clean --h", ["--help"]),
     ],
