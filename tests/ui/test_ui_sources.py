@@ -172,7 +172,7 @@ async def test_the_status_line_keeps_source_and_state_at_100_and_80_columns():
     store.extend(records(40))
     for size, expected, gone in [
         ((100, 30), ["FOLLOW", "40/40", "/rosout_agg 5 pubs", "127.0.0.1:41231", "demo"], ["roscore on port"]),
-        ((80, 24), ["FOLLOW", "40/40", "/rosout_agg 5", "ROS 1 127.0.0.1:41231"], ["roscore on port"]),
+        ((80, 24), ["FOLLOW", "40/40", "/rosout_agg 5", "127.0.0.1:41231"], ["roscore on port"]),
         ((220, 30), ["40/40 shown", "demo: roscore on port 41231, 4 rospy nodes", "ROS 1 http://127.0.0.1:41231/"], []),
     ]:
         app = ConsoleApp(store=store, queue=IntakeQueue(), sources=ros1_demo_sources())

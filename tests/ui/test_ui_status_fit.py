@@ -1,6 +1,6 @@
-"""The status line in a given width: the least important parts first, each shortened if it can
-be, else left out; shortened parts left out only when that is not enough; the room that
-makes given back to the most important."""
+"""The status line in a given width: the least important parts give way first, each shortened,
+then left out, before a more important one; the room that makes given back to the most
+important."""
 
 from __future__ import annotations
 
@@ -25,11 +25,12 @@ def test_everything_in_full_when_it_fits():
     assert fit(parts(), len(full)).plain == full
 
 
-def test_the_least_important_shortened_or_left_out_first():
+def test_the_least_important_shortened_then_left_out_first():
     # tcpros, the least important, has no short form: it goes, and the rest fits in full.
     assert fit(parts(), 80).plain == " FOLLOW   40/40 shown  /rosout_agg 5 pubs  a very long problem that never goes"
-    # The problem's short form leaves room: the parts before it in full again.
-    assert fit(parts(), 60).plain == " FOLLOW   40/40 shown  /rosout_agg 5 pubs  a problem"
-    assert fit(parts(), 45).plain == " FOLLOW   40/40  /rosout_agg 5p  a problem"
-    assert fit(parts(), 35).plain == " FOLLOW   /rosout_agg 5p  a problem"  # shortened, then gone
+    assert fit(parts(), 75).plain == " FOLLOW   40/40  /rosout_agg 5 pubs  a very long problem that never goes"
+    assert fit(parts(), 70).plain == " FOLLOW   /rosout_agg 5 pubs  a very long problem that never goes"
+    # The problem is shortened at most; what that leaves gives the topic its full form back.
+    assert fit(parts(), 40).plain == " FOLLOW   /rosout_agg 5 pubs  a problem"
+    assert fit(parts(), 36).plain == " FOLLOW   /rosout_agg 5p  a problem"
     assert fit(parts(), 5).plain == " FOLLOW   a problem"  # the state and a problem never go

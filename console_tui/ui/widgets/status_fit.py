@@ -1,9 +1,9 @@
 """Fitting the status line into the terminal's width: each part has a priority and, often, a
-short form. When the line is too long, parts are taken in turn, the least important first:
-each is shortened when it has a short form (a part is always shortened before it goes), else
-left out. When every short form is not enough, the shortened parts go too, the least
-important first; and the room that leaves gives the most important parts their full forms
-back. The state (FOLLOW, PAUSED) and a source's problem never go.
+short form. When the line is too long, parts give way in turn, the least important first:
+each is shortened when it has a short form, and left out when that is not enough, before a
+more important part is touched. What room is left then (a more important part shortened
+late) takes parts back and gives them their full forms, the most important first. The state (FOLLOW, PAUSED) and a source's problem are
+shortened at most, never left out.
 """
 
 from __future__ import annotations
@@ -40,22 +40,21 @@ def fit(parts: Sequence[Part], width: int | None) -> Text:
         total = sum(part.width(False) for part in parts)
         # The least important first; among equals, the rightmost first.
         order = sorted(range(len(parts)), key=lambda i: (-parts[i].priority, -i))
-        for i in order:  # each part shortened if it can be, else left out (the state never)
-            if total <= width:
-                break
-            if parts[i].short is not None:
+        for i in order:  # each part shortened first, then left out, before a more important one
+            if total > width and parts[i].short is not None:
                 total -= parts[i].width(False) - parts[i].width(True)
                 shortened[i] = True
-            elif parts[i].priority > STATE:
-                total -= parts[i].width(False)
-                kept[i] = False
-        for i in order:  # still too long: shortened parts go too
-            if total <= width:
-                break
-            if kept[i] and parts[i].priority > STATE:
+            if total > width and parts[i].priority > STATE:
                 total -= parts[i].width(shortened[i])
                 kept[i] = False
-        for i in reversed(order):  # room made by leaving parts out: the most important in full again
+        for i in reversed(order):  # room left (a state shortened late): parts back, the most important first
+            if not kept[i]:
+                shortened[i] = parts[i].short is not None
+                if total + parts[i].width(shortened[i]) > width:
+                    break  # never a less important part in the room a more important one lacks
+                total += parts[i].width(shortened[i])
+                kept[i] = True
+        for i in reversed(order):  # and in full again, the most important first
             if kept[i] and shortened[i]:
                 longer = parts[i].width(False) - parts[i].width(True)
                 if total + longer <= width:
