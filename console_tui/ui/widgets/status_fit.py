@@ -47,19 +47,20 @@ def fit(parts: Sequence[Part], width: int | None) -> Text:
             if total > width and parts[i].priority > STATE:
                 total -= parts[i].width(shortened[i])
                 kept[i] = False
-        for i in reversed(order):  # room left (a state shortened late): parts back, the most important first
-            if not kept[i]:
-                shortened[i] = parts[i].short is not None
-                if total + parts[i].width(shortened[i]) > width:
-                    break  # never a less important part in the room a more important one lacks
-                total += parts[i].width(shortened[i])
-                kept[i] = True
-        for i in reversed(order):  # and in full again, the most important first
+        for i in reversed(order):  # room left: parts back in full, the most important first
+            part = parts[i]
             if kept[i] and shortened[i]:
-                longer = parts[i].width(False) - parts[i].width(True)
-                if total + longer <= width:
-                    total += longer
+                if total + part.width(False) - part.width(True) <= width:
+                    total += part.width(False) - part.width(True)
                     shortened[i] = False
+                elif part.priority > STATE:
+                    break  # never a less important part in the room a more important one lacks
+            elif not kept[i]:
+                short = part.short is not None and total + part.width(False) > width
+                if total + part.width(short) > width:
+                    break
+                total += part.width(short)
+                kept[i], shortened[i] = True, short
     line = Text(no_wrap=True, overflow="ellipsis")
     first = True
     for part, short, keep in zip(parts, shortened, kept, strict=True):
