@@ -208,8 +208,15 @@ def test_a_subfolder_that_cannot_be_entered_is_skipped_and_reported(tmp_path):
         (runs / "b" / "rosout.log").chmod(0o644)
         (runs / "closed").chmod(0o600)  # listable by its owner only, enterable by none but root
         out = base / "out.jsonl"
+        # Coverage, measuring the process, would write its data beside the checkout, where the
+        # user nobody may not: it writes into the test's open folder instead.
+        env = {**os.environ, "COVERAGE_FILE": str(base / ".coverage")}
         done = subprocess.run(
-            [sys.executable, "-c", _AS_ANOTHER_USER, str(runs), str(out)], capture_output=True, text=True, timeout=120
+            [sys.executable, "-c", _AS_ANOTHER_USER, str(runs), str(out)],
+            capture_output=True,
+            text=True,
+            timeout=120,
+            env=env,
         )
         assert "Traceback" not in done.stderr, done.stderr
         assert "closed" in done.stderr and "Permission denied" in done.stderr

@@ -17,18 +17,29 @@ from support.rosproc import PATIENCE_S
 
 
 def children(pid: int) -> set[int]:
-    found = set()
-    for task in Path(f"/proc/{pid}/task").iterdir():
-        found.update(int(child) for child in (task / "children").read_text().split())
+    """The children of ``pid``'s threads (a thread or the process that ends meanwhile: none)."""
+    found: set[int] = set()
+    try:
+        tasks = list(Path(f"/proc/{pid}/task").iterdir())
+    except OSError:
+        return found
+    for task in tasks:
+        try:
+            found.update(int(child) for child in (task / "children").read_text().split())
+        except OSError:  # the thread ended between the listing and the read
+            continue
     return found
 
 
+def _cmdline(pid: int) -> bytes:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ")
+    except OSError:  # gone meanwhile
+        return b""
+
+
 def intake_children(pid: int) -> set[int]:
-    return {
-        child
-        for child in children(pid)
-        if b"intake_process" in Path(f"/proc/{child}/cmdline").read_bytes().replace(b"\0", b" ")
-    }
+    return {child for child in children(pid) if b"intake_process" in _cmdline(child)}
 
 
 def run_and_quit(env: dict[str, str], *args: str, others_expected: int = 0) -> tuple[set[int], set[int], int]:
