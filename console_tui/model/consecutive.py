@@ -25,3 +25,15 @@ def consecutive(first: int, count: int, *, descending: bool = False) -> array:
     seqs = array("q")
     seqs.frombytes(value.to_bytes(8 * count, sys.byteorder))
     return seqs
+
+
+def shifted(values: array, delta: int) -> array:
+    """``array("q", (value + delta for value in values))`` for at most ``CHUNK_SIZE`` values
+    that stay at 0 or more (seqs to offsets in a chunk and back), as one big-integer sum."""
+    count = len(values)
+    if count > CHUNK_SIZE or not count:
+        return array("q", (value + delta for value in values))
+    value = int.from_bytes(values.tobytes(), sys.byteorder) + delta * (_ONES & ((1 << (64 * count)) - 1))
+    result = array("q")
+    result.frombytes(value.to_bytes(8 * count, sys.byteorder))
+    return result

@@ -8,10 +8,12 @@ per record.
 
 from __future__ import annotations
 
+from array import array
 from bisect import bisect_left
 from collections.abc import Iterator, Sequence
 from typing import NamedTuple
 
+from .consecutive import shifted
 from .store import Chunk, LogStore
 from .view import LogView
 
@@ -27,8 +29,7 @@ class ShownPiece(NamedTuple):
         offsets = self.offsets
         if isinstance(offsets, range):
             return range(self.base + offsets.start, self.base + offsets.stop)
-        base = self.base
-        return [base + offset for offset in offsets]
+        return shifted(offsets, self.base) if isinstance(offsets, array) else [self.base + offset for offset in offsets]
 
 
 def shown_pieces(store: LogStore, view: LogView, lo: int, hi: int) -> Iterator[ShownPiece]:
@@ -45,12 +46,11 @@ def shown_pieces(store: LogStore, view: LogView, lo: int, hi: int) -> Iterator[S
     first_row, end_row = view.row_of(lo), view.row_of(hi)
     if first_row >= end_row:
         return
-    seq_at = view.seq_at
-    seqs = [seq_at(row) for row in range(first_row, end_row)]
+    seqs = view.seqs_of_rows(first_row, end_row)
     at = 0
     for span in store.spans(lo, hi):
         base = span.seq - span.lo
         end = bisect_left(seqs, base + span.hi, at)
         if end > at:
-            yield ShownPiece(span.chunk, base, [seq - base for seq in seqs[at:end]])
+            yield ShownPiece(span.chunk, base, shifted(seqs[at:end], -base))
         at = end

@@ -28,6 +28,7 @@ from operator import itemgetter
 from typing import NamedTuple
 
 from .find_level import find_node
+from .packed_texts import PackedTexts
 from .shown_follower import ShownFollower
 from .shown_rows import ShownPiece, shown_pieces
 from .store import LogStore
@@ -95,13 +96,18 @@ class StormRows(ShownFollower):
     def reset(self) -> None:
         self._rows = array("q")
         self._start = 0
-        self._storms.clear()
-        self._runs.clear()
-        self._expanded.clear()
+        self._storms, self._runs, self._expanded = {}, {}, []
+
+    def state(self) -> object:
+        return self._rows, self._start, self._storms, self._runs, self._expanded
+
+    def restore(self, state: object) -> None:
+        self._rows, self._start, self._storms, self._runs, self._expanded = state  # type: ignore[misc]
 
     def set_mask_digits(self, mask: bool) -> None:
         if mask != self.mask_digits:
             self.mask_digits = mask
+            self._all_shown = None  # counted with the other digits
             self.restart()
 
     def take(self, piece: ShownPiece) -> None:
@@ -117,7 +123,10 @@ class StormRows(ShownFollower):
             nodes, levels, sources, texts = [chunk.nodes[at]], [chunk.levels[at]], [chunk.sources[at]], [chunk.msgs[at]]
         else:
             pick = itemgetter(*offsets)
-            nodes, levels, sources, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.sources), pick(chunk.msgs)
+            msgs = chunk.msgs
+            if isinstance(msgs, PackedTexts) and 8 * len(offsets) >= len(msgs):
+                msgs = msgs.texts()  # one split, not a slice of the packed text for each
+            nodes, levels, sources, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.sources), pick(msgs)
         if self.mask_digits:
             texts = [_DIGITS.sub("#", text) for text in texts]
         runs, storms, rows = self._runs, self._storms, self._rows
@@ -206,8 +215,7 @@ class StormRows(ShownFollower):
     # -- rows, as a LogView has them --------------------------------------------------------------
 
     def _fresh(self) -> None:
-        if self.view.rules is not self._rules:
-            self.restart()
+        self.follow_rules()
         first = self.store.first_seq
         rows = self._rows
         if self._start < len(rows) and rows[self._start] < first:

@@ -259,6 +259,14 @@ class Timeline(ShownFollower):
         self._histogram = _Histogram()
         self.generation += 1
 
+    def state(self) -> object:
+        return self._histogram
+
+    def restore(self, state: object) -> None:
+        assert isinstance(state, _Histogram)
+        self._histogram, self._before = state, None
+        self.generation += 1
+
     def take(self, piece: ShownPiece) -> None:
         stamps, levels = _columns_of(piece)
         self._histogram.add(stamps, levels, piece.seqs())

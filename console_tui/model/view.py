@@ -362,6 +362,22 @@ class LogView:
             return self._front[older - 1 - row]
         return self._back[self._start + row - older]
 
+    def seqs_of_rows(self, first: int, end: int) -> array:
+        """The seqs shown at rows ``first:end`` (clamped to the rows there are), oldest first:
+        one slice of the index each way, no lookup per row."""
+        first, end = max(first, 0), min(end, len(self))
+        if first >= end:
+            return array("q")
+        if not self._indexed:
+            return consecutive(self.store.first_seq + first, end - first)
+        front, older = self._front, len(self._front)
+        seqs = front[older - min(end, older) : older - first] if first < older else array("q")
+        seqs.reverse()
+        if end > older:
+            start = self._start
+            seqs.extend(self._back[start + max(first - older, 0) : start + end - older])
+        return seqs
+
     def row_of(self, seq: int) -> int:
         """The row showing ``seq``, or the row of the next shown record after it."""
         if not self._indexed:

@@ -35,6 +35,8 @@ FOLLOW_BUDGET_S = 0.010
 #: loop (as the search's do): 12 ms slices made the longest stalls of a search over 1M.
 CATCH_UP_BUDGET_S = 0.005
 CATCH_UP_PAUSE_S = 0.001
+#: While the view is still filtering the oldest records, the catch-up looks again this often.
+REFILTER_POLL_S = 0.01
 #: The strip is redrawn at most this often while records arrive.
 STRIP_PERIOD_S = 0.25
 
@@ -88,8 +90,8 @@ class OverviewActions(AppPart):
     async def _catch_up_in_background(self) -> None:
         try:
             while self.storms.behind or self.timeline.behind:
-                if self.view.refiltering:
-                    await asyncio.sleep(0.05)  # the view decides the oldest rows first
+                if self.view.filtered and self.view.refiltering:
+                    await asyncio.sleep(REFILTER_POLL_S)  # the view decides the oldest rows first
                     continue
                 with self.table.keeping_position(cursor_line=True):
                     self.storms.sync(CATCH_UP_BUDGET_S)

@@ -130,3 +130,54 @@ def test_any_rule_changes_end_where_the_final_rules_computed_afresh_do(ops, sele
     assert timeline.total == fresh_timeline.total == len(fresh_view)
     columns, fresh_columns = timeline.columns(100), fresh_timeline.columns(100)
     assert (columns and columns.totals()) == (fresh_columns and fresh_columns.totals())
+
+
+def counted(storms: StormRows, timeline: Timeline) -> tuple:
+    columns = timeline.columns(100)
+    badges = [storms.badge(seq) for seq in rows_of(storms)]
+    return rows_of(storms), storms.storm_count, badges, timeline.total, columns and columns.totals()
+
+
+def test_back_to_every_record_shown_takes_back_the_counts_and_counts_only_what_arrived():
+    store = LogStore()
+    store.extend(list(loaded_store())[:5000])
+    view = LogView(store)
+    storms, timeline = StormRows(store, view), Timeline(store, view)
+    assert storms.sync() and timeline.sync()
+    hidden = toggles.toggle_level(RuleSet(), 20)
+    for arrive in (0, 300):
+        view.set_rules(hidden)
+        while not view.refilter_step(1.0):
+            pass
+        assert storms.sync() and timeline.sync()
+        before = store.end_seq
+        store.extend(list(loaded_store())[before : before + arrive])  # arrived while INFO was hidden
+        view.update()
+        assert storms.sync() and timeline.sync()
+        view.set_rules(RuleSet())
+        storms.follow_rules(), timeline.follow_rules()
+        assert storms.done_to == timeline.done_to == before  # only what arrived is still to take in
+        assert storms.sync() and timeline.sync()
+        assert counted(storms, timeline) == counted(*from_scratch(store, view.rules, True)[1:])
+
+
+def test_highlight_rules_count_nothing_again_and_records_dropped_meanwhile_mean_a_recount():
+    store = LogStore(max_messages=6000)
+    store.extend(list(loaded_store())[:5000])
+    view = LogView(store)
+    storms, timeline = StormRows(store, view), Timeline(store, view)
+    assert storms.sync() and timeline.sync()
+    view.set_rules(RuleSet().with_query(parse_query("+burst", utc=True)))  # highlights only
+    assert storms.sync(0.0) and timeline.sync(0.0) and not storms.rebuilding
+    view.set_rules(toggles.toggle_level(view.rules, 20))
+    while not view.refilter_step(1.0):
+        pass
+    assert storms.sync() and timeline.sync()
+    store.extend(list(loaded_store())[5000:7000])  # 1,000 of the oldest go
+    view.update()
+    assert storms.sync() and timeline.sync()
+    view.set_rules(RuleSet())
+    storms.follow_rules()
+    assert storms.done_to == store.first_seq  # counted again from the oldest kept
+    assert storms.sync() and timeline.sync()
+    assert counted(storms, timeline) == counted(*from_scratch(store, view.rules, True)[1:])
