@@ -32,6 +32,7 @@ from .packed_texts import PackedTexts
 from .shown_follower import ShownFollower
 from .shown_rows import ShownPiece, shown_pieces
 from .store import LogStore
+from .storm_runs import Storm, take_bulk, take_each
 from .view import LogView
 
 _DIGITS = re.compile(r"[0-9]+")
@@ -42,24 +43,6 @@ _LOOK_BACK = 200_000
 def mask_digits(text: str) -> str:
     """``text`` with every run of digits as ``#``: ``took 12.5 ms`` -> ``took #.# ms``."""
     return _DIGITS.sub("#", text)
-
-
-class Storm:
-    """A run of one node's repeats: its first and last seq, and how many shown messages."""
-
-    __slots__ = ("count", "expanded", "head", "key", "last", "level", "members", "node", "source")
-
-    def __init__(self, head: int, node: int, level: int, source: int, key: str) -> None:
-        self.head = head
-        self.last = head
-        self.count = 1
-        self.node = node
-        self.level = level
-        self.source = source
-        self.key = key
-        self.expanded = False
-        #: While expanded: the seqs after the head, which are rows then.
-        self.members: array | None = None
 
 
 class StormBadge(NamedTuple):
@@ -129,26 +112,8 @@ class StormRows(ShownFollower):
             nodes, levels, sources, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.sources), pick(msgs)
         if self.mask_digits:
             texts = [_DIGITS.sub("#", text) for text in texts]
-        runs, storms, rows = self._runs, self._storms, self._rows
-        for seq, node, level, source, key in zip(piece.seqs(), nodes, levels, sources, texts, strict=False):
-            run = runs.get(node)
-            if run is not None and run.key == key and run.level == level and run.source == source:
-                run.count += 1
-                run.last = seq
-                if run.count == 2:
-                    storms[run.head] = run
-                if run.expanded:
-                    rows.append(seq)
-                    run.members.append(seq)  # type: ignore[union-attr]  # expanded: it has members
-            elif run is not None and run.count == 1 and not run.expanded:
-                # The node's last message stayed on its own (no storm holds it): its run
-                # starts again here, without a new object for every message.
-                rows.append(seq)
-                run.head = run.last = seq
-                run.level, run.source, run.key = level, source, key
-            else:
-                rows.append(seq)
-                runs[node] = Storm(seq, node, level, source, key)
+        take = take_each if self._expanded or len(nodes) < 2 else take_bulk
+        take(piece.seqs(), (nodes, levels, sources, texts), self._runs, self._storms, self._rows)
 
     def forget(self, piece: ShownPiece) -> None:
         leaving, going, storms, runs = self._leaving, self._going, self._storms, self._runs

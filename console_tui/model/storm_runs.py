@@ -1,0 +1,127 @@
+"""Taking shown records into runs of repeats (``StormRows``'s part that sees every record).
+
+A record repeats when the last shown record of its node had the same severity, source and
+text (key). ``take_each`` looks at one record at a time. ``take_bulk`` finds the repeats of
+a whole piece with C-level operations (the piece's records sorted by node, each compared
+with the one before it) and looks only at those in Python: most records of a log repeat
+nothing, and taking a million of them in again after a rule change is what a recount costs.
+"""
+
+from __future__ import annotations
+
+from array import array
+from collections.abc import Sequence
+from itertools import compress
+from operator import and_, eq, itemgetter
+
+
+class Storm:
+    """A run of one node's repeats: its first and last seq, and how many shown messages."""
+
+    __slots__ = ("count", "expanded", "head", "key", "last", "level", "members", "node", "source")
+
+    def __init__(self, head: int, node: int, level: int, source: int, key: str) -> None:
+        self.head = head
+        self.last = head
+        self.count = 1
+        self.node = node
+        self.level = level
+        self.source = source
+        self.key = key
+        self.expanded = False
+        #: While expanded: the seqs after the head, which are rows then.
+        self.members: array | None = None
+
+
+def take_each(
+    seqs: Sequence[int],
+    columns: tuple[Sequence[int], Sequence[int], Sequence[int], Sequence[str]],
+    runs: dict[int, Storm],
+    storms: dict[int, Storm],
+    rows: array,
+) -> None:
+    """Take records (``columns``: their nodes, levels, sources, keys) in one by one: runs
+    per node in ``runs``, storms by first seq in ``storms``, the rows appended to ``rows``."""
+    for seq, node, level, source, key in zip(seqs, *columns, strict=False):
+        run = runs.get(node)
+        if run is not None and run.key == key and run.level == level and run.source == source:
+            run.count += 1
+            run.last = seq
+            if run.count == 2:
+                storms[run.head] = run
+            if run.expanded:
+                rows.append(seq)
+                run.members.append(seq)  # type: ignore[union-attr]  # expanded: it has members
+        elif run is not None and run.count == 1 and not run.expanded:
+            # The node's last message stayed on its own (no storm holds it): its run
+            # starts again here, without a new object for every message.
+            rows.append(seq)
+            run.head = run.last = seq
+            run.level, run.source, run.key = level, source, key
+        else:
+            rows.append(seq)
+            runs[node] = Storm(seq, node, level, source, key)
+
+
+def take_bulk(
+    seqs: Sequence[int],
+    columns: tuple[Sequence[int], Sequence[int], Sequence[int], Sequence[str]],
+    runs: dict[int, Storm],
+    storms: dict[int, Storm],
+    rows: array,
+) -> None:
+    """What ``take_each`` does, for two records or more, when no run is expanded."""
+    nodes, levels, sources, texts = columns
+    count = len(seqs)
+    order = sorted(range(count), key=nodes.__getitem__)  # by node, in seq order within each
+    by_node = itemgetter(*order)
+    sorted_nodes, sorted_texts = by_node(nodes), by_node(texts)
+    # repeats[j]: the record at sorted place j repeats the one before it (its node's previous):
+    # the texts compared first (they differ most often), the rest only where they are the same.
+    repeats = [False, *map(eq, sorted_texts[1:], sorted_texts)]
+    if any(repeats):
+        sorted_levels, sorted_sources = by_node(levels), by_node(sources)
+        for column in (sorted_nodes, sorted_levels, sorted_sources):
+            repeats[1:] = map(and_, repeats[1:], map(eq, column[1:], column))
+    # A node's first record here may repeat its run from before.
+    firsts = dict(zip(reversed(sorted_nodes), range(count - 1, -1, -1), strict=False))
+    for node, place in firsts.items():
+        run = runs.get(node)
+        at = order[place]
+        if run is not None and run.key == texts[at] and run.level == levels[at] and run.source == sources[at]:
+            repeats[place] = True
+    places = list(compress(range(count), repeats))
+    if not places:
+        rows.extend(seqs)
+    else:
+        shown = bytearray(b"\x01") * count
+        for at in compress(order, repeats):
+            shown[at] = 0
+        rows.extend(compress(seqs, shown))
+        before, node, run = -2, -1, None
+        for place in places:
+            if place != before + 1 or sorted_nodes[place] != node:
+                # A new run of repeats: of the record before it, or of the node's run from before.
+                node = sorted_nodes[place]
+                if place and sorted_nodes[place - 1] == node:
+                    at = order[place - 1]
+                    run = runs[node] = Storm(seqs[at], node, levels[at], sources[at], texts[at])
+                else:
+                    run = runs[node]
+            assert run is not None
+            run.count += 1
+            run.last = seqs[order[place]]
+            if run.count == 2:
+                storms[run.head] = run
+            before = place
+    # Each node's run is its last record's now.
+    for node, place in dict(zip(sorted_nodes, range(count), strict=False)).items():
+        if repeats[place]:
+            continue
+        at = order[place]
+        run = runs.get(node)
+        if run is not None and run.count == 1 and not run.expanded:
+            run.head = run.last = seqs[at]
+            run.level, run.source, run.key = levels[at], sources[at], texts[at]
+        else:
+            runs[node] = Storm(seqs[at], node, levels[at], sources[at], texts[at])
