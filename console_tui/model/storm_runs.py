@@ -10,9 +10,13 @@ nothing, and taking a million of them in again after a rule change is what a rec
 from __future__ import annotations
 
 from array import array
-from collections.abc import Sequence
-from itertools import compress
+from collections.abc import Callable, Sequence
+from itertools import compress, filterfalse
 from operator import and_, eq, itemgetter
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .shown_rows import ShownPiece
 
 
 class Storm:
@@ -64,40 +68,41 @@ def take_each(
 
 
 def take_bulk(
-    seqs: Sequence[int],
-    columns: tuple[Sequence[int], Sequence[int], Sequence[int], Sequence[str]],
+    piece: ShownPiece,
+    msgs: Sequence[str],
+    mask: Callable[[str], str] | None,
     runs: dict[int, Storm],
     storms: dict[int, Storm],
     rows: array,
 ) -> None:
-    """What ``take_each`` does, for two records or more, when no run is expanded."""
-    nodes, levels, sources, texts = columns
-    count = len(seqs)
-    order = sorted(range(count), key=nodes.__getitem__)  # by node, in seq order within each
+    """What ``take_each`` does, for the records of ``piece`` (two or more; ``msgs``: its
+    chunk's texts, ``mask``: what texts are compared as), when no run is expanded."""
+    chunk, base = piece.chunk, piece.base
+    nodes, levels, sources = chunk.nodes, chunk.levels, chunk.sources
+    order = sorted(piece.offsets, key=nodes.__getitem__)  # by node, in seq order within each
+    count = len(order)
     by_node = itemgetter(*order)
-    sorted_nodes, sorted_texts = by_node(nodes), by_node(texts)
+    sorted_nodes, texts = by_node(nodes), by_node(msgs)
+    if mask is not None:
+        texts = [mask(text) for text in texts]
     # repeats[j]: the record at sorted place j repeats the one before it (its node's previous):
     # the texts compared first (they differ most often), the rest only where they are the same.
-    repeats = [False, *map(eq, sorted_texts[1:], sorted_texts)]
+    repeats = [False, *map(eq, texts[1:], texts)]
     if any(repeats):
-        sorted_levels, sorted_sources = by_node(levels), by_node(sources)
-        for column in (sorted_nodes, sorted_levels, sorted_sources):
+        for column in (sorted_nodes, by_node(levels), by_node(sources)):
             repeats[1:] = map(and_, repeats[1:], map(eq, column[1:], column))
     # A node's first record here may repeat its run from before.
-    firsts = dict(zip(reversed(sorted_nodes), range(count - 1, -1, -1), strict=False))
-    for node, place in firsts.items():
+    for node, place in dict(zip(reversed(sorted_nodes), range(count - 1, -1, -1), strict=False)).items():
         run = runs.get(node)
         at = order[place]
-        if run is not None and run.key == texts[at] and run.level == levels[at] and run.source == sources[at]:
+        if run is not None and run.key == texts[place] and run.level == levels[at] and run.source == sources[at]:
             repeats[place] = True
     places = list(compress(range(count), repeats))
     if not places:
-        rows.extend(seqs)
+        rows.extend(piece.seqs())
     else:
-        shown = bytearray(b"\x01") * count
-        for at in compress(order, repeats):
-            shown[at] = 0
-        rows.extend(compress(seqs, shown))
+        gone = {base + at for at in compress(order, repeats)}
+        rows.extend(filterfalse(gone.__contains__, piece.seqs()))
         before, node, run = -2, -1, None
         for place in places:
             if place != before + 1 or sorted_nodes[place] != node:
@@ -105,12 +110,12 @@ def take_bulk(
                 node = sorted_nodes[place]
                 if place and sorted_nodes[place - 1] == node:
                     at = order[place - 1]
-                    run = runs[node] = Storm(seqs[at], node, levels[at], sources[at], texts[at])
+                    run = runs[node] = Storm(base + at, node, levels[at], sources[at], texts[place - 1])
                 else:
                     run = runs[node]
             assert run is not None
             run.count += 1
-            run.last = seqs[order[place]]
+            run.last = base + order[place]
             if run.count == 2:
                 storms[run.head] = run
             before = place
@@ -121,7 +126,7 @@ def take_bulk(
         at = order[place]
         run = runs.get(node)
         if run is not None and run.count == 1 and not run.expanded:
-            run.head = run.last = seqs[at]
-            run.level, run.source, run.key = levels[at], sources[at], texts[at]
+            run.head = run.last = base + at
+            run.level, run.source, run.key = levels[at], sources[at], texts[place]
         else:
-            runs[node] = Storm(seqs[at], node, levels[at], sources[at], texts[at])
+            runs[node] = Storm(base + at, node, levels[at], sources[at], texts[place])

@@ -95,25 +95,28 @@ class StormRows(ShownFollower):
 
     def take(self, piece: ShownPiece) -> None:
         chunk, offsets = piece.chunk, piece.offsets
+        msgs: Sequence[str] = chunk.msgs
+        if isinstance(msgs, PackedTexts) and 8 * len(offsets) >= len(msgs):
+            msgs = msgs.texts()  # one split, not a slice of the packed text for each
+        mask = mask_digits if self.mask_digits else None
+        if not self._expanded and len(offsets) > 1:
+            take_bulk(piece, msgs, mask, self._runs, self._storms, self._rows)
+            return
         if isinstance(offsets, range):
             lo, hi = offsets.start, offsets.stop
             nodes: Sequence[int] = chunk.nodes[lo:hi]
             levels: Sequence[int] = chunk.levels[lo:hi]
             sources: Sequence[int] = chunk.sources[lo:hi]
-            texts: Sequence[str] = chunk.msgs[lo:hi]
+            texts: Sequence[str] = msgs[lo:hi]
         elif len(offsets) == 1:
             at = offsets[0]
-            nodes, levels, sources, texts = [chunk.nodes[at]], [chunk.levels[at]], [chunk.sources[at]], [chunk.msgs[at]]
+            nodes, levels, sources, texts = [chunk.nodes[at]], [chunk.levels[at]], [chunk.sources[at]], [msgs[at]]
         else:
             pick = itemgetter(*offsets)
-            msgs = chunk.msgs
-            if isinstance(msgs, PackedTexts) and 8 * len(offsets) >= len(msgs):
-                msgs = msgs.texts()  # one split, not a slice of the packed text for each
             nodes, levels, sources, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.sources), pick(msgs)
-        if self.mask_digits:
-            texts = [_DIGITS.sub("#", text) for text in texts]
-        take = take_each if self._expanded or len(nodes) < 2 else take_bulk
-        take(piece.seqs(), (nodes, levels, sources, texts), self._runs, self._storms, self._rows)
+        if mask is not None:
+            texts = [mask(text) for text in texts]
+        take_each(piece.seqs(), (nodes, levels, sources, texts), self._runs, self._storms, self._rows)
 
     def forget(self, piece: ShownPiece) -> None:
         leaving, going, storms, runs = self._leaving, self._going, self._storms, self._runs
