@@ -96,29 +96,32 @@ class OverviewActions(AppPart):
                 with self.table.keeping_position(cursor_line=True):
                     self.storms.sync(CATCH_UP_BUDGET_S)
                 self.timeline.sync(CATCH_UP_BUDGET_S / 3)
+                if not (self.storms.behind or self.timeline.behind):
+                    break  # the strip and the status line say so in this same turn of the loop
                 await pause_between_slices(CATCH_UP_PAUSE_S)
             self.timeline.sync()  # done: the counts from before the change go
         finally:
             self._catching_up = False
-        self.show_overview(force=True)
+        self.show_overview(now=True)
         self.update_status()  # the storms counted
 
-    def show_overview(self, *, force: bool = False) -> None:
+    def show_overview(self, *, force: bool = False, now: bool = False) -> None:
         """The strip follows the counts and the table's place a few times a second, or now
         with ``force`` -- except while the table follows the tail and records arrive: then
-        the table says it changed every tick, and the strip waits for its time."""
+        the table says it changed every tick, and the strip waits for its time. With ``now``
+        (the rules changed, or the counts after a change are done), now in any case."""
         strip = self.timeline_strip
         if not strip.shown:
             return
-        now = self.clock()
+        clock = self.clock()
         table, end = self.table, self.store.end_seq
         following = table.following and table.paused_end is None
-        due = now - self._strip_at >= STRIP_PERIOD_S or strip.has_focus
+        due = now or clock - self._strip_at >= STRIP_PERIOD_S or strip.has_focus
         if not due:
             at_the_tail = following and self._strip_following and end != self._strip_end and strip.position is not None
             if not force or at_the_tail:
                 return
-        self._strip_at, self._strip_following, self._strip_end = now, following, end
+        self._strip_at, self._strip_following, self._strip_end = clock, following, end
         strip.update_from_model(self._table_span(), self.view.filtered)
 
     def _table_span(self) -> tuple[int, int] | None:

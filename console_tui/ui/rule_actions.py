@@ -45,6 +45,7 @@ class RuleActions(AppPart):
     rules_pane: RulesPane
     query_history: QueryHistory
     follow_overview: Callable[[], None]
+    show_overview: Callable[..., None]
 
     #: The rules in force; a new set replaces it whole (rule sets are values).
     rules: RuleSet = RuleSet()
@@ -69,6 +70,7 @@ class RuleActions(AppPart):
         table.restyle()
         with table.keeping_position(cursor_line=True):
             self.follow_overview()  # the storms and the timeline count again under these rules
+        self.show_overview(now=True)  # counting again, or (the same rows shown) counted already
         for rule, why in self.view.take_switched_off():
             self.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
         if self.view.refiltering:
