@@ -13,9 +13,11 @@ from . import __version__
 from .commands.arguments import (
     DOCS_URL,
     EXIT_NO_ROS,
+    add_fleet_arguments,
     add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
+    check_fleet_arguments,
     check_rule_arguments,
     domain_id,
     positive_int,
@@ -117,6 +119,7 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         ),
     )
     add_ros_version_arguments(parser)
+    add_fleet_arguments(parser)
     parser.add_argument(
         "--topic",
         metavar="NAME",
@@ -223,6 +226,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     check_rule_arguments(parser, args)
     if args.demo_domain is not None and not args.demo:
         parser.error("--demo-domain goes with --demo")
+    check_fleet_arguments(parser, args)
+    if args.robots and args.demo:
+        parser.error("--demo starts its own nodes: it cannot be used with --domain, --master or --fleet")
     if args.last:
         add_latest_run(parser, args)
     if argv is None and not on_a_terminal():

@@ -11,7 +11,7 @@ from typing import Any
 from .commands.arguments import EXIT_NO_ROS
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
-from .sources.live import RosUnavailable, open_live
+from .sources.live import RosUnavailable, open_fleet, open_live
 from .sources.native_output import NativeOutput
 from .sources.ros_version import ROS1, choose_ros
 
@@ -25,13 +25,16 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     cleanups: list = []
     logger_control = None
     files = list(getattr(args, "files", None) or [])
-    live = args.demo or getattr(args, "live", False) or not files
+    robots = getattr(args, "robots", None) or []
+    live = args.demo or getattr(args, "live", False) or not files or bool(robots)
     # Native code (rcl, Fast DDS) prints to the terminal below Textual: caught as records.
     native = NativeOutput(queue) if live and end_process and NativeOutput.possible() else None
     if native is not None:
         native.start()
     try:
-        if live:
+        if robots:
+            logger_control = _start_fleet(args, queue, sources, cleanups)
+        elif live:
             logger_control = _start_live(args, queue, sources, cleanups)
         from .ui.app import ConsoleApp
 
@@ -89,6 +92,15 @@ def end_now(code: int) -> None:
         except (OSError, ValueError):
             pass
     os._exit(code)
+
+
+def _start_fleet(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    """An intake process per robot of the fleet (``--domain``, ``--master``, ``--fleet``);
+    returns the logger control (None: levels are not set across a fleet yet)."""
+    for live in open_fleet(queue, args.robots, topic=args.topic):
+        cleanups.append(live.close)
+        sources.append(live.source)
+    return None
 
 
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import textwrap
+from collections.abc import Callable
 
 from ..sources.ros_version import ROS1, ROS2
 
@@ -166,3 +167,75 @@ def add_subcommand(
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     return sub
+
+
+class _AddRobots(argparse.Action):
+    """Adds the robots an option names to ``args.robots``, in command-line order."""
+
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: object,
+        option_string: str | None = None,
+    ) -> None:
+        robots = list(getattr(namespace, self.dest, None) or [])
+        robots.extend(values if isinstance(values, list) else [values])
+        setattr(namespace, self.dest, robots)
+
+
+def _robots_type(read: Callable[[str], object]) -> Callable[[str], object]:
+    from ..sources.fleet import FleetError
+
+    def parse(text: str) -> object:
+        try:
+            return read(text)
+        except FleetError as error:
+            raise argparse.ArgumentTypeError(str(error)) from None
+
+    return parse
+
+
+def add_fleet_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--domain N[=NAME]``, ``--master URI[=NAME]``, ``--fleet FILE``, repeatable and mixed:
+    the robots land in ``args.robots`` (``sources.fleet.Robot``, in order; None when none given)."""
+    from ..sources.fleet import load_fleet, parse_domain, parse_master
+
+    group = parser.add_argument_group(
+        "a fleet (several robots at once; each option may be given more than once, and mixed)"
+    )
+    group.add_argument(
+        "--domain",
+        dest="robots",
+        metavar="N[=NAME]",
+        action=_AddRobots,
+        type=_robots_type(parse_domain),
+        help="read the robot on ROS 2 domain N, named NAME (default domainN)",
+    )
+    group.add_argument(
+        "--master",
+        dest="robots",
+        metavar="URI[=NAME]",
+        action=_AddRobots,
+        type=_robots_type(parse_master),
+        help="read the robot whose ROS 1 master is at URI (http://host:port), named NAME",
+    )
+    group.add_argument(
+        "--fleet",
+        dest="robots",
+        metavar="FILE",
+        action=_AddRobots,
+        type=_robots_type(load_fleet),
+        help="read every robot of this fleet file (TOML: [[robot]] tables with name, domain or master, "
+        "optional topic and colour)",
+    )
+
+
+def check_fleet_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """Two robots with one name, domain or master exit 2 saying which."""
+    from ..sources.fleet import FleetError, check_fleet
+
+    try:
+        check_fleet(getattr(args, "robots", None) or [])
+    except FleetError as error:
+        parser.error(str(error))

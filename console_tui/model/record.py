@@ -13,7 +13,9 @@ class LogRecord:
     (DEBUG 10 .. FATAL 50); ``node`` is the logger name (usually the node's).
     ``source`` names the stream or file the record was read from. ``topics`` (ROS 1 only)
     lists the topics the node publishes, joined by ``,``; ``""`` when there are none or
-    the source has no such field. ``seq`` is assigned by
+    the source has no such field. ``robot`` names the robot (the source of a fleet: a ROS 2
+    domain or a ROS 1 master, ``--domain``/``--master``/``--fleet``) it came from; ``""`` when
+    the console reads one source. ``seq`` is assigned by
     the store when the record is added, numbering records in arrival order; -1 before.
     """
 
@@ -27,6 +29,7 @@ class LogRecord:
     source: str = ""
     topics: str = ""
     seq: int = -1
+    robot: str = ""
 
     @property
     def stamp_sec(self) -> int:

@@ -3,7 +3,8 @@
 Records are kept column by column in fixed-size chunks: numbers in ``array``s, the
 repeated strings (node, file, function, source) as ids into string tables, messages as
 ``str``; ROS 1's ``topics`` as ids too, in an array made only for chunks that have some
-(nothing for ROS 2). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
+(nothing for ROS 2), and so the ``robot`` a record came from (only when the console reads a
+fleet: several ROS 2 domains or ROS 1 masters, or files named for their robots). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
 when one does not); a full chunk keeps its messages joined in one string
 (``PackedTexts``), so a message costs its text and 4 bytes. Dropping the oldest chunk
 when the bound is passed costs O(1). ``extend`` works column by column, about 1 us a
@@ -76,7 +77,7 @@ class Chunk:
     usually a ``PackedTexts``: read it as a sequence of ``str`` (a slice is a list).
     """
 
-    __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "sources", "stamps", "topics")
+    __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "robots", "sources", "stamps", "topics")
 
     def __init__(self) -> None:
         self.stamps = array("q")
@@ -89,6 +90,8 @@ class Chunk:
         self.msgs: list[str] | PackedTexts = []
         #: Ids of ROS 1 ``topics``; made only once a record of the chunk has some (ROS 2 never does).
         self.topics: array | None = None
+        #: Ids of the records' ``robot``; made only once a record of the chunk names one.
+        self.robots: array | None = None
 
     def __len__(self) -> int:
         return len(self.msgs)
@@ -138,6 +141,20 @@ def _extended(column: array, values: Iterable[int]) -> array:
     return column
 
 
+def _optional_ids(
+    column: array | None, before: int, table: StringTable, texts: Sequence[str] | None, count: int
+) -> array | None:
+    """An optional id column (``topics``, ``robots``) with ``count`` more records' ids: made
+    (id 0 for the ``before`` records already in the chunk) when ``texts`` is the first to have any."""
+    if texts is not None:
+        if column is None:
+            column = array("H", bytes(2 * before))
+        return _extended(column, table.ids_of(texts))
+    if column is not None:
+        return _extended(column, [0] * count)
+    return None
+
+
 class LogStore:
     """Holds up to ``max_messages`` records, dropping the oldest beyond that."""
 
@@ -151,6 +168,8 @@ class LogStore:
         self.sources = StringTable()
         self.topics = StringTable()
         self.topics.id_of("")  # id 0: no topics
+        self.robots = StringTable()
+        self.robots.id_of("")  # id 0: no robot
         self._chunks: deque[Chunk] = deque()
         self._base_seq = 0  # seq of the first record of self._chunks[0]; all but the last are full
         self.first_seq = 0
@@ -218,12 +237,8 @@ class LogStore:
         chunk.files = _extended(chunk.files, self.files.ids_of(piece.files))
         chunk.functions = _extended(chunk.functions, self.functions.ids_of(piece.functions))
         chunk.sources = _extended(chunk.sources, self.sources.ids_of(piece.sources))
-        if piece.topics is not None:
-            if chunk.topics is None:
-                chunk.topics = array("H", bytes(2 * len(chunk.msgs)))  # the records before: none
-            chunk.topics = _extended(chunk.topics, self.topics.ids_of(piece.topics))
-        elif chunk.topics is not None:
-            chunk.topics = _extended(chunk.topics, [0] * len(piece))
+        chunk.topics = _optional_ids(chunk.topics, len(chunk.msgs), self.topics, piece.topics, len(piece))
+        chunk.robots = _optional_ids(chunk.robots, len(chunk.msgs), self.robots, piece.robots, len(piece))
         msgs = chunk.msgs
         assert isinstance(msgs, list), "only the newest chunk grows, and it is never sealed"
         msgs.extend(piece.msgs)
@@ -253,6 +268,7 @@ class LogStore:
             source=self.sources[chunk.sources[offset]],
             topics=self.topics[chunk.topics[offset]] if chunk.topics is not None else "",
             seq=seq,
+            robot=self.robots[chunk.robots[offset]] if chunk.robots is not None else "",
         )
 
     def level_of(self, seq: int) -> int:
@@ -267,6 +283,12 @@ class LogStore:
         """The id of the record's node in ``nodes``."""
         number, offset = divmod(seq - self._base_seq, CHUNK_SIZE)
         return self._chunks[number].nodes[offset]
+
+    def robot_id_of(self, seq: int) -> int:
+        """The id of the record's robot in ``robots`` (0: none)."""
+        number, offset = divmod(seq - self._base_seq, CHUNK_SIZE)
+        robots = self._chunks[number].robots
+        return robots[offset] if robots is not None else 0
 
     def __iter__(self) -> Iterator[LogRecord]:
         return self.records(self.first_seq, self.end_seq)

@@ -7,6 +7,10 @@ rclpy context of the process's own) and returns a ``LiveIntake`` whose ``source`
 sources' shape: ``start()``, ``stop()``, ``status`` (a ``SourceStatus``), feeding
 ``queue``. ``close()`` stops the source and shuts its ROS down.
 
+``open_fleet(queue, robots, topic=...)`` does the same for each robot of a fleet
+(``sources.fleet``: several ROS 2 domains and ROS 1 masters at once): an intake process per
+robot, all feeding the one queue, each record named for its robot.
+
 The stream, ROS 1's and ROS 2's alike, is taken in a child process (``intake_process``),
 where nothing the app does can hold it up; for ROS 2 this process keeps an rclpy context
 of its own for the logger levels.
@@ -15,20 +19,21 @@ of its own for the logger levels.
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from ..model.intake_queue import IntakeQueue
+from .fleet import Robot
 from .ros2.rclpy_loader import RosUnavailable
-from .ros_version import ROS1, choose_ros
+from .ros_version import ROS1, ROS2, choose_ros
 
 HOW_TO_USE_ROS1 = (
     "  - For ROS 1: set ROS_MASTER_URI to the master (and ROS_IP to this machine's address) and run\n"
     "      console-tui --ros1"
 )
 
-__all__ = ["LiveIntake", "RosUnavailable", "open_live", "start_ros2"]
+__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_live", "start_ros2"]
 
 
 @dataclass
@@ -92,3 +97,24 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
     remark = f"no ROS 1 master answered at {choice.master_silent} (--ros1 waits for it)" if choice.master_silent else ""
     source = ProcessSource(queue, "ros2", topic=topic, origin=origin, remark=remark)
     return LiveIntake(source, runtime, [runtime.shutdown])
+
+
+def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None = None) -> list[LiveIntake]:
+    """An intake process per robot into ``queue`` (none started yet), each robot's records and
+    status named for it; a robot's own topic before ``topic``. One robot's trouble (a silent
+    domain, a master gone, its process ended) stays in its own source's status."""
+    from .intake_process.parent import ProcessSource
+
+    return [
+        LiveIntake(
+            ProcessSource(
+                queue,
+                "ros2" if robot.ros == ROS2 else "ros1",
+                topic=robot.topic or topic,
+                env=robot.environment(),
+                origin=robot.origin,
+                robot=robot.name,
+            )
+        )
+        for robot in robots
+    ]

@@ -41,6 +41,17 @@ class SourceStatus:
     #: A one-line problem the user should see, or "".
     problem: str = ""
     running: bool = False
+    #: The robot this source reads, when the console reads a fleet (``sources.fleet``), else "".
+    robot: str = ""
+
+    @property
+    def state(self) -> str:
+        """In a word: ``problem``, ``receiving`` (publishers are there), ``waiting`` or ``starting``."""
+        if self.problem:
+            return "problem"
+        if self.publishers:
+            return "receiving"
+        return "waiting" if self.running else "starting"
 
     def path_text(self) -> str:
         """How messages are taken, in words: ``c+cdr: the take loop in C, the CDR decoded directly``."""

@@ -9,7 +9,8 @@ against 4-5 us for decoding and storing CDR (benchmarks/intake.py records the fi
 A thread of this process reads the pipe: ``BATCH`` frames go into the app's
 ``IntakeQueue`` as ``RecordColumns`` (no ``LogRecord`` objects are made for them), and
 ``STATUS`` frames replace ``status``, with what this side's queue dropped added to the
-loss. ``stop()`` closes the child's stdin, which ends it cleanly, and kills it if it has
+loss. A source of a fleet (``robot``) names its robot on every record and in its status.
+``stop()`` closes the child's stdin, which ends it cleanly, and kills it if it has
 not ended within ``STOP_TIMEOUT_S``. A child that ends on its own (it crashed, or could
 not start ROS) leaves a ``problem`` in the status saying so, with its last words.
 """
@@ -47,6 +48,7 @@ class ProcessSource:
         env: Mapping[str, str] | None = None,
         origin: str = "",
         remark: str = "",
+        robot: str = "",
     ) -> None:
         self.queue = queue
         self.kind = kind
@@ -55,7 +57,8 @@ class ProcessSource:
         self.env = dict(os.environ if env is None else env)
         self.origin = origin
         self.remark = remark
-        self.status = SourceStatus(topic=topic or "", origin=origin, path="starting", remark=remark)
+        self.robot = robot
+        self.status = SourceStatus(topic=topic or "", origin=origin, path="starting", remark=remark, robot=robot)
         self.process: subprocess.Popen | None = None
         self._child_status = self.status
         self._lock = threading.Lock()
@@ -134,7 +137,8 @@ class ProcessSource:
         try:
             for kind, payload in read_frames(process.stdout.fileno()):
                 if kind == BATCH:
-                    self.queue.put(unpacker.unpack(payload))
+                    batch = unpacker.unpack(payload)
+                    self.queue.put(batch.of_robot(self.robot) if self.robot else batch)
                     self._show(self._child_status)  # the queue may have dropped it
                 elif kind == STATUS:
                     self._child_status = status_from(payload)
@@ -164,6 +168,7 @@ class ProcessSource:
             child,
             origin=child.origin or self.origin,
             remark=child.remark or self.remark,
+            robot=self.robot,
             lost=child.lost + dropped,
             lost_queue=child.lost_queue + dropped,
         )
