@@ -49,6 +49,7 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
             rules=getattr(args, "rule_set", None),
             query=getattr(args, "query", None) or "",
             remember_rules=True,
+            robots=robots,
         )
         app.native_output = native
     except BaseException as error:

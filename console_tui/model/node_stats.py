@@ -6,22 +6,37 @@ eviction hook), a chunk column at a time: about 0.3 us a record. The rate of a n
 its records in the last ``window_s`` seconds of stamps (the newest stamp's second and
 the ones before it) divided by that window, or by the seconds the history covers when
 it is shorter.
+
+In a fleet (records that name their robot) a node is a robot's node: the same name on two
+robots is two nodes, each counted on its own (``NodeCounts.robot``).
 """
 
 from __future__ import annotations
 
 from array import array
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from .find_level import find_level, find_node, severity_range
 from .levels import MESSAGE_SEVERITIES, severity_bucket
-from .store import LogStore
+from .store import Chunk, LogStore
 
 NS_PER_S = 1_000_000_000
 RATE_WINDOW_S = 60
 SLOTS = len(MESSAGE_SEVERITIES)
+#: A node's key is its node id, plus its robot's id shifted by this many bits in a fleet.
+ROBOT_SHIFT = 32
 _SLOT = {level: MESSAGE_SEVERITIES.index(severity_bucket(level)) for level in range(256)}
+
+
+def _keys(chunk: Chunk, lo: int, hi: int) -> Sequence[int]:
+    """The node keys of ``chunk[lo:hi]``: node ids, combined with robot ids in a fleet."""
+    nodes = chunk.nodes[lo:hi]
+    robots = chunk.robots
+    if robots is None:
+        return nodes
+    return [node | robot << ROBOT_SHIFT for node, robot in zip(nodes, robots[lo:hi], strict=False)]
 
 
 @dataclass(frozen=True)
@@ -32,10 +47,27 @@ class NodeCounts:
     node_id: int
     counts: tuple[int, ...]
     rate: float
+    #: The robot of a fleet the node runs on, or "".
+    robot: str = ""
 
     @property
     def total(self) -> int:
         return sum(self.counts)
+
+    @property
+    def label(self) -> str:
+        """The node's name as shown: in a fleet, its robot's first (``picker: /talker``)."""
+        return f"{self.robot}: {self.node}" if self.robot else self.node
+
+
+def robot_counts(nodes: Sequence[NodeCounts]) -> dict[str, tuple[int, ...]]:
+    """Each robot's records per severity (DEBUG .. FATAL), from its nodes' counts, by name."""
+    totals: dict[str, list[int]] = {}
+    for entry in nodes:
+        counts = totals.setdefault(entry.robot, [0] * SLOTS)
+        for slot, number in enumerate(entry.counts):
+            counts[slot] += number
+    return {robot: tuple(counts) for robot, counts in sorted(totals.items())}
 
 
 class NodeStats:
@@ -44,9 +76,10 @@ class NodeStats:
     def __init__(self, store: LogStore, *, window_s: int = RATE_WINDOW_S) -> None:
         self.store = store
         self.window_s = window_s
-        #: node id -> five counts (DEBUG .. FATAL)
-        self._counts: list[list[int]] = []
-        #: second of the stamp -> records of each node id in it (the last ``window_s`` seconds)
+        #: node key (the node id, and in a fleet the robot id: ``ROBOT_SHIFT``) -> five counts
+        #: (DEBUG .. FATAL)
+        self._counts: dict[int, list[int]] = {}
+        #: second of the stamp -> records of each node key in it (the last ``window_s`` seconds)
         self._seconds: dict[int, Counter[int]] = {}
         self._newest_second: int | None = None
         self._oldest_second: int | None = None
@@ -65,23 +98,24 @@ class NodeStats:
         start = max(self._seen_to, store.first_seq)
         for span in store.spans(start, store.end_seq):
             chunk, lo, hi = span.chunk, span.lo, span.hi
-            self._count(chunk.nodes[lo:hi], chunk.levels[lo:hi], chunk.stamps[lo:hi], +1)
+            self._count(_keys(chunk, lo, hi), chunk.levels[lo:hi], chunk.stamps[lo:hi], +1)
         self._seen_to = store.end_seq
 
     def _evicting(self, first: int, new_first: int) -> None:
         for span in self.store.spans(first, min(new_first, self._seen_to)):
             chunk, lo, hi = span.chunk, span.lo, span.hi
-            self._count(chunk.nodes[lo:hi], chunk.levels[lo:hi], chunk.stamps[lo:hi], -1)
+            self._count(_keys(chunk, lo, hi), chunk.levels[lo:hi], chunk.stamps[lo:hi], -1)
         self._oldest_second = None  # found again when asked
         self._seen_to = max(self._seen_to, new_first)
 
-    def _count(self, nodes: array, levels: array, stamps: array, sign: int) -> None:
+    def _count(self, nodes: Sequence[int], levels: array, stamps: array, sign: int) -> None:
         counts = self._counts
         slot = _SLOT
         for (node, level), number in Counter(zip(nodes, levels, strict=False)).items():
-            while node >= len(counts):
-                counts.append([0] * SLOTS)
-            counts[node][slot[level]] += sign * number
+            node_counts = counts.get(node)
+            if node_counts is None:
+                node_counts = counts[node] = [0] * SLOTS
+            node_counts[slot[level]] += sign * number
         seconds = [stamp // NS_PER_S for stamp in stamps]
         if not seconds:
             return
@@ -121,13 +155,19 @@ class NodeStats:
         for counter in self._seconds.values():
             recent.update(counter)
         seconds = self.window_seconds()
-        names = self.store.nodes
+        names, robots, mask = self.store.nodes, self.store.robots, (1 << ROBOT_SHIFT) - 1
         found = [
-            NodeCounts(names[node], node, tuple(counts), max(recent.get(node, 0), 0) / seconds)
-            for node, counts in enumerate(self._counts)
+            NodeCounts(
+                names[key & mask],
+                key & mask,
+                tuple(counts),
+                max(recent.get(key, 0), 0) / seconds,
+                robots[key >> ROBOT_SHIFT],
+            )
+            for key, counts in self._counts.items()
             if any(counts)
         ]
-        found.sort(key=lambda entry: (-entry.total, entry.node))
+        found.sort(key=lambda entry: (-entry.total, entry.robot, entry.node))
         return found
 
     def busiest(self, number: int = 5) -> list[NodeCounts]:
@@ -142,4 +182,5 @@ class NodeStats:
         return find_level(self.store, self.store.first_seq, self.store.end_seq, low, high)
 
     def first_of_node(self, node_id: int) -> int | None:
+        """The seq of the first kept record of the node (on any robot), or None."""
         return find_node(self.store, self.store.first_seq, self.store.end_seq, node_id)

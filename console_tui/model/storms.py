@@ -2,10 +2,11 @@
 
 A **storm** is a run of one node's consecutive shown messages with the same severity and
 the same text (or, with ``mask_digits``, the same text once every run of digits reads
-``#``), from the same source (the same message in two files of a run is no repeat):
-messages of other nodes in between do not break it, a message of the same node with
-another text does. It shows as one row, at its first message, with its count and
-the time of its last one; its other messages are no rows while it is collapsed.
+``#``), from the same source and robot (the same message in two files of a run, or from two
+robots of a fleet, is no repeat): messages of other nodes in between do not break it, a
+message of the same node with another text does. It shows as one row, at its first message,
+with its count and the time of its last one; its other messages are no rows while it is
+collapsed.
 Expanding it (``expand``) makes them rows again where they are, between the others.
 
 ``StormRows`` reads like a ``LogView`` (``len``, ``seq_at``, ``row_of``,
@@ -99,7 +100,7 @@ class StormRows(ShownFollower):
         if isinstance(msgs, PackedTexts) and 8 * len(offsets) >= len(msgs):
             msgs = msgs.texts()  # one split, not a slice of the packed text for each
         mask = mask_digits if self.mask_digits else None
-        if not self._expanded and len(offsets) > 1:
+        if not self._expanded and len(offsets) > 1 and chunk.robots is None:  # (a fleet's: one by one)
             take_bulk(piece, msgs, mask, self._runs, self._storms, self._rows)
             return
         if isinstance(offsets, range):
@@ -114,6 +115,13 @@ class StormRows(ShownFollower):
         else:
             pick = itemgetter(*offsets)
             nodes, levels, sources, texts = pick(chunk.nodes), pick(chunk.levels), pick(chunk.sources), pick(msgs)
+        if chunk.robots is not None:  # a fleet: one robot's messages never repeat another's
+            robots = chunk.robots
+            if isinstance(offsets, range):
+                picked: Sequence[int] = robots[offsets.start : offsets.stop]
+            else:
+                picked = [robots[at] for at in offsets]
+            sources = [source | robot << 32 for source, robot in zip(sources, picked, strict=False)]
         if mask is not None:
             texts = [mask(text) for text in texts]
         take_each(piece.seqs(), (nodes, levels, sources, texts), self._runs, self._storms, self._rows)

@@ -21,6 +21,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
+from rich.style import Style
 from textual import events
 from textual.app import App, ComposeResult, SystemCommand
 from textual.binding import Binding, BindingType
@@ -38,6 +39,7 @@ from ..model.store import LogStore
 from ..model.text import multi_line, one_line
 from ..model.view import LogView
 from ..sources.files import FileLoad
+from ..sources.fleet import Robot
 from . import textual_fixes
 from .commands import ConsoleCommands
 from .exit_signals import ExitSignals, terminal_gone
@@ -154,6 +156,7 @@ class ConsoleApp(
         query: str = "",
         remember_rules: bool = False,
         keymap_file: str | None = None,
+        robots: Sequence[Robot] = (),
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -166,6 +169,12 @@ class ConsoleApp(
         self.collection_policy = CollectionPolicy(delay=drain_interval / 2)
         rows = self.make_overview(self.store, self.view, utc)
         self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
+        #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
+        self.robots = list(robots)
+        self.table.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
+        if len(self.robots) > 1:
+            self.table.shown_columns |= {"robot"}
+            self._robots_shown = True
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
         self._initial_query = query

@@ -74,6 +74,8 @@ class IntakeActions(AppPart):
     search_after_records: Callable[[], None]
     _rate = 0.0
     _rate_at = 0.0
+    #: The Robot column was shown once records of two robots came (the user may hide it again).
+    _robots_shown = False
 
     def __init__(self) -> None:
         super().__init__()
@@ -162,6 +164,9 @@ class IntakeActions(AppPart):
             self.follow_overview()
         if self.view.switched_off:
             self.rules_changed()
+        if not self._robots_shown and len(self.store.robots) > 2:  # "" and two robots or more
+            self._robots_shown = True
+            table.set_column_shown("robot", True)
         self._arrivals.append((self.clock(), added))
         self.node_stats.update()
         self.search_after_records()

@@ -27,7 +27,7 @@ async def test_columns_dialog_enter_applies_the_chosen_set_and_closes(size):
         assert "space shows or hides · ⏎ applies · esc cancels" in text  # the whole hint, not cut
         for title in ("# (number)", "Time", "Sev", "Node", "Message", "File", "Function", "Line", "Source"):
             line_with(app, title)
-        await pilot.press("down", "down", "down", "space")  # #, Time, Sev, Node: hides Node
+        await pilot.press("down", "down", "down", "down", "space")  # #, Time, Sev, Robot, Node: hides Node
         await pilot.press(*["down"] * 4, "space")  # File, Function, Line, Source (Message is skipped): shows it
         await pilot.pause()
         await pilot.press("enter")
@@ -40,7 +40,7 @@ async def test_columns_dialog_enter_applies_the_chosen_set_and_closes(size):
 async def test_columns_dialog_takes_keys_typed_all_at_once():
     app = make_app(5)
     async with app.run_test(size=(120, 30)) as pilot:
-        type_ahead(app, keys=("C", "down", "down", "down", "space", "enter"))
+        type_ahead(app, keys=("C", "down", "down", "down", "down", "space", "enter"))
         await until(pilot, lambda: "Node" not in header(app), what="the Node column to go")
         assert "Columns shown" not in screen_text(app)
         assert not app.table.paused_end, "space reached the dialog, not the table"

@@ -65,7 +65,10 @@ def test_written_file_is_readable_by_people():
         ("colour = 1", "unknown key 'colour'"),
         ("highlighted_only = 'yes'", "highlighted_only: expected true or false"),
         ("rules = 3", "rules: expected an array of tables"),
-        ("[[rules]]\nkind = 'nodes'", "rules[0].kind: expected one of custom, location, message, node, severity, time"),
+        (
+            "[[rules]]\nkind = 'nodes'",
+            "rules[0].kind: expected one of custom, location, message, node, robot, severity, time",
+        ),
         (
             "[[rules]]\nkind = 'node'\n[[rules]]\nkind = 'node'\nnames = 'a'\nrole = 'hide'",
             "rules[1].role: expected 'exclude' or 'highlight'",

@@ -8,6 +8,7 @@ from .custom import CustomRule
 from .location import LocationRule
 from .message import MessageRule
 from .node import NodeRule
+from .robot import RobotRule
 from .rule import Rule, RuleError
 from .ruleset import Decoration, Entry, Role, RuleSet, exclude, highlight
 from .severity import SeverityRule
@@ -21,6 +22,7 @@ __all__ = [
     "LocationRule",
     "MessageRule",
     "NodeRule",
+    "RobotRule",
     "Role",
     "Rule",
     "RuleError",

@@ -12,7 +12,7 @@
   unless it has a capital letter (smart case); ``/regex/`` is a regular expression, ``/regex/i``
   ignores case. ``msg:`` does the same explicitly.
 - Keys: ``level:warn,error`` (a set), ``level>=warn`` (also ``>``, ``<=``, ``<``, ``=``);
-  ``node:nav*,planner`` (names or globs); ``file:`` and ``func:`` (text or ``/regex/``);
+  ``node:nav*,planner`` (names or globs); ``robot:picker,arm*`` (a fleet's robots, names or globs); ``file:`` and ``func:`` (text or ``/regex/``);
   ``line:120``; ``since:``, ``until:`` and ``time:FROM..TO`` (either end may be left out).
   Times: ``12:30``, ``12:30:05.250`` (today), ``2024-05-01T12:30``, ``2024-05-01``, seconds
   since the epoch (``1714566600.5``), or an age (``90s``, ``5m``, ``2h``, ``1d`` ago).
@@ -33,6 +33,7 @@ from .custom import CustomRule
 from .location import LocationRule
 from .message import MessageRule
 from .node import NodeRule
+from .robot import RobotRule
 from .rule import Rule, RuleError
 from .ruleset import Entry, Role
 from .severity import SeverityRule
@@ -60,6 +61,7 @@ _KEYS = {
     "severity": "level",
     "sev": "level",
     "node": "node",
+    "robot": "robot",
     "file": "file",
     "func": "function",
     "function": "function",
@@ -212,6 +214,11 @@ class _Parser:
             if not names:
                 raise QueryError("node: needs a name", value.start)
             return NodeRule(tuple(names))
+        if key == "robot":
+            names = [n for n in value.text.split(",") if n]
+            if not names:
+                raise QueryError("robot: needs a name", value.start)
+            return RobotRule(tuple(names))
         if key == "line":
             if not value.text.isdigit():
                 raise QueryError(f"line: expected a line number, got {value.text!r}", value.start)

@@ -6,7 +6,7 @@
     role = "exclude"        # or "highlight"
     enabled = true
     inverted = false
-    kind = "severity"       # message, severity, node, location, time, custom
+    kind = "severity"       # message, severity, node, robot, location, time, custom
     levels = ["debug"]
 
     [[rules]]

@@ -17,6 +17,7 @@ from ...model.rules.location import LocationRule
 from ...model.rules.message import MessageRule
 from ...model.rules.node import NodeRule
 from ...model.rules.query import parse_time
+from ...model.rules.robot import RobotRule
 from ...model.rules.rule import Rule, RuleError
 from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
@@ -30,6 +31,7 @@ KINDS = {
     "message": "Message text",
     "severity": "Severities",
     "node": "Nodes",
+    "robot": "Robots (of a fleet)",
     "location": "Location (file, function, line)",
     "time": "Time range",
     "custom": "Custom: all of the fields below",
@@ -39,9 +41,10 @@ GROUPS = {
     "message": ("message",),
     "severity": ("severity",),
     "node": ("node",),
+    "robot": ("robot",),
     "location": ("location",),
     "time": ("time",),
-    "custom": ("message", "severity", "node", "location", "time"),
+    "custom": ("message", "severity", "node", "robot", "location", "time"),
 }
 
 
@@ -95,6 +98,7 @@ class RuleEditor(ModalScreen[Entry | None]):
         message = _part(parts, MessageRule)
         severity = _part(parts, SeverityRule)
         node = _part(parts, NodeRule)
+        robot = _part(parts, RobotRule)
         location = _part(parts, LocationRule)
         period = _part(parts, TimeRangeRule)
         with Vertical():
@@ -123,6 +127,10 @@ class RuleEditor(ModalScreen[Entry | None]):
                     ", ".join(node.names),
                     placeholder="node names or globs, comma separated: nav*, /ns/talker",
                     id="node-names",
+                )
+            with Vertical(classes="group", id="group-robot"):
+                yield Input(
+                    ", ".join(robot.names), placeholder="robots' names or globs, comma separated", id="robot-names"
                 )
             with Vertical(classes="group", id="group-location"):
                 with Horizontal():
@@ -159,7 +167,7 @@ class RuleEditor(ModalScreen[Entry | None]):
 
     def _show_groups(self) -> None:
         shown = GROUPS[self.kind]
-        for group in ("message", "severity", "node", "location", "time"):
+        for group in ("message", "severity", "node", "robot", "location", "time"):
             self.query_one(f"#group-{group}").set_class(group not in shown, "-hidden")
 
     @on(Input.Submitted)
@@ -187,6 +195,7 @@ class RuleEditor(ModalScreen[Entry | None]):
             "message": self._message_rule,
             "severity": self._severity_rule,
             "node": self._node_rule,
+            "robot": self._robot_rule,
             "location": self._location_rule,
             "time": self._time_rule,
         }
@@ -213,6 +222,9 @@ class RuleEditor(ModalScreen[Entry | None]):
 
     def _node_rule(self) -> Rule:
         return NodeRule(tuple(name.strip() for name in self._value("node-names").split(",") if name.strip()))
+
+    def _robot_rule(self) -> Rule:
+        return RobotRule(tuple(name.strip() for name in self._value("robot-names").split(",") if name.strip()))
 
     def _location_rule(self) -> Rule:
         line_text = self._value("location-line").strip()

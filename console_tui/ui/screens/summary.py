@@ -20,7 +20,7 @@ from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
 from ...model.levels import MESSAGE_SEVERITIES, severity_level
-from ...model.node_stats import NodeStats
+from ...model.node_stats import NodeStats, robot_counts
 from ...model.store import LogStore
 from ...model.text import one_line, plural, shorten_name
 from ...model.timefmt import clock_text, duration_text
@@ -148,24 +148,30 @@ class SummaryScreen(ModalScreen[int | None]):
                 if severity >= 40:
                     line.append(f"  {one_line(record.node, 60)}: {one_line(record.msg, 200)}")
             options.append(self._target_option(line, f"seq:{first}" if first is not None else None))
+        nodes = stats.nodes()
+        robots = robot_counts(nodes) if any(entry.robot for entry in nodes) else {}
+        if robots:
+            options.append(_heading(""))
+            options.append(_heading(header_of("Robots", name_width, count_width)))
+        for robot, numbers in robots.items():
+            line = Text(f"  {_name(robot or '(no robot)', name_width):<{name_width}}")
+            for slot, number in enumerate(numbers):
+                line.append(f"{number:>{count_width},}", style=styles[slot] if number else "dim")
+            line.append(f"{sum(numbers):>{count_width + 1},}", style="bold")
+            options.append(self._target_option(line, None))
         busiest = stats.busiest(5)
         options.append(_heading(""))
         options.append(_heading(f"Busiest nodes, last {stats.window_seconds()} s"))
         if not busiest:
             options.append(_heading("  none"))
         for entry in busiest:
-            line = Text(f"  {_name(entry.node, name_width):<{name_width}}", style="bold")
+            line = Text(f"  {_name(entry.label, name_width):<{name_width}}", style="bold")
             line.append(f"{entry.rate:>12,.1f}/s")
             options.append(self._target_option(line, f"node:{entry.node_id}"))
         options.append(_heading(""))
-        header = (
-            f"{'Nodes':<{name_width + 2}}"
-            + "".join(f"{s.name:>{count_width}}" for s in MESSAGE_SEVERITIES)
-            + f"{'total':>{count_width + 1}}"
-        )
-        options.append(_heading(header))
-        for entry in stats.nodes():
-            line = Text(f"  {_name(entry.node, name_width):<{name_width}}")
+        options.append(_heading(header_of("Nodes", name_width, count_width)))
+        for entry in nodes:
+            line = Text(f"  {_name(entry.label, name_width):<{name_width}}")
             for slot, number in enumerate(entry.counts):
                 line.append(f"{number:>{count_width},}", style=styles[slot] if number else "dim")
             line.append(f"{entry.total:>{count_width + 1},}", style="bold")
@@ -180,6 +186,8 @@ class SummaryScreen(ModalScreen[int | None]):
             if not (status.topic or status.origin):  # no reader of a topic (the demo's nodes)
                 continue
             where = f"{status.topic or '(no topic yet)'}, {plural(status.publishers, 'publisher')}"
+            if status.robot:
+                where = f"robot {status.robot} ({status.state}): {where}"
             options.append(_heading(f"Source: {one_line(where, 200)}"))
             lines = [
                 status.origin,
@@ -240,6 +248,15 @@ def _name(node: str, width: int) -> str:
     """A node's name in ``width`` cells, shortened as the table does (its end kept: that is
     what tells ``navigation.planner`` from ``navigation.planner.costmap``)."""
     return shorten_name(one_line(node, 200), width)
+
+
+def header_of(title: str, name_width: int, count_width: int) -> str:
+    """A table's heading: its title, the severities' names, ``total``."""
+    return (
+        f"{title:<{name_width + 2}}"
+        + "".join(f"{s.name:>{count_width}}" for s in MESSAGE_SEVERITIES)
+        + f"{'total':>{count_width + 1}}"
+    )
 
 
 def _heading(text: str) -> Option:

@@ -209,6 +209,7 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         self._cache: LRUCache[tuple, Strip] = LRUCache(192)
         self._layout_key: tuple = ()
         self._nodes_measured = 0
+        self.robot_styles: dict[str, Style] = {}
         self._widest_node = 8
         self._placed: tuple[PlacedColumn, ...] = ()
         self._styles: dict[str, Style] = {}

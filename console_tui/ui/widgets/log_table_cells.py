@@ -46,6 +46,8 @@ class TableCells(ScrollView):
     time_format: TimeFormat
     gutter_of: Callable[[int], str] | None
     match_spans: Callable[[int, str], Spans] | None
+    #: A fleet's robots' colours (``--fleet``'s ``colour``) by name, for the Robot column.
+    robot_styles: dict[str, Style]
     #: The component styles by class name (``log_table_frame.py`` looks them up).
     _styles: dict[str, Style]
 
@@ -109,6 +111,8 @@ class TableCells(ScrollView):
             style = row_style
             if key == "severity" and not is_cursor:
                 style = row_style + styles.get(f"log-table--severity-{name}", Style())
+            elif key == "robot" and not is_cursor and record.robot in self.robot_styles:
+                style = row_style + self.robot_styles[record.robot]
             elif key in ("seq", "time", "file", "function", "line", "source") and name != "debug" and not is_cursor:
                 style = row_style + muted
             fitted = fit(text, place.width, place.column.align)
@@ -164,6 +168,8 @@ class TableCells(ScrollView):
             return str(record.line) if record.line else ""
         if key == "source":
             return one_line(os.path.basename(record.source.rstrip("/")) or record.source, 200)
+        if key == "robot":
+            return one_line(record.robot, 200)
         raise KeyError(key)
 
 

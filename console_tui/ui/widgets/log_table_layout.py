@@ -65,10 +65,12 @@ class TableLayout(ScrollView):
         # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
         node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
         gutter = GUTTER if self.gutter_of is not None else 0
-        key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc)
+        # A fleet's robots: as wide as the widest name, 5 to 16 cells.
+        robot_width = max(min(max(map(cell_len, self.store.robots), default=5), 16), 5)
+        key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc, robot_width)
         if key != self._layout_key:
             self._layout_key = key
-            widths = {"time": format_info(self.time_format).width}
+            widths = {"time": format_info(self.time_format).width, "robot": robot_width}
             self._placed = layout_columns(width - gutter, self.shown_columns, node_width, widths)
             self._forget_drawn_rows()
         return self._placed

@@ -59,12 +59,13 @@ def _errors(row: NodeCounts) -> int:
 
 
 SORTS = (
-    Sort("name", "name", lambda row: row.node),
-    Sort("errors", "errors", lambda row: (-_errors(row), -row.counts[2], row.node)),
-    Sort("warnings", "warnings", lambda row: (-row.counts[2], -_errors(row), row.node)),
-    Sort("total", "messages", lambda row: (-row.total, row.node)),
-    Sort("rate", "rate", lambda row: (-row.rate, row.node)),
+    Sort("name", "name", lambda row: (row.robot, row.node)),
+    Sort("errors", "errors", lambda row: (-_errors(row), -row.counts[2], row.robot, row.node)),
+    Sort("warnings", "warnings", lambda row: (-row.counts[2], -_errors(row), row.robot, row.node)),
+    Sort("total", "messages", lambda row: (-row.total, row.robot, row.node)),
+    Sort("rate", "rate", lambda row: (-row.rate, row.robot, row.node)),
 )
+
 _PLAIN = Style()
 
 
@@ -139,7 +140,7 @@ def node_line(
     ]
     grid.add_row(
         Text(state, style="bold reverse" if state else ""),
-        NodeName(one_line(row.node, 200), name_style),
+        NodeName(one_line(row.label, 200), name_style),
         *counts,
         Text(rate_cell(row.rate), style=look("rate")),
     )
@@ -225,6 +226,7 @@ class NodePane(RightPane):
         self.sort = SORTS[1]
         self.filter_text = ""
         self.rows: list[NodeCounts] = []
+        self._option_nodes: dict[str, str] = {}
         self._shown_key: tuple = ()
         self._timer: Timer | None = None
         self.node_list = NodeCountList(id="nodes-list", compact=True)
@@ -264,7 +266,7 @@ class NodePane(RightPane):
         """The rows as they are now, filtered and sorted, with the solo and mute marks."""
         soloed, muted = self.toggles()
         needle = self.filter_text.casefold()
-        rows = [row for row in self.rows if needle in row.node.casefold()] if needle else list(self.rows)
+        rows = [row for row in self.rows if needle in row.label.casefold()] if needle else list(self.rows)
         rows.sort(key=self.sort.order)
         states = {name: "S" for name in soloed} | {name: "M" for name in muted}
         key = (tuple(rows), tuple(sorted(states.items())), self.sort.key)
@@ -283,21 +285,29 @@ class NodePane(RightPane):
         widths = column_widths(rows)
         self.query_one("#nodes-header", Static).update(header_line(self.sort, widths))
         options = self.node_list
-        highlighted = self.highlighted_node
+        highlighted = self.highlighted_option_id
         with options.prevent(OptionList.OptionHighlighted):
             options.clear_options()
             styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
+            # A robot's node is one option (the same node name on two robots is two).
+            self._option_nodes = {row.label: row.node for row in rows}
             options.add_options(
-                [Option(node_line(row, states.get(row.node, ""), widths, styles), id=row.node) for row in rows]
+                [Option(node_line(row, states.get(row.node, ""), widths, styles), id=row.label) for row in rows]
             )
             if rows:
-                names = [row.node for row in rows]
-                options.highlighted = names.index(highlighted) if highlighted in names else 0
+                ids = [row.label for row in rows]
+                options.highlighted = ids.index(highlighted) if highlighted in ids else 0
+
+    @property
+    def highlighted_option_id(self) -> str | None:
+        option = self.node_list.highlighted_option
+        return None if option is None else option.id
 
     @property
     def highlighted_node(self) -> str | None:
-        option = self.node_list.highlighted_option
-        return None if option is None else option.id
+        """The node name of the highlighted row (solo and mute act on a name, on every robot)."""
+        option = self.highlighted_option_id
+        return None if option is None else self._option_nodes.get(option, option)
 
     # -- keys ---------------------------------------------------------------------------------
 

@@ -176,7 +176,10 @@ def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None,
     worse = [span for count in counts[2:] for span in (count, (" ", None))][:-1]  # WARN and worse
     parts.append(Part(styled(*spaced), COUNTS, styled(*worse)))
     parts.append(Part(Text(f"{facts.rate:,.0f}/s"), RATE))
-    for status in facts.sources:
+    robots = [status for status in facts.sources if status.robot]
+    if len(robots) > 1:  # a fleet: each robot's state in a mark
+        parts += _fleet_parts(robots, styled)
+    for status in facts.sources if len(robots) <= 1 else [s for s in facts.sources if not s.robot]:
         parts += _source_parts(status, styled)
     if facts.note:
         parts.append(Part(styled((facts.note, "note")), DETAIL, styled((one_line(facts.note, 24), "note"))))
@@ -220,6 +223,29 @@ def _short_origin(origin: str) -> str:
     if origin.startswith("ROS 2 domain "):
         return origin.removeprefix("ROS 2 ")
     return origin.replace("http://", "").rstrip("/")
+
+
+#: A fleet's robot's state in one mark (``SourceStatus.state``): the status line's legend.
+STATE_MARKS = {"receiving": "✓", "waiting": "…", "starting": "…", "problem": "✗"}
+
+
+def _fleet_parts(robots: list[SourceStatus], styled: Callable[..., Text]) -> list[Part]:
+    """A fleet's robots, each with its state in a mark (✓ receiving, … waiting, ✗ a problem):
+    ``picker✓ cart… arm✗`` (short: ``✓1/3 arm✗``), then what all of them lost. The summary
+    (``S``) says more."""
+    spans: list[tuple[str, str | None]] = []
+    for status in robots:
+        state = status.state
+        style = "problem" if state == "problem" else "where" if state != "receiving" else None
+        spans.append((f"{' ' if spans else ''}{one_line(status.robot, 32)}{STATE_MARKS[state]}", style))
+    receiving = sum(status.state == "receiving" for status in robots)
+    troubled = [(f" {one_line(s.robot, 32)}{STATE_MARKS['problem']}", "problem") for s in robots if s.problem]
+    parts = [Part(styled(*spans), SOURCE, styled((f"✓{receiving}/{len(robots)}", None), *troubled))]
+    # What the app's queue dropped is in every robot's lost_queue (they share the queue): once.
+    lost = sum(status.lost - status.lost_queue for status in robots) + max(status.lost_queue for status in robots)
+    if lost:
+        parts.append(Part(styled((f"{lost:,} lost", "problem")), SOURCE))
+    return parts
 
 
 _PLAIN = Style()

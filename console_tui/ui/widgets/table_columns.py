@@ -20,12 +20,13 @@ class Column:
 
 
 #: Narrow, the columns give way in this order (``drop_order``): function, line, file, source,
-#: then the row number and the time last: what a person needs at 80 columns is the row number,
+#: then the row number, the time and the robot (a fleet's) last: what a person needs at 80 columns is the row number,
 #: the time, the severity, a node name that tells nodes apart, and as much of the message as fits.
 COLUMNS: tuple[Column, ...] = (
     Column("seq", "#", 7, align="right", drop_order=5),
     Column("time", "Time", 12, drop_order=6),
     Column("severity", "Sev", 5),
+    Column("robot", "Robot", 8, drop_order=7, shown_by_default=False),
     Column("node", "Node", 16),
     Column("message", "Message", 24, flex=True),
     Column("file", "File", 16, drop_order=3),

@@ -1,0 +1,114 @@
+"""A fleet on the screen, without ROS: the Robot column (shown with more than one robot), its
+colours, ``robot:`` in the query line, the robots' states on the status line, the node panel's
+nodes per robot and the summary's counts per robot."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.record import LogRecord
+from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store import LogStore
+from console_tui.sources.fleet import Robot
+from console_tui.sources.ros_version import ROS1, ROS2
+from console_tui.sources.status import SourceStatus
+from console_tui.ui.app import ConsoleApp
+
+from support.ui import line_with, screen_text, table_rows, type_text, until
+
+ROBOTS = [Robot("picker", ROS2, domain=3, colour="cyan"), Robot("forklift", ROS1, master="http://127.0.0.1:1/")]
+
+
+class Source:
+    """A source as the app sees one: ``start``, ``stop`` and a ``status`` snapshot."""
+
+    def __init__(self, status: SourceStatus) -> None:
+        self.status = status
+
+    def start(self) -> None:
+        pass
+
+    def stop(self) -> None:
+        pass
+
+
+def fleet_app(**options) -> tuple[ConsoleApp, IntakeQueue]:
+    queue = IntakeQueue()
+    sources = [
+        Source(SourceStatus(topic="/rosout", publishers=1, running=True, robot="picker")),
+        Source(SourceStatus(topic="/rosout", running=True, robot="forklift")),
+    ]
+    app = ConsoleApp(store=LogStore(), queue=queue, sources=sources, utc=True, robots=ROBOTS, **options)
+    return app, queue
+
+
+def put(queue: IntakeQueue, robot: str, count: int, start: int = 0) -> None:
+    records = [
+        LogRecord(
+            1_700_000_000_000_000_000 + (start + i) * 1_000_000, 20 + 10 * (i % 2), "/talker", f"{robot} says {i}"
+        )
+        for i in range(count)
+    ]
+    queue.put(RecordColumns.from_records(records).of_robot(robot))
+
+
+def header(app) -> str:
+    return screen_text(app).splitlines()[app.table.region.y]
+
+
+@pytest.mark.parametrize("size", [(100, 30), (80, 24)])
+async def test_each_row_says_its_robot_and_robot_filters(size):
+    app, queue = fleet_app()
+    async with app.run_test(size=size) as pilot:
+        put(queue, "picker", 4)
+        put(queue, "forklift", 4, start=10)
+        await until(pilot, lambda: "forklift says 3" in screen_text(app), what="the rows")
+        assert "Robot" in header(app)
+        assert "picker✓ forklift…" in screen_text(app)
+        rows = [line for _, line in table_rows(app).values()]
+        assert sum("picker" in line and "picker says" in line for line in rows) == 4
+        assert sum(line.count("forklift") == 2 for line in rows) == 4
+        await pilot.press("slash")
+        await type_text(pilot, "robot:picker")
+        await pilot.press("enter")
+        await until(pilot, lambda: "forklift says" not in screen_text(app), what="the filter")
+        assert "picker says 3" in screen_text(app)
+
+
+async def test_a_robots_colour_paints_its_name():
+    app, queue = fleet_app()
+    async with app.run_test(size=(100, 30)) as pilot:
+        put(queue, "picker", 1)
+        put(queue, "forklift", 1, start=5)
+        await until(pilot, lambda: "forklift says 0" in screen_text(app), what="the rows")
+        picker = app.table.robot_styles["picker"]
+        assert picker.color is not None and picker.color.name == "cyan"
+        assert "forklift" not in app.table.robot_styles
+
+
+async def test_the_node_panel_and_the_summary_count_per_robot():
+    app, queue = fleet_app()
+    async with app.run_test(size=(120, 34)) as pilot:
+        put(queue, "picker", 4)
+        put(queue, "forklift", 6, start=10)
+        await until(pilot, lambda: "forklift says 5" in screen_text(app), what="the rows")
+        await pilot.press("ctrl+n")
+        await until(pilot, lambda: "Nodes: 2" in screen_text(app), what="the node panel")
+        assert line_with(app, "picker: /talker")[1].split("▏")[1].split()[3:5] == ["2", "2"]
+        assert line_with(app, "forklift: /talker")[1].split("▏")[1].split()[3:5] == ["3", "3"]
+        await pilot.press("ctrl+n", "S")
+        await until(pilot, lambda: "Robots" in screen_text(app), what="the summary")
+        assert line_with(app, "robot picker (receiving)")
+        assert line_with(app, "robot forklift (waiting)")
+        assert re.search(r"  forklift +0 +3 +3 +0 +0 +6", screen_text(app))
+        assert re.search(r"  picker +0 +2 +2 +0 +0 +4", screen_text(app))
+
+
+async def test_one_source_shows_no_robot_column():
+    app = ConsoleApp(store=LogStore(), utc=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        assert "Robot" not in header(app)
