@@ -16,11 +16,13 @@ from .commands.arguments import (
     add_fleet_arguments,
     add_last_argument,
     add_log_format_argument,
+    add_robot_argument,
     add_ros_version_arguments,
     check_fleet_arguments,
     check_rule_arguments,
     domain_id,
     positive_int,
+    robot_files,
 )
 from .model.store import DEFAULT_MAX_MESSAGES
 
@@ -120,6 +122,7 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     )
     add_ros_version_arguments(parser)
     add_fleet_arguments(parser)
+    add_robot_argument(parser)
     parser.add_argument(
         "--topic",
         metavar="NAME",
@@ -222,7 +225,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         status: int = module.main(args_list[1:])
         return status
     parser = build_parser()
+    args_list, file_robots = robot_files(parser, args_list)
     args = parser.parse_args(args_list)
+    args.file_robots = file_robots
     check_rule_arguments(parser, args)
     if args.demo_domain is not None and not args.demo:
         parser.error("--demo-domain goes with --demo")

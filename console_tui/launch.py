@@ -50,6 +50,7 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
             query=getattr(args, "query", None) or "",
             remember_rules=True,
             robots=robots,
+            file_robots=getattr(args, "file_robots", None) or {},
         )
         app.native_output = native
     except BaseException as error:

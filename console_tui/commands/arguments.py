@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import textwrap
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 from ..sources.ros_version import ROS1, ROS2
 
@@ -229,6 +229,61 @@ def add_fleet_arguments(parser: argparse.ArgumentParser) -> None:
         help="read every robot of this fleet file (TOML: [[robot]] tables with name, domain or master, "
         "optional topic and colour)",
     )
+
+
+def add_robot_argument(parser: argparse.ArgumentParser) -> None:
+    """``--robot NAME`` (read by ``robot_files`` before the parser): the files after it are
+    that robot's."""
+    parser.add_argument(
+        "--robot",
+        metavar="NAME",
+        help="the FILEs given after it are this robot's (its name in the Robot column); give it again "
+        "before another robot's files",
+    )
+
+
+def robot_files(parser: argparse.ArgumentParser, argv: Sequence[str]) -> tuple[list[str], dict[str, str]]:
+    """``argv`` without its ``--robot NAME`` options, and the robot of each file given after one
+    (by the file's text as given). With a ``--robot``, the files come last in the ``argv``
+    returned (after ``--``), so that files between options parse. A bad name exits 2."""
+    from ..sources.fleet import FleetError, check_robot_name
+
+    takes_value = {name for action in parser._actions for name in action.option_strings if action.nargs != 0}
+    kept: list[str] = []
+    files: list[str] = []
+    robots: dict[str, str] = {}
+    robot = ""
+    at = 0
+    only_files = False
+    while at < len(argv):
+        token = argv[at]
+        at += 1
+        if not only_files and (token == "--robot" or token.startswith("--robot=")):
+            if "=" in token:
+                name = token.partition("=")[2]
+            elif at < len(argv):
+                name, at = argv[at], at + 1
+            else:
+                parser.error("--robot needs a robot's name")
+            try:
+                robot = check_robot_name(name)
+            except FleetError as error:
+                parser.error(f"--robot: {error}")
+            continue
+        if only_files or not token.startswith("-") or token == "-":
+            files.append(token)
+            if robot:
+                robots[token] = robot
+        elif token == "--":
+            only_files = True
+        else:
+            kept.append(token)
+            if token in takes_value and at < len(argv):
+                kept.append(argv[at])
+                at += 1
+    if not robot:  # no --robot: as given
+        return list(argv), robots
+    return [*kept, "--", *files], robots
 
 
 def check_fleet_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:

@@ -102,6 +102,11 @@ def _split_name(text: str) -> tuple[str, str]:
     return value.strip(), name
 
 
+def check_robot_name(name: str) -> str:
+    """``name`` when it is a robot's name; else ``FleetError`` saying what one is."""
+    return _check_name(name, "")
+
+
 def _check_name(name: object, where: str) -> str:
     if not isinstance(name, str) or not NAME_RE.fullmatch(name):
         raise FleetError(

@@ -16,7 +16,7 @@ from __future__ import annotations
 import signal
 import sys
 import time
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
@@ -157,6 +157,7 @@ class ConsoleApp(
         remember_rules: bool = False,
         keymap_file: str | None = None,
         robots: Sequence[Robot] = (),
+        file_robots: Mapping[str, str] | None = None,
     ) -> None:
         super().__init__()
         self.store = store if store is not None else LogStore()
@@ -193,6 +194,8 @@ class ConsoleApp(
         self.problems: list[str] = []
         self.source_notes: dict[str, list[str]] = {}
         self._initial_files = list(files)
+        #: The robot of each file given after ``--robot NAME`` (by the path as given).
+        self._file_robots = dict(file_robots or {})
         self.log_format = log_format
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
@@ -275,7 +278,7 @@ class ConsoleApp(
         # the first frame should not wait for.
         self.call_after_refresh(self.start_sources)
         if self._initial_files:
-            self.open_files(self._initial_files, log_format=self.log_format)
+            self.open_files(self._initial_files, log_format=self.log_format, robots=self._file_robots)
 
     def _load_keymap(self, keymap_file: str | None) -> tuple[str, ...]:
         """The user's keymap, in force before the widgets compose (their hints name its keys)."""

@@ -8,7 +8,7 @@ from __future__ import annotations
 import asyncio
 import os
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from textual import work
 
@@ -45,9 +45,12 @@ class FileActions(AppPart):
     def loading(self) -> bool:
         return any(not load.finished for load in self.loads) or len(self.file_queue) > 0
 
-    def open_files(self, paths: Sequence[str], *, log_format: str | None = None) -> FileLoad:
-        """Read files in the background into the table, merged by time."""
-        load = FileLoad(paths, self.file_queue, log_format=log_format)
+    def open_files(
+        self, paths: Sequence[str], *, log_format: str | None = None, robots: Mapping[str, str] | None = None
+    ) -> FileLoad:
+        """Read files in the background into the table, merged by time; ``robots``: the robot
+        of each path (``--robot NAME`` before it)."""
+        load = FileLoad(paths, self.file_queue, log_format=log_format, robots=robots)
         self.opened_paths.extend(paths)  # where ``v`` looks for a source file's bare name
         self.loads.append(load)
         load.start()

@@ -2,7 +2,8 @@
 
 A line reads ``{"stamp_ns": 1700000000123456789, "level": 20, "node": "talker", "msg":
 "hello", "file": "/src/talker.py", "function": "tick", "line": 42, "source": "run1.bag"}``;
-ROS 1 records add ``"topics": "/rosout,/chatter"`` (left out when there are none).
+ROS 1 records add ``"topics": "/rosout,/chatter"`` (left out when there are none), and a
+fleet's records ``"robot": "picker"`` (left out when a record names no robot).
 Newlines and quotes in text are JSON escapes, so every record is exactly one line. When
 loaded, a record keeps the ``source`` it was saved with (the file's name if it had none).
 """
@@ -21,7 +22,7 @@ from .textlines import TextLines
 
 FIELDS = ("stamp_ns", "level", "node", "msg", "file", "function", "line", "source")
 _INT_FIELDS = ("stamp_ns", "line")
-_TEXT_FIELDS = ("node", "msg", "file", "function", "source", "topics")
+_TEXT_FIELDS = ("node", "msg", "file", "function", "source", "topics", "robot")
 _FLUSH_EVERY = 10_000
 
 
@@ -30,6 +31,8 @@ def record_to_json(record: LogRecord) -> str:
     values = {name: getattr(record, name) for name in FIELDS}
     if record.topics:
         values["topics"] = record.topics
+    if record.robot:
+        values["robot"] = record.robot
     try:
         text = json.dumps(values, ensure_ascii=False, separators=(", ", ": "))
         text.encode("utf-8")

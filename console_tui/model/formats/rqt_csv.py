@@ -12,6 +12,10 @@ on its ROS 2 branches and on melodic-devel):
 - stamp as ``sec.nsec`` with nsec zero-padded to 9 digits;
 - topics (ROS 1) joined by ``,``; location as ``file:function:line``.
 
+console-tui adds one column of its own, last, when the records came from a fleet (several
+robots): ``robot``, the robot's name, escaped as a message is
+(``message;severity;node;stamp;location;robot``). Files without robots are rqt_console's own.
+
 Reading: a row starts at a line that begins with ``"`` but not with ``";"``. A
 continuation line of a message begins with ``"`` only where the message ends with a
 newline, and then with ``";"`` (the end of the message field); every other ``"`` in a
@@ -35,7 +39,9 @@ from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_p
 
 ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
 ROS1_COLUMNS = ("message", "severity", "node", "stamp", "topics", "location")
-_KNOWN_COLUMNS = frozenset(ROS1_COLUMNS)
+#: console-tui's own column, last, when records name their robot (a fleet's).
+ROBOT_COLUMN = "robot"
+_KNOWN_COLUMNS = frozenset((*ROS1_COLUMNS, ROBOT_COLUMN))
 _ROS2_LEVELS = frozenset(int(s) for s in MESSAGE_SEVERITIES)
 _STAMP = re.compile(r"(\d{1,20})\.(\d{1,18})\Z")
 _LINE_NUMBER = re.compile(r"\d{1,12}\Z")
@@ -72,28 +78,32 @@ def split_location(location: str) -> tuple[str, str, int]:
     return head[:cut], head[cut + 1 :], int(line_text)
 
 
-def _row(record: LogRecord, ros1: bool) -> str:
+def _row(record: LogRecord, ros1: bool, robots: bool) -> str:
     severity = to_ros1(record.level) if ros1 else record.level
     fields = [escape_message(record.msg), str(severity), record.node, stamp_text(record.stamp_ns)]
     if ros1:
         fields.append(escape_message(record.topics))
     fields.append(record.location)
+    if robots:
+        fields.append(escape_message(record.robot))
     return ";".join(f'"{field}"' for field in fields) + "\n"
 
 
 class RqtCsvWriter(TextFormatWriter):
-    """Writes rqt_console's format byte for byte (UTF-8), ROS 2 or ROS 1 variant."""
+    """Writes rqt_console's format byte for byte (UTF-8), ROS 2 or ROS 1 variant; with
+    ``robots``, the ``robot`` column last."""
 
-    def __init__(self, *, ros1: bool = False) -> None:
+    def __init__(self, *, ros1: bool = False, robots: bool = False) -> None:
         self.ros1 = ros1
+        self.robots = robots
         self.name = "rqt1" if ros1 else "rqt"
 
     def write(self, records: Iterable[LogRecord], stream: BinaryIO) -> Iterator[int]:
-        columns = ROS1_COLUMNS if self.ros1 else ROS2_COLUMNS
+        columns = (*(ROS1_COLUMNS if self.ros1 else ROS2_COLUMNS), *((ROBOT_COLUMN,) if self.robots else ()))
         parts = [";".join(columns) + "\n"]
         count = 0
         for record in records:
-            parts.append(_row(record, self.ros1))
+            parts.append(_row(record, self.ros1, self.robots))
             count += 1
             if count % _FLUSH_EVERY == 0:
                 stream.write("".join(parts).encode("utf-8", errors="replace"))
@@ -201,6 +211,8 @@ def _parse_row(text: str, columns: tuple[str, ...], ros1: bool, source: str) -> 
         record.file, record.function, record.line = split_location(fields["location"])
     if fields.get("topics"):
         record.topics = unescape_message(fields["topics"])
+    if fields.get(ROBOT_COLUMN):
+        record.robot = unescape_message(fields[ROBOT_COLUMN])
     return record
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Protocol
 
@@ -13,11 +13,12 @@ from .jsonl import JsonLinesWriter
 from .rqt_csv import RqtCsvWriter
 from .text_format import TextFormatWriter
 
-#: Save formats by name: rqt_console ROS 2 (``rqt``), its ROS 1 variant, JSON Lines.
-SAVE_FORMATS: dict[str, Callable[[], TextFormatWriter]] = {
-    "rqt": RqtCsvWriter,
-    "rqt1": lambda: RqtCsvWriter(ros1=True),
-    "jsonl": JsonLinesWriter,
+#: Save formats by name: rqt_console ROS 2 (``rqt``), its ROS 1 variant, JSON Lines; each
+#: made with ``robots``: whether the records name their robots (rqt_console's gets a column).
+SAVE_FORMATS: dict[str, Callable[..., TextFormatWriter]] = {
+    "rqt": lambda robots=False: RqtCsvWriter(robots=robots),
+    "rqt1": lambda robots=False: RqtCsvWriter(ros1=True, robots=robots),
+    "jsonl": lambda robots=False: JsonLinesWriter(),
 }
 _JSONL_SUFFIXES = (".jsonl", ".ndjson", ".json")
 
@@ -43,6 +44,7 @@ def save_records(
     *,
     cancel: Cancellable | None = None,
     progress: Callable[[int], None] | None = None,
+    robots: bool | None = None,
 ) -> int:
     """Write ``records`` to ``path`` in ``save_format`` (default: from the name); returns
     how many were written.
@@ -51,11 +53,15 @@ def save_records(
     when ``cancel`` is set), a file already at ``path`` is untouched. ``progress`` is
     called with the running count every few thousand records. Iterate over a snapshot
     (or from the thread that owns the store), not over a store another thread changes.
+    ``robots`` says whether records name their robot (None: looked for in a sequence of
+    records; records from an iterator are taken to name none).
     """
     name = save_format or save_format_for(path)
     if name not in SAVE_FORMATS:
         raise ValueError(f"unknown save format {name!r}: use one of {', '.join(SAVE_FORMATS)}")
-    writer = SAVE_FORMATS[name]()
+    if robots is None:
+        robots = isinstance(records, Sequence) and any(record.robot for record in records)
+    writer = SAVE_FORMATS[name](robots=robots)
     count = 0
     with atomic_output(path) as stream:
         for count in writer.write(records, stream):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import threading
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -113,6 +113,20 @@ def open_one(log: LogPaths, log_format: str | None, *, peek: bool = False) -> Lo
     return opened
 
 
+def robot_of(log: LogPaths, robots: Mapping[str, str]) -> str:
+    """The robot named for ``log``'s path as given, or for the folder it was found in; or ""."""
+    if not robots:
+        return ""
+    path = log.path.resolve()
+    for given, robot in robots.items():
+        place = Path(given).resolve()
+        if place.name == "metadata.yaml":
+            place = place.parent
+        if path == place or place in path.parents:
+            return robot
+    return ""
+
+
 def load_records(
     files: Sequence[LogFile], cancel: threading.Event | None = None, *, batch_size: int = 5_000
 ) -> Iterator[list[LogRecord]]:
@@ -132,9 +146,14 @@ def load_records(
 def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[LogRecord]]:
     """A file's batches, counted; an error a reader did not expect ends that file only."""
     count = 0
+    robot = file.robot
     try:
         for batch in file.batches(cancel):
             count += len(batch)
+            if robot:
+                for record in batch:
+                    if not record.robot:
+                        record.robot = robot
             yield batch
     except Exception as error:
         file.problems.add(reading_stopped(error))
@@ -160,8 +179,11 @@ class FileLoad:
         *,
         log_format: str | None = None,
         on_change: Callable[[], None] | None = None,
+        robots: Mapping[str, str] | None = None,
     ) -> None:
         self.paths = list(paths)
+        #: The robot of the files (and folders) given, by path as given (``--robot NAME``).
+        self.robots = dict(robots or {})
         self.sink = sink
         self.log_format = log_format
         self.on_change = on_change
@@ -240,6 +262,7 @@ class FileLoad:
                 if isinstance(result, Problem):
                     self.failures.append(result)
                 else:
+                    result.robot = robot_of(log, self.robots)
                     self.files.append(result)
                 self._changed()
             for batch in load_records(self.files, self.cancel_event):

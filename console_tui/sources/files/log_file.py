@@ -59,6 +59,8 @@ class LogFile(ABC):
         self.records = 0
         #: About when its records begin, when the loader looked (``first_stamp``).
         self.start_hint: int | None = None
+        #: The robot its records came from (``--robot NAME`` before it), for those that name none.
+        self.robot = ""
 
     @abstractmethod
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
