@@ -19,10 +19,12 @@ import sys
 import threading
 import time
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from typing import BinaryIO, cast
 
 from ..model.formats import FormatError
-from ..model.formats.print_format import PrintFormat, TemplateError, json_text
+from ..model.formats.print_format import ROBOT_PREFIX, PrintFormat, TemplateError, json_text
+from ..model.formats.rcutils_log import DEFAULT_TEMPLATE
 from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
 from ..model.rules.ruleset import Decoration, RuleSet
@@ -30,12 +32,14 @@ from ..model.rules.stream import StreamFilter
 from ..model.text import one_line
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
-from ..sources.live import LiveIntake, RosUnavailable, open_live
+from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_live
 from .arguments import (
     EXIT_NO_ROS,
+    add_fleet_arguments,
     add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
+    check_fleet_arguments,
     check_rule_arguments,
     command_parser,
 )
@@ -88,6 +92,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--topic", metavar="NAME", help="live: the log topic (default /rosout_agg if published)")
     add_ros_version_arguments(parser)
+    add_fleet_arguments(parser)
     parser.add_argument(
         "--query", metavar="QUERY", help="print only what this query shows, for example 'level>=warn -node:rviz*'"
     )
@@ -102,7 +107,9 @@ def build_parser() -> argparse.ArgumentParser:
         "'[{severity}] [{time}] [{name}]: {message}'); tokens below",
     )
     output.add_argument(
-        "--json", action="store_true", help="one JSON object a line: stamp_ns, level, node, msg, file, function, line"
+        "--json",
+        action="store_true",
+        help="one JSON object a line: stamp_ns, level, node, msg, file, function, line (and robot, of a fleet)",
     )
     colour = parser.add_mutually_exclusive_group()
     colour.add_argument(
@@ -172,6 +179,7 @@ def main(argv: Sequence[str]) -> int:
     args = parser.parse_args(list(argv))
     apply_watch_arguments(parser, args)
     check_rule_arguments(parser, args)
+    check_fleet_arguments(parser, args)
     if args.last:
         try:
             args.files = [*args.files, *(str(path) for path in latest_run())]
@@ -183,6 +191,8 @@ def main(argv: Sequence[str]) -> int:
     line: PrintFormat | None = None
     if not args.json:
         template = args.format if args.format is not None else (os.environ.get(FORMAT_VARIABLE) or None)
+        if args.robots and "{robot}" not in (template or ""):  # a fleet's lines say their robot
+            template = ROBOT_PREFIX + (template or DEFAULT_TEMPLATE)
         try:
             color = use_color(args.color, sys.stdout, os.environ)
             line = PrintFormat(template, utc=args.utc, color=color, strict=args.format is not None)
@@ -221,10 +231,12 @@ class _Run:
         self.filter.switched_off.clear()
 
     def main(self, args: argparse.Namespace) -> int:
-        live: LiveIntake | None = None
-        if args.live or not args.files:
+        lives: list[LiveIntake] = []
+        if args.robots:  # a fleet: an intake process per robot
+            lives = open_fleet(self.queue, args.robots, topic=args.topic)
+        elif args.live or not args.files:
             try:
-                live = open_live(self.queue, topic=args.topic, ros=args.ros)
+                lives = [open_live(self.queue, topic=args.topic, ros=args.ros)]
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
@@ -232,12 +244,12 @@ class _Run:
             followed: list[FollowedFile] = []
             if args.files:
                 followed = self.files(args)
-            if live is not None:
+            for live in lives:
                 live.source.start()
-            if live is not None or followed:
-                self.keep_reading(followed, live)
+            if lives or followed:
+                self.keep_reading(followed, lives)
         finally:
-            if live is not None:
+            for live in lives:
                 live.close()
         return self.status
 
@@ -267,8 +279,9 @@ class _Run:
         self._problems(files)
         return followed
 
-    def keep_reading(self, followed: list[FollowedFile], live: LiveIntake | None) -> None:
-        shown_problem, shown_lost, lost_told_at, slow_told = "", 0, 0.0, False
+    def keep_reading(self, followed: list[FollowedFile], lives: Sequence[LiveIntake]) -> None:
+        told = [_Told() for _ in lives]
+        slow_told = False
         try:
             while not self.stop.wait(POLL_S):
                 self.printer.check_reader()
@@ -277,19 +290,21 @@ class _Run:
                     batch.sort(key=_stamp)
                     self.print(batch)
                     self._problems(followed)
-                if live is not None:
+                if lives:
                     self.print(self.queue.drain())
+                for live, said in zip(lives, told, strict=True):
                     status = live.source.status
-                    if status.problem and status.problem != shown_problem:
-                        _complain(status.problem)
-                    shown_problem = status.problem
+                    robot = f"{status.robot}: " if status.robot else ""  # a fleet's robot
+                    if status.problem and status.problem != said.problem:
+                        _complain(robot + status.problem)
+                    said.problem = status.problem
                     if status.path_note and not slow_told:
                         _complain(status.slow_path_text())
                         slow_told = True
                     now = time.monotonic()
-                    if status.lost > shown_lost and now - lost_told_at >= LOSS_REPORT_S:
-                        _complain(status.loss_text())
-                        shown_lost, lost_told_at = status.lost, now
+                    if status.lost > said.lost and now - said.lost_at >= LOSS_REPORT_S:
+                        _complain(robot + status.loss_text())
+                        said.lost, said.lost_at = status.lost, now
         finally:
             for f in followed:
                 f.close()
@@ -300,6 +315,15 @@ class _Run:
             for problem in items[self._told.get(id(file), 0) :]:
                 _complain(str(problem))
             self._told[id(file)] = len(items)
+
+
+@dataclass
+class _Told:
+    """What was said of a live source on stderr: its problem, its losses and when."""
+
+    problem: str = ""
+    lost: int = 0
+    lost_at: float = 0.0
 
 
 def _stamp(record: LogRecord) -> int:

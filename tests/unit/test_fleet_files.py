@@ -84,3 +84,16 @@ def test_files_and_folders_after_robot_get_its_name_unless_they_name_their_own(t
     assert load.join(30)
     got = {record.msg: record.robot for record in queue.drain()}
     assert got == {"from the folder": "arm", "from the other": "", 'say "0"': "picker", 'say "1"': "cart"}
+
+
+def test_tail_prints_a_fleets_robot(tmp_path):
+    from console_tui.model.formats.print_format import ROBOT_PREFIX, PrintFormat
+    from console_tui.model.formats.rcutils_log import DEFAULT_TEMPLATE
+
+    record = LogRecord(1_000_000_000, 30, "talker", "hi", robot="picker\x1b[31m")
+    assert PrintFormat(ROBOT_PREFIX + DEFAULT_TEMPLATE).text(record).startswith("[picker␛[31m] [WARN] [")
+    assert PrintFormat("{robot}|${node}").text(record) == "picker␛[31m|talker"
+    from console_tui.commands.tail import build_parser as tail_parser
+
+    args = tail_parser().parse_args(["--domain", "3=a", "--master", "127.0.0.1:11311=b"])
+    assert [robot.name for robot in args.robots] == ["a", "b"]

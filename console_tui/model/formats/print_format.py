@@ -2,7 +2,8 @@
 
 A format may use the tokens of ROS 2's ``RCUTILS_CONSOLE_OUTPUT_FORMAT`` (``{severity}``,
 ``{name}``, ``{message}``, ``{time}``, ``{time_as_nanoseconds}``, ``{date_time_with_ms}``,
-``{file_name}``, ``{function_name}``, ``{line_number}``) and those of ROS 1's
+``{file_name}``, ``{function_name}``, ``{line_number}``; console-tui adds ``{robot}``, the
+robot of a fleet a message came from) and those of ROS 1's
 ``ROSCONSOLE_FORMAT`` (``${severity}``, ``${time}``, ``${time:STRFTIME}``, ``${walltime}``,
 ``${node}``, ``${logger}``, ``${message}``, ``${file}``, ``${function}``, ``${line}``), in
 any mix. As in rcutils, ``\\n``, ``\\t`` and the other escapes are decoded and any other
@@ -86,7 +87,10 @@ _FIELDS: dict[str, Field] = {
     "file_name": lambda r: one_line(r.file),
     "function_name": lambda r: one_line(r.function),
     "line_number": lambda r: str(r.line),
+    "robot": lambda r: one_line(r.robot),
 }
+#: A fleet's lines start with the robot (``console-tui tail --domain ...``).
+ROBOT_PREFIX = "[{robot}] "
 _ROS1_FIELDS = {
     "severity": "severity",
     "time": "time",
@@ -134,7 +138,7 @@ class PrintFormat:
                 else:
                     field = _FIELDS[_ROS1_FIELDS[name]]
                 end = ros1.end()
-            elif rcutils is not None and rcutils.group(1) in TOKENS:
+            elif rcutils is not None and (rcutils.group(1) in TOKENS or rcutils.group(1) == "robot"):
                 name = rcutils.group(1)
                 field = _date_time_with_ms(utc) if name == "date_time_with_ms" else _FIELDS[name]
                 end = rcutils.end()
