@@ -11,7 +11,7 @@ from typing import Any
 from .commands.arguments import EXIT_NO_ROS
 from .model.intake_queue import IntakeQueue
 from .model.store import LogStore
-from .sources.live import RosUnavailable, open_fleet, open_live
+from .sources.live import RosUnavailable, open_fleet, open_fleet_loggers, open_live
 from .sources.native_output import NativeOutput
 from .sources.ros_version import ROS1, choose_ros
 
@@ -98,11 +98,13 @@ def end_now(code: int) -> None:
 
 def _start_fleet(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
     """An intake process per robot of the fleet (``--domain``, ``--master``, ``--fleet``);
-    returns the logger control (None: levels are not set across a fleet yet)."""
+    returns the logger control of every robot's nodes (``FleetLoggerControl``)."""
     for live in open_fleet(queue, args.robots, topic=args.topic):
         cleanups.append(live.close)
         sources.append(live.source)
-    return None
+    control = open_fleet_loggers(args.robots, cleanups)
+    cleanups.append(control.close)  # before the runtimes go: puts temporary levels back
+    return control
 
 
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:

@@ -101,15 +101,23 @@ def format_remaining(seconds: float) -> str:
 
 @dataclass(frozen=True, order=True)
 class GraphNode:
-    """A node of the ROS graph, and whether it offers the logger services."""
+    """A node of the ROS graph, and whether it offers the logger services; in a fleet, the
+    ``robot`` whose graph it is in, which its ``fqn`` names first (``picker:/talker``): the
+    same node name on two robots is two nodes."""
 
     namespace: str
     name: str
     has_logger_services: bool = False
+    robot: str = ""
+
+    @property
+    def path(self) -> str:
+        """Its fully qualified name in its own graph: ``/ns/talker``."""
+        return f"{self.namespace.rstrip('/')}/{self.name}"
 
     @property
     def fqn(self) -> str:
-        return f"{self.namespace.rstrip('/')}/{self.name}"
+        return f"{self.robot}{ROBOT_SEPARATOR}{self.path}" if self.robot else self.path
 
     @property
     def logger_name(self) -> str:
@@ -120,6 +128,10 @@ class GraphNode:
         return self.name.startswith("_")
 
 
+#: Between a fleet's robot's name and its node's in a node's ``fqn``: ``picker:/talker``.
+ROBOT_SEPARATOR = ":"
+
+
 def node_loggers(nodes: Iterable[GraphNode]) -> dict[str, GraphNode]:
     """The nodes by logger name (the first one wins when two nodes share a name)."""
     found: dict[str, GraphNode] = {}
@@ -128,12 +140,14 @@ def node_loggers(nodes: Iterable[GraphNode]) -> dict[str, GraphNode]:
     return found
 
 
-def node_of_logger(logger: str, nodes: Iterable[GraphNode]) -> GraphNode | None:
-    """The node whose messages a record with this logger name is: for "open the pane on this row".
+def node_of_logger(logger: str, nodes: Iterable[GraphNode], robot: str = "") -> GraphNode | None:
+    """The node whose messages a record with this logger name is: for "open the pane on this row";
+    in a fleet, on the record's ``robot``.
 
     ROS 1 records carry their node's full name (``/ns/talker``) rather than a logger name."""
+    nodes = [node for node in nodes if node.robot == robot] if robot else list(nodes)
     if logger.startswith("/"):
-        return next((node for node in nodes if node.fqn == logger), None)
+        return next((node for node in nodes if node.path == logger), None)
     by_logger = node_loggers(nodes)
     owner = owner_of(logger, by_logger)
     return None if owner is None else by_logger[owner]

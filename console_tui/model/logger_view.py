@@ -96,11 +96,13 @@ class LoggerView:
             self.notice = ""
         return changed
 
-    def node_logging_as(self, logger: str) -> GraphNode | None:
-        """The node whose messages carry this logger name; None after saying there is none."""
-        node = node_of_logger(logger, self.nodes)
+    def node_logging_as(self, logger: str, robot: str = "") -> GraphNode | None:
+        """The node whose messages carry this logger name (on ``robot``, in a fleet); None after
+        saying there is none."""
+        node = node_of_logger(logger, self.nodes, robot)
         if node is None:
-            self.say(f"No node in the ROS graph logs as {logger!r} (it may have exited)", error=True)
+            where = f" of {robot}" if robot else ""
+            self.say(f"No node in the ROS graph{where} logs as {logger!r} (it may have exited)", error=True)
         return node
 
     def loggers_of(self, node: GraphNode) -> NodeLoggers:

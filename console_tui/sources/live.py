@@ -33,7 +33,7 @@ HOW_TO_USE_ROS1 = (
     "      console-tui --ros1"
 )
 
-__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_live", "start_ros2"]
+__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_fleet_loggers", "open_live", "start_ros2"]
 
 
 @dataclass
@@ -118,3 +118,35 @@ def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None
         )
         for robot in robots
     ]
+
+
+def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], object]]) -> Any:
+    """The logger control of every robot's nodes (``FleetLoggerControl``, not started): for a
+    ROS 2 robot an rclpy context of this process on its domain, for a ROS 1 robot its master.
+    What to shut down after the control is closed goes into ``cleanups``. ``RosUnavailable``
+    when a ROS 2 robot's context cannot start."""
+    from .fleet_loggers import FleetLoggerControl
+    from .logger_control import LoggerControl
+
+    controls: dict[str, LoggerControl] = {}
+    for robot in robots:
+        if robot.ros == ROS2:
+            from .ros2.logger_control import Ros2LoggerControl
+            from .ros2.runtime import RosRuntime
+
+            try:
+                runtime = RosRuntime(domain_id=robot.domain)
+            except RosUnavailable:
+                raise
+            except Exception as error:
+                raise RosUnavailable(
+                    f"ROS 2 could not start for {robot.name}: {type(error).__name__}: {error}"
+                ) from None
+            cleanups.append(runtime.shutdown)
+            controls[robot.name] = Ros2LoggerControl(runtime)
+        else:
+            from .ros1.environment import Ros1Environment
+            from .ros1.logger_control import Ros1LoggerControl
+
+            controls[robot.name] = Ros1LoggerControl(Ros1Environment.from_environ(robot.environment()))
+    return FleetLoggerControl(controls)

@@ -39,7 +39,8 @@ class PaneActions(AppPart):
         if seq is None or seq not in self.store:
             self.logger_pane.open()
         else:
-            self.logger_pane.open_for_logger(self.store.get(seq).node)
+            record = self.store.get(seq)
+            self.logger_pane.open_for_logger(record.node, record.robot)
 
     def on_logger_pane_temporary_requested(self, message: LoggerPane.TemporaryRequested) -> None:
         """Ask which level and for how long, then have the pane set it."""

@@ -74,7 +74,8 @@ class RosRuntime:
     ``shutdown`` is idempotent and safe to call from any thread.
     """
 
-    def __init__(self, args: list[str] | None = None) -> None:
+    def __init__(self, args: list[str] | None = None, *, domain_id: int | None = None) -> None:
+        """``domain_id``: the DDS domain of this context (a fleet's robot), else ``ROS_DOMAIN_ID``'s."""
         check_domain_id(os.environ)
         # Before the first participant of the process: Fast DDS reads its profiles once.
         os.environ.update(reader_profile_environment(os.environ))
@@ -84,7 +85,7 @@ class RosRuntime:
 
         self._rclpy = rclpy
         self.context = Context()
-        rclpy.init(args=args, context=self.context, signal_handler_options=SignalHandlerOptions.NO)
+        rclpy.init(args=args, context=self.context, domain_id=domain_id, signal_handler_options=SignalHandlerOptions.NO)
         self._nodes: list[Any] = []
         self._lock = threading.Lock()
         self._closed = False

@@ -133,8 +133,8 @@ class LoggerPane(RightPane):
         self.requests = LoggerRequests(control, self._from_control_thread, seen_loggers=seen_loggers)
         self.view = self.requests.view
         self._ticker: Timer | None = None
-        #: A row's logger asked for (``L``) before the graph was known.
-        self._pending_logger: str | None = None
+        #: A row's logger and robot asked for (``L``) before the graph was known.
+        self._pending_logger: tuple[str, str] | None = None
         self.node_list = GraphNodeList(id="logger-nodes", compact=True)
         self.logger_list = LoggerList(id="logger-levels", compact=True)
         self.name_input = Input(placeholder="add a logger: type its name, Enter", id="logger-name", compact=True)
@@ -203,7 +203,7 @@ class LoggerPane(RightPane):
         self.requests.set_nodes(nodes, checking)
         self._render_nodes()
         pending, self._pending_logger = self._pending_logger, None
-        if pending is not None and self.is_open and self.view.nodes and self.open_for_logger(pending):
+        if pending is not None and self.is_open and self.view.nodes and self.open_for_logger(*pending):
             pass  # the row's node, asked for before the graph came
         elif not had_selection and self.is_open and self.view.nodes:
             self.node_list.highlighted = 0  # the first nodes since the pane opened: show one
@@ -239,18 +239,19 @@ class LoggerPane(RightPane):
         self._render_notice()
         self.app.notify(text, title="Logger levels", severity="error", timeout=8, markup=False)
 
-    def open_for_logger(self, logger: str) -> bool:
-        """Open on the node whose messages carry this logger name (a table row's node)."""
+    def open_for_logger(self, logger: str, robot: str = "") -> bool:
+        """Open on the node whose messages carry this logger name (a table row's node, on the
+        row's robot in a fleet)."""
         self.open(focus=False)
-        node = self.view.node_logging_as(logger)
+        node = self.view.node_logging_as(logger, robot)
         if node is None:
             # No graph yet (a ROS 1 master is asked only once the pane is open): when it comes.
-            self._pending_logger = logger if not self.view.nodes else None
+            self._pending_logger = (logger, robot) if not self.view.nodes else None
             self._render_notice()  # says so
             self.node_list.focus()
             return False
         self._pending_logger = None
-        self.select_node(node.fqn, None if logger == node.fqn else logger)
+        self.select_node(node.fqn, None if logger == node.path else logger)
         self.logger_list.focus()
         return True
 

@@ -1,0 +1,126 @@
+"""The logger levels pane across a fleet, end to end: two ROS 2 domains, a talker of the same
+name on each; DEBUG set in the pane on one robot's talker reaches that robot's messages and
+never the other's."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+from conftest import next_domain_id
+
+from console_tui.model.intake_queue import IntakeQueue
+from console_tui.sources.live import open_fleet, open_fleet_loggers
+from console_tui.ui.app import ConsoleApp
+
+from support.fleet import ROS2_VALUES, LoopbackFleet
+from support.rosproc import ros_available
+from support.ui import until
+
+pytestmark = pytest.mark.ros2
+
+DEADLINE_S = 120.0
+
+
+@pytest.fixture
+def two_domains(monkeypatch):
+    if not ros_available():
+        pytest.skip("rclpy is not installed (pip install -e '.[ros]')")
+    for key, value in ROS2_VALUES.items():
+        monkeypatch.setenv(key, value)
+    monkeypatch.delenv("ROS_LOCALHOST_ONLY", raising=False)
+    domains: list[int] = []
+    while len(domains) < 2 and len(domains) < 64:
+        domain = next_domain_id()
+        if domain not in domains:
+            domains.append(domain)
+    made = LoopbackFleet()
+    try:
+        for name, domain in zip(("left", "right"), domains, strict=True):
+            made.add_domain(name, domain, "talker")
+        yield made
+    finally:
+        made.stop()
+
+
+def lines(option_list) -> list[str]:
+    return [option_list.render_line(y).text.rstrip() for y in range(option_list.option_count)]
+
+
+def debug_ticks(app: ConsoleApp, robot: str, after: int) -> list:
+    return [r for r in app.store if r.robot == robot and r.level == 10 and r.seq > after]
+
+
+async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_domains):
+    for member in two_domains.robots:
+        member.node.send({"cmd": "periodic", "period": 0.2})
+    robots = [member.robot for member in two_domains.robots]
+    queue = IntakeQueue()
+    lives = open_fleet(queue, robots)
+    cleanups: list = []
+    control = open_fleet_loggers(robots, cleanups)
+    app = ConsoleApp(
+        queue=queue, sources=[live.source for live in lives], utc=True, robots=robots, logger_control=control
+    )
+    try:
+        async with app.run_test(size=(160, 40)) as pilot:
+            await until(
+                pilot,
+                lambda: {r.robot for r in app.store if r.msg.startswith("tick")} == {"left", "right"},
+                timeout=DEADLINE_S,
+                what="both robots' ticks",
+            )
+            assert not any(r.level == 10 for r in app.store), "DEBUG is off by default"
+            pane = app.logger_pane
+            await pilot.press("l")
+            await until(
+                pilot,
+                lambda: {"left:/talker", "right:/talker"} <= {n.fqn for n in pane.nodes},
+                timeout=DEADLINE_S,
+                what="both robots' talkers in the pane",
+            )
+            assert any("left:/talker" in line for line in lines(pane.node_list))
+            assert any("right:/talker" in line for line in lines(pane.node_list))
+            pane.select_node("left:/talker", "talker")
+            pane.logger_list.focus()
+            await until(
+                pilot,
+                lambda: any(line.split()[:1] == ["talker"] and "INFO" in line for line in lines(pane.logger_list)),
+                timeout=DEADLINE_S,
+                what="the left talker's levels read",
+            )
+            marker = app.store.end_seq
+            await pilot.press("d")
+            await until(
+                pilot,
+                lambda: any(
+                    line.split()[:1] == ["talker"] and line.endswith("DEBUG") for line in lines(pane.logger_list)
+                ),
+                timeout=DEADLINE_S,
+                what="DEBUG shown",
+            )
+            await until(
+                pilot, lambda: len(debug_ticks(app, "left", marker)) >= 3, timeout=DEADLINE_S, what="DEBUG ticks"
+            )
+            # The other robot's talker of the same name went on at INFO: later ticks, none DEBUG.
+            after = app.store.end_seq
+            await until(
+                pilot,
+                lambda: len([r for r in app.store if r.robot == "right" and r.seq > after]) >= 3,
+                timeout=DEADLINE_S,
+                what="more ticks from the right",
+            )
+            assert debug_ticks(app, "right", 0) == []
+            right = two_domains.robots[1].node
+            await asyncio.to_thread(right.send, {"cmd": "log", "level": "debug", "msg": "right debug"})
+            await asyncio.to_thread(right.expect_next, "logged", 60)
+            await asyncio.to_thread(right.send, {"cmd": "log", "level": "info", "msg": "right marker"})
+            await asyncio.to_thread(right.expect_next, "logged", 60)
+            await until(pilot, lambda: any(r.msg == "right marker" for r in app.store), timeout=DEADLINE_S)
+            assert not any(r.msg == "right debug" for r in app.store)  # logged before the marker, in order
+    finally:
+        for live in lives:
+            live.close()
+        control.close()
+        for cleanup in reversed(cleanups):
+            cleanup()
