@@ -60,7 +60,8 @@ def main(argv: Sequence[str], runtime: Any = None) -> int:
                 return _list(control, args)
             if args.command == "set" and args.every_node:
                 return _set_all(control, level, args.wait)
-            node = _find_node(control, args.node, args.wait)
+            query = f"{args.robot}:{args.node}" if getattr(args, "robot", None) else args.node
+            node = _find_node(control, query, args.wait)
             if args.command == "get":
                 return _get(control, node, args)
             return _set(control, node, logger, level, args.duration)
@@ -117,6 +118,10 @@ def _set_request(words: list[str], every_node: bool, duration: float | None) -> 
 def _ros_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
     from ..sources.ros_version import ROS1, choose_ros
 
+    if getattr(args, "robots", None):
+        with _fleet_control(args) as fleet:
+            yield fleet
+        return
     if runtime is None and choose_ros(getattr(args, "ros", None)).version == ROS1:
         from ..sources.ros1.logger_control import Ros1LoggerControl
 
@@ -131,6 +136,38 @@ def _ros_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
         return
     with _ros2_control(args, runtime) as ros2:
         yield ros2
+
+
+@contextmanager
+def _fleet_control(args: argparse.Namespace) -> Iterator[Any]:
+    """Every robot's nodes (``--domain``, ``--master``, ``--fleet``), named ``ROBOT:/node``."""
+    from ..sources.fleet import FleetError, check_fleet
+    from ..sources.live import RosUnavailable, open_fleet_loggers
+
+    try:
+        check_fleet(args.robots)
+    except FleetError as error:
+        raise CommandError(str(error), EXIT_USAGE) from None
+    if getattr(args, "robot", None) and args.robot not in {robot.name for robot in args.robots}:
+        raise CommandError(f"--robot {args.robot}: no such robot in the fleet", EXIT_USAGE)
+    cleanups: list[Any] = []
+    options = {
+        "call_timeout": getattr(args, "timeout", DEFAULT_TIMEOUT_S),
+        "include_hidden": getattr(args, "all", False),
+    }
+    try:
+        control = open_fleet_loggers(args.robots, cleanups, **options)
+    except RosUnavailable as error:
+        for cleanup in reversed(cleanups):
+            cleanup()
+        raise CommandError(str(error), EXIT_NO_ROS) from None
+    control.start()
+    try:
+        yield control
+    finally:
+        control.close()
+        for cleanup in reversed(cleanups):
+            cleanup()
 
 
 @contextmanager

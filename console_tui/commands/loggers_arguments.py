@@ -9,7 +9,7 @@ import textwrap
 from ..model.levels import Severity, parse_severity
 from ..model.logger_levels import DEFAULT_LOGGER
 from ..sources.logger_graph import GRAPH_MIN_S, GRAPH_QUIET_S
-from .arguments import add_ros_version_arguments, add_subcommand, command_parser
+from .arguments import add_fleet_arguments, add_ros_version_arguments, add_subcommand, command_parser
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -61,6 +61,13 @@ def build_parser() -> argparse.ArgumentParser:
             help=wait_help or f"how long to wait for the node to be discovered (default {wait:g})",
         )
         add_ros_version_arguments(sub)
+        add_fleet_arguments(sub)
+        if name != "list":
+            sub.add_argument(
+                "--robot",
+                metavar="NAME",
+                help="in a fleet: the robot NODE is on (or write NODE as NAME:/node)",
+            )
         return sub
 
     listing = add(

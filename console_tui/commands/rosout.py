@@ -81,6 +81,13 @@ documentation: {DOCS_URL}headless/#the-rosout-node-console-tui-rosout""",
         help=f"rotated files kept: rosout.log.1 (newest) .. rosout.log.N (default {DEFAULT_KEEP})",
     )
     parser.add_argument(
+        "--domain",
+        metavar="N",
+        type=_domain,
+        help="the ROS 2 domain to run on, as a fleet's robot is given (default: $ROS_DOMAIN_ID's); "
+        "one rosout node a domain",
+    )
+    parser.add_argument(
         "--name", default=DEFAULT_NODE_NAME, metavar="NAME", help=f"the node's name (default {DEFAULT_NODE_NAME})"
     )
     parser.add_argument(
@@ -91,6 +98,18 @@ documentation: {DOCS_URL}headless/#the-rosout-node-console-tui-rosout""",
         help=f"log the counts on the node's own /rosout this often (default {DEFAULT_REPORT_S:g}; 0: never)",
     )
     return parser
+
+
+def _domain(text: str) -> int:
+    """``--domain N`` (``N=NAME`` too, as for the console: the name is not used here)."""
+    from ..sources.fleet import FleetError, parse_domain
+
+    try:
+        domain = parse_domain(text).domain
+    except FleetError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    assert domain is not None
+    return domain
 
 
 def run_directory(log_dir: Path, now: float | None = None, pid: int | None = None) -> Path:
@@ -107,7 +126,7 @@ def main(argv: Sequence[str]) -> int:
     if args.max_size < 1024:
         parser.error("--max-size must be at least 1K")
     try:
-        runtime = start_ros2()
+        runtime = start_ros2(args.domain)
     except RosUnavailable as error:
         print(f"console-tui rosout: {error}", file=sys.stderr)
         return EXIT_NO_ROS

@@ -60,13 +60,13 @@ class LiveIntake:
                 pass
 
 
-def start_ros2() -> Any:
-    """An rclpy context of our own (``RosRuntime``); ``RosUnavailable`` with advice if ROS 2
-    cannot start."""
+def start_ros2(domain_id: int | None = None) -> Any:
+    """An rclpy context of our own (``RosRuntime``), on ``domain_id`` (default ``ROS_DOMAIN_ID``'s);
+    ``RosUnavailable`` with advice if ROS 2 cannot start."""
     from .ros2.runtime import RosRuntime
 
     try:
-        return RosRuntime()
+        return RosRuntime(domain_id=domain_id)
     except RosUnavailable:
         raise
     except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
@@ -120,11 +120,12 @@ def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None
     ]
 
 
-def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], object]]) -> Any:
+def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], object]], **options: Any) -> Any:
     """The logger control of every robot's nodes (``FleetLoggerControl``, not started): for a
-    ROS 2 robot an rclpy context of this process on its domain, for a ROS 1 robot its master.
-    What to shut down after the control is closed goes into ``cleanups``. ``RosUnavailable``
-    when a ROS 2 robot's context cannot start."""
+    ROS 2 robot an rclpy context of this process on its domain, for a ROS 1 robot its master;
+    ``options`` go to each robot's control (``call_timeout``, ``include_hidden``). What to shut
+    down after the control is closed goes into ``cleanups``. ``RosUnavailable`` when a ROS 2
+    robot's context cannot start."""
     from .fleet_loggers import FleetLoggerControl
     from .logger_control import LoggerControl
 
@@ -132,21 +133,13 @@ def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], obje
     for robot in robots:
         if robot.ros == ROS2:
             from .ros2.logger_control import Ros2LoggerControl
-            from .ros2.runtime import RosRuntime
 
-            try:
-                runtime = RosRuntime(domain_id=robot.domain)
-            except RosUnavailable:
-                raise
-            except Exception as error:
-                raise RosUnavailable(
-                    f"ROS 2 could not start for {robot.name}: {type(error).__name__}: {error}"
-                ) from None
+            runtime = start_ros2(robot.domain)
             cleanups.append(runtime.shutdown)
-            controls[robot.name] = Ros2LoggerControl(runtime)
+            controls[robot.name] = Ros2LoggerControl(runtime, **options)
         else:
             from .ros1.environment import Ros1Environment
             from .ros1.logger_control import Ros1LoggerControl
 
-            controls[robot.name] = Ros1LoggerControl(Ros1Environment.from_environ(robot.environment()))
+            controls[robot.name] = Ros1LoggerControl(Ros1Environment.from_environ(robot.environment()), **options)
     return FleetLoggerControl(controls)

@@ -124,3 +124,21 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
         control.close()
         for cleanup in reversed(cleanups):
             cleanup()
+
+
+def test_loggers_command_across_a_fleet(two_domains, capsys):
+    from console_tui.commands import loggers
+
+    fleet = [f"--domain={member.robot.domain}={member.robot.name}" for member in two_domains.robots]
+    assert loggers.main(["list", "--wait", "20", *fleet]) == 0
+    listed = capsys.readouterr().out
+    assert "left:/talker" in listed and "right:/talker" in listed
+    assert loggers.main(["get", "--wait", "20", *fleet, "/talker"]) == 2  # on both robots: which?
+    assert "left:/talker, right:/talker" in capsys.readouterr().err
+    assert loggers.main(["set", "--wait", "20", *fleet, "left:/talker", "talker", "debug"]) == 0
+    assert loggers.main(["get", "--wait", "20", *fleet, "--robot", "left", "/talker", "talker"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1].split()[:2] == ["talker", "DEBUG"]
+    assert loggers.main(["get", "--wait", "20", *fleet, "--robot", "right", "/talker", "talker"]) == 0
+    assert capsys.readouterr().out.splitlines()[-1].split()[:2] == ["talker", "inherited"]
+    assert loggers.main(["get", *fleet, "--robot", "nobody", "/talker"]) == 2
+    assert "no such robot" in capsys.readouterr().err

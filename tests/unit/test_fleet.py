@@ -169,3 +169,13 @@ def test_each_intake_process_names_its_robot_on_records_and_status():
     assert sorted({r.robot for r in records}) == ["cart", "picker"]
     assert sum(r.robot == "picker" for r in records) == 200
     assert [s.status.robot for s in sources] == ["picker", "cart"]
+
+
+def test_rosout_runs_on_the_domain_given(capsys):
+    from console_tui.commands.rosout import build_parser as rosout_parser
+
+    assert rosout_parser().parse_args(["--domain", "7=picker"]).domain == 7
+    assert rosout_parser().parse_args([]).domain is None
+    with pytest.raises(SystemExit):
+        rosout_parser().parse_args(["--domain", "233"])
+    assert "from 0 to 232" in capsys.readouterr().err
