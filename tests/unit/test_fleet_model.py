@@ -14,7 +14,7 @@ from console_tui.model.rules.rulesfile import load_rules, save_rules
 from console_tui.model.store import LogStore
 from console_tui.model.view import LogView
 from console_tui.sources.status import SourceStatus
-from console_tui.ui.widgets.status_bar import StatusFacts, render_status
+from console_tui.ui.widgets.status_bar import StatusFacts, empty_hint, render_status
 
 
 def fleet_store(*robots: str, per_robot: int = 3) -> LogStore:
@@ -100,3 +100,14 @@ def test_the_status_line_says_each_robots_state_in_a_mark():
     assert "/rosout" not in text  # the summary says the rest
     one = render_status(StatusFacts(sources=[robots[0]])).plain
     assert "/rosout 2 pubs" in one and "picker✓" not in one
+
+
+def test_an_empty_table_says_each_robots_state():
+    robots = [
+        SourceStatus(topic="/rosout", publishers=1, running=True, robot="picker"),
+        SourceStatus(path="starting", robot="cart"),
+        SourceStatus(problem="master gone", robot="arm"),
+    ]
+    assert empty_hint(StatusFacts(sources=robots)) == (
+        "waiting for the robots' messages: picker receiving, cart starting, arm problem…"
+    )

@@ -130,13 +130,27 @@ class SummaryScreen(ModalScreen[int | None]):
     def _options(self) -> list[Option]:
         store, stats = self.store, self.stats
         name_width, count_width = self._widths()
-        options: list[Option] = [*self._source_options(), _heading("Severity       count   first")]
-        counts = store.counts
         #: The severities drawn as everywhere else (the theme's, and by weight without colour).
         styles = [
             self.get_component_rich_style(f"summary--severity-{severity_level(level).style}", partial=True)
             for level in MESSAGE_SEVERITIES
         ]
+        nodes = stats.nodes()
+        # A fleet: each robot's counts first, where they are seen without scrolling.
+        robots = robot_counts(nodes) if any(entry.robot for entry in nodes) else {}
+        options: list[Option] = []
+        if robots:
+            options.append(_heading(header_of("Robots", name_width, count_width)))
+        for robot, numbers in robots.items():
+            line = Text(f"  {_name(robot or '(no robot)', name_width):<{name_width}}")
+            for slot, number in enumerate(numbers):
+                line.append(f"{number:>{count_width},}", style=styles[slot] if number else "dim")
+            line.append(f"{sum(numbers):>{count_width + 1},}", style="bold")
+            options.append(self._target_option(line, None))
+        if robots:
+            options.append(_heading(""))
+        options += [*self._source_options(), _heading("Severity       count   first")]
+        counts = store.counts
         for slot, severity in enumerate(MESSAGE_SEVERITIES):
             number = counts.get(int(severity), 0)
             first = stats.first_of(int(severity)) if number else None
@@ -146,19 +160,9 @@ class SummaryScreen(ModalScreen[int | None]):
                 record = store.get(first)
                 line.append(f"   {clock_text(record.stamp_ns, utc=self.utc)}")
                 if severity >= 40:
-                    line.append(f"  {one_line(record.node, 60)}: {one_line(record.msg, 200)}")
+                    who = f"{record.robot}: {record.node}" if record.robot else record.node
+                    line.append(f"  {one_line(who, 60)}: {one_line(record.msg, 200)}")
             options.append(self._target_option(line, f"seq:{first}" if first is not None else None))
-        nodes = stats.nodes()
-        robots = robot_counts(nodes) if any(entry.robot for entry in nodes) else {}
-        if robots:
-            options.append(_heading(""))
-            options.append(_heading(header_of("Robots", name_width, count_width)))
-        for robot, numbers in robots.items():
-            line = Text(f"  {_name(robot or '(no robot)', name_width):<{name_width}}")
-            for slot, number in enumerate(numbers):
-                line.append(f"{number:>{count_width},}", style=styles[slot] if number else "dim")
-            line.append(f"{sum(numbers):>{count_width + 1},}", style="bold")
-            options.append(self._target_option(line, None))
         busiest = stats.busiest(5)
         options.append(_heading(""))
         options.append(_heading(f"Busiest nodes, last {stats.window_seconds()} s"))
@@ -180,7 +184,8 @@ class SummaryScreen(ModalScreen[int | None]):
 
     def _source_options(self) -> list[Option]:
         """What each live source reads, how, and what it lost (none: nothing), each followed
-        by an empty line; first in the list, where it is seen without scrolling."""
+        by an empty line; first in the list (after a fleet's counts per robot), where it is seen
+        without scrolling."""
         options: list[Option] = []
         for status in self.sources:
             if not (status.topic or status.origin):  # no reader of a topic (the demo's nodes)
@@ -189,27 +194,39 @@ class SummaryScreen(ModalScreen[int | None]):
             if status.robot:
                 where = f"robot {status.robot} ({status.state}): {where}"
             options.append(_heading(f"Source: {one_line(where, 200)}"))
-            lines = [
-                status.origin,
-                f"taken by {status.path_text()}" if status.path else "",
-                (
-                    f"the take loop in C: {status.path_note}"
-                    if status.path == "c+cdr"
-                    else f"the take loop in C is not used: {status.path_note}"
-                )
-                if status.path_note
-                else "",
-                f"lost: {status.loss_text() or 'none known'}",
-                f"{status.decoded_by_rclpy:,} read by rclpy (the direct decoder refused them)"
-                if status.decoded_by_rclpy
-                else "",
-                status.problem,
-            ]
+            if status.robot:  # a fleet's: one line each
+                taken = f"taken by {status.path}" if status.path else ""
+                lines = [
+                    " · ".join(part for part in (status.origin, taken, f"lost: {status.loss_text() or 'none'}") if part)
+                ]
+                lines.append(status.problem)
+            else:
+                lines = self._source_lines(status)
             for line in lines:
                 if line:
                     options.append(self._target_option(Text(f"  {one_line(line, 400)}"), None))
             options.append(_heading(""))
         return options
+
+    @staticmethod
+    def _source_lines(status: SourceStatus) -> list[str]:
+        """What a single source reads, how, what it lost, its problem: a line each."""
+        return [
+            status.origin,
+            f"taken by {status.path_text()}" if status.path else "",
+            (
+                f"the take loop in C: {status.path_note}"
+                if status.path == "c+cdr"
+                else f"the take loop in C is not used: {status.path_note}"
+            )
+            if status.path_note
+            else "",
+            f"lost: {status.loss_text() or 'none known'}",
+            f"{status.decoded_by_rclpy:,} read by rclpy (the direct decoder refused them)"
+            if status.decoded_by_rclpy
+            else "",
+            status.problem,
+        ]
 
     def _target_option(self, line: Text, target: str | None) -> Option:
         """A line that jumps to ``target`` (``seq:N``, ``node:ID``); none: a line only. The

@@ -131,6 +131,10 @@ def empty_hint(facts: StatusFacts, filtering: bool = False) -> str:
         if filtering:
             return "filtering…"
         return f"nothing matches: {plural(facts.total, 'message')} hidden by rules"
+    robots = [status for status in facts.sources if status.robot]
+    if len(robots) > 1:  # a fleet: each robot's state in a word
+        states = ", ".join(f"{one_line(status.robot, 32)} {status.state}" for status in robots)
+        return f"waiting for the robots' messages: {states}…"
     for status in facts.sources:
         where = f" on {one_line(status.origin, 120)}" if status.origin else ""
         # No topic yet: the source takes /rosout_agg when something publishes it, else /rosout.
