@@ -34,6 +34,13 @@ uses ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST and a ROS_DOMAIN_ID of its own.
     python benchmarks/intake.py --sustained 600      # the app: 0 lost at 20k/s for 10 minutes?
     python benchmarks/intake.py --sustained 600 --publishers 4 --rates 10000
     python benchmarks/intake.py --publishers 1 --rates max --duration 3
+
+A fleet (``--domains N``): the publishers in each of N ROS 2 domains (``--domain`` and the
+next ones), ``--publishers`` in each, and the console reading all of them as ``console-tui
+--domain ...`` does, an intake process per domain (kinds ``intake`` and ``app`` only); the
+rates are the total over every domain. The issue's row, four domains at 5,000/s each:
+
+    python benchmarks/intake.py --sustained 60 --domains 4
 """
 
 from __future__ import annotations
@@ -224,9 +231,50 @@ def serve_commands(count, publishers, extra=dict) -> None:
             return
 
 
-def console_source(kind: str, queue: Any) -> tuple[Any, Any]:
+class FleetSources:
+    """A fleet's intake processes, one a domain, counted as one source by this benchmark."""
+
+    def __init__(self, queue: Any, domains: int, first_domain: int) -> None:
+        from console_tui.sources.fleet import Robot
+        from console_tui.sources.live import open_fleet
+        from console_tui.sources.ros_version import ROS2
+
+        self.robots = [Robot(f"d{first_domain + i}", ROS2, domain=first_domain + i) for i in range(domains)]
+        self.sources = [live.source for live in open_fleet(queue, self.robots, topic=TOPIC)]
+
+    def start(self) -> None:
+        for source in self.sources:
+            source.start()
+
+    def stop(self) -> None:
+        for source in self.sources:
+            source.stop()
+
+    @property
+    def pids(self) -> list[int]:
+        return [source.pid for source in self.sources if source.pid]
+
+    @property
+    def status(self) -> Any:
+        from dataclasses import replace
+
+        statuses = [source.status for source in self.sources]
+        # What the one queue dropped is in every source's lost_queue: counted once.
+        lost = sum(s.lost - s.lost_queue for s in statuses) + max(s.lost_queue for s in statuses)
+        return replace(
+            statuses[0],
+            publishers=sum(s.publishers for s in statuses),
+            lost=lost,
+            path=f"{statuses[0].path} x{len(statuses)} domains",
+        )
+
+
+def console_source(kind: str, queue: Any, domains: int = 1, first_domain: int = 0) -> tuple[Any, Any]:
     """The console's intake for ``kind``, feeding ``queue``: the source, and the rclpy runtime
-    it runs on in this process (None when it runs in the intake process)."""
+    it runs on in this process (None when it runs in the intake process); with ``domains``
+    over 1, a fleet's (``FleetSources``)."""
+    if domains > 1:
+        return FleetSources(queue, domains, first_domain), None
     if kind in PROCESS_KINDS:
         from console_tui.sources.intake_process.parent import ProcessSource
 
@@ -242,19 +290,24 @@ def console_source(kind: str, queue: Any) -> tuple[Any, Any]:
     return live_source.LiveLogSource(runtime, queue, TOPIC), runtime
 
 
-def cpu_seconds(source: Any) -> float:
-    """CPU used by this process and, if the source has one, its intake process."""
+def intake_pids(source: Any) -> list[int]:
+    """The source's intake processes (a fleet has one a domain; a thread's source none)."""
     pid = getattr(source, "pid", None)
-    return time.process_time() + (process_cpu(pid) if pid else 0.0)
+    return getattr(source, "pids", None) or ([pid] if pid else [])
 
 
-def run_intake_subscriber(kind: str) -> None:
+def cpu_seconds(source: Any) -> float:
+    """CPU used by this process and, if the source has them, its intake processes."""
+    return time.process_time() + sum(process_cpu(each) for each in intake_pids(source))
+
+
+def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.model.store import LogStore
 
     queue = IntakeQueue()
     store = LogStore()
-    source, runtime = console_source(kind, queue)
+    source, runtime = console_source(kind, queue, domains, first_domain)
     stop = threading.Event()
 
     def app_drain() -> None:  # what the app's timer does
@@ -281,7 +334,7 @@ def run_intake_subscriber(kind: str) -> None:
     say(event="stopped", seconds=time.monotonic() - began)
 
 
-def run_app_subscriber(kind: str) -> None:
+def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
     """The whole app, headless at 160x48 and drawing, with the console's intake (``app``: in
     its process, as ``console-tui`` runs it; ``app-thread``: in a thread of the app's process,
     the design before) and the logger levels' rclpy context, as ``console-tui`` has them.
@@ -298,10 +351,18 @@ def run_app_subscriber(kind: str) -> None:
     from console_tui.ui.app import ConsoleApp
 
     queue = IntakeQueue()
-    source, runtime = console_source(kind, queue)
-    runtime = runtime or RosRuntime()
-    control = Ros2LoggerControl(runtime)
-    app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
+    source, runtime = console_source(kind, queue, domains, first_domain)
+    cleanups: list[Any] = []
+    if isinstance(source, FleetSources):  # as console-tui --domain ... has it
+        from console_tui.sources.live import open_fleet_loggers
+
+        control: Any = open_fleet_loggers(source.robots, cleanups)
+        app = ConsoleApp(queue=queue, sources=source.sources, logger_control=control, robots=source.robots)
+    else:
+        runtime = runtime or RosRuntime()
+        cleanups.append(runtime.shutdown)
+        control = Ros2LoggerControl(runtime)
+        app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
     # Rows for the keys to move over before anything arrives (not counted as received).
     app.store.extend([synthetic_record(number) for number in range(APP_PREFILL)])
     quit_event = threading.Event()
@@ -309,10 +370,10 @@ def run_app_subscriber(kind: str) -> None:
 
     def stats() -> dict[str, Any]:
         stalls, keys = state["stalls"].stalls, state["keys"].latencies
-        pid = getattr(source, "pid", None)
+        pids = intake_pids(source)
         return {
             "lost_reported": source.status.lost,
-            "path": source.status.path + (" (process)" if pid else " (thread)"),
+            "path": source.status.path + (" (process)" if pids else " (thread)"),
             "stored": app.store.end_seq,
             "cpu": cpu_seconds(source),
             "stall_max": max(stalls, default=0.0) * 1000,
@@ -321,7 +382,7 @@ def run_app_subscriber(kind: str) -> None:
             "key_max": max(keys, default=0.0) * 1000,
             "keys": len(keys),
             "rss_app": process_rss_mb(os.getpid()),
-            "rss_intake": process_rss_mb(pid) if pid else 0.0,
+            "rss_intake": sum(process_rss_mb(each) for each in pids),
             "gc_longest": app.collection_policy.longest * 1000,
             "gc_longest_cpu": app.collection_policy.longest_cpu * 1000,
         }
@@ -369,7 +430,8 @@ def run_app_subscriber(kind: str) -> None:
     asyncio.run(main())
     began = time.monotonic()
     control.close()
-    runtime.shutdown()
+    for cleanup in reversed(cleanups):
+        cleanup()
     say(event="stopped", seconds=time.monotonic() - state["quit_at"], app_seconds=began - state["quit_at"])
 
 
@@ -565,11 +627,20 @@ def settle(subscriber: Child, quiet: float = 0.6, limit: float = 20.0) -> dict[s
     return last
 
 
+def domain_environment(env: dict[str, str], number: int) -> dict[str, str]:
+    """``env`` on the fleet's ``number``th domain (0: ``env``'s own)."""
+    return {**env, "ROS_DOMAIN_ID": str(int(env["ROS_DOMAIN_ID"]) + number)}
+
+
 def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
     """For each publisher count and rate, each subscriber in turn (``--repeat`` rounds, medians)."""
     rows: list[Row] = []
     for count in args.publishers:
-        publishers = [Child(["--role", "publisher", "--index", str(i)], env) for i in range(count)]
+        publishers = [
+            Child(["--role", "publisher", "--index", str(domain * count + i)], domain_environment(env, domain))
+            for domain in range(args.domains)
+            for i in range(count)
+        ]
         try:
             for child in publishers:
                 child.expect("ready")
@@ -590,7 +661,8 @@ def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
 
 def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list[Child], kind: str, rate: str) -> Row:
     """One subscriber process, started fresh, measured at one rate."""
-    subscriber = Child(["--role", "subscriber", "--kind", kind], env)
+    fleet = ["--domains", str(args.domains), "--domain", str(args.domain)]
+    subscriber = Child(["--role", "subscriber", "--kind", kind, *fleet], env)
     floor = None
     try:
         subscriber.expect("ready")
@@ -803,6 +875,14 @@ def main() -> None:
     parser.add_argument(
         "--domain", type=int, default=150 + os.getpid() % 80, help="ROS_DOMAIN_ID (default: from the pid)"
     )
+    parser.add_argument(
+        "--domains",
+        type=int,
+        default=1,
+        metavar="N",
+        help="a fleet: publishers in N domains (--domain and the next ones), read as console-tui --domain ... "
+        "reads them (kinds intake and app; rates are totals)",
+    )
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
@@ -813,9 +893,9 @@ def main() -> None:
         return run_publisher(args.index, args.topic)
     if args.role == "subscriber":
         if args.kind in APP_KINDS:
-            return run_app_subscriber(args.kind)
+            return run_app_subscriber(args.kind, args.domains, args.domain)
         if args.kind in ("intake", "intake-thread", "intake-typed"):
-            return run_intake_subscriber(args.kind)
+            return run_intake_subscriber(args.kind, args.domains, args.domain)
         if args.kind == "intake-ee":
             return run_intake_events_executor()
         return run_reference_subscriber(args.kind, args.topic)
@@ -825,6 +905,10 @@ def main() -> None:
     args.rates = args.rates or ([str(LOSSLESS_RATE)] if sustained else list(DEFAULT_RATES))
     args.kinds = args.kinds or (["app"] if sustained else list(DEFAULT_KINDS))
     args.duration = args.duration or (args.sustained if sustained else 5.0)
+    if args.domains > 1 and not set(args.kinds) <= {"intake", "app"}:
+        parser.error("--domains: only the kinds intake and app read a fleet")
+    if args.domains < 1 or args.domain + args.domains - 1 > 232:
+        parser.error("--domains: the domains --domain .. --domain+N-1 must lie within 0..232")
     env = ros_environment(args.domain)
     if args.udp:
         env["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
@@ -832,7 +916,12 @@ def main() -> None:
         "Intake benchmark (benchmarks/intake.py)",
         env,
         f"transport {'UDPv4' if args.udp else 'Fast DDS defaults (shared memory)'}; "
-        f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized.",
+        f"{args.duration:g} s per measurement, median of {args.repeat}; messages {len(message_pool(0)[0])}-ish bytes serialized"
+        + (
+            f"; a fleet of {args.domains} domains from {args.domain}, the publishers counted over all."
+            if args.domains > 1
+            else "."
+        ),
     )
     rows = run_under_header(header, lambda: measure(args, env))
     print(report(rows, args))
