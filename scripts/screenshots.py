@@ -240,12 +240,95 @@ async def capture_overview(out: Path) -> list[Path]:
     return saved
 
 
+class _Source:
+    """A fleet's source as the app sees one (its status only): the shot needs no ROS."""
+
+    def __init__(self, status: object) -> None:
+        self.status = status
+
+    def start(self) -> None:
+        pass
+
+    def stop(self) -> None:
+        pass
+
+
+def fleet_records() -> list:
+    """Ten seconds of a small fleet (no ROS): two ROS 2 robots and a ROS 1 forklift, each
+    with a node called talker, the picker handing a tote over to the cart."""
+    import time
+
+    from console_tui.model.record import LogRecord
+
+    second = 1_000_000_000
+    start = (time.time_ns() // (60 * second) - 1) * 60 * second  # live stamps: the minute before this one
+    script = [
+        (0.0, "picker", 20, "/arm/planner", "Picked tote 1042 from shelf B3"),
+        (0.4, "cart", 20, "talker", "Docking at hand-over station 2"),
+        (1.1, "forklift", 20, "/talker", "Pallet 88 lowered at dock 4"),
+        (1.8, "picker", 20, "talker", "Moving to hand-over station 2"),
+        (2.5, "cart", 30, "talker", "Dock alignment off by 4 cm, correcting"),
+        (3.2, "forklift", 20, "/lift_controller", "Forks at 0.00 m"),
+        (3.9, "picker", 20, "talker", "At hand-over station 2, waiting for the cart"),
+        (4.3, "cart", 20, "talker", "Docked at hand-over station 2"),
+        (5.0, "picker", 20, "/arm/planner", "Placing tote 1042 on the cart"),
+        (5.6, "cart", 40, "/conveyor", "Tote sensor timeout: no tote seen in 2.0 s"),
+        (5.7, "picker", 20, "/arm/planner", "Tote 1042 released"),
+        (6.3, "cart", 30, "talker", "Hand-over not confirmed, holding at station 2"),
+        (6.9, "forklift", 30, "/talker", "Battery 21%: returning to charge after this job"),
+        (7.5, "picker", 40, "talker", "Hand-over of tote 1042 unconfirmed by cart"),
+        (8.1, "cart", 20, "/conveyor", "Tote sensor recalibrated"),
+        (8.6, "cart", 20, "talker", "Tote 1042 on board, leaving station 2"),
+        (9.2, "picker", 20, "talker", "Hand-over of tote 1042 confirmed"),
+    ]
+    return [
+        LogRecord(start + int(at * second), level, node, msg, file="handover.py", function="step", line=42, robot=robot)
+        for at, robot, level, node, msg in script
+    ]
+
+
+async def capture_fleet(out: Path) -> list[Path]:
+    """A fleet in one console (no ROS): the Robot column in each robot's colour, the robots'
+    states on the status line."""
+    from console_tui.model.record_batch import RecordColumns
+    from console_tui.model.store import LogStore
+    from console_tui.sources.fleet import Robot
+    from console_tui.sources.ros_version import ROS1, ROS2
+    from console_tui.sources.status import SourceStatus
+    from console_tui.ui.app import ConsoleApp
+
+    robots = [
+        Robot("picker", ROS2, domain=3, colour="cyan"),
+        Robot("cart", ROS2, domain=4, colour="magenta"),
+        Robot("forklift", ROS1, master="http://10.0.0.7:11311/", colour="yellow"),
+    ]
+    sources = [
+        _Source(SourceStatus(topic="/rosout", publishers=3, running=True, robot="picker", path="c+cdr")),
+        _Source(SourceStatus(topic="/rosout", publishers=2, running=True, robot="cart", path="c+cdr")),
+        _Source(SourceStatus(topic="/rosout_agg", publishers=1, running=True, robot="forklift", path="tcpros")),
+    ]
+    store = LogStore()
+    store.extend(RecordColumns.from_records(fleet_records()))
+    app = ConsoleApp(store=store, sources=sources, utc=True, robots=robots)
+    for column in ("file", "function", "line"):
+        app.table.set_column_shown(column, False)
+    async with app.run_test(size=(120, 26)) as pilot:
+        await pilot.pause(0.5)
+        await pilot.press("end")
+        await pilot.pause(0.5)
+        path = out / "fleet.svg"
+        app.save_screenshot(filename=path.name, path=str(path.parent))
+    return [path]
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=ROOT / "screenshots")
     parser.add_argument("--seconds", type=float, default=8.0, help="how long the demo runs before the first shot")
     parser.add_argument(
-        "--no-ros", action="store_true", help="only the shots that need no ROS (the run folder, the overview)"
+        "--no-ros",
+        action="store_true",
+        help="only the shots that need no ROS (the run folder, the overview, the fleet)",
     )
     args = parser.parse_args()
     os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
@@ -254,6 +337,7 @@ def main() -> int:
     saved = [] if args.no_ros else asyncio.run(capture(args.out, args.seconds))
     saved += asyncio.run(capture_folder(args.out))
     saved += asyncio.run(capture_overview(args.out))
+    saved += asyncio.run(capture_fleet(args.out))
     for path in saved:
         print(path.relative_to(ROOT) if path.is_relative_to(ROOT) else path)
     return 0
