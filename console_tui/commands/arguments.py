@@ -204,31 +204,26 @@ def add_fleet_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group(
         "a fleet (several robots at once; each option may be given more than once, and mixed)"
     )
-    group.add_argument(
-        "--domain",
-        dest="robots",
-        metavar="N[=NAME]",
-        action=_AddRobots,
-        type=_robots_type(parse_domain),
-        help="read the robot on ROS 2 domain N, named NAME (default domainN)",
+    options = (
+        ("--domain", "N[=NAME]", parse_domain, "read the robot on ROS 2 domain N, named NAME (default domainN)"),
+        (
+            "--master",
+            "URI[=NAME]",
+            parse_master,
+            "read the robot whose ROS 1 master is at URI (http://host:port), named NAME",
+        ),
+        (
+            "--fleet",
+            "FILE",
+            load_fleet,
+            "read every robot of this fleet file (TOML: [[robot]] tables with name, domain or master, "
+            "optional topic and colour)",
+        ),
     )
-    group.add_argument(
-        "--master",
-        dest="robots",
-        metavar="URI[=NAME]",
-        action=_AddRobots,
-        type=_robots_type(parse_master),
-        help="read the robot whose ROS 1 master is at URI (http://host:port), named NAME",
-    )
-    group.add_argument(
-        "--fleet",
-        dest="robots",
-        metavar="FILE",
-        action=_AddRobots,
-        type=_robots_type(load_fleet),
-        help="read every robot of this fleet file (TOML: [[robot]] tables with name, domain or master, "
-        "optional topic and colour)",
-    )
+    for option, metavar, read, help_text in options:
+        group.add_argument(
+            option, dest="robots", metavar=metavar, action=_AddRobots, type=_robots_type(read), help=help_text
+        )
 
 
 def add_robot_argument(parser: argparse.ArgumentParser) -> None:

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from fnmatch import translate
 from typing import Any
@@ -27,6 +27,24 @@ def is_glob(pattern: str) -> bool:
     return not _GLOB_CHARS.isdisjoint(pattern)
 
 
+def clean_names(names: str | Iterable[str]) -> tuple[str, ...]:
+    """Names or globs as a rule keeps them: one name given alone made a tuple, blanks dropped."""
+    return tuple(n.strip() for n in ((names,) if isinstance(names, str) else names) if n.strip())
+
+
+def names_predicate(patterns: Iterable[str]) -> Callable[[str], bool]:
+    """A test of a name against exact names and globs (case-sensitive)."""
+    patterns = set(patterns)
+    exact = {pattern for pattern in patterns if not is_glob(pattern)}
+    globs = [translate(pattern) for pattern in patterns if is_glob(pattern)]
+    match = re.compile("|".join(globs)).match if globs else None
+
+    def test_name(name: str) -> bool:
+        return name in exact or (match is not None and match(name) is not None)
+
+    return test_name
+
+
 @dataclass(frozen=True)
 class NodeRule(Rule):
     """Matches records from any of ``names``: exact logger names or globs (case-sensitive).
@@ -39,8 +57,7 @@ class NodeRule(Rule):
     names: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        names = (self.names,) if isinstance(self.names, str) else self.names
-        object.__setattr__(self, "names", tuple(n.strip() for n in names if n.strip()))
+        object.__setattr__(self, "names", clean_names(self.names))
 
     @property
     def is_empty(self) -> bool:
@@ -48,14 +65,7 @@ class NodeRule(Rule):
 
     def predicate(self) -> Callable[[str], bool]:
         # A name as written too: ROS 1 loggers are node names (``/talker``).
-        exact = {form for n in self.names if not is_glob(n) for form in (n, logger_name(n))}
-        globs = [translate(form) for n in self.names if is_glob(n) for form in {n, logger_name(n)}]
-        match = re.compile("|".join(globs)).match if globs else None
-
-        def test_name(name: str) -> bool:
-            return name in exact or (match is not None and match(name) is not None)
-
-        return test_name
+        return names_predicate(form for n in self.names for form in (n, logger_name(n)))
 
     def compile(self, store: LogStore) -> SpanTest:
         lookup = IdLookup(store.nodes, self.predicate())

@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from fnmatch import translate
 from typing import Any
 
 from ..store import Chunk, LogStore
 from .fields import read_str_list
-from .node import is_glob
+from .node import clean_names, names_predicate
 from .rule import IdLookup, Rule, SpanTest
 
 
@@ -24,22 +22,15 @@ class RobotRule(Rule):
     names: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        names = (self.names,) if isinstance(self.names, str) else self.names
-        object.__setattr__(self, "names", tuple(n.strip() for n in names if n.strip()))
+        object.__setattr__(self, "names", clean_names(self.names))
 
     @property
     def is_empty(self) -> bool:
         return not self.names
 
     def predicate(self) -> Callable[[str], bool]:
-        exact = {name for name in self.names if not is_glob(name)}
-        globs = [translate(name) for name in self.names if is_glob(name)]
-        match = re.compile("|".join(globs)).match if globs else None
-
-        def test_name(name: str) -> bool:
-            return bool(name) and (name in exact or (match is not None and match(name) is not None))
-
-        return test_name
+        test = names_predicate(self.names)
+        return lambda name: bool(name) and test(name)
 
     def compile(self, store: LogStore) -> SpanTest:
         lookup = IdLookup(store.robots, self.predicate())
