@@ -6,7 +6,7 @@ import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from fnmatch import translate
-from typing import Any
+from typing import Any, TypeVar
 
 from ..store import Chunk, LogStore
 from .fields import read_str_list
@@ -45,14 +45,12 @@ def names_predicate(patterns: Iterable[str]) -> Callable[[str], bool]:
     return test_name
 
 
+_Names = TypeVar("_Names", bound="NamesRule")
+
+
 @dataclass(frozen=True)
-class NodeRule(Rule):
-    """Matches records from any of ``names``: exact logger names or globs (case-sensitive).
-
-    A name written as a ROS node name (``/ns/talker``) matches its logger name (``ns.talker``).
-    """
-
-    kind = "node"
+class NamesRule(Rule):
+    """A rule over names or globs (``names``): what node and robot rules share."""
 
     names: tuple[str, ...] = ()
 
@@ -62,6 +60,26 @@ class NodeRule(Rule):
     @property
     def is_empty(self) -> bool:
         return not self.names
+
+    def describe(self) -> str:
+        return f"{self.kind} " + ", ".join(self.names)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"kind": self.kind, "names": list(self.names)}
+
+    @classmethod
+    def from_fields(cls: type[_Names], fields: Mapping[str, Any]) -> _Names:
+        return cls(read_str_list(fields, "names"))
+
+
+@dataclass(frozen=True)
+class NodeRule(NamesRule):
+    """Matches records from any of ``names``: exact logger names or globs (case-sensitive).
+
+    A name written as a ROS node name (``/ns/talker``) matches its logger name (``ns.talker``).
+    """
+
+    kind = "node"
 
     def predicate(self) -> Callable[[str], bool]:
         # A name as written too: ROS 1 loggers are node names (``/talker``).
@@ -74,13 +92,3 @@ class NodeRule(Rule):
             return lookup.mask(chunk.nodes, lo, hi)
 
         return test
-
-    def describe(self) -> str:
-        return "node " + ", ".join(self.names)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "names": list(self.names)}
-
-    @classmethod
-    def from_fields(cls, fields: Mapping[str, Any]) -> NodeRule:
-        return cls(read_str_list(fields, "names"))

@@ -2,31 +2,20 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 from ..store import Chunk, LogStore
-from .fields import read_str_list
-from .node import clean_names, names_predicate
-from .rule import IdLookup, Rule, SpanTest
+from .node import NamesRule, names_predicate
+from .rule import IdLookup, SpanTest
 
 
 @dataclass(frozen=True)
-class RobotRule(Rule):
+class RobotRule(NamesRule):
     """Matches records from any of ``names``: robots' names or globs (case-sensitive).
     Records that name no robot (one source, not a fleet) match none."""
 
     kind = "robot"
-
-    names: tuple[str, ...] = ()
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "names", clean_names(self.names))
-
-    @property
-    def is_empty(self) -> bool:
-        return not self.names
 
     def predicate(self) -> Callable[[str], bool]:
         test = names_predicate(self.names)
@@ -40,13 +29,3 @@ class RobotRule(Rule):
             return bytes(hi - lo) if robots is None else lookup.mask(robots, lo, hi)
 
         return test
-
-    def describe(self) -> str:
-        return "robot " + ", ".join(self.names)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, "names": list(self.names)}
-
-    @classmethod
-    def from_fields(cls, fields: Mapping[str, Any]) -> RobotRule:
-        return cls(read_str_list(fields, "names"))
