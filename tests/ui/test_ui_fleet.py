@@ -76,6 +76,9 @@ async def test_each_row_says_its_robot_and_robot_filters(size):
         await pilot.press("enter")
         await until(pilot, lambda: "forklift says" not in screen_text(app), what="the filter")
         assert "picker says 3" in screen_text(app)
+        await pilot.press("enter")
+        await until(pilot, lambda: "Robot" in screen_text(app) and "Stamp" in screen_text(app), what="the details")
+        assert re.search(r"Robot +picker\b", screen_text(app))
 
 
 async def test_a_robots_colour_paints_its_name():

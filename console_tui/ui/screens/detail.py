@@ -41,6 +41,7 @@ def fields_table(record: LogRecord, *, utc: bool = False, notes: tuple[str, ...]
         ("Time", time_text),
         ("Stamp", stamp_text(record.stamp_ns)),
         ("Severity", f"{severity_name(record.level)} ({record.level})"),
+        *([("Robot", record.robot)] if record.robot else []),
         ("Node", record.node),
         ("File", record.file),
         ("Function", record.function),
