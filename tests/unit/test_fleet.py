@@ -179,3 +179,12 @@ def test_rosout_runs_on_the_domain_given(capsys):
     with pytest.raises(SystemExit):
         rosout_parser().parse_args(["--domain", "233"])
     assert "from 0 to 232" in capsys.readouterr().err
+
+
+def test_the_demo_is_no_fleet(capsys):
+    from console_tui.cli import main
+
+    with pytest.raises(SystemExit) as exited:
+        main(["--demo", "--domain", "3"])
+    assert exited.value.code == 2
+    assert "--demo starts its own nodes" in capsys.readouterr().err
