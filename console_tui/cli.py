@@ -23,6 +23,7 @@ from .commands.arguments import (
     domain_id,
     positive_int,
     robot_files,
+    robots_from_names,
 )
 from .model.store import DEFAULT_MAX_MESSAGES
 
@@ -227,7 +228,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args_list, file_robots = robot_files(parser, args_list)
     args = parser.parse_args(args_list)
-    args.file_robots = file_robots
+    args.file_robots = robots_from_names(args.files, file_robots) if args.robots_from_names else file_robots
     check_rule_arguments(parser, args)
     if args.demo_domain is not None and not args.demo:
         parser.error("--demo-domain goes with --demo")

@@ -228,13 +228,26 @@ def add_fleet_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_robot_argument(parser: argparse.ArgumentParser) -> None:
     """``--robot NAME`` (read by ``robot_files`` before the parser): the files after it are
-    that robot's."""
+    that robot's; ``--robots-from-names``: each file or folder is a robot named for it."""
     parser.add_argument(
         "--robot",
         metavar="NAME",
         help="the FILEs given after it are this robot's (its name in the Robot column); give it again "
         "before another robot's files",
     )
+    parser.add_argument(
+        "--robots-from-names",
+        action="store_true",
+        help="each FILE or folder given is a robot's, named for it (picker/ or picker.log: picker), "
+        "unless --robot names it",
+    )
+
+
+def robots_from_names(files: Sequence[str], robots: dict[str, str]) -> dict[str, str]:
+    """``robots`` with each file that has none named for its own name (``--robots-from-names``)."""
+    from ..sources.fleet import robot_name_for
+
+    return {**{file: robot_name_for(file) for file in files}, **robots}
 
 
 def robot_files(parser: argparse.ArgumentParser, argv: Sequence[str]) -> tuple[list[str], dict[str, str]]:

@@ -102,6 +102,14 @@ def _split_name(text: str) -> tuple[str, str]:
     return value.strip(), name
 
 
+def robot_name_for(path: str | Path) -> str:
+    """A robot's name from a file's or folder's name: ``picker/`` and ``picker.rosout.log`` are
+    ``picker``; characters a name cannot hold become ``_``."""
+    name = Path(path).name.split(".", 1)[0] if Path(path).name else Path(path).resolve().name
+    cleaned = re.sub(r"[^A-Za-z0-9_.-]", "_", name).lstrip(".-")[:32]
+    return cleaned or "robot"
+
+
 def check_robot_name(name: str) -> str:
     """``name`` when it is a robot's name; else ``FleetError`` saying what one is."""
     return _check_name(name, "")
