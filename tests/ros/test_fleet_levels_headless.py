@@ -1,10 +1,12 @@
-"""The logger levels pane across a fleet, end to end: two ROS 2 domains, a talker of the same
-name on each; DEBUG set in the pane on one robot's talker reaches that robot's messages and
-never the other's."""
+"""Logger levels and the headless commands across a fleet, end to end: two ROS 2 domains, a
+talker of the same name on each; DEBUG set in the pane on one robot's talker reaches that robot's
+messages and never the other's; ``console-tui loggers`` names the robots' nodes apart;
+``console-tui tail`` says each line's robot."""
 
 from __future__ import annotations
 
 import asyncio
+import time
 
 import pytest
 from conftest import next_domain_id
@@ -142,3 +144,25 @@ def test_loggers_command_across_a_fleet(two_domains, capsys):
     assert capsys.readouterr().out.splitlines()[-1].split()[:2] == ["talker", "inherited"]
     assert loggers.main(["get", *fleet, "--robot", "nobody", "/talker"]) == 2
     assert "no such robot" in capsys.readouterr().err
+
+
+def test_tail_across_a_fleet_names_each_line_robot(two_domains):
+    import os
+
+    from support.tail_process import TailProcess
+
+    fleet = [f"--domain={member.robot.domain}={member.robot.name}" for member in two_domains.robots]
+    tail = TailProcess(dict(os.environ), *fleet, "--query", "tick", "--format", "{robot}|{name}|{message}")
+    try:
+        for member in two_domains.robots:
+            member.node.send({"cmd": "periodic", "period": 0.2})
+        robots: set[str] = set()
+        deadline = time.monotonic() + DEADLINE_S
+        while robots != {"left", "right"} and time.monotonic() < deadline:
+            for line in tail.take_text(1, timeout=max(deadline - time.monotonic(), 0.1)):
+                robot, name, message = line.split("|", 2)
+                assert name == "talker" and message.startswith("tick")
+                robots.add(robot)
+        assert robots == {"left", "right"}, tail.stderr
+    finally:
+        assert tail.stop() == 0
