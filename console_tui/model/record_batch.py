@@ -119,6 +119,23 @@ class RecordColumns:
         columns = [list(chain.from_iterable(getattr(part, name) for part in parts)) for name in _COLUMNS]
         return _made(columns, _optional_joined(parts, "topics"), _optional_joined(parts, "robots"))
 
+    @classmethod
+    def in_time_order(cls, parts: Sequence[RecordColumns | Sequence[LogRecord]]) -> RecordColumns:
+        """The records of ``parts`` as one batch, ordered by stamp (records with one stamp in
+        the order given): a fleet's robots' messages, taken in at one time, merged. A batch
+        already in order is returned as joined (a C-level comparison, no reordering)."""
+        joined = cls.joined([part if isinstance(part, RecordColumns) else cls.from_records(part) for part in parts])
+        order = sorted(range(len(joined)), key=joined.stamps.__getitem__)
+        if order == list(range(len(joined))):
+            return joined
+        columns = [list(map(getattr(joined, name).__getitem__, order)) for name in _COLUMNS]
+        topics, robots = joined.topics, joined.robots
+        return _made(
+            columns,
+            None if topics is None else list(map(topics.__getitem__, order)),
+            None if robots is None else list(map(robots.__getitem__, order)),
+        )
+
     def kept(self, keep: Sequence[bool]) -> RecordColumns:
         """The records whose entry in ``keep`` is true, in order."""
         columns = [list(compress(getattr(self, name), keep)) for name in _COLUMNS]

@@ -19,6 +19,7 @@ from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
 from ..model.record_batch import RecordColumns
 from ..sources.files import FileLoad
+from ..sources.fleet import Robot
 from ..sources.status import SourceStatus
 from .app_part import AppPart
 from .gc_policy import CollectionPolicy
@@ -57,6 +58,8 @@ class IntakeActions(AppPart):
 
     # What it uses of the app (``ConsoleApp`` sets them).
     sources: list[Source]
+    #: A fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
+    robots: list[Robot]
     #: The live sources' records; file loads have a queue of their own (``file_queue``).
     queue: IntakeQueue
     file_queue: IntakeQueue
@@ -122,11 +125,15 @@ class IntakeActions(AppPart):
         """Move what the sources queued into the store, in one batch per tick.
 
         Records from files come first; live records wait while files load, so that a
-        view of files plus the live stream stays in time order."""
+        view of files plus the live stream stays in time order. A fleet's live records of
+        one tick are merged by stamp (each robot's intake process sends its own batches)."""
         batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
-            batches += self.queue.drain_batches(room)
+            live = self.queue.drain_batches(room)
+            if len(live) > 1 and len(self.robots) > 1:  # a fleet: what its robots sent meanwhile, by time
+                live = [RecordColumns.in_time_order(live)]
+            batches += live
         if batches:
             self.add_batches(batches)
         if self.loads:

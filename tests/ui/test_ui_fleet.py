@@ -115,3 +115,17 @@ async def test_one_source_shows_no_robot_column():
     async with app.run_test(size=(100, 30)) as pilot:
         await pilot.pause()
         assert "Robot" not in header(app)
+
+
+async def test_what_the_robots_sent_meanwhile_shows_in_time_order():
+    app, queue = fleet_app()
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.pause()
+        base = 1_700_000_000_000_000_000
+        picker = [LogRecord(base + i * 2_000_000, 20, "/talker", f"picker {i}") for i in range(3)]
+        cart = [LogRecord(base + i * 2_000_000 + 1_000_000, 20, "/talker", f"cart {i}") for i in range(3)]
+        queue.put(RecordColumns.from_records(picker).of_robot("picker"))  # one tick's batches
+        queue.put(RecordColumns.from_records(cart).of_robot("cart"))
+        await until(pilot, lambda: "cart 2" in screen_text(app), what="the rows")
+        shown = [line.split()[-2:] for _, line in sorted(table_rows(app).values())]
+        assert shown == [["picker", "0"], ["cart", "0"], ["picker", "1"], ["cart", "1"], ["picker", "2"], ["cart", "2"]]

@@ -188,3 +188,14 @@ def test_the_demo_is_no_fleet(capsys):
         main(["--demo", "--domain", "3"])
     assert exited.value.code == 2
     assert "--demo starts its own nodes" in capsys.readouterr().err
+
+
+def test_a_fleets_batches_of_one_moment_merge_by_stamp():
+    picker = RecordColumns.from_records([record(i * 10, "picker") for i in range(4)])  # 1000, 1010 ...
+    cart = [record(i * 10 + 5, "cart") for i in range(3)]
+    merged = RecordColumns.in_time_order([picker, cart])
+    assert list(merged.stamps) == [1000, 1005, 1010, 1015, 1020, 1025, 1030]
+    assert merged.robots == ["picker", "cart"] * 3 + ["picker"]
+    assert [r.msg for r in merged.records()] == ["m0", "m5", "m10", "m15", "m20", "m25", "m30"]
+    same = RecordColumns.in_time_order([RecordColumns.from_records([record(1, "a"), record(1, "b")])])
+    assert same.robots == ["a", "b"]  # one stamp: the order given
