@@ -21,7 +21,7 @@ from ..model.formats.rotating_file import RotatingFile
 from ..model.text import plural
 from ..sources.live import RosUnavailable, start_ros2
 from ..sources.log_dir import ros_log_dir
-from .arguments import DOCS_URL, EXIT_NO_ROS, command_parser, parse_size, positive_int, size_text
+from .arguments import DOCS_URL, EXIT_NO_ROS, command_parser, domain_id, parse_size, positive_int, size_text
 
 EXIT_OK = 0
 EXIT_ERROR = 1
@@ -83,9 +83,8 @@ documentation: {DOCS_URL}headless/#the-rosout-node-console-tui-rosout""",
     parser.add_argument(
         "--domain",
         metavar="N",
-        type=_domain,
-        help="the ROS 2 domain to run on, as a fleet's robot is given (default: $ROS_DOMAIN_ID's); "
-        "one rosout node a domain",
+        type=domain_id,
+        help="the ROS 2 domain to run on (default: $ROS_DOMAIN_ID's); one rosout node a domain",
     )
     parser.add_argument(
         "--name", default=DEFAULT_NODE_NAME, metavar="NAME", help=f"the node's name (default {DEFAULT_NODE_NAME})"
@@ -98,18 +97,6 @@ documentation: {DOCS_URL}headless/#the-rosout-node-console-tui-rosout""",
         help=f"log the counts on the node's own /rosout this often (default {DEFAULT_REPORT_S:g}; 0: never)",
     )
     return parser
-
-
-def _domain(text: str) -> int:
-    """``--domain N`` (``N=NAME`` too, as for the console: the name is not used here)."""
-    from ..sources.fleet import FleetError, parse_domain
-
-    try:
-        domain = parse_domain(text).domain
-    except FleetError as error:
-        raise argparse.ArgumentTypeError(str(error)) from None
-    assert domain is not None
-    return domain
 
 
 def run_directory(log_dir: Path, now: float | None = None, pid: int | None = None) -> Path:
