@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from console_tui.model.logger_levels import GraphNode
 from console_tui.model.record import LogRecord
+from console_tui.sources.status import SourceStatus
 
 BASE_NS = 1_795_000_000_000_000_000  # a fixed moment; snapshot tests show it in UTC
 
@@ -63,3 +64,17 @@ def feed_logger_pane(pane) -> None:
     pane.show_nodes(GRAPH, checking={"/sensors/lidar_driver"})
     pane.select_node(PLANNER)
     pane.show_levels(PLANNER, PLANNER_LEVELS)
+
+
+class StaticSource:
+    """A live source as the app sees one (``start``, ``stop``, a ``status`` snapshot) that
+    sends nothing: its status is what a test sets."""
+
+    def __init__(self, status: SourceStatus) -> None:
+        self.status = status
+
+    def start(self) -> None:
+        pass
+
+    def stop(self) -> None:
+        pass

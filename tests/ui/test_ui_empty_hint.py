@@ -7,19 +7,8 @@ from console_tui.model.store import LogStore
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
 
-from support.feed import records
+from support.feed import StaticSource, records
 from support.ui import line_with, make_app, screen_text, type_text, until
-
-
-class Source:
-    def __init__(self, status: SourceStatus) -> None:
-        self.status = status
-
-    def start(self) -> None:
-        pass
-
-    def stop(self) -> None:
-        pass
 
 
 def in_table(app, text: str) -> bool:
@@ -49,7 +38,7 @@ async def test_rules_hiding_everything_say_nothing_matches_and_how_many_are_hidd
 async def test_a_live_source_with_no_publisher_yet_is_waited_for_on_screen():
     queue = IntakeQueue()
     status = SourceStatus(origin="ROS 2 domain 7", path="raw+cdr", running=True)
-    source = Source(status)
+    source = StaticSource(status)
     app = ConsoleApp(store=LogStore(), queue=queue, sources=[source], utc=True)
     async with app.run_test(size=(80, 24)) as pilot:
         hint = "waiting for /rosout or /rosout_agg publishers on ROS 2 domain 7…"

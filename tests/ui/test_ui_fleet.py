@@ -17,29 +17,17 @@ from console_tui.sources.ros_version import ROS1, ROS2
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
 
+from support.feed import StaticSource
 from support.ui import line_with, screen_text, table_rows, type_text, until
 
 ROBOTS = [Robot("picker", ROS2, domain=3, colour="cyan"), Robot("forklift", ROS1, master="http://127.0.0.1:1/")]
 
 
-class Source:
-    """A source as the app sees one: ``start``, ``stop`` and a ``status`` snapshot."""
-
-    def __init__(self, status: SourceStatus) -> None:
-        self.status = status
-
-    def start(self) -> None:
-        pass
-
-    def stop(self) -> None:
-        pass
-
-
 def fleet_app(**options) -> tuple[ConsoleApp, IntakeQueue]:
     queue = IntakeQueue()
     sources = [
-        Source(SourceStatus(topic="/rosout", publishers=1, running=True, robot="picker")),
-        Source(SourceStatus(topic="/rosout", running=True, robot="forklift")),
+        StaticSource(SourceStatus(topic="/rosout", publishers=1, running=True, robot="picker")),
+        StaticSource(SourceStatus(topic="/rosout", running=True, robot="forklift")),
     ]
     app = ConsoleApp(store=LogStore(), queue=queue, sources=sources, utc=True, robots=ROBOTS, **options)
     return app, queue
