@@ -208,9 +208,9 @@ def test_a_subfolder_that_cannot_be_entered_is_skipped_and_reported(tmp_path):
         (runs / "b" / "rosout.log").chmod(0o644)
         (runs / "closed").chmod(0o600)  # listable by its owner only, enterable by none but root
         out = base / "out.jsonl"
-        # Coverage, measuring the process, would write its data beside the checkout, where the
-        # user nobody may not: it writes into the test's open folder instead.
-        env = {**os.environ, "COVERAGE_FILE": str(base / ".coverage")}
+        # Not measured by coverage (whose process configuration the environment carries): its data
+        # file is beside the checkout, where the user nobody may not write.
+        env = {key: value for key, value in os.environ.items() if not key.startswith("COVERAGE_")}
         done = subprocess.run(
             [sys.executable, "-c", _AS_ANOTHER_USER, str(runs), str(out)],
             capture_output=True,
