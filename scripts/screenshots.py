@@ -20,7 +20,7 @@ sys.path.insert(0, str(ROOT))
 
 
 class Frozen:
-    """A source that only shows a status (another app's, as it was): for the narrow shots."""
+    """A source that only shows a status (another app's as it was, or a fleet's robot): no ROS needed."""
 
     def __init__(self, status) -> None:
         self.status = status
@@ -240,19 +240,6 @@ async def capture_overview(out: Path) -> list[Path]:
     return saved
 
 
-class _Source:
-    """A fleet's source as the app sees one (its status only): the shot needs no ROS."""
-
-    def __init__(self, status: object) -> None:
-        self.status = status
-
-    def start(self) -> None:
-        pass
-
-    def stop(self) -> None:
-        pass
-
-
 def fleet_records() -> list:
     """Ten seconds of a small fleet (no ROS): two ROS 2 robots and a ROS 1 forklift, each
     with a node called talker, the picker handing a tote over to the cart."""
@@ -303,9 +290,9 @@ async def capture_fleet(out: Path) -> list[Path]:
         Robot("forklift", ROS1, master="http://10.0.0.7:11311/", colour="yellow"),
     ]
     sources = [
-        _Source(SourceStatus(topic="/rosout", publishers=3, running=True, robot="picker", path="c+cdr")),
-        _Source(SourceStatus(topic="/rosout", publishers=2, running=True, robot="cart", path="c+cdr")),
-        _Source(SourceStatus(topic="/rosout_agg", publishers=1, running=True, robot="forklift", path="tcpros")),
+        Frozen(SourceStatus(topic="/rosout", publishers=3, running=True, robot="picker", path="c+cdr")),
+        Frozen(SourceStatus(topic="/rosout", publishers=2, running=True, robot="cart", path="c+cdr")),
+        Frozen(SourceStatus(topic="/rosout_agg", publishers=1, running=True, robot="forklift", path="tcpros")),
     ]
     store = LogStore()
     store.extend(RecordColumns.from_records(fleet_records()))
