@@ -280,12 +280,13 @@ def console_source(kind: str, queue: Any, domains: int = 1, first_domain: int = 
 
         args = ["--typed"] if kind == "intake-typed" else []
         return ProcessSource(queue, "ros2", topic=TOPIC, args=args), None
+    from console_tui.sources import coalesce
     from console_tui.sources.ros2 import live_source
     from console_tui.sources.ros2.runtime import RosRuntime
 
     if kind == "app-thread-batched":  # fewer wake-ups of the intake thread, bigger batches
-        live_source.COALESCE_BELOW = live_source.MAX_BATCH
-        live_source.COALESCE_S = BATCHED_COALESCE_S
+        coalesce.BELOW = live_source.MAX_BATCH
+        coalesce.FAST_S = coalesce.SLOW_S = BATCHED_COALESCE_S
     runtime = RosRuntime()
     return live_source.LiveLogSource(runtime, queue, TOPIC), runtime
 
@@ -298,7 +299,12 @@ def intake_pids(source: Any) -> list[int]:
 
 def cpu_seconds(source: Any) -> float:
     """CPU used by this process and, if the source has them, its intake processes."""
-    return time.process_time() + sum(process_cpu(each) for each in intake_pids(source))
+    return time.process_time() + intake_cpu_seconds(source)
+
+
+def intake_cpu_seconds(source: Any) -> float:
+    """CPU used by the source's intake processes (0 when it runs in this process)."""
+    return sum(process_cpu(each) for each in intake_pids(source))
 
 
 def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
@@ -322,7 +328,13 @@ def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) ->
 
     def loss() -> dict[str, Any]:
         status = source.status
-        return {"lost_reported": status.lost, "path": status.path, "stored": store.end_seq, "cpu": cpu_seconds(source)}
+        return {
+            "lost_reported": status.lost,
+            "path": status.path,
+            "stored": store.end_seq,
+            "cpu": cpu_seconds(source),
+            "cpu_intake": intake_cpu_seconds(source),
+        }
 
     serve_commands(lambda: queue.received, lambda: source.status.publishers, loss)
     stop.set()
@@ -376,6 +388,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "path": source.status.path + (" (process)" if pids else " (thread)"),
             "stored": app.store.end_seq,
             "cpu": cpu_seconds(source),
+            "cpu_intake": intake_cpu_seconds(source),
             "stall_max": max(stalls, default=0.0) * 1000,
             "stall_p99": percentile(stalls, 0.99) * 1000,
             "key_median": percentile(keys, 0.5) * 1000,
@@ -598,6 +611,8 @@ class Row:
     in_window: int
     received: int
     cpu: float
+    #: Of ``cpu``, what the intake processes used (0 when the subscriber has none).
+    cpu_intake: float = 0.0
     lost_reported: int | None = None
     path: str = ""
     stop_ms: float | None = None
@@ -707,6 +722,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         in_window=window["count"] - before["count"],
         received=after["count"] - before["count"],
         cpu=after["cpu"] - before["cpu"],
+        cpu_intake=after.get("cpu_intake", 0.0) - before.get("cpu_intake", 0.0),
         lost_reported=after["lost_reported"] - before["lost_reported"] if "lost_reported" in after else None,
         path=after.get("path", ""),
         stop_ms=stopped["seconds"] * 1000 if stopped else None,
@@ -739,6 +755,8 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
         vs_raw = f"{row.received_per_s / raw_ee.received_per_s:.2f}" if console and raw_ee else ""
         vs_typed = f"{row.received_per_s / typed.received_per_s:.1f}x" if console and typed else ""
         cpu_per_message = f"{row.cpu / row.received * 1e6:.0f}" if row.received else "-"
+        if row.received and row.cpu_intake:
+            cpu_per_message += f" ({row.cpu_intake / row.received * 1e6:.0f})"
         reported = "" if row.lost_reported is None else f"{row.lost_reported:,}"
         body.append(
             [
@@ -756,7 +774,7 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
             ]
         )
     headers = ["pubs", "offered/s", "subscriber", "sent/s", "received/s", "lost", "lost %"]
-    headers += ["lost (status bar)", "CPU us/msg", "÷ raw-ee", "÷ typed-spin"]
+    headers += ["lost (status bar)", "CPU us/msg (intake's)", "÷ raw-ee", "÷ typed-spin"]
     lines.append(table(headers, body))
     app_rows = [row for row in rows if row.app is not None]
     if app_rows:

@@ -4,8 +4,8 @@ One thread waits on all the connections' sockets at once (``selectors``), reads 
 has (up to ``RECV_BYTES`` at a time), decodes the whole messages straight from the bytes
 received (``Ros1LogDecoder.decode_frames``), drops repeats (``Deduplicator``) and puts one
 batch per turn into the ``IntakeQueue`` (``_deliver``, the one hand-off). When only a
-trickle arrives it pauses ``COALESCE_S`` after a turn, so a turn pays for more than one
-message.
+trickle arrives it pauses after a turn (``coalesce.Coalescer``), so a turn pays for more
+than one message.
 
 Connections are added and closed from other threads (``add``, ``close_topic``); a
 connection that ends (the publisher went away, or sent a broken stream) is reported to
@@ -25,12 +25,11 @@ from dataclasses import dataclass, field
 from ...model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from ..coalesce import Coalescer
 from .dedupe import Deduplicator
 
 RECV_BYTES = 1 << 18
 SELECT_TIMEOUT_S = 0.2
-COALESCE_BELOW = 64
-COALESCE_S = 0.002
 _ids = itertools.count(1)
 #: Why a connection ended: the publisher closed it between messages (a plain end), or in one.
 CLOSED = "the publisher closed the connection"
@@ -161,6 +160,7 @@ class Ros1Intake:
     def _run(self) -> None:
         select = self._selector.select
         decode = self.decoder.decode_frames
+        coalescer = Coalescer()
         while not self._stop.is_set():
             try:
                 events = select(SELECT_TIMEOUT_S)
@@ -201,8 +201,9 @@ class Ros1Intake:
                 connection.messages += len(batch) - first
             if batch:
                 self._deliver(self.dedupe.filter(batch, time.monotonic()))
-            if len(batch) < COALESCE_BELOW:
-                self._stop.wait(COALESCE_S)
+            pause = coalescer.after(len(batch))
+            if pause:
+                self._stop.wait(pause)
 
     def _deliver(self, batch: list[LogRecord]) -> None:
         """The one hand-off to the rest of the app."""

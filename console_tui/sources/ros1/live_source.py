@@ -297,6 +297,10 @@ class Ros1LiveSource:
         if ready or time.monotonic() >= deadline:
             self._retiring = None
             self._unregister(old)
+            # What both topics delivered may still be on its way (a busy machine, a slow
+            # rosout node): the check for repeats lasts until well after the old one closed.
+            assert self._intake is not None
+            self._intake.dedupe_for(OVERLAP_S)
 
     # -- publishers -----------------------------------------------------------------------------
 

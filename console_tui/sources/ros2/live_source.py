@@ -9,8 +9,8 @@ Measured with benchmarks/intake.py (2 cores, Fast DDS): this loop needs less CPU
 message than an EventsExecutor feeding the same decoder (which also lost a quarter of
 20k messages/s where this loop lost none), and about as much as a raw EventsExecutor
 subscription that only counts; a typed ``rclpy.spin`` needs more than ten times as much.
-When only a trickle arrives the loop pauses ``COALESCE_S`` after each batch, so that a
-turn of the loop pays for more than one message. ``stop()`` returns within tens of ms.
+When only a trickle arrives the loop pauses after each batch (``coalesce.Coalescer``), so
+that a turn of the loop pays for more than one message. ``stop()`` returns within tens of ms.
 
 Loss is counted, never silent (``loss_counts.py``): the middleware's message-lost events
 and sequence gaps, batches the full ``IntakeQueue`` refused, and undecodable messages add
@@ -31,6 +31,7 @@ from typing import Any
 
 from ...model.intake_queue import IntakeQueue
 from ...model.text import plural
+from ..coalesce import Coalescer
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
 from .loss_counts import LossCounts
@@ -41,8 +42,6 @@ from .topic_reader import PATH_RAW, PATH_TYPED, TopicReader
 WAIT_TIMEOUT_NS = 100_000_000
 GRAPH_PERIOD_S = 1.0
 MAX_BATCH = 2_000
-COALESCE_BELOW = 64
-COALESCE_S = 0.002
 
 
 class LiveLogSource:
@@ -130,6 +129,7 @@ class LiveLogSource:
         wait_set = None
         wait_set_entities: tuple = ()
         shown = None
+        coalescer = Coalescer()
         while not self._stop.is_set():
             now = time.monotonic()
             if (
@@ -167,14 +167,14 @@ class LiveLogSource:
             if events:
                 reader.handle_events(wait_set)
             batch = reader.take_all(MAX_BATCH)
+            taken = len(batch)
             if choice is not None:
                 batch = choice.filter(batch, reader.topic, time.monotonic())
             if batch:
                 self.queue.put(batch)
-            if len(batch) < COALESCE_BELOW:
-                # A trickle: let a few milliseconds of messages gather, so that each turn
-                # of this loop (a wait set rebuilt and waited on) pays for more of them.
-                self._stop.wait(COALESCE_S)
+            pause = coalescer.after(taken)
+            if pause:
+                self._stop.wait(pause)
             loss = (
                 self.queue.dropped,
                 reader.path,
