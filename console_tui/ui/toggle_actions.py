@@ -14,6 +14,7 @@ from textual.binding import Binding
 
 from ..model import toggles
 from ..model.levels import MESSAGE_SEVERITIES
+from ..model.rules.node import robot_node
 from ..model.rules.ruleset import RuleSet
 from ..model.time_column import TimeFormat, format_info, next_format, sim_time_note
 from .app_part import AppPart
@@ -96,8 +97,12 @@ class ToggleActions(AppPart):
         self.node_pane.show()
 
     def _row_node(self) -> str | None:
+        """The cursor row's node as solo and mute name it (in a fleet, that robot's node)."""
         seq = self.table.cursor_seq
-        return self.store.get(seq).node if seq is not None and seq in self.store else None
+        if seq is None or seq not in self.store:
+            return None
+        record = self.store.get(seq)
+        return robot_node(record.robot, record.node)
 
     def action_solo_row_node(self) -> None:
         node = self._row_node()

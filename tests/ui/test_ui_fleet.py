@@ -117,3 +117,32 @@ async def test_what_the_robots_sent_meanwhile_shows_in_time_order():
         await until(pilot, lambda: "cart 2" in screen_text(app), what="the rows")
         shown = [line.split()[-2:] for _, line in sorted(table_rows(app).values())]
         assert shown == [["picker", "0"], ["cart", "0"], ["picker", "1"], ["cart", "1"], ["picker", "2"], ["cart", "2"]]
+
+
+async def test_solo_and_mute_act_on_one_robots_node():
+    """The same node name on two robots is two nodes: soloing picker's /talker leaves
+    forklift's /talker out, and muting it from a row hides that robot's only."""
+    app, queue = fleet_app()
+    async with app.run_test(size=(120, 34)) as pilot:
+        put(queue, "picker", 4)
+        put(queue, "forklift", 4, start=10)
+        await until(pilot, lambda: "forklift says 3" in screen_text(app), what="the rows")
+        await pilot.press("ctrl+n")
+        await until(pilot, lambda: "Nodes: 2" in screen_text(app), what="the node panel")
+        for _ in range(2):
+            if app.node_pane.highlighted_option_id == "picker: /talker":
+                break
+            await pilot.press("down")
+        await pilot.press("s")
+        await until(pilot, lambda: "forklift says" not in screen_text(app), what="the solo")
+        assert "picker says 3" in screen_text(app)
+        assert "solo picker:/talker" in screen_text(app)
+        assert re.search(r"▏ S picker: /talker", screen_text(app))
+        assert re.search(r"▏ +forklift: /talker", screen_text(app))
+        await pilot.press("x", "escape")
+        await until(pilot, lambda: "forklift says 3" in screen_text(app), what="every node again")
+        app.table.jump_to_seq(next(s for s in range(app.store.end_seq) if app.store.get(s).robot == "forklift"))
+        app.action_mute_row_node()
+        await until(pilot, lambda: "forklift says" not in screen_text(app), what="the mute")
+        assert "picker says 3" in screen_text(app)
+        assert "muted forklift:/talker" in screen_text(app)

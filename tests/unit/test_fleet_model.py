@@ -46,6 +46,16 @@ def test_robot_in_the_query_line_matches_names_and_globs_and_never_the_robotless
         parse_query("robot:")
 
 
+def test_a_node_of_one_robot_matches_that_robots_records_only():
+    store = fleet_store("picker", "cart", "arm2")
+    assert {robot for robot, _ in shown(store, "node:picker:/talker")} == {"picker"}
+    assert {robot for robot, _ in shown(store, "node:picker:/talker,arm*:/talker")} == {"picker", "arm2"}
+    assert {robot for robot, _ in shown(store, "node:/talker")} == {"", "picker", "cart", "arm2"}
+    assert {robot for robot, _ in shown(store, "node:/talker,cart:/nobody")} == {"", "picker", "cart", "arm2"}
+    assert {robot for robot, _ in shown(store, "-node:cart:/talker")} == {"", "picker", "arm2"}
+    assert shown(fleet_store(), "node:picker:/talker") == []  # no robot at all
+
+
 def test_a_robot_rule_goes_through_a_rules_file(tmp_path):
     rules = RuleSet().with_query(parse_query("robot:picker,arm*"))
     save_rules(rules, tmp_path / "rules.toml")

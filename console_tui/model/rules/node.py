@@ -1,4 +1,5 @@
-"""Node: exact logger names or glob patterns (``nav*``, ``/ns/*``)."""
+"""Node: exact logger names or glob patterns (``nav*``, ``/ns/*``), each maybe of a robot of a
+fleet (``picker:/talker``, ``arm*:nav*``: those robots' nodes only)."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ from typing import Any, TypeVar
 
 from ..store import Chunk, LogStore
 from .fields import read_str_list
-from .rule import IdLookup, Rule, SpanTest
+from .rule import IdLookup, Rule, SpanTest, mask_and, mask_or
 
 _GLOB_CHARS = frozenset("*?[")
 
@@ -21,6 +22,19 @@ def logger_name(name: str) -> str:
     if name.startswith("/"):
         name = name.lstrip("/").replace("/", ".")
     return name
+
+
+def robot_node(robot: str, node: str) -> str:
+    """A node of one robot as a node rule names it: ``picker:/talker`` (``node`` alone when
+    ``robot`` is "": no fleet)."""
+    return f"{robot}:{node}" if robot else node
+
+
+def split_robot(name: str) -> tuple[str, str]:
+    """``picker:/talker`` -> (``picker``, ``/talker``); a name of no robot -> ("", name).
+    (Neither a ROS node name, a logger name nor a robot's name holds a colon.)"""
+    robot, colon, node = name.partition(":")
+    return (robot, node) if colon and robot and node else ("", name)
 
 
 def is_glob(pattern: str) -> bool:
@@ -76,19 +90,43 @@ class NamesRule(Rule):
 class NodeRule(NamesRule):
     """Matches records from any of ``names``: exact logger names or globs (case-sensitive).
 
-    A name written as a ROS node name (``/ns/talker``) matches its logger name (``ns.talker``).
+    A name written as a ROS node name (``/ns/talker``) matches its logger name (``ns.talker``);
+    one written ``ROBOT:NAME`` (``robot_node``) matches that robot's records only.
     """
 
     kind = "node"
 
-    def predicate(self) -> Callable[[str], bool]:
-        # A name as written too: ROS 1 loggers are node names (``/talker``).
-        return names_predicate(form for n in self.names for form in (n, logger_name(n)))
-
     def compile(self, store: LogStore) -> SpanTest:
-        lookup = IdLookup(store.nodes, self.predicate())
+        anywhere: list[str] = []
+        by_robot: dict[str, list[str]] = {}
+        for name in self.names:
+            robot, node = split_robot(name)
+            (by_robot.setdefault(robot, []) if robot else anywhere).append(node)
+        if not by_robot:
+            lookup = IdLookup(store.nodes, _node_predicate(anywhere))
+            return lambda chunk, lo, hi: lookup.mask(chunk.nodes, lo, hi)
+        tests: list[tuple[IdLookup | None, IdLookup]] = []
+        if anywhere:
+            tests.append((None, IdLookup(store.nodes, _node_predicate(anywhere))))
+        tests += [  # each robot's own nodes
+            (IdLookup(store.robots, names_predicate([robot])), IdLookup(store.nodes, _node_predicate(nodes)))
+            for robot, nodes in by_robot.items()
+        ]
 
         def test(chunk: Chunk, lo: int, hi: int) -> bytes:
-            return lookup.mask(chunk.nodes, lo, hi)
+            mask = bytes(hi - lo)
+            for robots, nodes in tests:
+                found = nodes.mask(chunk.nodes, lo, hi)
+                if robots is not None:
+                    found = (
+                        bytes(hi - lo) if chunk.robots is None else mask_and(found, robots.mask(chunk.robots, lo, hi))
+                    )
+                mask = mask_or(mask, found)
+            return mask
 
         return test
+
+
+def _node_predicate(names: Iterable[str]) -> Callable[[str], bool]:
+    # A name as written too: ROS 1 loggers are node names (``/talker``).
+    return names_predicate(form for n in names for form in (n, logger_name(n)))

@@ -12,7 +12,7 @@
   unless it has a capital letter (smart case); ``/regex/`` is a regular expression, ``/regex/i``
   ignores case. ``msg:`` does the same explicitly.
 - Keys: ``level:warn,error`` (a set), ``level>=warn`` (also ``>``, ``<=``, ``<``, ``=``);
-  ``node:nav*,planner`` (names or globs); ``robot:picker,arm*`` (a fleet's robots, names or globs); ``file:`` and ``func:`` (text or ``/regex/``);
+  ``node:nav*,planner`` (names or globs; ``node:picker:/talker`` one robot's node); ``robot:picker,arm*`` (a fleet's robots, names or globs); ``file:`` and ``func:`` (text or ``/regex/``);
   ``line:120``; ``since:``, ``until:`` and ``time:FROM..TO`` (either end may be left out).
   Times: ``12:30``, ``12:30:05.250`` (today), ``2024-05-01T12:30``, ``2024-05-01``, seconds
   since the epoch (``1714566600.5``), or an age (``90s``, ``5m``, ``2h``, ``1d`` ago).

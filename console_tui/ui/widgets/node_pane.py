@@ -29,6 +29,7 @@ from textual.widgets.option_list import Option
 
 from ...model.levels import SEVERITY_TABLE
 from ...model.node_stats import NodeCounts, NodeStats
+from ...model.rules.node import robot_node
 from ...model.text import one_line, shorten_name
 from ..focus import focus_now
 from ..keys import Hint, hint_line
@@ -290,9 +291,14 @@ class NodePane(RightPane):
             options.clear_options()
             styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
             # A robot's node is one option (the same node name on two robots is two).
-            self._option_nodes = {row.label: row.node for row in rows}
+            self._option_nodes = {row.label: robot_node(row.robot, row.node) for row in rows}
             options.add_options(
-                [Option(node_line(row, states.get(row.node, ""), widths, styles), id=row.label) for row in rows]
+                [
+                    Option(
+                        node_line(row, states.get(robot_node(row.robot, row.node), ""), widths, styles), id=row.label
+                    )
+                    for row in rows
+                ]
             )
             if rows:
                 ids = [row.label for row in rows]
@@ -305,7 +311,8 @@ class NodePane(RightPane):
 
     @property
     def highlighted_node(self) -> str | None:
-        """The node name of the highlighted row (solo and mute act on a name, on every robot)."""
+        """The node of the highlighted row as solo and mute name it (in a fleet ``ROBOT:/node``:
+        that robot's node only)."""
         option = self.highlighted_option_id
         return None if option is None else self._option_nodes.get(option, option)
 
