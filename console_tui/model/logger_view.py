@@ -36,7 +36,7 @@ class LoggerView:
         has_ros: bool = True,
         no_services_hint: str = "",
         lists_loggers: bool = False,
-        read_when_asked: bool = False,
+        read_when_asked: bool | Callable[[str], bool] = False,
     ) -> None:
         #: False when there is no logger control: nothing can be read or set.
         self.has_ros = has_ros
@@ -44,8 +44,7 @@ class LoggerView:
         self.no_services_hint = no_services_hint
         #: A read lists every logger of the node (ROS 1): the loggers offered are those.
         self.lists_loggers = lists_loggers
-        #: Levels are read only when the user asks (ROS 1), never on highlighting a node.
-        self.read_when_asked = read_when_asked
+        self._read_when_asked = read_when_asked
         self.nodes: tuple[GraphNode, ...] = ()
         #: Nodes whose logger services may yet appear (seen too recently to tell).
         self.checking: frozenset[str] = frozenset()
@@ -229,13 +228,19 @@ class LoggerView:
         if node is None:
             return "Select a node.", False
         if node.has_logger_services:
-            if self.read_when_asked and not self.loggers_of(node).levels:
+            if self.reads_when_asked(node.fqn) and not self.loggers_of(node).levels:
                 return read_hint, False
             return "", False
         if node.fqn in self.checking:
             return f"Checking whether {node.fqn} offers logger services…", False
         hint = f": {self.no_services_hint}" if self.no_services_hint else ""
         return f"{node.fqn} has no logger services{hint}.", False
+
+    def reads_when_asked(self, fqn: str) -> bool:
+        """Whether ``fqn``'s levels are read only when the user asks (ROS 1's nodes, also in
+        a fleet with ROS 2 robots), never on highlighting it."""
+        asked = self._read_when_asked
+        return asked(fqn) if callable(asked) else asked
 
     def counting_down(self) -> bool:
         """Whether a temporary level of the selected node is running (its countdown moves)."""

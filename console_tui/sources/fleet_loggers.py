@@ -53,13 +53,21 @@ class FleetLoggerControl(LoggerControl):
         every = list(self.controls.values())
         self.graph_min_s = max(control.graph_min_s for control in every)
         self.graph_quiet_s = max(control.graph_quiet_s for control in every)
-        # ROS 1's get_loggers can crash roscpp nodes: with a ROS 1 robot, nothing sweeps.
+        # ROS 1's get_loggers can crash roscpp nodes: a ROS 1 robot's nodes are read when asked
+        # (``reads_when_asked``); this is for a node named for no robot.
         self.read_when_asked = any(control.read_when_asked for control in every)
         self.lists_loggers = all(control.lists_loggers for control in every)
         self._fleet_listeners: list[Callable[[LoggerEvent], None]] = []
         self._fleet_lock = threading.Lock()
         for robot, control in self.controls.items():
             control.subscribe(self._forward(robot))
+
+    def reads_when_asked(self, fqn: str) -> bool:
+        """A node's levels are read only when asked where its robot's control says so (a ROS 1
+        robot's nodes); a ROS 2 robot's are read on highlighting, as with ROS 2 alone."""
+        robot, node = split_node(fqn, self.controls)
+        control = self.controls.get(robot)
+        return control.reads_when_asked(node) if control is not None else self.read_when_asked
 
     # -- what the robots say, renamed ------------------------------------------------------------
 

@@ -127,6 +127,10 @@ class LoggerControl(ABC):
 
     # -- control -----------------------------------------------------------------------------
 
+    def reads_when_asked(self, fqn: str) -> bool:
+        """Whether ``fqn``'s levels are read only when the user asks (``read_when_asked``)."""
+        return self.read_when_asked
+
     def start(self) -> None:
         self._thread = threading.Thread(target=self._run, name="console-tui-loggers", daemon=True)
         self._thread.start()

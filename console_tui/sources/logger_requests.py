@@ -59,7 +59,7 @@ class LoggerRequests:
             has_ros=control is not None,
             no_services_hint=control.no_services_hint if control is not None else ENABLE_LOGGER_SERVICE_HINT,
             lists_loggers=control is not None and control.lists_loggers,
-            read_when_asked=control is not None and control.read_when_asked,
+            read_when_asked=control.reads_when_asked if control is not None else False,
         )
 
     def listen(self) -> None:
@@ -157,7 +157,7 @@ class LoggerRequests:
     def read_levels(self, fqn: str, *, asked: bool = False) -> None:
         """Read ``fqn``'s levels; where they are read only when asked (ROS 1), only when ``asked``."""
         names = self.view.names_to_read(fqn)
-        if self.control is None or names is None or (self.view.read_when_asked and not asked):
+        if self.control is None or names is None or (self.view.reads_when_asked(fqn) and not asked):
             return
 
         def read(levels: Mapping[str, int]) -> None:

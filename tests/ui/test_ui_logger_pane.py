@@ -6,6 +6,7 @@ its ``LoggerControl`` would; what ROS does is tested in test_e2e_logger_pane.py.
 
 from __future__ import annotations
 
+import re
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from functools import partial
@@ -242,5 +243,37 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
                 pilot, lambda: app.logger_pane.selected == "/power/battery_monitor", what="the row's node selected"
             )
             assert pane_says(app, "battery_monitor")
+    finally:
+        control.close()
+
+
+async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_robots_when_asked():
+    from console_tui.sources.fleet_loggers import FleetLoggerControl
+
+    from support.memory_control import MemoryControl, MemoryNode
+
+    ros2 = MemoryControl([MemoryNode("/arm_driver")])
+    ros1 = MemoryControl([MemoryNode("/cart_driver")])
+    ros1.read_when_asked = True  # as a ROS 1 master's nodes: get_loggers can crash roscpp
+    control = FleetLoggerControl({"arm": ros2, "cart": ros1})
+    app = make_app(logger_control=control)
+    try:
+        async with app.run_test(size=(140, 30)) as pilot:
+            await until(pilot, lambda: cursor_number(app) == 100, what="the table")
+            await pilot.press("l")
+            await until(pilot, lambda: pane_says(app, "cart:/cart_driver"), what="both robots' nodes")
+            app.logger_pane.select_node("arm:/arm_driver")
+            default_is = partial(re.search, r'^"" \(default\) +(\S+)$', flags=re.M)
+            await until(
+                pilot,
+                lambda: (found := default_is("\n".join(pane_text(app)))) and found[1] == "INFO",
+                what="the ROS 2 robot's levels, read at once",
+            )
+            app.logger_pane.select_node("cart:/cart_driver")
+            await until(pilot, lambda: pane_says(app, "Loggers of cart:/cart_driver"), what="the ROS 1 robot's node")
+            assert pane_says(app, "read its loggers")
+            assert default_is("\n".join(pane_text(app)))[1] == "?", "not read until asked"
+            await pilot.press("r")
+            await until(pilot, lambda: default_is("\n".join(pane_text(app)))[1] == "INFO", what="read when asked")
     finally:
         control.close()

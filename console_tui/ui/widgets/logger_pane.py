@@ -337,7 +337,7 @@ class LoggerPane(RightPane):
     @on(OptionList.OptionSelected, "#logger-nodes")
     def _node_chosen(self, message: OptionList.OptionSelected) -> None:
         message.stop()
-        if self.selected is not None and self.view.read_when_asked:
+        if self.selected is not None and self.view.reads_when_asked(self.selected):
             self.read_levels(self.selected, asked=True)  # Enter opens the node: its loggers are read
         self.logger_list.focus()
 
