@@ -376,7 +376,7 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
 
 def _result(future: Any) -> Any:
     """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
-    from ..sources.logger_errors import LoggerCallError, NodeNotFound, NoLoggerServices
+    from ..sources.loggers.errors import LoggerCallError, NodeNotFound, NoLoggerServices
 
     try:
         return future.result()

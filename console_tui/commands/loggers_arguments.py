@@ -8,7 +8,7 @@ import textwrap
 
 from ..model.levels import Severity, parse_severity
 from ..model.logger_levels import DEFAULT_LOGGER
-from ..sources.logger_graph import GRAPH_MIN_S, GRAPH_QUIET_S
+from ..sources.loggers.graph import GRAPH_MIN_S, GRAPH_QUIET_S
 from .arguments import add_fleet_arguments, add_ros_version_arguments, add_subcommand, command_parser
 
 EXIT_OK = 0

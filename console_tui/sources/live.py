@@ -126,8 +126,8 @@ def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], obje
     ``options`` go to each robot's control (``call_timeout``, ``include_hidden``). What to shut
     down after the control is closed goes into ``cleanups``. ``RosUnavailable`` when a ROS 2
     robot's context cannot start."""
-    from .fleet_loggers import FleetLoggerControl
-    from .logger_control import LoggerControl
+    from .loggers.control import LoggerControl
+    from .loggers.fleet import FleetLoggerControl
 
     controls: dict[str, LoggerControl] = {}
     for robot in robots:

@@ -18,8 +18,8 @@ from typing import Any
 
 from ..model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
 from ..model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
-from .logger_control import LoggerControl
-from .logger_events import LoggerEvent, TemporaryEnded
+from .loggers.control import LoggerControl
+from .loggers.events import LoggerEvent, TemporaryEnded
 
 
 @dataclass(frozen=True)

@@ -71,7 +71,7 @@ from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
 from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
-    from ..sources.logger_control import LoggerControl
+    from ..sources.loggers.control import LoggerControl
 
 textual_fixes.apply()
 

@@ -26,7 +26,7 @@ from .gc_policy import CollectionPolicy
 from .widgets.rules_pane import RulesPane
 
 if TYPE_CHECKING:
-    from ..sources.logger_control import LoggerControl
+    from ..sources.loggers.control import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.

@@ -9,8 +9,8 @@ import pytest
 from test_cli_loggers import closed_pipe
 
 from console_tui.commands.loggers import main as loggers_main
-from console_tui.sources.logger_calls import SET
-from console_tui.sources.logger_errors import LevelRefused
+from console_tui.sources.loggers.calls import SET
+from console_tui.sources.loggers.errors import LevelRefused
 
 from support.ros1 import ROSCPP_LOGGER
 from support.ros1_source import Collected

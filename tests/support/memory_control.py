@@ -10,10 +10,10 @@ from collections.abc import Iterator
 from concurrent.futures import Future
 
 from console_tui.model.logger_levels import GraphNode, split_fqn
-from console_tui.sources.futures import done_future, failed_future, then
-from console_tui.sources.logger_calls import GET, SET
-from console_tui.sources.logger_control import LoggerControl
-from console_tui.sources.logger_errors import LevelRefused
+from console_tui.sources.loggers.calls import GET, SET
+from console_tui.sources.loggers.control import LoggerControl
+from console_tui.sources.loggers.errors import LevelRefused
+from console_tui.sources.loggers.futures import done_future, failed_future, then
 
 
 class MemoryNode:

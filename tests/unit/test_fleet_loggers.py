@@ -6,9 +6,9 @@ from __future__ import annotations
 import pytest
 
 from console_tui.model.logger_levels import GraphNode, node_of_logger
-from console_tui.sources.fleet_loggers import FleetLoggerControl, split_node
-from console_tui.sources.logger_errors import LoggerCallError
-from console_tui.sources.logger_events import NodesChanged, TemporaryEnded
+from console_tui.sources.loggers.errors import LoggerCallError
+from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
+from console_tui.sources.loggers.fleet import FleetLoggerControl, split_node
 
 from support.memory_control import MemoryControl, MemoryNode, running
 from support.rosproc import wait_until

@@ -1,6 +1,6 @@
 """ROS 1 logger levels: every node's ``~get_loggers`` and ``~set_logger_level``, natively.
 
-``Ros1LoggerControl`` is the ROS 1 side of ``sources.logger_control.LoggerControl``. The
+``Ros1LoggerControl`` is the ROS 1 side of ``sources.loggers.control.LoggerControl``. The
 nodes come from the master's system state (a node offering both services has the logger
 services: every roscpp and rospy node). A read calls the node's ``get_loggers``, which
 lists all its loggers with their levels in force; a set calls ``set_logger_level`` once
@@ -24,10 +24,10 @@ from typing import Any
 
 from ...model.levels import Severity
 from ...model.logger_levels import GraphNode, effective_level, split_fqn
-from ..futures import failed_future, then
-from ..logger_calls import GET, SET, Call
-from ..logger_control import CALL_TIMEOUT_S, LoggerControl
-from ..logger_errors import LevelRefused, LoggerCallError
+from ..loggers.calls import GET, SET, Call
+from ..loggers.control import CALL_TIMEOUT_S, LoggerControl
+from ..loggers.errors import LevelRefused, LoggerCallError
+from ..loggers.futures import failed_future, then
 from .environment import NODE_PREFIX, Ros1Environment, new_node_name
 from .logger_services import (
     GET_LOGGERS,

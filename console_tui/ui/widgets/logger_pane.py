@@ -25,8 +25,8 @@ from textual.widgets import Input, OptionList, Static
 
 from ...model.levels import MESSAGE_SEVERITIES
 from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
-from ...sources.logger_events import LoggerEvent, NodesChanged
 from ...sources.logger_requests import CallEnded, LoggerRequests
+from ...sources.loggers.events import LoggerEvent, NodesChanged
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
@@ -34,7 +34,7 @@ from .logger_lists import GraphNodeList, LoggerList
 from .side_pane import RightPane
 
 if TYPE_CHECKING:
-    from ...sources.logger_control import LoggerControl
+    from ...sources.loggers.control import LoggerControl
 
 TICK_S = 1.0
 

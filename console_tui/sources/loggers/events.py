@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..model.logger_levels import GraphNode, TemporaryLevel
-from .logger_errors import LoggerCallError
+from ...model.logger_levels import GraphNode, TemporaryLevel
+from .errors import LoggerCallError
 
 
 @dataclass(frozen=True)

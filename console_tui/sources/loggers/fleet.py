@@ -16,12 +16,12 @@ from concurrent.futures import Future
 from dataclasses import replace
 from typing import Any
 
-from ..model.logger_levels import ROBOT_SEPARATOR, GraphNode, TemporaryLevel
+from ...model.logger_levels import ROBOT_SEPARATOR, GraphNode, TemporaryLevel
+from .control import LoggerControl
+from .errors import LoggerCallError, NoLoggerServices
+from .events import LoggerEvent, NodesChanged, TemporaryEnded
 from .futures import failed_future, then
-from .logger_control import LoggerControl
-from .logger_errors import LoggerCallError, NoLoggerServices
-from .logger_events import LoggerEvent, NodesChanged, TemporaryEnded
-from .logger_graph import GraphWait
+from .graph import GraphWait
 
 
 def robot_node(robot: str, node: GraphNode) -> GraphNode:

@@ -12,9 +12,9 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
+from .errors import CallTimedOut, LoggerCallError, NodeGone, NodeNotFound, call_error
 from .futures import settle
-from .logger_errors import CallTimedOut, LoggerCallError, NodeGone, NodeNotFound, call_error
-from .logger_graph import GraphSnapshot
+from .graph import GraphSnapshot
 
 GET = "get"
 SET = "set"

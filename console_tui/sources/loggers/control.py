@@ -12,12 +12,12 @@ FATAL, 0 = unset, the logger inherits). Temporary levels are restored by the log
 when their time is up, whatever the UI does. ``close`` restores the ones still running before
 it returns (each restore waits up to the call timeout); a process killed outright leaves them set.
 
-Beside it: ``logger_errors.py`` (how a call fails), ``logger_events.py`` (what it tells its
-listeners), ``logger_graph.py`` (the graph as watched, and waiting until it has settled),
-``logger_calls.py`` (one call as the loggers thread moves it on).
+Beside it: ``errors.py`` (how a call fails), ``events.py`` (what it tells its listeners),
+``graph.py`` (the graph as watched, and waiting until it has settled), ``calls.py`` (one call
+as the loggers thread moves it on).
 
-A ROS gets its control by subclassing ``LoggerControl`` (``ros2/logger_control.py``,
-``ros1/logger_control.py``).
+A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``,
+``sources/ros1/logger_control.py``).
 The subclass provides, called on the loggers thread unless said otherwise:
 
 - ``_open()``: set up (a node, a connection to the master). An error ends the control and
@@ -51,10 +51,9 @@ from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future
 from typing import Any
 
-from ..model.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
-from .futures import done_future, failed_future, settle, then
-from .logger_calls import Call
-from .logger_errors import (
+from ...model.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
+from .calls import Call
+from .errors import (
     CallTimedOut,
     ControlClosed,
     LevelRefused,
@@ -63,8 +62,9 @@ from .logger_errors import (
     call_error,
     unsendable,
 )
-from .logger_events import LoggerEvent, NodesChanged, TemporaryEnded
-from .logger_graph import GRAPH_MIN_S, GRAPH_PERIOD_S, GRAPH_QUIET_S, GraphSnapshot, GraphWait, GraphWatch
+from .events import LoggerEvent, NodesChanged, TemporaryEnded
+from .futures import done_future, failed_future, settle, then
+from .graph import GRAPH_MIN_S, GRAPH_PERIOD_S, GRAPH_QUIET_S, GraphSnapshot, GraphWait, GraphWatch
 
 CALL_TIMEOUT_S = 2.0
 #: Discovery is busiest just after start: look at the graph more often then.
