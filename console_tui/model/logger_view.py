@@ -2,7 +2,7 @@
 its loggers and their levels, the calls under way per node, and the one-line notice.
 
 ``LoggerView`` is to the logger levels pane what ``LogView`` is to the table: the pane draws
-it and turns keys into calls (``sources/logger_requests.py`` makes them and brings their
+it and turns keys into calls (``ui/widgets/logger_requests.py`` makes them and brings their
 outcomes here); the view keeps the books (which node is selected, what was read, which
 calls are pending, what to say when a call ends). No ROS, no Textual.
 """

@@ -1,7 +1,7 @@
 """The logger levels pane, beside the table: the graph's nodes, a node's loggers and their levels.
 
 The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into requests
-(``sources/logger_requests.py``: the calls of the ``LoggerControl`` and their books). With a
+(``logger_requests.py``: the calls of the ``LoggerControl`` and their books). With a
 control, the pane keeps the view fed (nodes as the graph changes, levels as they are read,
 temporary levels as they run); tests may feed it through ``show_*`` and ``select_node`` for a
 fixed picture. Every service call runs on the control's thread: its end comes back as a
@@ -25,12 +25,12 @@ from textual.widgets import Input, OptionList, Static
 
 from ...model.levels import MESSAGE_SEVERITIES
 from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
-from ...sources.logger_requests import CallEnded, LoggerRequests
 from ...sources.loggers.events import LoggerEvent, NodesChanged
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
 from .logger_lists import GraphNodeList, LoggerList
+from .logger_requests import CallEnded, LoggerRequests
 from .side_pane import RightPane
 
 if TYPE_CHECKING:

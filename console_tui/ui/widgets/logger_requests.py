@@ -1,6 +1,7 @@
 """What the logger levels pane asks of a ``LoggerControl``, kept in the books of its ``LoggerView``.
 
-The pane (``ui/widgets/logger_pane.py``) draws the view and turns keys into these requests.
+The pane's presenter: the pane (``logger_pane.py``) draws the view and turns keys into these
+requests.
 ``LoggerRequests`` makes the calls, counts each as under way in the view until it ends, and
 when it ends (``finish``, back on the pane's thread) puts what it brought into the view, says
 so, and reads the node's levels again. The control's events and the pane's tick come here too:
@@ -16,10 +17,10 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
-from ..model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
-from ..model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
-from .loggers.control import LoggerControl
-from .loggers.events import LoggerEvent, TemporaryEnded
+from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
+from ...model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
+from ...sources.loggers.control import LoggerControl
+from ...sources.loggers.events import LoggerEvent, TemporaryEnded
 
 
 @dataclass(frozen=True)
