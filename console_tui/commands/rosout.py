@@ -1,8 +1,7 @@
 """``console-tui rosout``: the rosout node for ROS 2 (``/rosout_agg`` and ``rosout.log``).
 
 Runs until Ctrl-C or SIGTERM, then flushes rosout.log and exits 0. What it does is in
-``console_tui.sources.ros2.aggregator``; the file's format in
-``console_tui.model.formats.rosout_log``.
+``rosout_aggregator.py``; the file's format in ``console_tui.model.formats.rosout_log``.
 """
 
 from __future__ import annotations
@@ -33,7 +32,7 @@ LOG_NAME = "rosout.log"
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from ..sources.ros2.aggregator import DEFAULT_DEPTH, DEFAULT_NODE_NAME, DEFAULT_REPORT_S
+    from .rosout_aggregator import DEFAULT_DEPTH, DEFAULT_NODE_NAME, DEFAULT_REPORT_S
 
     parser = command_parser(
         "rosout",
@@ -125,7 +124,7 @@ def main(argv: Sequence[str]) -> int:
             print(f"console-tui rosout: cannot write rosout.log: {log.error}", file=sys.stderr)
             runtime.shutdown()
             return EXIT_ERROR
-    from ..sources.ros2.aggregator import RosoutAggregator
+    from .rosout_aggregator import RosoutAggregator
 
     stop = threading.Event()
     previous = {sig: signal.signal(sig, lambda *_: stop.set()) for sig in (signal.SIGINT, signal.SIGTERM)}

@@ -22,15 +22,15 @@ import threading
 import time
 from dataclasses import dataclass
 
-from ...model.formats.ros2_log_msg import LogEncoder
-from ...model.formats.rosout_log import rosout_log_text
-from ...model.formats.rotating_file import RotatingFile
-from ...model.intake_queue import IntakeQueue
-from ...model.record import LogRecord
-from ...model.text import plural
-from ..log_topics import ROSOUT, ROSOUT_AGG
-from .live_source import LiveLogSource
-from .runtime import RosRuntime
+from ..model.formats.ros2_log_msg import LogEncoder
+from ..model.formats.rosout_log import rosout_log_text
+from ..model.formats.rotating_file import RotatingFile
+from ..model.intake_queue import IntakeQueue
+from ..model.record import LogRecord
+from ..model.text import plural
+from ..sources.log_topics import ROSOUT, ROSOUT_AGG
+from ..sources.ros2.live_source import LiveLogSource
+from ..sources.ros2.runtime import RosRuntime
 
 DEFAULT_DEPTH = 10_000
 DEFAULT_NODE_NAME = "rosout"
