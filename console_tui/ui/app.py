@@ -6,7 +6,7 @@ they share): ``intake_actions`` (the sources, their records into the store), ``t
 (opening and saving files), ``pane_actions`` (the side panes), ``search_actions`` (search,
 next / previous match), ``jump_actions`` (errors, warnings, marks, the source file),
 ``toggle_actions`` (level and node toggles, the node panel, time formats), ``overview_actions``
-(the timeline, storms, the summary), ``commands`` (the command palette) and ``keys`` (the
+(the timeline, storms, the summary), ``palette`` (the command palette) and ``keys`` (the
 user's keymap, hints from bindings). A feature adds its keys to ``BINDINGS`` below and its work
 in a module of its own.
 """
@@ -41,7 +41,6 @@ from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from . import textual_fixes
-from .commands import ConsoleCommands
 from .exit_signals import ExitSignals, terminal_gone
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
@@ -50,6 +49,7 @@ from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
 from .jump_actions import JumpActions
 from .keys import binding_ids, keymap_path, load_keymap
 from .overview_actions import OverviewActions
+from .palette import PaletteProvider
 from .pane_actions import PaneActions
 from .rule_actions import RuleActions
 from .screens.detail import DetailScreen
@@ -100,7 +100,7 @@ class ConsoleApp(
     TITLE = "console-tui"
     CSS_PATH = "app.tcss"
     #: Textual's own palette entries (theme, quit, screenshot...) and ours.
-    COMMANDS = App.COMMANDS | {ConsoleCommands}
+    COMMANDS = App.COMMANDS | {PaletteProvider}
 
     BINDINGS = [
         # Named for what it does now: the footer says Resume while paused (name_pause_key).

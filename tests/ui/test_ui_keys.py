@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from console_tui.ui.commands import palette_commands
 from console_tui.ui.keys import load_keymap
+from console_tui.ui.palette import palette_commands
 from console_tui.ui.widgets.key_footer import KeyFooter
 
 from support.feed import feed_logger_pane

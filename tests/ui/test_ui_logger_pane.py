@@ -15,7 +15,7 @@ from textual.pilot import Pilot
 
 from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
 from console_tui.model.logger_view import NO_ROS_TEXT
-from console_tui.ui.commands import palette_commands
+from console_tui.ui.palette import palette_commands
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 from console_tui.ui.widgets.logger_pane import LoggerPane
 

@@ -465,7 +465,7 @@ async def test_a_bare_file_name_opens_under_the_run_folder(tmp_path, monkeypatch
 
 
 async def test_every_palette_entry_names_an_action_and_a_key_that_exist():
-    from console_tui.ui.commands import palette_commands
+    from console_tui.ui.palette import palette_commands
 
     app = make_app(5)
     async with app.run_test(size=(100, 30)):

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.ui.commands import palette_commands
+from console_tui.ui.palette import palette_commands
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records

@@ -218,7 +218,7 @@ def navigation_commands() -> list[PaletteCommand]:
     ]
 
 
-class ConsoleCommands(Provider):
+class PaletteProvider(Provider):
     """The palette entries of ``palette_commands``, each shown with its key."""
 
     @property
