@@ -217,7 +217,7 @@ def on_a_terminal() -> bool:
 def main(argv: Sequence[str] | None = None) -> int:
     """The ``console-tui`` command. ``argv`` None: this process's command line, and a live
     session ends the process itself once everything it started has stopped (see
-    ``launch.end_now``); with ``argv`` given (a caller in the same process), it returns."""
+    ``run_app.end_now``); with ``argv`` given (a caller in the same process), it returns."""
     complete()
     args_list = list(sys.argv[1:] if argv is None else argv)
     if args_list and args_list[0] in SUBCOMMANDS.keys() | ALIASES.keys():
@@ -240,7 +240,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if argv is None and not on_a_terminal():
         print(NOT_A_TERMINAL, file=sys.stderr)
         return EXIT_NO_ROS  # the same status as a missing ROS: this environment cannot run it
-    from .launch import run_app
+    from .run_app import run_app
 
     return run_app(args, end_process=argv is None)
 

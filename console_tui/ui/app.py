@@ -226,7 +226,7 @@ class ConsoleApp(
         super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
 
     #: What catches native code's output while the app draws (``sources.native_output``): put
-    #: aside while the app is suspended (an editor has the terminal). Set by the launch.
+    #: aside while the app is suspended (an editor has the terminal). Set by ``run_app``.
     native_output: TerminalGuard | None = None
 
     @contextmanager

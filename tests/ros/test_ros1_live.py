@@ -235,8 +235,8 @@ async def test_files_and_live_ros1_in_one_timeline(roscore, ros1_nodes, tmp_path
 def test_the_launch_picks_ros1_when_a_master_answers(roscore, monkeypatch):
     import argparse
 
-    from console_tui.launch import _start_live
     from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.run_app import _start_live
     from console_tui.sources.intake_process.parent import ProcessSource
     from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 

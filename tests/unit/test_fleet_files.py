@@ -100,7 +100,7 @@ def test_tail_prints_a_fleets_robot(tmp_path):
 
 
 def test_robots_from_names_names_each_file_for_itself(tmp_path, monkeypatch):
-    from console_tui import launch
+    from console_tui import run_app
     from console_tui.cli import main
     from console_tui.sources.fleet import robot_name_for
 
@@ -109,6 +109,6 @@ def test_robots_from_names_names_each_file_for_itself(tmp_path, monkeypatch):
     assert robot_name_for("fork lift#2.jsonl") == "fork_lift_2"
     assert robot_name_for("...") == "robot"
     seen = {}
-    monkeypatch.setattr(launch, "run_app", lambda args, end_process: seen.update(args.file_robots) or 0)
+    monkeypatch.setattr(run_app, "run_app", lambda args, end_process: seen.update(args.file_robots) or 0)
     assert main(["--robots-from-names", "a/picker", "--robot", "arm", "b.log", "c.log"]) == 0
     assert seen == {"a/picker": "picker", "b.log": "arm", "c.log": "arm"}

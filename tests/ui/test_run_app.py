@@ -1,6 +1,6 @@
 """``console-tui`` run in this process, from the command line to the exit code: files only,
 rclpy missing, a query at start, sources that fail to start or stop. Live ROS 2 runs are in
-tests/ros/test_launch_live.py."""
+tests/ros/test_run_app_live.py."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import pytest
 from console_tui.model.formats.save import save_records
 
 from support.feed import records
-from support.launch import run_main
+from support.run_main import run_main
 from support.ui import line_with, screen_text, until
 
 

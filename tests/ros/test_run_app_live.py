@@ -9,8 +9,8 @@ import threading
 import pytest
 from conftest import next_domain_id
 
-from support.launch import run_main
 from support.rosproc import pid_alive, wait_until
+from support.run_main import run_main
 from support.ui import line_with, screen_text, until
 
 pytestmark = pytest.mark.ros2

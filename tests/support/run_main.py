@@ -17,7 +17,7 @@ Script = Callable[[object], Awaitable[None]]
 def run_main(monkeypatch: pytest.MonkeyPatch, argv: list[str], script: Script, size=(120, 30)) -> tuple[int, list]:
     """``cli.main(argv)`` with every ``ConsoleApp.run`` headless, driven by ``script(pilot)``
     (which must end the app, with ``q`` as a person does). Returns the exit code and the
-    apps that ran. The process environment is put back afterwards (the launch sets some
+    apps that ran. The process environment is put back afterwards (a run sets some
     ROS variables, as it does for a real run)."""
     apps: list[ConsoleApp] = []
     failures: list[BaseException] = []

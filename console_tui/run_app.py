@@ -1,4 +1,5 @@
-"""Putting the pieces together for a run: store, sources, demo nodes, the app."""
+"""Running the app: the pieces put together (store, live sources, logger control, demo nodes,
+the app), and everything started stopped again however the run ends."""
 
 from __future__ import annotations
 
