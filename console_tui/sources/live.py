@@ -127,7 +127,7 @@ def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], obje
     down after the control is closed goes into ``cleanups``. ``RosUnavailable`` when a ROS 2
     robot's context cannot start."""
     from .loggers.control import LoggerControl
-    from .loggers.fleet import FleetLoggerControl
+    from .loggers.fleet_control import FleetLoggerControl
 
     controls: dict[str, LoggerControl] = {}
     for robot in robots:

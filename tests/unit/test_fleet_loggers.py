@@ -8,7 +8,7 @@ import pytest
 from console_tui.model.logger_levels import GraphNode, node_of_logger
 from console_tui.sources.loggers.errors import LoggerCallError
 from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
-from console_tui.sources.loggers.fleet import FleetLoggerControl, split_node
+from console_tui.sources.loggers.fleet_control import FleetLoggerControl, split_node
 
 from support.memory_control import MemoryControl, MemoryNode, running
 from support.rosproc import wait_until
