@@ -17,11 +17,11 @@ The UI's entry points:
 from __future__ import annotations
 
 from ...model.formats import FormatError, Problem
-from .folders import latest_run
+from .folders import latest_run, source_names
 from .loader import FileLoad, FileProgress, LoadProgress, OpenedLogs, load_records, open_files, open_logs
 from .log_file import LogFile, TextLogFile
 from .merge import merge_by_time, sorted_by_stamp
-from .opener import open_log_file, source_names
+from .opener import open_log_file
 
 __all__ = [
     "FileLoad",

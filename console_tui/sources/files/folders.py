@@ -1,4 +1,5 @@
-"""Folders of logs: which files a folder holds, the log directory, and its newest run.
+"""Folders of logs: which files a folder holds, the names that tell logs apart, the log
+directory, and its newest run.
 
 A folder opens as every log in it: a ROS 1 run folder (``~/.ros/log/<run_id>/``), a ROS 2
 launch folder (``~/.ros/log/<date>-<host>-<pid>/``) or the whole log directory, searched
@@ -64,6 +65,21 @@ class Expansion:
     empty: list[Path] = field(default_factory=list)
 
 
+def source_names(paths: Sequence[str | os.PathLike[str]]) -> list[str]:
+    """Short names that tell the files apart: the file name, with as many parent
+    directories as it takes when names repeat (``run1/rosout.log``, ``run2/rosout.log``)."""
+    resolved = [Path(p).resolve() for p in paths]
+    names = [p.name for p in resolved]
+    depth = 1
+    while len(set(names)) < len(names) and depth < 32:
+        depth += 1
+        counts = {n: names.count(n) for n in names}
+        names = [
+            "/".join(p.parts[-depth:]) if counts[name] > 1 else name for p, name in zip(resolved, names, strict=False)
+        ]
+    return names
+
+
 def expand_paths(paths: Sequence[str | os.PathLike[str]]) -> Expansion:
     """Every log the paths name: files as they are, folders as the logs in them.
 
@@ -71,8 +87,6 @@ def expand_paths(paths: Sequence[str | os.PathLike[str]]) -> Expansion:
     repeat); a folder's logs by their path inside it, under the folder's name when
     several things were opened.
     """
-    from .opener import source_names
-
     expansion = Expansion()
     items: list[tuple[Path, list[tuple[tuple[Path, ...], str]] | None]] = []
     for given in paths:

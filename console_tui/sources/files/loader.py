@@ -13,10 +13,10 @@ from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
 from ...model.text import plural
-from .folders import Expansion, LogPaths, expand_paths
+from .folders import Expansion, LogPaths, expand_paths, source_names
 from .log_file import LogFile, describe_error, reading_stopped
 from .merge import merge_by_time
-from .opener import open_log_paths, source_names
+from .opener import open_log_paths
 
 #: The loader waits while this many records wait in the queue (the UI is behind).
 QUEUE_HIGH_WATER = 200_000

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import os
 import stat
-from collections.abc import Sequence
 from pathlib import Path
 
 from ...model.formats import FormatError, Ros1ConsoleFormat, detect_text_format, recording_kind, text_formats
@@ -95,18 +94,3 @@ def _not_regular(mode: int) -> str:
     if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
         return "a device"
     return "a special file"
-
-
-def source_names(paths: Sequence[str | os.PathLike[str]]) -> list[str]:
-    """Short names that tell the files apart: the file name, with as many parent
-    directories as it takes when names repeat (``run1/rosout.log``, ``run2/rosout.log``)."""
-    resolved = [Path(p).resolve() for p in paths]
-    names = [p.name for p in resolved]
-    depth = 1
-    while len(set(names)) < len(names) and depth < 32:
-        depth += 1
-        counts = {n: names.count(n) for n in names}
-        names = [
-            "/".join(p.parts[-depth:]) if counts[name] > 1 else name for p, name in zip(resolved, names, strict=False)
-        ]
-    return names
