@@ -15,17 +15,15 @@ import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from functools import partial
-from typing import TYPE_CHECKING, cast
+from typing import Protocol, cast
 
+from textual.binding import Binding
 from textual.command import DiscoveryHit, Hit, Hits, Provider
 
 from ..model.levels import MESSAGE_SEVERITIES
 from ..model.time_column import FORMATS, format_info
-from .keys import key_label, keymap_of
+from .keys import KeyDisplay, key_label, keymap_of
 from .widgets.table_columns import COLUMNS
-
-if TYPE_CHECKING:
-    from .app import ConsoleApp
 
 
 @dataclass(frozen=True)
@@ -218,12 +216,18 @@ def navigation_commands() -> list[PaletteCommand]:
     ]
 
 
+class KeyedApp(KeyDisplay, Protocol):
+    """What the palette reads of the app (``ConsoleApp``): its keys, by where they work."""
+
+    def binding_groups(self) -> list[tuple[str, list[Binding]]]: ...
+
+
 class PaletteProvider(Provider):
     """The palette entries of ``palette_commands``, each shown with its key."""
 
     @property
-    def console(self) -> ConsoleApp:
-        return cast("ConsoleApp", self.app)  # only ConsoleApp lists this provider
+    def console(self) -> KeyedApp:
+        return cast(KeyedApp, self.app)  # only ConsoleApp lists this provider
 
     def _entries(self) -> Iterable[tuple[PaletteCommand, str]]:
         app = self.console
