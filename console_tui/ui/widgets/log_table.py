@@ -15,7 +15,6 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import Protocol
 
 from rich.style import Style
 from textual import events
@@ -35,22 +34,8 @@ from .log_table_cells import Decoration, Spans
 from .log_table_cursor import TableCursor
 from .log_table_frame import TableFrame
 from .table_columns import COLUMNS, PlacedColumn
+from .table_rows import TableRows
 from .table_scrollbar import TableScrollBar
-
-
-class TableRows(Protocol):
-    """What the table reads its rows from: a ``LogView``, or ``StormRows`` over one."""
-
-    def __len__(self) -> int: ...
-
-    def seq_at(self, row: int) -> int: ...
-
-    def row_of(self, seq: int) -> int: ...
-
-    def count_before(self, seq: int) -> int: ...
-
-    def row_shown(self, seq: int) -> int | None: ...
-
 
 #: How often the scrollbar follows changes that leave the rows on screen as they were (s).
 _QUIET_SCROLLBAR_PERIOD = 0.1

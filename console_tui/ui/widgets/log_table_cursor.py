@@ -16,7 +16,7 @@ from textual.scroll_view import ScrollView
 
 if TYPE_CHECKING:
     from ...model.store import LogStore
-    from .log_table import TableRows
+    from .table_rows import TableRows
 
 
 class TableCursor(ScrollView):

@@ -24,7 +24,7 @@ from .log_table_cells import Decoration, TableCells, fit
 from .log_table_layout import TableLayout
 
 if TYPE_CHECKING:
-    from .log_table import TableRows
+    from .table_rows import TableRows
 
 _NO_SPACING = Spacing(0, 0, 0, 0)
 
