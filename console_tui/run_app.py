@@ -88,7 +88,7 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
 def end_now(code: int) -> None:
     """End the process at once: the app has stopped everything it started (the intake
     process, demo nodes, ROS), and the interpreter's own teardown (rclpy's and Fast DDS's
-    static destructors) took another 1-3 s here, while the person who pressed ``q`` waits."""
+    static destructors) would take seconds more, while the person who pressed ``q`` waits."""
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()

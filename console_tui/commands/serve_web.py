@@ -13,9 +13,9 @@ textual-serve has no public handle on a tab's process nor on its message loop: t
 names used here (``Server._make_app``, ``Server._process_messages``, ``AppService._process``)
 are checked by ``check_upstream`` when the server is made, so another textual-serve release
 fails at once with a clear message instead of serving something unchecked (the ``[web]``
-extra pins the tested range). No upstream issue asks for these yet (none was found in
-Textualize/textual-serve's tracker on 2026-11-27): a public process handle and an access
-hook there would let this module drop all three.
+extra pins the tested range). A public process handle and an access hook in textual-serve
+would let this module drop all three (where that stands upstream: docs/architecture.md, "The
+web server on textual-serve").
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 ``NodeStats`` counts every kept record (whatever the rules hide: it describes the run),
 incrementally as records arrive (``update``) and as the store drops the oldest (its
-eviction hook), a chunk column at a time: about 0.3 us a record. The rate of a node is
+eviction hook), a chunk column at a time. The rate of a node is
 its records in the last ``window_s`` seconds of stamps (the newest stamp's second and
 the ones before it) divided by that window, or by the seconds the history covers when
 it is shorter.

@@ -5,12 +5,12 @@ for a log message of 90 characters that is 40% of its memory. ``PackedTexts`` ke
 full chunk's messages joined by NUL in one string, with where each one starts (4 bytes
 a message), and is read like a tuple of strings: an index gives one message, a slice a
 list of them (one C-level ``split``). Being no container of objects, it also costs
-Python's cyclic garbage collector nothing, which a million strings in lists did (30 ms
-a full collection here).
+Python's cyclic garbage collector nothing, where a million strings in lists cost it a visit
+each (docs/architecture.md, "The store keeps full chunks packed").
 
-Reading a slice makes a ``str`` for each text (about 70 ns each here), so the last few
-chunks read whole are kept as lists for a while (``RECENT``): filtering reads a chunk in
-several slices, once per rule, and pays for the texts once.
+Reading a slice makes a ``str`` for each text, so the last few chunks read whole are kept
+as lists for a while (``RECENT``): filtering reads a chunk in several slices, once per rule,
+and pays for the texts once.
 
 ``pack`` chooses: texts that hold NUL themselves, or non-ASCII texts that would take
 more room joined (one wide character widens the whole string), stay a list.

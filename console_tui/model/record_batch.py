@@ -3,9 +3,9 @@
 A ``RecordColumns`` is a batch of records held as one sequence per field, the shape the
 store keeps them in: adding one to the store costs a few C-level copies instead of a
 Python step per record. A live intake running in a child process packs its batches with
-a ``BatchPacker`` and the app unpacks them with a ``BatchUnpacker``; measured here
-(benchmarks/intake.py), unpacking and storing a Log message costs the app about 0.4 us,
-against 4-5 us for decoding its CDR bytes and storing the record.
+a ``BatchPacker`` and the app unpacks them with a ``BatchUnpacker``, which costs it far
+less than decoding CDR bytes would (docs/architecture.md, "The live intake runs in a process
+of its own").
 
 The packed layout (native byte order: both ends are processes of the same machine)::
 

@@ -7,9 +7,9 @@ repeated strings (node, file, function, source) as ids into string tables, messa
 fleet: several ROS 2 domains or ROS 1 masters, or files named for their robots). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
 when one does not); a full chunk keeps its messages joined in one string
 (``PackedTexts``), so a message costs its text and 4 bytes. Dropping the oldest chunk
-when the bound is passed costs O(1). ``extend`` works column by column, about 1 us a
-record, and takes ``RecordColumns`` (a batch already in columns, as a live intake in a
-child process hands them over) without a Python step per record.
+when the bound is passed costs O(1). ``extend`` works column by column, and takes
+``RecordColumns`` (a batch already in columns, as a live intake in a child process hands
+them over) without a Python step per record.
 
 Every record gets a sequence number (``seq``) in arrival order; a seq never changes and
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record

@@ -12,8 +12,7 @@ Expanding it (``expand``) makes them rows again where they are, between the othe
 ``StormRows`` reads like a ``LogView`` (``len``, ``seq_at``, ``row_of``,
 ``count_before``): the table draws it instead of the view. Its rows are the seqs of the
 runs' first messages (and of the messages of expanded storms), in seq order, taken in as
-records arrive (``ShownFollower``), about 1 us a record, so counts are exact at every
-frame. After a rule change it collapses again from the oldest record in the background;
+records arrive (``ShownFollower``), so counts are exact at every frame. After a rule change it collapses again from the oldest record in the background;
 until it has caught up, the rows it has not reached are the view's own rows. When the
 store drops a storm's first message, the next one kept takes its place and the count
 goes down by what was dropped.

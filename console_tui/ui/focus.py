@@ -3,14 +3,14 @@
 Textual passes each key to the focused widget's own message queue, and runs the key's binding
 only when the key has come back up to the app; meanwhile the app has passed the keys behind it
 to the same widget. And ``Widget.focus`` queues the focus change behind the keys already
-waiting. So keys typed right after a key that moves the focus went to the widget focused
-before: typing ``/error`` in the first second after launch, while the app was still busy
-starting, opened the query line and sent ``e``, ``r``, ``r``, ``o``, ``r`` to the table (``r``
-toggling the rules pane), and the query line stayed empty.
+waiting. So keys typed right after a key that moves the focus would go to the widget focused
+before: typing ``/error`` in the first second after launch, while the app is still busy
+starting, would open the query line and send ``e``, ``r``, ``r``, ``o``, ``r`` to the table
+(``r`` toggling the rules pane), leaving the query line empty.
 
 A key that opens a dialog has the same trouble: the dialog's widgets mount, and its text box
 takes the focus, a few turns of the event loop later, and the keys typed behind it meanwhile
-were lost (``o`` and a path typed at once gave an empty box).
+would be lost (``o`` and a path typed at once would give an empty box).
 
 ``run_bindings_now`` runs a key's binding as soon as the app takes the key, ``focus_now``
 moves the focus at once, and ``KeyGate`` holds the keys that arrive while the screen on top is

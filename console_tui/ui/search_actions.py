@@ -25,8 +25,8 @@ from .widgets.log_table import Spans
 from .widgets.search_bar import SearchBar
 
 #: Slices of the search on the event loop, and the pause between them. A slice adds to the
-#: frame drawn in the same turn of the loop: 3 ms keeps the longest stall near the floor (5 ms
-#: slices: 18-26 ms stalls against a floor of 4-5 ms; 3 ms: 10-18 ms; 2 ms no better).
+#: frame drawn in the same turn of the loop, so it is short enough to keep the longest stall
+#: near the floor (the slices tried: docs/architecture.md, "Background work in slices").
 SEARCH_BUDGET_S = 0.003
 SEARCH_PAUSE_S = 0.001
 #: After the table moved or its marks changed, the pause that leaves the next frame (every

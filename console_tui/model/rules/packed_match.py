@@ -15,7 +15,7 @@ and turn the few places found into rows (``bisect`` on the messages' starts):
 
 A matcher answers ``None`` where it cannot help (text that is not ASCII while ignoring
 case, a text found in most messages, a pattern that looks outside its match), and the
-caller tests the messages one by one as before: the answers are the same either way.
+caller tests the messages one by one instead: the answers are the same either way.
 """
 
 from __future__ import annotations

@@ -9,8 +9,7 @@ code inside it: past ``seconds`` that code is abandoned with ``MatchTimeout``, w
 is, a catastrophic ``re.search`` included. Python's ``re`` keeps its semantics and its
 speed; nothing needs installing.
 
-Putting a signal handler in place costs far more than arming the timer (tens of µs against
-one), so a caller that runs many limited pieces in a row holds ``alarms()`` around them:
+Putting a signal handler in place costs far more than arming the timer, so a caller that runs many limited pieces in a row holds ``alarms()`` around them:
 inside it, each ``time_limit`` only arms and disarms the timer.
 
 The timer and handler in place before (pytest-timeout's, say) are put back afterwards, with

@@ -176,6 +176,6 @@ def main(argv: Sequence[str] | None = None) -> int:
 if __name__ == "__main__":
     exit_code = main()
     # ROS is shut down by now; the interpreter's own ending (libraries' static destructors,
-    # Fast DDS's threads) took another 0.5 s here, and the app waits for this process.
+    # Fast DDS's threads) would take longer still, and the app waits for this process.
     sys.stderr.flush()
     os._exit(exit_code)

@@ -3,8 +3,8 @@
 Why a process: in the app's own process the intake shares the GIL and the CPU time of the
 drawing and filtering, and whatever stalls the app stalls the taking of messages. In a
 process of its own the intake takes and decodes messages however busy the app is; the
-app gets them as packed column batches, which cost it about 0.4 us a message to store
-against 4-5 us for decoding and storing CDR (benchmarks/intake.py records the figures).
+app gets them as packed column batches, which cost it far less to store than decoding CDR
+would (docs/architecture.md, "The live intake runs in a process of its own").
 
 A thread of this process reads the pipe: ``BATCH`` frames go into the app's
 ``IntakeQueue`` as ``RecordColumns`` (no ``LogRecord`` objects are made for them), and

@@ -21,9 +21,8 @@ GRAPH_PERIOD_S = 0.5
 #: three times as long when it shows none at all.
 NO_SERVICES_GRACE_S = 1.5
 #: A graph is taken as complete once it has been watched this long and no node has come, gone
-#: or changed for the quiet time. Fast DDS repeats its discovery every 3 s: on this project's
-#: shared 2-core machines, under load, a node missed by the first round was seen up to 4.6 s
-#: after start, and up to 2.5 s after the node seen before it.
+#: or changed for the quiet time. Fast DDS repeats its discovery every 3 s, and a node missed
+#: by its first round comes seconds later (docs/architecture.md, "Waiting for discovery").
 GRAPH_MIN_S = 5.0
 GRAPH_QUIET_S = 2.0
 

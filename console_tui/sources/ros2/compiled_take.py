@@ -1,8 +1,8 @@
 """The take loop in C (``take_loop.c``), compiled on this machine the first time it is needed.
 
 Taking a serialized message through rclpy costs a pybind11 call, a message-info dict and a
-Python sequence-number check: about 3-5 µs a message on the 2-core test machine, against
-1.0-1.7 µs for the same takes in C (``benchmarks/take_loop.py``). At a publisher's
+Python sequence-number check: about three times what the same takes cost in C
+(``benchmarks/take_loop.py``; docs/architecture.md, "The take loop in C"). At a publisher's
 maximum rate that difference decides whether the console keeps up.
 
 ``load()`` builds the loop against the headers of the rcl that rclpy has loaded (found
@@ -11,7 +11,7 @@ and the PyPI wheels lay them out), with the C compiler Python was built with, in
 ``$XDG_CACHE_HOME/console-tui`` (else ``~/.cache/console-tui``), named by a hash of
 everything it was built from; later starts load it from there. Without a compiler,
 Python's headers or rcl's (or with ``CONSOLE_TUI_COMPILED_TAKE=0``) the intake takes
-through rclpy, as before: ``load()`` returns ``None`` and says why.
+through rclpy: ``load()`` returns ``None`` and says why.
 
 What the cache trusts: a built file is loaded only from a cache directory that is a real
 directory (not a link) owned by the user and writable by nobody else, and only if the file

@@ -5,10 +5,8 @@ takes every message that is ready, with no executor in between, and hands each b
 an ``IntakeQueue``. Messages are read by the direct CDR decoder, path ``raw+cdr``, or
 typed by rclpy (``typed``); ``SourceStatus.path`` says which is in use.
 
-Measured with benchmarks/intake.py (2 cores, Fast DDS): this loop needs less CPU per
-message than an EventsExecutor feeding the same decoder (which also lost a quarter of
-20k messages/s where this loop lost none), and about as much as a raw EventsExecutor
-subscription that only counts; a typed ``rclpy.spin`` needs more than ten times as much.
+This loop needs less CPU per message than an executor feeding the same decoder, and loses
+less (docs/architecture.md, "Taking messages: no executor, serialized, decoded directly").
 When only a trickle arrives the loop pauses after each batch (``coalesce.Coalescer``), so
 that a turn of the loop pays for more than one message. ``stop()`` returns within tens of ms.
 

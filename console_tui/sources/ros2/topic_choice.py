@@ -12,8 +12,8 @@ from ..log_topics import ROSOUT
 
 #: At start, ``/rosout`` messages are held back while ``/rosout_agg`` may still be
 #: discovered: at least ``AUTO_TOPIC_MIN_S``, until the ``/rosout`` publishers found have
-#: not changed for ``AUTO_TOPIC_SETTLED_S``, at most ``AUTO_TOPIC_MAX_S`` (discovery took
-#: 1-2 s on the development machine, longer when it was busy).
+#: not changed for ``AUTO_TOPIC_SETTLED_S``, at most ``AUTO_TOPIC_MAX_S`` (how long discovery
+#: takes: docs/architecture.md, "Waiting for discovery").
 AUTO_TOPIC_MIN_S = 1.0
 AUTO_TOPIC_SETTLED_S = 1.0
 AUTO_TOPIC_MAX_S = 5.0

@@ -15,7 +15,7 @@ class LineInput(Input):
     """``Input`` whose typing does not lay out the screen.
 
     Textual's keeps its virtual size at its text's width through a reactive that lays out
-    the whole screen on every key (3-4 ms here, in the turn of the search that key starts);
+    the whole screen on every key (in the turn of the search that key starts);
     a line's ``Input`` has a fixed size, so the width is set without a layout.
     """
 

@@ -1,10 +1,9 @@
 """The footer: the keys the focused widget and the screen answer, drawn as one line.
 
 Textual's ``Footer`` is a container of one widget a key (about 30 here): each time the
-screen's bindings may have changed (twice on every change of focus) it took them down and
-mounted them again, 21-46 ms of CPU with a layout of the screen after it; skipping the
-rebuilds that showed the same keys still left opening and closing the search line at 20-30
-ms, the longest pauses of a search. ``KeyFooter`` draws the same line (each key and what
+screen's bindings may have changed (twice on every change of focus) it takes them down and
+mounts them again, with a layout of the screen after it: the longest pauses of a search
+(docs/architecture.md, "Our own widgets where Textual's cost a frame"). ``KeyFooter`` draws the same line (each key and what
 it does, the palette's key on the right) as one strip, again only when what it shows
 changes, and never asks for a layout. A click on a key presses it, as in Textual's.
 """

@@ -14,9 +14,9 @@ A click on a column, or Enter on the column picked with the arrows while the str
 focus, asks the app to show that time in the table (``Jump``).
 
 Textual's ``Sparkline`` draws one series in a colour gradient by value, and plotext (through
-``textual-plotext``) took about 80 ms to build a stacked bar chart of 100 columns here, too
-slow to redraw while following 10,000 messages a second; ``benchmarks/timeline.py``
-measures both against this strip.
+``textual-plotext``) is too slow to redraw while following 10,000 messages a second;
+``benchmarks/timeline.py`` measures both against this strip (docs/architecture.md, "Our own
+widgets where Textual's cost a frame").
 """
 
 from __future__ import annotations
