@@ -120,11 +120,17 @@ def _runs(cells: Sequence[tuple[str, Style]]) -> list[Segment]:
 
 
 def rate_text(rate: float) -> str:
+    """A rate for people: ``12k/s``, ``250/s``, ``0.5/s``; slower ones a minute, an hour or a
+    day (``3/min``, ``40/h``, ``0.2/day``: a file that spans years), never ``7.7e-07/s``."""
     if rate >= 10_000:
         return f"{rate / 1000:,.0f}k/s"
-    if rate >= 10:
-        return f"{rate:,.0f}/s"
-    return f"{rate:.2g}/s"
+    if rate <= 0:
+        return "0/s"
+    for unit, seconds in (("s", 1), ("min", 60), ("h", 3600), ("day", 86_400)):
+        per = rate * seconds
+        if per >= 0.1 or unit == "day":
+            return f"{per:,.0f}/{unit}" if per >= 10 else f"{per:.2g}/{unit}"
+    raise AssertionError("unreachable")
 
 
 class TimelineDrawing(Widget):
