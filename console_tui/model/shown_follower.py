@@ -11,14 +11,19 @@ highlight rules) nothing changes, and back to such rules from rules that hid rec
 was taken in under them is taken back (``state``/``restore``, kept while nothing was
 dropped), and only the records that arrived since are taken in: hiding a level and showing
 it again recounts nothing.
+
+What does not depend on the rules is worked out once for a full chunk (``chunk_fact``: its
+stamps in order, no two of its texts the same), so taking a chunk in again after a rule
+change can skip work its facts make needless.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from time import perf_counter
 
 from .shown_rows import ShownPiece, shown_pieces
-from .store import CHUNK_SIZE, LogStore
+from .store import CHUNK_SIZE, Chunk, LogStore
 from .view import LogView
 
 
@@ -37,6 +42,8 @@ class ShownFollower:
         #: What was taken in while every record was shown, for going back to that: (the store's
         #: first seq then, ``done_to``, ``state()``).
         self._all_shown: tuple[int, int, object] | None = None
+        #: (a full chunk's first seq, what) -> a fact about it (``chunk_fact``).
+        self._facts: dict[tuple[int, str], bool] = {}
         store.evict_listeners.append(self._evicting)
 
     # -- what subclasses do -----------------------------------------------------------------------
@@ -59,6 +66,22 @@ class ShownFollower:
 
     def restore(self, state: object) -> None:
         """Put back what ``state`` returned."""
+
+    def chunk_fact(self, piece: ShownPiece, what: str, compute: Callable[[Chunk], bool]) -> bool | None:
+        """``compute(chunk)`` for the piece's chunk, worked out once while the chunk is full
+        (it never changes then; seqs are never used again); None while it fills."""
+        if len(piece.chunk) < CHUNK_SIZE:
+            return None
+        key = (piece.base, what)
+        fact = self._facts.get(key)
+        if fact is None:
+            fact = self._facts[key] = compute(piece.chunk)
+        return fact
+
+    def _forget_facts(self, first: int) -> None:
+        """Forget the facts of chunks wholly before seq ``first``."""
+        for key in [key for key in self._facts if key[0] + CHUNK_SIZE <= first]:
+            del self._facts[key]
 
     # -- keeping up -------------------------------------------------------------------------------
 
@@ -98,31 +121,28 @@ class ShownFollower:
         self._rules = self.view.rules
         self.done_to = self.store.first_seq
         self._rebuild_to = self.store.end_seq
+        self._forget_facts(self.store.first_seq)  # (the store was cleared)
         self.reset()
 
     def sync(self, budget_s: float | None = None, *, stop: int | None = None) -> bool:
         """Take in what arrived (and, after a rules change, everything again), for about
         ``budget_s`` (None: all of it); not past seq ``stop``. True when caught up."""
-        if not self.enabled:
-            return True
+        return sync_together((self,), budget_s, stop=stop)
+
+    def synced(self) -> None:
+        """After each ``sync`` (a subclass's chance to settle what it shows)."""
+
+    def _ready(self) -> bool:
+        """Following the view's rules, and able to take records in (the view decided them)."""
         self.follow_rules()
         if self.view.filtered and self.view.refiltering:
             return False  # the oldest records are not decided yet: wait for them
-        store = self.store
-        end = store.end_seq if stop is None else min(stop, store.end_seq)
-        self.done_to = max(self.done_to, store.first_seq)
-        deadline = None if budget_s is None else perf_counter() + budget_s
-        while self.done_to < end:
-            hi = end if deadline is None else min(end, self.done_to + CHUNK_SIZE)
-            for piece in shown_pieces(store, self.view, self.done_to, hi):
-                self.take(piece)
-            self.done_to = hi
-            if deadline is not None and perf_counter() >= deadline:
-                break
-        return self.done_to >= end
+        self.done_to = max(self.done_to, self.store.first_seq)
+        return True
 
     def _evicting(self, first: int, new_first: int) -> None:
         self._all_shown = None  # what it kept counted records going now
+        self._forget_facts(new_first)
         if not self.enabled:
             return
         self.follow_rules()
@@ -141,3 +161,43 @@ class ShownFollower:
             self.enabled = enabled
             self._all_shown = None
             self.restart()
+
+
+def sync_together(
+    followers: Sequence[ShownFollower], budget_s: float | None = None, *, stop: int | None = None
+) -> bool:
+    """``sync`` for followers of one view, in one pass: the shown records of each store chunk
+    are read once, for every follower that has come to them (after a rule change, all of
+    them). True when all are caught up."""
+    try:
+        return _sync_together([follower for follower in followers if follower.enabled], budget_s, stop)
+    finally:
+        for follower in followers:
+            follower.synced()
+
+
+def _sync_together(going: list[ShownFollower], budget_s: float | None, stop: int | None) -> bool:
+    if not going:
+        return True
+    if not all([follower._ready() for follower in going]):
+        return False
+    store, view = going[0].store, going[0].view
+    end = store.end_seq if stop is None else min(stop, store.end_seq)
+    deadline = None if budget_s is None else perf_counter() + budget_s
+    while True:
+        lo = min(follower.done_to for follower in going)
+        if lo >= end:
+            break
+        # To the end of lo's chunk, not past the place of a follower further on.
+        hi = min(
+            end, store.chunk_start(lo) + CHUNK_SIZE, *(follower.done_to for follower in going if follower.done_to > lo)
+        )
+        pieces = list(shown_pieces(store, view, lo, hi))
+        for follower in going:
+            if follower.done_to == lo:
+                for piece in pieces:
+                    follower.take(piece)
+                follower.done_to = hi
+        if deadline is not None and perf_counter() >= deadline:
+            break
+    return all(follower.done_to >= end for follower in going)

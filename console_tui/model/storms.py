@@ -23,7 +23,7 @@ from __future__ import annotations
 import re
 from array import array
 from bisect import bisect_left
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from operator import itemgetter
 from typing import NamedTuple
 
@@ -31,8 +31,8 @@ from .find_level import find_node
 from .packed_texts import PackedTexts
 from .shown_follower import ShownFollower
 from .shown_rows import ShownPiece, shown_pieces
-from .store import LogStore
-from .storm_runs import Storm, take_bulk, take_each
+from .store import Chunk, LogStore
+from .storm_runs import Storm, take_bulk, take_distinct, take_each
 from .view import LogView
 
 _DIGITS = re.compile(r"[0-9]+")
@@ -96,10 +96,14 @@ class StormRows(ShownFollower):
     def take(self, piece: ShownPiece) -> None:
         chunk, offsets = piece.chunk, piece.offsets
         msgs: Sequence[str] = chunk.msgs
+        mask = mask_digits if self.mask_digits else None
+        bulk = not self._expanded and len(offsets) > 1 and chunk.robots is None  # (a fleet's: one by one)
+        if bulk and self.chunk_fact(piece, f"distinct texts {self.mask_digits}", self._distinct):
+            take_distinct(piece, msgs, mask, self._runs, self._storms, self._rows)
+            return
         if isinstance(msgs, PackedTexts) and 8 * len(offsets) >= len(msgs):
             msgs = msgs.texts()  # one split, not a slice of the packed text for each
-        mask = mask_digits if self.mask_digits else None
-        if not self._expanded and len(offsets) > 1 and chunk.robots is None:  # (a fleet's: one by one)
+        if bulk:
             take_bulk(piece, msgs, mask, self._runs, self._storms, self._rows)
             return
         if isinstance(offsets, range):
@@ -124,6 +128,14 @@ class StormRows(ShownFollower):
         if mask is not None:
             texts = [mask(text) for text in texts]
         take_each(piece.seqs(), (nodes, levels, sources, texts), self._runs, self._storms, self._rows)
+
+    def _distinct(self, chunk: Chunk) -> bool:
+        """No two of the chunk's texts are the same (as compared: with digits masked or not)."""
+        msgs = chunk.msgs
+        texts: Iterable[str] = msgs.texts() if isinstance(msgs, PackedTexts) else msgs
+        if self.mask_digits:
+            texts = map(mask_digits, texts)
+        return len(set(texts)) == len(chunk)
 
     def forget(self, piece: ShownPiece) -> None:
         leaving, going, storms, runs = self._leaving, self._going, self._storms, self._runs

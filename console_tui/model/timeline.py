@@ -26,7 +26,7 @@ from operator import itemgetter, le
 from .levels import MESSAGE_SEVERITIES, severity_bucket
 from .shown_follower import ShownFollower
 from .shown_rows import ShownPiece
-from .store import LogStore
+from .store import Chunk, LogStore
 from .view import LogView
 
 MS = 1_000_000
@@ -90,11 +90,30 @@ class _Histogram:
     def width_ns(self) -> int:
         return LADDER_NS[self.level]
 
-    def add(self, stamps: Sequence[int], levels: Sequence[int], seqs: Sequence[int]) -> None:
-        if not stamps:
+    def fit(self, oldest_ns: int, newest_ns: int) -> None:
+        """Before the first record: start at the width that records stamped ``oldest_ns`` to
+        ``newest_ns`` will need (no merging on the way there). Records in that span give it."""
+        if self.buckets:
             return
-        in_order = all(map(le, stamps, islice(stamps, 1, None)))
-        first, last = (stamps[0], stamps[-1]) if in_order else (min(stamps), max(stamps))
+        level, top = 0, len(LADDER_NS) - 1
+        while level < top and newest_ns // LADDER_NS[level] - oldest_ns // LADDER_NS[level] >= MAX_BUCKETS:
+            level += 1
+        self.level = level
+
+    def add(self, piece: ShownPiece, in_order: bool | None) -> None:
+        """Count a piece's records; ``in_order``: its chunk's stamps are in order (None: not known)."""
+        chunk, offsets = piece.chunk, piece.offsets
+        if not offsets:
+            return
+        stamps = chunk.stamps
+        if in_order is None:
+            span = stamps[offsets[0] : offsets[-1] + 1]
+            in_order = all(map(le, span, islice(span, 1, None)))
+        if in_order:
+            first, last = stamps[offsets[0]], stamps[offsets[-1]]
+        else:
+            picked, levels = _columns_of(piece)
+            first, last = min(picked), max(picked)
         width = LADDER_NS[self.level]
         low, high = first // width, last // width
         if not self.low <= low <= high <= self.high:
@@ -107,12 +126,12 @@ class _Histogram:
                 if self.buckets:
                     low, high = min(low, self.low), max(high, self.high)
             self.low, self.high = low, high
-        self.total += len(stamps)
+        self.total += len(offsets)
         if in_order:
-            self._add_in_order(stamps, levels, seqs, width)
+            self._add_in_order(piece, width)
             return
         buckets = self.buckets
-        indexes = [stamp // width for stamp in stamps]
+        indexes = [stamp // width for stamp in picked]
         slot = _SLOT
         for (index, level), number in Counter(zip(indexes, levels, strict=False)).items():
             bucket = buckets.get(index)
@@ -120,24 +139,31 @@ class _Histogram:
                 bucket = buckets[index] = [0] * SLOTS + [_NO_SEQ]
             bucket[slot[level]] += number
         # The first seq of each bucket: a dict built from the end keeps the first one.
-        for index, seq in dict(zip(reversed(indexes), reversed(seqs), strict=False)).items():
+        for index, seq in dict(zip(reversed(indexes), reversed(piece.seqs()), strict=False)).items():
             bucket = buckets[index]
             if seq < bucket[_FIRST]:
                 bucket[_FIRST] = seq
 
-    def _add_in_order(self, stamps: Sequence[int], levels: Sequence[int], seqs: Sequence[int], width: int) -> None:
-        """Stamps in order (as they mostly arrive): each bucket's records are a slice, found by bisection."""
-        buckets = self.buckets
-        start, end = 0, len(stamps)
+    def _add_in_order(self, piece: ShownPiece, width: int) -> None:
+        """Stamps in order (as they mostly arrive): each bucket's records are a slice of the
+        piece's offsets, found by bisection in the chunk's stamps, then in the offsets."""
+        chunk, base, offsets = piece
+        buckets, stamps = self.buckets, chunk.stamps
+        if isinstance(offsets, range):
+            levels = chunk.levels[offsets.start : offsets.stop].tobytes()
+        else:
+            levels = bytes(map(chunk.levels.__getitem__, offsets))
+        start, end, top = 0, len(offsets), offsets[-1] + 1
         while start < end:
-            index = stamps[start] // width
-            stop = bisect_left(stamps, (index + 1) * width, start, end)
+            at = offsets[start]
+            index = stamps[at] // width
+            stop = bisect_left(offsets, bisect_left(stamps, (index + 1) * width, at, top), start, end)
             bucket = buckets.get(index)
             if bucket is None:
                 bucket = buckets[index] = [0] * SLOTS + [_NO_SEQ]
-            _count_levels(bucket, bytes(levels[start:stop]))
-            if seqs[start] < bucket[_FIRST]:
-                bucket[_FIRST] = seqs[start]
+            _count_levels(bucket, levels[start:stop])
+            if base + at < bucket[_FIRST]:
+                bucket[_FIRST] = base + at
             start = stop
 
     def remove(self, stamps: Sequence[int], levels: Sequence[int], new_first: int) -> None:
@@ -227,6 +253,11 @@ def _count_levels(bucket: list[int], levels: bytes) -> None:
         bucket[_SLOT[level]] += levels.count(level)
 
 
+def _stamps_in_order(chunk: Chunk) -> bool:
+    stamps = chunk.stamps
+    return all(map(le, stamps, islice(stamps, 1, None)))
+
+
 def _columns_of(piece: ShownPiece) -> tuple[Sequence[int], Sequence[int]]:
     """The stamps and levels of a piece's records."""
     chunk, offsets = piece.chunk, piece.offsets
@@ -274,8 +305,15 @@ class Timeline(ShownFollower):
         self.generation += 1
 
     def take(self, piece: ShownPiece) -> None:
-        stamps, levels = _columns_of(piece)
-        self._histogram.add(stamps, levels, piece.seqs())
+        histogram = self._histogram
+        if not histogram.buckets and len(self.view):
+            # The width the shown records need, at least: from this first one to the newest.
+            store = self.store
+            newest = self.view.seq_at(len(self.view) - 1)
+            if newest in store:
+                stamps = store.stamp_of(piece.base + piece.offsets[0]), store.stamp_of(newest)
+                histogram.fit(min(stamps), max(stamps))
+        histogram.add(piece, self.chunk_fact(piece, "stamps in order", _stamps_in_order))
         self.generation += 1
 
     def forget(self, piece: ShownPiece) -> None:
@@ -283,12 +321,10 @@ class Timeline(ShownFollower):
         self._histogram.remove(stamps, levels, _first_after(piece))
         self.generation += 1
 
-    def sync(self, budget_s: float | None = None, *, stop: int | None = None) -> bool:
-        done = super().sync(budget_s, stop=stop)
+    def synced(self) -> None:
         if self._before is not None and not self.rebuilding and not self.view.refiltering:
             self._before = None
             self.generation += 1
-        return done
 
     def columns(self, width: int) -> TimelineColumns | None:
         """The counts in at most ``width`` columns (those from before a rule change while

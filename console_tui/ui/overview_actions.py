@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 from textual import work
 
 from ..model.node_stats import NodeStats
+from ..model.shown_follower import sync_together
 from ..model.store import LogStore
 from ..model.storms import StormRows
 from ..model.timeline import Timeline
@@ -94,8 +95,7 @@ class OverviewActions(AppPart):
                     await asyncio.sleep(REFILTER_POLL_S)  # the view decides the oldest rows first
                     continue
                 with self.table.keeping_position(cursor_line=True):
-                    self.storms.sync(CATCH_UP_BUDGET_S)
-                self.timeline.sync(CATCH_UP_BUDGET_S / 3)
+                    sync_together((self.storms, self.timeline), CATCH_UP_BUDGET_S)  # one pass for both
                 if not (self.storms.behind or self.timeline.behind):
                     break  # the strip and the status line say so in this same turn of the loop
                 await pause_between_slices(CATCH_UP_PAUSE_S)

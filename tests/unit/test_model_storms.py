@@ -6,7 +6,7 @@ import random
 
 from console_tui.model.record import LogRecord
 from console_tui.model.rules import NodeRule, RuleSet, SeverityRule, exclude
-from console_tui.model.store import LogStore
+from console_tui.model.store import CHUNK_SIZE, LogStore
 from console_tui.model.storms import StormRows, mask_digits
 from console_tui.model.view import LogView
 
@@ -243,3 +243,27 @@ def test_row_shown_is_the_storms_row_for_a_repeat_and_none_for_a_hidden_message(
     assert rows.row_shown(4) is None and view.row_shown(4) is None
     rows.set_enabled(False)
     assert [rows.row_shown(seq) for seq in range(4)] == [0, 1, 2, 3]
+
+
+def test_chunks_with_no_repeated_text_against_brute_force():
+    """Full chunks where no two texts are the same (the storms take them in reading only each
+    node's first text): a repeat across a chunk's edge, storms in another chunk, rules and
+    masked digits changed."""
+    rng = random.Random(11)
+    records = [rec(i, rng.choice("abc"), f"reading {i}", level=rng.choice([10, 20, 30])) for i in range(3 * CHUNK_SIZE)]
+    edge = CHUNK_SIZE
+    records[edge - 1] = rec(edge - 1, "z", "across the edge")
+    records[edge] = rec(edge, "z", "across the edge")  # the first of the node "z" in the second chunk
+    for i in range(2 * CHUNK_SIZE + 10, 2 * CHUNK_SIZE + 30):
+        records[i] = rec(i, "a", "again")  # a storm: the third chunk's texts repeat
+    store, view, rows = storm_rows(records)
+    check(store, view, rows)
+    assert rows.badge(edge - 1) == (2, edge - 1, edge, False, True)
+    assert rows._facts and any(rows._facts.values()) and not all(rows._facts.values())
+    for rules in (RuleSet((exclude(SeverityRule.of("debug")),)), RuleSet((exclude(NodeRule(("b",))),)), RuleSet()):
+        view.set_rules(rules)
+        while not view.refilter_step(0.01):
+            pass
+        check(store, view, rows)
+    rows.set_mask_digits(True)  # "reading #" repeats now
+    check(store, view, rows, masked=True)

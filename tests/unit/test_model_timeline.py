@@ -8,7 +8,9 @@ from console_tui.model.find_level import find_level, find_node, severity_range
 from console_tui.model.node_stats import NodeStats
 from console_tui.model.record import LogRecord
 from console_tui.model.rules import NodeRule, RuleSet, SeverityRule, exclude
-from console_tui.model.store import LogStore
+from console_tui.model.shown_follower import sync_together
+from console_tui.model.store import CHUNK_SIZE, LogStore
+from console_tui.model.storms import StormRows
 from console_tui.model.timeline import MAX_BUCKETS, Timeline
 from console_tui.model.view import LogView
 
@@ -187,3 +189,61 @@ def test_first_of_a_severity_and_of_a_node():
     assert find_level(store, 0, store.end_seq, *severity_range(30, or_worse=True)) == 9000
     assert find_node(store, 9001, store.end_seq, store.nodes.id_of("b")) == 9002
     assert severity_range(10) == (0, 19) and severity_range(50) == (50, 255)
+
+
+def test_counting_again_after_a_rule_change_gives_what_counting_as_they_arrived_gave():
+    """Counting again starts at the bucket width the shown records need (no merging on the
+    way): the same width and counts as when the same records arrived one batch at a time,
+    with a chunk whose stamps are out of order among them."""
+    rng = random.Random(5)
+    stamps = [i * 7 * S // 10 for i in range(3 * CHUNK_SIZE)]
+    stamps[CHUNK_SIZE + 5], stamps[CHUNK_SIZE + 900] = stamps[CHUNK_SIZE + 900], stamps[CHUNK_SIZE + 5]
+    records = [rec(stamp, level=rng.choice([10, 20, 30, 40])) for stamp in stamps]
+    rules = RuleSet((exclude(SeverityRule.of("debug")),))
+    arrived_store = LogStore()
+    arrived_view = LogView(arrived_store, rules)
+    arrived = Timeline(arrived_store, arrived_view)
+    for at in range(0, len(records), 100):
+        arrived_store.extend(records[at : at + 100])
+        arrived_view.update()
+        arrived.sync()
+    store = LogStore()
+    store.extend(records)
+    view = LogView(store)
+    timeline = Timeline(store, view)
+    assert timeline.sync()
+    view.set_rules(rules)
+    while not view.refilter_step(0.01):
+        pass
+    assert timeline.sync()
+    assert timeline.bucket_ns == arrived.bucket_ns > S
+    assert timeline.total == arrived.total == len(view)
+    for width in (100, 1000):
+        columns = timeline.columns(width)
+        assert columns == arrived.columns(width)
+        assert brute_columns(store, view, columns) == (list(columns.counts), list(columns.first_seqs))
+
+
+def test_followers_synced_together_end_as_synced_one_by_one():
+    """The storms and the timeline caught up in one pass (``sync_together``), also from
+    different places and in small steps, count what each counts on its own."""
+    records = [
+        rec(i * S // 100, level=(10, 20, 20, 30)[i % 4], node="ab"[i % 2], msg=f"m{i // 40}") for i in range(9000)
+    ]
+    results = []
+    for together in (False, True):
+        store = LogStore()
+        store.extend(records)
+        view = LogView(store, RuleSet((exclude(SeverityRule.of("debug")),)))
+        while not view.refilter_step(0.01):
+            pass
+        storms, timeline = StormRows(store, view), Timeline(store, view)
+        if together:
+            assert not storms.sync(0.0)  # a chunk on: the two are at different places
+            while not sync_together((storms, timeline), 0.0):
+                pass
+        else:
+            assert storms.sync() and timeline.sync()
+        results.append(([storms.seq_at(r) for r in range(len(storms))], storms.storm_count, timeline.columns(50)))
+    assert results[0] == results[1]
+    assert results[0][1] > 0
