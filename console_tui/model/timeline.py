@@ -151,8 +151,10 @@ class _Histogram:
         buckets, stamps = self.buckets, chunk.stamps
         if isinstance(offsets, range):
             levels = chunk.levels[offsets.start : offsets.stop].tobytes()
+        elif len(offsets) > 1:
+            levels = bytes(itemgetter(*offsets)(chunk.levels))
         else:
-            levels = bytes(map(chunk.levels.__getitem__, offsets))
+            levels = bytes([chunk.levels[offsets[0]]])
         start, end, top = 0, len(offsets), offsets[-1] + 1
         while start < end:
             at = offsets[start]
