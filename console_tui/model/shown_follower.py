@@ -13,7 +13,7 @@ dropped), and only the records that arrived since are taken in: hiding a level a
 it again recounts nothing.
 
 What does not depend on the rules is worked out once for a full chunk (``chunk_fact``: its
-stamps in order, no two of its texts the same), so taking a chunk in again after a rule
+stamps in order, the nodes that repeat a text in it), so taking a chunk in again after a rule
 change can skip work its facts make needless.
 """
 
@@ -21,10 +21,13 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from time import perf_counter
+from typing import Any, TypeVar
 
 from .shown_rows import ShownPiece, shown_pieces
 from .store import CHUNK_SIZE, Chunk, LogStore
 from .view import LogView
+
+_Fact = TypeVar("_Fact")
 
 
 class ShownFollower:
@@ -43,7 +46,7 @@ class ShownFollower:
         #: first seq then, ``done_to``, ``state()``).
         self._all_shown: tuple[int, int, object] | None = None
         #: (a full chunk's first seq, what) -> a fact about it (``chunk_fact``).
-        self._facts: dict[tuple[int, str], bool] = {}
+        self._facts: dict[tuple[int, str], Any] = {}
         store.evict_listeners.append(self._evicting)
 
     # -- what subclasses do -----------------------------------------------------------------------
@@ -67,7 +70,7 @@ class ShownFollower:
     def restore(self, state: object) -> None:
         """Put back what ``state`` returned."""
 
-    def chunk_fact(self, piece: ShownPiece, what: str, compute: Callable[[Chunk], bool]) -> bool | None:
+    def chunk_fact(self, piece: ShownPiece, what: str, compute: Callable[[Chunk], _Fact]) -> _Fact | None:
         """``compute(chunk)`` for the piece's chunk, worked out once while the chunk is full
         (it never changes then; seqs are never used again); None while it fills."""
         if len(piece.chunk) < CHUNK_SIZE:

@@ -5,20 +5,27 @@ text (key). ``take_each`` looks at one record at a time. ``take_bulk`` finds the
 a whole piece with C-level operations (the piece's records sorted by node, each compared
 with the one before it) and looks only at those in Python: most records of a log repeat
 nothing, and taking a million of them in again after a rule change is what a recount costs.
-``take_distinct`` does it for a piece of a chunk where no two texts are the same: only each
-node's first record there can repeat (its run from before), so no text but those is read.
+``take_distinct`` does it for records of which no two have the same text: only each node's
+first record there can repeat (its run from before), so no text but those is read.
+``take_apart`` takes a piece of a full chunk in as both: the records of the nodes that have
+a text repeated in the chunk (``repeating_nodes``, worked out once a chunk) by ``take_bulk``,
+the others by ``take_distinct``.
 """
 
 from __future__ import annotations
 
 from array import array
+from collections import Counter
 from collections.abc import Callable, Sequence
 from itertools import compress, filterfalse
-from operator import and_, eq, itemgetter
+from operator import and_, eq, itemgetter, not_
 from typing import TYPE_CHECKING
 
+from .packed_texts import PackedTexts
+from .shown_rows import ShownPiece
+
 if TYPE_CHECKING:
-    from .shown_rows import ShownPiece
+    from .store import Chunk
 
 
 class Storm:
@@ -80,7 +87,7 @@ def take_distinct(
     """What ``take_bulk`` does, when no two of the piece's texts (as compared) are the same."""
     chunk, base, offsets = piece.chunk, piece.base, piece.offsets
     nodes, levels, sources = chunk.nodes, chunk.levels, chunk.sources
-    picked = itemgetter(*offsets)(nodes)
+    picked = _pick(nodes, offsets)
     # Each node's first and last offset here (a dict built from the end keeps the first).
     firsts = dict(zip(reversed(picked), reversed(offsets), strict=False))
     lasts = dict(zip(picked, offsets, strict=False))
@@ -122,13 +129,16 @@ def take_bulk(
     storms: dict[int, Storm],
     rows: array,
 ) -> None:
-    """What ``take_each`` does, for the records of ``piece`` (two or more; ``msgs``: its
-    chunk's texts, ``mask``: what texts are compared as), when no run is expanded."""
+    """What ``take_each`` does, for the records of ``piece`` (``msgs``: its chunk's texts,
+    ``mask``: what texts are compared as), when no run is expanded."""
     chunk, base = piece.chunk, piece.base
     nodes, levels, sources = chunk.nodes, chunk.levels, chunk.sources
     order = sorted(piece.offsets, key=nodes.__getitem__)  # by node, in seq order within each
     count = len(order)
-    by_node = itemgetter(*order)
+
+    def by_node(column: Sequence) -> Sequence:
+        return _pick(column, order)
+
     sorted_nodes, texts = by_node(nodes), by_node(msgs)
     if mask is not None:
         texts = [mask(text) for text in texts]
@@ -177,3 +187,52 @@ def take_bulk(
             run.level, run.source, run.key = levels[at], sources[at], texts[place]
         else:
             runs[node] = Storm(base + at, node, levels[at], sources[at], texts[place])
+
+
+def repeating_nodes(chunk: Chunk, mask: Callable[[str], str] | None) -> frozenset[int]:
+    """The nodes of the chunk's records whose text (as compared) another record of the chunk has too."""
+    msgs = chunk.msgs
+    texts = msgs.texts() if isinstance(msgs, PackedTexts) else list(msgs)
+    if mask is not None:
+        texts = [mask(text) for text in texts]
+    counts = Counter(texts)
+    if len(counts) == len(texts):
+        return frozenset()
+    repeated = {text for text, count in counts.items() if count > 1}
+    return frozenset(compress(chunk.nodes, map(repeated.__contains__, texts)))
+
+
+def take_apart(
+    piece: ShownPiece,
+    repeating: frozenset[int],
+    mask: Callable[[str], str] | None,
+    runs: dict[int, Storm],
+    storms: dict[int, Storm],
+    rows: array,
+) -> None:
+    """What ``take_bulk`` does, for a piece of a full chunk whose ``repeating_nodes`` are known:
+    the records of those nodes by ``take_bulk``, the others by ``take_distinct``."""
+    chunk, base, offsets = piece.chunk, piece.base, piece.offsets
+    msgs: Sequence[str] = chunk.msgs
+    if not repeating:
+        take_distinct(piece, msgs, mask, runs, storms, rows)
+        return
+    among = list(map(repeating.__contains__, _pick(chunk.nodes, offsets)))
+    bulk = array("q", compress(offsets, among))
+    if isinstance(msgs, PackedTexts) and 8 * len(bulk) >= len(msgs):
+        msgs = msgs.texts()  # one split, not a slice of the packed text for each
+    if len(bulk) == len(offsets):
+        take_bulk(piece, msgs, mask, runs, storms, rows)
+        return
+    heads = array("q")
+    if bulk:
+        take_bulk(ShownPiece(chunk, base, bulk), msgs, mask, runs, storms, heads)
+    distinct = array("q", compress(offsets, map(not_, among)))
+    if distinct:
+        take_distinct(ShownPiece(chunk, base, distinct), msgs, mask, runs, storms, heads)
+    rows.extend(sorted(heads))
+
+
+def _pick(column: Sequence, offsets: Sequence[int]) -> Sequence:
+    """``column``'s values at ``offsets`` (one or more)."""
+    return itemgetter(*offsets)(column) if len(offsets) > 1 else [column[offsets[0]]]

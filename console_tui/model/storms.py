@@ -23,7 +23,7 @@ from __future__ import annotations
 import re
 from array import array
 from bisect import bisect_left
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 from operator import itemgetter
 from typing import NamedTuple
 
@@ -32,7 +32,7 @@ from .packed_texts import PackedTexts
 from .shown_follower import ShownFollower
 from .shown_rows import ShownPiece, shown_pieces
 from .store import Chunk, LogStore
-from .storm_runs import Storm, take_bulk, take_distinct, take_each
+from .storm_runs import Storm, repeating_nodes, take_apart, take_bulk, take_each
 from .view import LogView
 
 _DIGITS = re.compile(r"[0-9]+")
@@ -98,9 +98,11 @@ class StormRows(ShownFollower):
         msgs: Sequence[str] = chunk.msgs
         mask = mask_digits if self.mask_digits else None
         bulk = not self._expanded and len(offsets) > 1 and chunk.robots is None  # (a fleet's: one by one)
-        if bulk and self.chunk_fact(piece, f"distinct texts {self.mask_digits}", self._distinct):
-            take_distinct(piece, msgs, mask, self._runs, self._storms, self._rows)
-            return
+        if bulk:
+            repeating = self.chunk_fact(piece, f"repeating nodes {self.mask_digits}", self._repeating_nodes)
+            if repeating is not None:
+                take_apart(piece, repeating, mask, self._runs, self._storms, self._rows)
+                return
         if isinstance(msgs, PackedTexts) and 8 * len(offsets) >= len(msgs):
             msgs = msgs.texts()  # one split, not a slice of the packed text for each
         if bulk:
@@ -129,13 +131,8 @@ class StormRows(ShownFollower):
             texts = [mask(text) for text in texts]
         take_each(piece.seqs(), (nodes, levels, sources, texts), self._runs, self._storms, self._rows)
 
-    def _distinct(self, chunk: Chunk) -> bool:
-        """No two of the chunk's texts are the same (as compared: with digits masked or not)."""
-        msgs = chunk.msgs
-        texts: Iterable[str] = msgs.texts() if isinstance(msgs, PackedTexts) else msgs
-        if self.mask_digits:
-            texts = map(mask_digits, texts)
-        return len(set(texts)) == len(chunk)
+    def _repeating_nodes(self, chunk: Chunk) -> frozenset[int]:
+        return repeating_nodes(chunk, mask_digits if self.mask_digits else None)
 
     def forget(self, piece: ShownPiece) -> None:
         leaving, going, storms, runs = self._leaving, self._going, self._storms, self._runs

@@ -247,8 +247,8 @@ def test_row_shown_is_the_storms_row_for_a_repeat_and_none_for_a_hidden_message(
 
 def test_chunks_with_no_repeated_text_against_brute_force():
     """Full chunks where no two texts are the same (the storms take them in reading only each
-    node's first text): a repeat across a chunk's edge, storms in another chunk, rules and
-    masked digits changed."""
+    node's first text) and one where one node repeats a text (its records taken in apart
+    from the others'): a repeat across a chunk's edge, rules and masked digits changed."""
     rng = random.Random(11)
     records = [rec(i, rng.choice("abc"), f"reading {i}", level=rng.choice([10, 20, 30])) for i in range(3 * CHUNK_SIZE)]
     edge = CHUNK_SIZE
