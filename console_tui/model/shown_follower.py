@@ -170,8 +170,8 @@ def sync_together(
     followers: Sequence[ShownFollower], budget_s: float | None = None, *, stop: int | None = None
 ) -> bool:
     """``sync`` for followers of one view, in one pass: the shown records of each store chunk
-    are read once, for every follower that has come to them (after a rule change, all of
-    them). True when all are caught up."""
+    are read once for all of them, while they are at the same place (after a rule change they
+    all start again from the oldest record). True when all are caught up."""
     try:
         return _sync_together([follower for follower in followers if follower.enabled], budget_s, stop)
     finally:
@@ -184,23 +184,21 @@ def _sync_together(going: list[ShownFollower], budget_s: float | None, stop: int
         return True
     if not all([follower._ready() for follower in going]):
         return False
+    if len({follower.done_to for follower in going}) > 1:
+        # Apart (one was switched on again, say): each on its own, so that none waits for another.
+        share = None if budget_s is None else budget_s / len(going)
+        return all([_sync_together([follower], share, stop) for follower in going])
     store, view = going[0].store, going[0].view
     end = store.end_seq if stop is None else min(stop, store.end_seq)
     deadline = None if budget_s is None else perf_counter() + budget_s
-    while True:
-        lo = min(follower.done_to for follower in going)
-        if lo >= end:
-            break
-        # To the end of lo's chunk, not past the place of a follower further on.
-        hi = min(
-            end, store.chunk_start(lo) + CHUNK_SIZE, *(follower.done_to for follower in going if follower.done_to > lo)
-        )
+    while going[0].done_to < end:
+        lo = going[0].done_to
+        hi = min(end, store.chunk_start(lo) + CHUNK_SIZE)
         pieces = list(shown_pieces(store, view, lo, hi))
         for follower in going:
-            if follower.done_to == lo:
-                for piece in pieces:
-                    follower.take(piece)
-                follower.done_to = hi
+            for piece in pieces:
+                follower.take(piece)
+            follower.done_to = hi
         if deadline is not None and perf_counter() >= deadline:
             break
-    return all(follower.done_to >= end for follower in going)
+    return going[0].done_to >= end
