@@ -4,6 +4,7 @@ JSON, hostile text printed inert, and ``| head -1`` exiting 0."""
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import time
@@ -155,7 +156,8 @@ def test_a_hanging_compiler_does_not_blind_the_intake(nodes, ros_env, ros_runtim
     """Issue 33 item 10: with ``CC`` hanging and no built take loop cached, ``tail`` takes
     through rclpy meanwhile: what is logged arrives long before the compiler's time limit."""
     compiler = tmp_path / "hanging-cc"
-    compiler.write_text("#!/bin/sh\nsleep 100 &\nwait\n")
+    group_file = tmp_path / "compiler-group"
+    compiler.write_text(f"#!/bin/sh\necho $$ > {group_file}\nsleep 100 &\nwait\n")
     compiler.chmod(0o755)
     env = {**ros_env, "CC": str(compiler), "XDG_CACHE_HOME": str(tmp_path / "cache")}
     talker = nodes.start("talker.py", "--name", "while_building")
@@ -167,5 +169,16 @@ def test_a_hanging_compiler_does_not_blind_the_intake(nodes, ros_env, ros_runtim
         talker.send({"cmd": "log", "level": "warn", "msg": "logged while the compiler hangs"})
         lines = tail.take_text(1, timeout=40)  # the build's limit is 60 s, the compiler 100 s
         assert lines == ["logged while the compiler hangs"]
+        assert wait_until(group_file.exists, 40), "the compiler never ran"
     finally:
         tail.stop()
+    group = int(group_file.read_text())
+    assert wait_until(lambda: not _group_alive(group), 20), "the compiler outlived the console"
+
+
+def _group_alive(group: int) -> bool:
+    try:
+        os.killpg(group, 0)
+    except ProcessLookupError:
+        return False
+    return True

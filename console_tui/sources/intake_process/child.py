@@ -46,11 +46,17 @@ Factory = Callable[[IntakeQueue, argparse.Namespace], tuple[Any, Callable[[], No
 
 
 def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ..ros2 import compiled_take
     from ..ros2.live_source import LiveLogSource
     from ..ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
-    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed), runtime.shutdown
+
+    def cleanup() -> None:
+        runtime.shutdown()
+        compiled_take.stop_building()  # a compiler still at work would outlive this process
+
+    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed), cleanup
 
 
 def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:

@@ -61,6 +61,8 @@ _loaded: tuple[TakeFunction | None, str] | None = None
 _build_lock = threading.Lock()
 _state_lock = threading.Lock()
 _loading: threading.Thread | None = None
+#: The compiler's process while a build runs (``stop_building`` ends it).
+_compiling: subprocess.Popen | None = None
 
 
 def load() -> tuple[TakeFunction | None, str]:
@@ -268,13 +270,29 @@ def _run_bounded(command: list[str]) -> tuple[int | None, str]:
         )
     except OSError as error:
         return 1, f"compiling take_loop.c: {error.strerror or error}"
+    global _compiling
+    _compiling = process
     try:
         _out, stderr = process.communicate(timeout=BUILD_TIMEOUT_S)
     except subprocess.TimeoutExpired:
-        try:
-            os.killpg(process.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
+        _kill_group(process)
         process.communicate()
         return None, ""
+    finally:
+        _compiling = None
     return process.returncode, stderr
+
+
+def stop_building() -> None:
+    """End a build under way (the compiler's whole process group): the intake is stopping,
+    and the compiler runs in a session of its own, so it would outlive it."""
+    process = _compiling
+    if process is not None and process.poll() is None:
+        _kill_group(process)
+
+
+def _kill_group(process: subprocess.Popen) -> None:
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
