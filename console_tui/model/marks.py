@@ -38,6 +38,11 @@ class Marks:
         if self._seqs and self._seqs[0] < first_seq:
             del self._seqs[: bisect_left(self._seqs, first_seq)]
 
+    def move(self, moved: dict[int, int]) -> None:
+        """Messages moved to other seqs (old -> new: a late history placed by its stamp): their marks go with them."""
+        if moved and self._seqs:
+            self._seqs = sorted(moved.get(seq, seq) for seq in self._seqs)
+
     def __contains__(self, seq: object) -> bool:
         if not isinstance(seq, int):
             return False

@@ -85,6 +85,7 @@ class NodeStats:
         self._oldest_second: int | None = None
         self._seen_to = store.first_seq
         store.evict_listeners.append(self._evicting)
+        store.rewind_listeners.append(self._rewinding)
 
     def clear(self) -> None:
         """After the store was cleared."""
@@ -107,6 +108,14 @@ class NodeStats:
             self._count(_keys(chunk, lo, hi), chunk.levels[lo:hi], chunk.stamps[lo:hi], -1)
         self._oldest_second = None  # found again when asked
         self._seen_to = max(self._seen_to, new_first)
+
+    def _rewinding(self, start: int) -> None:
+        """The records from ``start`` on are written again: uncounted, to be counted again."""
+        for span in self.store.spans(start, self._seen_to):
+            chunk, lo, hi = span.chunk, span.lo, span.hi
+            self._count(_keys(chunk, lo, hi), chunk.levels[lo:hi], chunk.stamps[lo:hi], -1)
+        self._oldest_second = None
+        self._seen_to = min(self._seen_to, max(start, self.store.first_seq))
 
     def _count(self, nodes: Sequence[int], levels: array, stamps: array, sign: int) -> None:
         counts = self._counts

@@ -125,11 +125,19 @@ class RecordColumns:
         the order given): a fleet's robots' messages, taken in at one time, merged. A batch
         already in order is returned as joined (a C-level comparison, no reordering)."""
         joined = cls.joined([part if isinstance(part, RecordColumns) else cls.from_records(part) for part in parts])
-        order = sorted(range(len(joined)), key=joined.stamps.__getitem__)
-        if order == list(range(len(joined))):
-            return joined
-        columns = [list(map(getattr(joined, name).__getitem__, order)) for name in _COLUMNS]
-        topics, robots = joined.topics, joined.robots
+        order = joined.time_order()
+        return joined if order is None else joined.reordered(order)
+
+    def time_order(self) -> list[int] | None:
+        """The records' indexes ordered by stamp (one stamp: in the order given); None when
+        they are in that order already."""
+        order = sorted(range(len(self)), key=self.stamps.__getitem__)
+        return None if order == list(range(len(self))) else order
+
+    def reordered(self, order: Sequence[int]) -> RecordColumns:
+        """The records at the indexes ``order``, in that order."""
+        columns = [list(map(getattr(self, name).__getitem__, order)) for name in _COLUMNS]
+        topics, robots = self.topics, self.robots
         return _made(
             columns,
             None if topics is None else list(map(topics.__getitem__, order)),

@@ -64,6 +64,17 @@ class RuleMasks:
             tested += len(mask) - skip
         return matched, tested
 
+    def drop_from(self, seq: int) -> None:
+        """Forget the answers for records from ``seq`` on (the store writes them again)."""
+        for base in [base for base in self._masks if base + CHUNK_SIZE > seq]:
+            per_chunk = self._masks[base]
+            for rule, cached in list(per_chunk.items()):
+                keep = seq - base - cached[0]
+                if keep <= 0:
+                    del per_chunk[rule]
+                else:
+                    del cached[1][keep:]
+
     def drop_evicted(self, first: int) -> None:
         """Forget chunks wholly before seq ``first`` (the store dropped them)."""
         if first - self._masks_from >= CHUNK_SIZE:

@@ -48,6 +48,7 @@ class ShownFollower:
         #: (a full chunk's first seq, what) -> a fact about it (``chunk_fact``).
         self._facts: dict[tuple[int, str], Any] = {}
         store.evict_listeners.append(self._evicting)
+        store.rewind_listeners.append(self._rewinding)
 
     # -- what subclasses do -----------------------------------------------------------------------
 
@@ -157,6 +158,13 @@ class ShownFollower:
                 self.forget(piece)
             self.forgotten(new_first)
         self.done_to = max(self.done_to, new_first)
+
+    def _rewinding(self, start: int) -> None:
+        """The store writes its records from ``start`` on again, in another order: what was
+        taken in follows their order, so it starts again (rare: a late history)."""
+        self._all_shown = None
+        if self.enabled and self.done_to > start:
+            self.restart()
 
     def set_enabled(self, enabled: bool) -> None:
         """Off: nothing is kept (and nothing costs); on again: rebuilt from the oldest record."""

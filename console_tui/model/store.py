@@ -13,7 +13,9 @@ them over) without a Python step per record.
 
 Every record gets a sequence number (``seq``) in arrival order; a seq never changes and
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record
-still kept and ``end_seq`` the number the next record will get.
+still kept and ``end_seq`` the number the next record will get. The one exception is
+``rewrite_from``: the newest records put in another order (a late history placed by its
+stamp, ``late_records.py``); whoever keys on their seqs is told first (``rewind_listeners``).
 """
 
 from __future__ import annotations
@@ -181,6 +183,9 @@ class LogStore:
         #: Called as ``listener(first, new_first)`` just before the records ``first:new_first``
         #: are dropped at the bound: they can still be read, and nothing else has changed yet.
         self.evict_listeners: list[Callable[[int, int], None]] = []
+        #: Called as ``listener(start)`` just before the records from ``start`` on are written
+        #: again in another order (``rewrite_from``): they can still be read.
+        self.rewind_listeners: list[Callable[[int], None]] = []
 
     def __len__(self) -> int:
         return self.end_seq - self.first_seq
@@ -245,6 +250,67 @@ class LogStore:
         counts = self.counts
         for level, number in Counter(levels).items():
             counts[_BUCKET[level]] += number
+
+    def rewrite_from(self, start: int, columns: RecordColumns) -> range:
+        """Replace the records from seq ``start`` on with ``columns`` (the same records, in
+        another order, and new ones after them); returns the range of seqs written."""
+        start = min(max(start, self.first_seq), self.end_seq)
+        for listener in self.rewind_listeners:
+            listener(start)
+        self._truncate_to(start)
+        self.extend(columns)
+        return range(start, self.end_seq)
+
+    def columns(self, start: int, stop: int) -> RecordColumns:
+        """The kept records of ``start:stop`` as one batch of columns."""
+        spans = list(self.spans(start, stop))
+        parts = []
+        for chunk, lo, hi, _seq in spans:
+            ids = (chunk.nodes[lo:hi], chunk.files[lo:hi], chunk.functions[lo:hi], chunk.sources[lo:hi])
+            tables = (self.nodes, self.files, self.functions, self.sources)
+            nodes, files, functions, sources = (
+                list(map(table.__getitem__, part)) for table, part in zip(tables, ids, strict=True)
+            )
+            optional = [
+                None if column is None else list(map(table.__getitem__, column[lo:hi]))
+                for column, table in ((chunk.topics, self.topics), (chunk.robots, self.robots))
+            ]
+            parts.append(
+                RecordColumns(
+                    chunk.stamps[lo:hi].tolist(),
+                    chunk.levels[lo:hi].tolist(),
+                    nodes,
+                    list(chunk.msgs[lo:hi]),
+                    files,
+                    functions,
+                    chunk.lines[lo:hi].tolist(),
+                    sources,
+                    *optional,
+                )
+            )
+        if not parts:
+            return RecordColumns([], [], [], [], [], [], [], [])
+        return RecordColumns.joined(parts)
+
+    def _truncate_to(self, end: int) -> None:
+        """Drop the records from seq ``end`` on (the newest); numbering goes on from ``end``."""
+        counts = self.counts
+        for span in self.spans(end, self.end_seq):
+            for level, number in Counter(span.chunk.levels[span.lo : span.hi]).items():
+                counts[_BUCKET[level]] -= number
+        chunks = self._chunks
+        while chunks and self._base_seq + CHUNK_SIZE * (len(chunks) - 1) >= end:
+            chunks.pop()
+        if chunks:
+            chunk, keep = chunks[-1], end - self._base_seq - CHUNK_SIZE * (len(chunks) - 1)
+            for name in ("stamps", "levels", "lines", "nodes", "files", "functions", "sources", "topics", "robots"):
+                column = getattr(chunk, name)
+                if column is not None:
+                    del column[keep:]
+            chunk.msgs = list(chunk.msgs[:keep])
+        else:
+            self._base_seq = end
+        self.end_seq = end
 
     def append(self, record: LogRecord) -> int:
         """Append one record; returns its seq."""

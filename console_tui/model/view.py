@@ -72,7 +72,10 @@ class LogView:
         self._piece = _START_PIECE
         #: The seq the rows were last filtered around (None: the newest).
         self.around: int | None = None
+        #: The store rewrote records the index holds, beyond trimming: index again (``update``).
+        self._stale = False
         self.set_rules(rules or RuleSet())
+        store.rewind_listeners.append(self._rewinding)
 
     def _reset_index(self) -> None:
         # Rows are ``reversed(_front) + _back[_start:]``: the refiltered part (seqs descending,
@@ -273,6 +276,10 @@ class LogView:
             self.set_rules(self._switch_off(slow), around=self.around)
 
     def _update(self) -> None:
+        if self._stale:
+            self._stale = False
+            self.set_rules(self.rules, around=self.around)
+            return
         if not self._indexed or self._rising_pending:  # newer ones wait for those before them
             return
         store = self.store
@@ -340,6 +347,20 @@ class LogView:
             del self._back_marks[: self._start]
             self._start = 0
         self._masks.drop_evicted(first)
+
+    def _rewinding(self, start: int) -> None:
+        """The store writes its records from ``start`` on again: forget what was decided of them
+        (the index is cut there, or made again at the next ``update`` while still refiltering)."""
+        self._masks.drop_from(start)
+        if not self._indexed:
+            return
+        if self.refiltering or (self._front and self._front[0] >= start):
+            self._stale = True
+            return
+        cut = bisect_left(self._back, start, self._start)
+        del self._back[cut:]
+        del self._back_marks[cut:]
+        self._indexed_to = min(self._indexed_to, start)
 
     # -- rows -------------------------------------------------------------------------------
 

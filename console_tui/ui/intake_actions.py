@@ -14,7 +14,9 @@ from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from ..model.intake_queue import IntakeQueue
+from ..model.intake_queue import Batch, IntakeQueue
+from ..model.late_records import WINDOW, add_in_time_order
+from ..model.marks import Marks
 from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
 from ..model.record_batch import RecordColumns
@@ -67,6 +69,7 @@ class IntakeActions(AppPart):
     loading: bool
     logger_control: LoggerControl | None
     node_stats: NodeStats
+    marks: Marks
     rules_pane: RulesPane
     collection_policy: CollectionPolicy
     check_loads: Callable[[], None]
@@ -74,7 +77,7 @@ class IntakeActions(AppPart):
     show_overview: Callable[..., None]
     follow_overview: Callable[[], None]
     rules_changed: Callable[[], None]
-    search_after_records: Callable[[], None]
+    search_after_records: Callable[..., None]
     _rate = 0.0
     _rate_at = 0.0
     #: The Robot column was shown once records of two robots came (the user may hide it again).
@@ -126,16 +129,19 @@ class IntakeActions(AppPart):
 
         Records from files come first; live records wait while files load, so that a
         view of files plus the live stream stays in time order. A fleet's live records of
-        one tick are merged by stamp (each robot's intake process sends its own batches)."""
+        one tick are merged by stamp (each robot's intake process sends its own batches);
+        a late history among them (``late_records``) is placed by its stamp while the table
+        follows the tail."""
         batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
-            live = self.queue.drain_batches(room)
+            live: list[Batch] = self.queue.drain_batches(room)
             if len(live) > 1 and len(self.robots) > 1:  # a fleet: what its robots sent meanwhile, by time
                 live = [RecordColumns.in_time_order(live)]
-            batches += live
-        if batches:
-            self.add_batches(batches)
+        else:
+            live = []
+        if batches or live:
+            self.add_batches(batches + live, live_from=len(batches))
         if self.loads:
             self.check_loads()
         if self.rules_pane.is_open:
@@ -160,13 +166,26 @@ class IntakeActions(AppPart):
     def add_records(self, records: Iterable[LogRecord]) -> None:
         self.add_batches([records if isinstance(records, list) else list(records)])
 
-    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns]) -> int:
-        """Put batches (records, or records in columns) into the store and the view; how many."""
+    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns], *, live_from: int | None = None) -> int:
+        """Put batches (records, or records in columns) into the store and the view; how many.
+        Batches from ``live_from`` on are live: one that is late is sorted, and while the table
+        follows the tail (nobody reads rows that would move) placed among the newest rows by its
+        stamps."""
         table = self.table
+        first_live = len(batches) if live_from is None else live_from
+        window = WINDOW if table.following and table.paused_end is None else 0  # rows on screen stay put
         added = 0
+        rewritten = False
         with table.keeping_position():
-            for batch in batches:
-                added += len(self.store.extend(batch))
+            for index, batch in enumerate(batches):
+                if index >= first_live:
+                    placed = add_in_time_order(self.store, batch, window=window)
+                    added += len(batch)
+                    if placed is not None:
+                        self.marks.move(placed.moved)
+                        rewritten = True
+                else:
+                    added += len(self.store.extend(batch))
             self.view.update()
             self.follow_overview()
         if self.view.switched_off:
@@ -175,8 +194,10 @@ class IntakeActions(AppPart):
             self._robots_shown = True
             table.set_column_shown("robot", True)
         self._arrivals.append((self.clock(), added))
+        if rewritten:
+            table.restyle()  # rows drawn before show other records now
         self.node_stats.update()
-        self.search_after_records()
+        self.search_after_records(rewritten=rewritten)
         return added
 
     def receive_rate(self) -> float:

@@ -228,8 +228,12 @@ class SearchActions(AppPart):
                     continue
             await pause_between_slices(SEARCH_PAUSE_S)
 
-    def search_after_records(self) -> None:
-        """New records arrived: they are searched too."""
+    def search_after_records(self, *, rewritten: bool = False) -> None:
+        """New records arrived: they are searched too (all again when the newest ones were
+        written in another order: a late history placed by its stamp)."""
+        if rewritten and self.search is not None:
+            self._search_rules = None
+            self._fresh_search()
         if self.search is not None and not self.search.complete:
             self._search_on()
 
