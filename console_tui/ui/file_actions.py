@@ -72,6 +72,8 @@ class FileActions(AppPart):
             files = len(progress.files)
             verb = "Cancelled after" if progress.cancelled else "Loaded"
             text = f"{verb} {plural(progress.records, 'record')} from {plural(files, 'file')}"
+            if progress.merged:
+                text += f", {plural(progress.merged, 'repeat')} merged"  # in a rosout log and a node's own log
             if load.skipped:
                 text += f" ({plural(len(load.skipped), 'other file')} in the folders passed over: empty, or not logs by name)"
             if problems:

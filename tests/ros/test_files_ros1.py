@@ -9,7 +9,8 @@ import subprocess
 import pytest
 
 from console_tui.cli import main as cli_main
-from console_tui.sources.files import open_log_file
+from console_tui.sources.files import load_records, open_log_file, open_logs
+from console_tui.sources.files.repeats import RepeatMerger
 
 from support.formats import fields
 from support.ros1 import SYSTEM_PYTHON, Ros1Master, free_port, ros1_environment, ros1_missing, stop_group
@@ -97,3 +98,18 @@ def test_convert_merges_both(ros1_run, tmp_path, capsys):
     assert {line["source"] for line in lines} == {"run.bag", "rosout.log"}
     stamps = [line["stamp_ns"] for line in lines]
     assert stamps == sorted(stamps)
+
+
+def test_the_log_folder_opened_whole_shows_each_message_once(ros1_run):
+    """rosout.log and the node's own log file (rospy's, in the log directory: the node was not
+    launched by roslaunch) both hold its messages: one row each."""
+    folder = ros1_run["rosout_log"].parent.parent
+    opened = open_logs([folder])
+    kinds = {f.source: f.kind for f in opened.files}
+    repeats = RepeatMerger()
+    records = [r for batch in load_records(opened.files, repeats=repeats) for r in batch]
+    texts = [m["msg"] for m in ros1_run["logged"]]
+    ours = [r for r in records if r.msg in texts]
+    assert sorted(r.msg for r in ours) == sorted(texts), kinds
+    assert repeats.merged >= len(texts), kinds
+    assert all(r.file == "ros1_talker.py" and " + " in r.source for r in ours), kinds

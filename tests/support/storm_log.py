@@ -48,3 +48,21 @@ def rows_before(cycle: int) -> int:
 def error_number(cycle: int) -> int:
     """The ``#`` (line number) of ``cycle``'s ERROR."""
     return 61 * cycle + sum(1 for c in error_cycles(cycle)) + 62
+
+
+def write_node_logs(folder: Path, cycles: int = CYCLES, offset_s: float = 0.0008) -> int:
+    """Beside ``rosout.log`` in ``folder``: ``/talker``'s and ``/listener``'s own console
+    output (roslaunch's ``<node>-<N>-stdout.log``, rospy's format: times to the microsecond),
+    each message printed ``offset_s`` after the stamp it published; how many lines."""
+    talker, listener = [], []
+    heard = 0
+    for cycle in range(cycles):
+        t = BASE_S + 6 * cycle + offset_s
+        for k in range(STORM):
+            talker.append(f"[INFO] [{t + k * 0.01:.6f}]: queue full in burst {cycle}, dropping a message")
+        for k in range(10):
+            heard += 1
+            listener.append(f"[INFO] [{t + 1 + k * 0.1:.6f}]: heard {heard}")
+    (folder / "talker-1-stdout.log").write_text("\n".join(talker) + "\n")
+    (folder / "listener-2-stdout.log").write_text("\n".join(listener) + "\n")
+    return len(talker) + len(listener)

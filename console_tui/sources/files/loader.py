@@ -17,6 +17,7 @@ from .folders import Expansion, LogPaths, expand_paths, source_names
 from .log_file import LogFile, describe_error, reading_stopped
 from .merge import merge_by_time
 from .opener import open_log_paths
+from .repeats import RepeatMerger
 
 #: The loader waits while this many records wait in the queue (the UI is behind).
 QUEUE_HIGH_WATER = 200_000
@@ -45,6 +46,8 @@ class LoadProgress:
     cancelled: bool
     #: Still looking through the folders given for the logs in them (``files`` are the paths given).
     searching: bool = False
+    #: Messages a rosout log and a node's own log file both held, made one record each.
+    merged: int = 0
 
     @property
     def fraction(self) -> float:
@@ -128,9 +131,15 @@ def robot_of(log: LogPaths, robots: Mapping[str, str]) -> str:
 
 
 def load_records(
-    files: Sequence[LogFile], cancel: threading.Event | None = None, *, batch_size: int = 5_000
+    files: Sequence[LogFile],
+    cancel: threading.Event | None = None,
+    *,
+    batch_size: int = 5_000,
+    repeats: RepeatMerger | None = None,
 ) -> Iterator[list[LogRecord]]:
-    """Every record of ``files`` merged by stamp, in batches (in the calling thread).
+    """Every record of ``files`` merged by stamp, in batches (in the calling thread); a
+    message both a rosout log and its node's own log file hold is one record (``repeats``,
+    when given, counts them).
 
     A file that gives no record at all, and had no problem to explain it, gets one that
     says so (an empty result always comes with its reason). Files whose ``start_hint`` is
@@ -140,7 +149,8 @@ def load_records(
         return iter(())
     hints = [file.start_hint for file in files]
     starts = hints if any(hint is not None for hint in hints) else None
-    return merge_by_time([_counted(f, cancel) for f in files], batch_size=batch_size, starts=starts)
+    merged = merge_by_time([_counted(f, cancel) for f in files], batch_size=batch_size, starts=starts)
+    return (repeats or RepeatMerger()).merge(merged, files)
 
 
 def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[LogRecord]]:
@@ -198,6 +208,7 @@ class FileLoad:
         self._records = 0
         self._finished = False
         self._thread: threading.Thread | None = None
+        self.repeats = RepeatMerger()
 
     def start(self) -> None:
         self._thread = threading.Thread(target=self._run, name="console-tui-file-load", daemon=True)
@@ -228,7 +239,9 @@ class FileLoad:
             else FileProgress(name, "", 0.0, 1 if name in failed else 0, failed=name in failed)
             for name in self._names
         )
-        return LoadProgress(files, self._records, self._finished, self.cancel_event.is_set(), not self._expanded)
+        return LoadProgress(
+            files, self._records, self._finished, self.cancel_event.is_set(), not self._expanded, self.repeats.merged
+        )
 
     def problems(self) -> list[Problem]:
         """Everything that went wrong so far: files that could not be opened, then each
@@ -265,7 +278,7 @@ class FileLoad:
                     result.robot = robot_of(log, self.robots)
                     self.files.append(result)
                 self._changed()
-            for batch in load_records(self.files, self.cancel_event):
+            for batch in load_records(self.files, self.cancel_event, repeats=self.repeats):
                 self._deliver(batch)
                 if self.cancel_event.is_set():
                     break
