@@ -14,11 +14,17 @@ window). A batch whose own records are that far apart (several publishers' histo
 batch) is sorted before it is added. Delivery that is only a little out of order
 (publishers' clocks, batching) stays as it came: rewriting for it would make the views count
 again every moment. The caller decides when rows may move (``window`` 0: none do): only while
-the table follows the tail.
+the table follows the tail, and only while histories are due (``HistoryWindow``): for a few
+seconds after a source starts, a publisher joins it or it changes topic. Outside those
+moments a batch is never placed among older rows, so that sources whose clocks differ (a
+fleet's robots, a ROS 1 node on another machine, a node on simulated time) are shown as they
+arrive instead of rewriting the newest rows on every tick.
 """
 
 from __future__ import annotations
 
+import time
+from collections.abc import Callable, Hashable
 from typing import NamedTuple
 
 from .intake_queue import Batch
@@ -29,6 +35,30 @@ from .store import LogStore
 LATE_NS = 250_000_000
 #: The most records of the store's tail a late batch is placed among.
 WINDOW = 10_000
+#: How long after a source starts, a publisher joins it or it changes topic its histories
+#: may still arrive (a transient-local history comes as the subscription matches).
+HISTORY_S = 3.0
+
+
+class HistoryWindow:
+    """Whether late histories are due now: ``note`` each source's state every tick (a key
+    per source, its publisher count and topic); ``due`` says whether one started, gained a
+    publisher or changed topic within ``seconds``."""
+
+    def __init__(self, clock: Callable[[], float] = time.monotonic, seconds: float = HISTORY_S) -> None:
+        self.clock = clock
+        self.seconds = seconds
+        self._states: dict[Hashable, tuple[int, str]] = {}
+        self._until = float("-inf")
+
+    def note(self, source: Hashable, publishers: int, topic: str) -> None:
+        before = self._states.get(source)
+        if before is None or publishers > before[0] or topic != before[1]:
+            self._until = self.clock() + self.seconds
+        self._states[source] = (publishers, topic)
+
+    def due(self) -> bool:
+        return self.clock() < self._until
 
 
 class Placed(NamedTuple):

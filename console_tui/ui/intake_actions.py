@@ -15,7 +15,7 @@ from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
 from ..model.intake_queue import Batch, IntakeQueue
-from ..model.late_records import WINDOW, add_in_time_order
+from ..model.late_records import WINDOW, HistoryWindow, add_in_time_order
 from ..model.marks import Marks
 from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
@@ -78,6 +78,7 @@ class IntakeActions(AppPart):
     follow_overview: Callable[[], None]
     rules_changed: Callable[[], None]
     search_after_records: Callable[..., None]
+    clock: Callable[[], float]
     _rate = 0.0
     _rate_at = 0.0
     #: The Robot column was shown once records of two robots came (the user may hide it again).
@@ -91,6 +92,8 @@ class IntakeActions(AppPart):
         self._stopping: list[threading.Thread] = []
         #: The slower intake path was said (``tell_slow_intake``).
         self._slow_intake_told = False
+        #: When live histories are due, to be placed by their stamps (on the app's clock).
+        self.histories = HistoryWindow(lambda: self.clock())
 
     # -- the sources ------------------------------------------------------------------------------
 
@@ -131,8 +134,11 @@ class IntakeActions(AppPart):
         view of files plus the live stream stays in time order. A fleet's live records of
         one tick are merged by stamp (each robot's intake process sends its own batches);
         a late history among them (``late_records``) is placed by its stamp while the table
-        follows the tail."""
+        follows the tail, in the moments histories are due (``HistoryWindow``)."""
         batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
+        for source in self.sources:
+            status = source.status
+            self.histories.note(id(source), status.publishers, status.topic)
         if not self.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
             live: list[Batch] = self.queue.drain_batches(room)
@@ -173,7 +179,9 @@ class IntakeActions(AppPart):
         stamps."""
         table = self.table
         first_live = len(batches) if live_from is None else live_from
-        window = WINDOW if table.following and table.paused_end is None else 0  # rows on screen stay put
+        # Rows on the screen stay put; and only histories are placed, not clocks that differ.
+        following = table.following and table.paused_end is None
+        window = WINDOW if following and self.histories.due() else 0
         added = 0
         rewritten = False
         with table.keeping_position():

@@ -24,11 +24,23 @@ from support.ui import screen_text, table_rows, until
 _STAMP = re.compile(r"t=(\d+\.\d+)")
 
 
-def live_app(robots: list[Robot] | None = None) -> tuple[ConsoleApp, IntakeQueue]:
+class Clock:
+    """The app's clock, moved by the test only (histories are due for a while after a change)."""
+
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def live_app(robots: list[Robot] | None = None, clock: Clock | None = None) -> tuple[ConsoleApp, IntakeQueue]:
     queue = IntakeQueue()
     names = [robot.name for robot in robots] if robots else [""]
     sources = [StaticSource(SourceStatus(topic="/rosout", publishers=2, running=True, robot=name)) for name in names]
-    app = ConsoleApp(store=LogStore(), queue=queue, sources=sources, utc=True, robots=robots or [])
+    app = ConsoleApp(
+        store=LogStore(), queue=queue, sources=sources, utc=True, robots=robots or [], clock=clock or Clock()
+    )
     return app, queue
 
 
@@ -93,3 +105,23 @@ async def test_a_robot_that_joins_late_has_its_history_placed_by_stamp():
         stamps = shown_stamps(app)
         assert len(stamps) == 16 and stamps == sorted(stamps), screen_text(app)
         assert "forklift" in screen_text(app)
+
+
+async def test_robots_whose_clocks_differ_are_shown_as_they_come_once_their_histories_are_in():
+    """Outside the moments histories come (a source starting, a publisher joining), a batch
+    older than the newest rows is a clock that differs, not a history: nothing is rewritten."""
+    robots = [Robot("picker", ROS2, domain=3), Robot("forklift", ROS2, domain=4)]
+    clock = Clock()
+    app, queue = live_app(robots, clock)
+    async with app.run_test(size=(100, 30)) as pilot:
+        put(queue, "/talker", 4, 10.0, 0.5, robot="picker")
+        await until(pilot, lambda: "t=011.500" in screen_text(app), what="the first robot")
+        clock.now += 60  # long after the start: forklift's clock is 5 s behind picker's
+        put(queue, "/planner", 4, 7.0, 0.5, robot="forklift")
+        await until(pilot, lambda: "8/8 shown" in status_line(app), what=lambda: status_line(app))
+        assert shown_stamps(app) == [10.0, 10.5, 11.0, 11.5, 7.0, 7.5, 8.0, 8.5], screen_text(app)
+        app.sources[1].status.publishers += 1  # a node joins forklift's graph with its history
+        put(queue, "/joined", 2, 6.0, 0.1, robot="forklift")
+        await until(pilot, lambda: "10/10 shown" in status_line(app), what=lambda: status_line(app))
+        assert shown_stamps(app) == sorted(shown_stamps(app)), screen_text(app)  # placed: a history
+        assert shown_stamps(app)[:2] == [6.0, 6.1], screen_text(app)

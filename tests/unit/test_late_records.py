@@ -123,3 +123,26 @@ def test_views_storms_timeline_and_counts_follow_a_late_history():
     assert storms.storm_count == expected_storms.storm_count
     assert timeline.total == expected_timeline.total
     assert [(n.node, n.counts) for n in stats.nodes()] == [(n.node, n.counts) for n in expected_stats.nodes()]
+
+
+def test_histories_are_due_for_a_while_after_a_source_starts_gains_a_publisher_or_changes_topic():
+    from console_tui.model.late_records import HistoryWindow
+
+    now = [0.0]
+    window = HistoryWindow(lambda: now[0], seconds=3.0)
+    assert not window.due()
+    window.note("a", 1, "/rosout")  # a source seen for the first time
+    assert window.due()
+    now[0] = 5.0
+    window.note("a", 1, "/rosout")
+    assert not window.due()
+    window.note("a", 0, "/rosout")  # a publisher left: no history comes with that
+    assert not window.due()
+    window.note("a", 1, "/rosout")  # one joined
+    assert window.due()
+    now[0] = 10.0
+    window.note("a", 1, "/rosout_agg")  # the switch to /rosout_agg
+    assert window.due()
+    now[0] = 13.5
+    window.note("a", 1, "/rosout_agg")
+    assert not window.due()
