@@ -18,6 +18,7 @@ from console_tui.ui import rule_actions
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.help import HelpScreen
 
+from support.clock import TickingClock
 from support.ui import screen_text, type_text, until
 
 HOSTILE = "a" * 30 + "b"  # /(a+)+$/ backtracks 2**30 ways on each of these
@@ -66,17 +67,19 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
 
 
 async def test_esc_stops_a_long_filtering(monkeypatch):
-    # Slices so small that filtering 200,000 records takes many seconds, whatever the rule costs.
+    # A slice walks one piece (the view's clock moves 1 ms a reading, past the budget) and the
+    # slices are 0.2 s apart: filtering 200,000 records takes many seconds on any machine.
     monkeypatch.setattr(rule_actions, "REFILTER_BUDGET_S", 0.0005)
-    monkeypatch.setattr(rule_actions, "REFILTER_PAUSE_S", 0.02)
+    monkeypatch.setattr(rule_actions, "REFILTER_PAUSE_S", 0.2)
     store = LogStore()
     store.extend(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
     app = ConsoleApp(store=store, utc=True)
+    app.view.clock = TickingClock(0.001)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
         await pilot.pause()
         app.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
-        await pilot.pause(0.2)
-        assert app.view.refiltering and "filtering" in screen_text(app)
+        await until(pilot, lambda: "filtering" in screen_text(app), timeout=30, what="the filtering shown")
+        assert app.view.refiltering
         await pilot.press("escape")
         await until(pilot, lambda: not app.view.refiltering, timeout=5, what="filtering to stop")
         assert not app.rules.entries[0].enabled
