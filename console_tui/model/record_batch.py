@@ -170,6 +170,57 @@ class RecordColumns:
         )
 
 
+class ColumnsBuilder:
+    """Records gathered column by column as a decoder reads them, made ``RecordColumns`` at the end.
+
+    A decoder appends to ``stamps``, ``levels``, ``nodes``, ``msgs`` and ``tails`` (one
+    shared tuple per log statement: ``(file, function, line)``, or with ``topics`` after
+    them) and then ``sourced`` gives the records it added their source.
+    """
+
+    __slots__ = ("levels", "msgs", "nodes", "sources", "stamps", "tails")
+
+    def __init__(self) -> None:
+        self.stamps: list[int] = []
+        self.levels: list[int] = []
+        self.nodes: list[str] = []
+        self.msgs: list[str] = []
+        self.tails: list[tuple[Any, ...]] = []
+        self.sources: list[str] = []
+
+    def __len__(self) -> int:
+        return len(self.msgs)
+
+    def sourced(self, source: str) -> None:
+        """The records added since the last call come from ``source``."""
+        self.sources += [source] * (len(self.msgs) - len(self.sources))
+
+    def key(self, index: int) -> tuple[int, str, str]:
+        """Record ``index``'s ``(stamp, node, msg)``."""
+        return self.stamps[index], self.nodes[index], self.msgs[index]
+
+    def cut(self, size: int) -> None:
+        """Forget the records from ``size`` on."""
+        for column in (self.stamps, self.levels, self.nodes, self.msgs, self.tails, self.sources):
+            del column[size:]
+
+    def drop(self, index: int) -> None:
+        """Forget record ``index``."""
+        for column in (self.stamps, self.levels, self.nodes, self.msgs, self.tails, self.sources):
+            del column[index]
+
+    def columns(self) -> RecordColumns:
+        """The records as ``RecordColumns`` (``topics`` where the tails have them and one is not empty)."""
+        tails = self.tails
+        if not tails:
+            return RecordColumns([], [], [], [], [], [], [], [])
+        files, functions, lines, *more = zip(*tails, strict=True)
+        topics = more[0] if more and any(more[0]) else None
+        return RecordColumns(
+            self.stamps, self.levels, self.nodes, self.msgs, files, functions, lines, self.sources, topics
+        )
+
+
 #: The columns every batch has (``topics`` is optional), in ``RecordColumns``' order.
 _COLUMNS = ("stamps", "levels", "nodes", "msgs", "files", "functions", "lines", "sources")
 

@@ -15,6 +15,7 @@ import pytest
 from console_tui.model.formats.ros1_log_msg import MIN_LENGTH, Ros1LogDecoder, Ros1LogError, encode_log
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
+from console_tui.model.record_batch import ColumnsBuilder, RecordColumns
 from console_tui.sources.ros1.dedupe import Deduplicator
 from console_tui.sources.ros1.environment import DEFAULT_MASTER_URI, Ros1Environment, new_node_name
 from console_tui.sources.ros1.intake import Connection, Ros1Intake
@@ -67,13 +68,13 @@ def test_a_stream_cut_anywhere_gives_the_same_records():
     expected = [_expected(fields, "/rosout_agg") for fields, _ in messages]
     for cut_every in (1, 3, 17, 100, 4096):
         decoder = Ros1LogDecoder()
-        records: list[LogRecord] = []
+        batch = ColumnsBuilder()
         pending = b""
         for start in range(0, len(stream), cut_every):
             data = pending + stream[start : start + cut_every]
-            end = decoder.decode_frames(data, 0, "/rosout_agg", records, _no_refusal)
+            end = decoder.decode_frames(data, 0, "/rosout_agg", batch, _no_refusal)
             pending = data[end:]
-        assert records == expected and pending == b""
+        assert batch.columns().records() == expected and pending == b""
 
 
 def _no_refusal(_data: bytes, error: Ros1LogError) -> None:
@@ -111,14 +112,15 @@ def test_refused_messages_are_skipped_and_the_stream_goes_on():
     good = encode_log(stamp_ns=1, level=2, name="n", msg="ok")
     stream = _framed(good) + _framed(b"\x00" * 20) + _framed(good)
     refused: list[str] = []
-    records: list[LogRecord] = []
-    end = Ros1LogDecoder().decode_frames(stream, 0, "t", records, lambda _d, e: refused.append(str(e)))
-    assert end == len(stream) and [r.msg for r in records] == ["ok", "ok"] and len(refused) == 1
+    batch = ColumnsBuilder()
+    end = Ros1LogDecoder().decode_frames(stream, 0, "t", batch, lambda _d, e: refused.append(str(e)))
+    assert end == len(stream) and batch.msgs == ["ok", "ok"] and len(refused) == 1
+    assert batch.sources == ["t", "t"] and batch.columns().topics is None
 
 
 def test_an_absurd_length_breaks_the_stream():
     with pytest.raises(Ros1LogError, match="announced"):
-        Ros1LogDecoder().decode_frames(struct.pack("<I", 1 << 30), 0, "t", [], _no_refusal)
+        Ros1LogDecoder().decode_frames(struct.pack("<I", 1 << 30), 0, "t", ColumnsBuilder(), _no_refusal)
 
 
 def test_strings_are_shared_between_records():
@@ -147,24 +149,30 @@ def test_malformed_headers_are_refused(body):
 # -- repeats -------------------------------------------------------------------------------------
 
 
-def _record(stamp: int, node: str = "/n", msg: str = "m") -> LogRecord:
-    return LogRecord(stamp, 20, node, msg)
+def _batch(*keys: tuple[int, str]) -> RecordColumns:
+    return RecordColumns.from_records([LogRecord(stamp, 20, node, "m") for stamp, node in keys])
+
+
+def _stamps(batch: RecordColumns) -> list[int]:
+    return list(batch.stamps)
 
 
 def test_latched_replay_is_recognised_by_node():
     dedupe = Deduplicator()
-    dedupe.filter([_record(1), _record(2), _record(5, "/other")], now=0.0)
-    assert dedupe.is_replay(_record(2)) and not dedupe.is_replay(_record(1))
-    assert dedupe.is_replay(_record(5, "/other")) and not dedupe.is_replay(_record(2, "/third"))
+    dedupe.filter(_batch((1, "/n"), (2, "/n"), (5, "/other")), now=0.0)
+    assert dedupe.is_replay((2, "/n", "m")) and not dedupe.is_replay((1, "/n", "m"))
+    assert dedupe.is_replay((5, "/other", "m")) and not dedupe.is_replay((2, "/third", "m"))
+    assert not dedupe.is_replay((2, "/n", "another text"))
 
 
 def test_window_drops_repeats_only_while_open():
     dedupe = Deduplicator()
     dedupe.open_window(until=10.0)
-    assert dedupe.filter([_record(1), _record(2)], now=1.0) == [_record(1), _record(2)]
-    assert dedupe.filter([_record(2), _record(3), _record(1)], now=2.0) == [_record(3)]
+    assert _stamps(dedupe.filter(_batch((1, "/n"), (2, "/n")), now=1.0)) == [1, 2]
+    kept = dedupe.filter(_batch((2, "/n"), (3, "/n"), (1, "/n")), now=2.0)
+    assert kept.records() == [LogRecord(3, 20, "/n", "m")]
     assert dedupe.dropped == 2
-    assert dedupe.filter([_record(3)], now=11.0) == [_record(3)]  # closed: nothing dropped
+    assert _stamps(dedupe.filter(_batch((3, "/n")), now=11.0)) == [3]  # closed: nothing dropped
 
 
 # -- environment and the choice of ROS -------------------------------------------------------------

@@ -14,8 +14,8 @@ topics the node publishes) are kept joined by ``,`` as rqt_console shows them.
 md5sum acffd30cd6b6de30f120938c17c593fb (what a TCPROS subscriber sends for the type).
 
 One decoder serves the live ROS 1 intake (``decode_frames``: length-prefixed messages as
-they come off a TCPROS socket, decoded straight from the receive buffer) and ROS 1 bags
-(``decode``). Node names and the file/function/line/topics tail repeat in almost every
+they come off a TCPROS socket, decoded straight from the receive buffer into columns, the
+shape the store keeps) and ROS 1 bags (``decode``). Node names and the file/function/line/topics tail repeat in almost every
 message: a bounded cache lets records share one ``str`` each. Malformed input raises
 ``Ros1LogError``; nothing here loops on a length read from the input without checking it
 against the message's end first.
@@ -29,6 +29,7 @@ from typing import Any
 
 from ..levels import from_ros1
 from ..record import LogRecord
+from ..record_batch import ColumnsBuilder
 
 MD5SUM = "acffd30cd6b6de30f120938c17c593fb"
 TYPE = "rosgraph_msgs/Log"
@@ -55,7 +56,7 @@ Tail = tuple[str, str, int, str]
 
 
 class Ros1LogDecoder:
-    """Turns serialized ``rosgraph_msgs/Log`` messages into ``LogRecord``s, sharing repeated strings.
+    """Turns serialized ``rosgraph_msgs/Log`` messages into records (in columns), sharing repeated strings.
 
     One decoder per thread (it is not thread-safe). Its caches hold at most
     ``intern_limit`` entries of at most ``intern_max_bytes`` bytes; when full they start
@@ -102,20 +103,22 @@ class Ros1LogDecoder:
         buffer: bytes,
         start: int,
         source: str,
-        records: list[LogRecord],
+        batch: ColumnsBuilder,
         refused: Callable[[bytes, Ros1LogError], None],
         max_length: int = 1 << 24,
     ) -> int:
-        """Decode the whole length-prefixed messages in ``buffer[start:]`` into ``records``;
-        returns where the first incomplete one starts (``len(buffer)`` when none is).
+        """Decode the whole length-prefixed messages in ``buffer[start:]`` into ``batch``
+        (their tails: file, function, line, topics); returns where the first incomplete one
+        starts (``len(buffer)`` when none is).
 
         A message this decoder cannot read goes to ``refused(bytes, error)`` and is skipped.
-        A stated length above ``max_length`` raises ``Ros1LogError``: the stream is broken.
-        The hot path of the live ROS 1 intake: written out in one loop.
+        A stated length above ``max_length`` raises ``Ros1LogError``: the stream is broken
+        (the records added before it are in ``batch``, without their source).
+        The hot path of the live ROS 1 intake: written out in one loop, no object per record.
         """
         size = len(buffer)
         pos = start
-        append = records.append
+        stamps, levels_of, nodes, msgs, tails = batch.stamps, batch.levels, batch.nodes, batch.msgs, batch.tails
         names_get = self._names.get
         tails_get = self._tails.get
         levels = _LEVELS
@@ -163,21 +166,22 @@ class Ros1LogDecoder:
             except Ros1LogError as error:
                 refused(buffer[begin:end], error)
                 continue
-            append(
-                LogRecord(
-                    secs * 1_000_000_000 + nsecs, levels[level], name, msg, tail[0], tail[1], tail[2], source, tail[3]
-                )
-            )
+            stamps.append(secs * 1_000_000_000 + nsecs)
+            levels_of.append(levels[level])
+            nodes.append(name)
+            msgs.append(msg)
+            tails.append(tail)
+        batch.sourced(source)
         return pos
 
     def _read(self, data: bytes, begin: int, end: int, source: str) -> LogRecord:
-        records: list[LogRecord] = []
+        batch = ColumnsBuilder()
         problems: list[Ros1LogError] = []
         framed = struct.pack("<I", end - begin) + data[begin:end]
-        self.decode_frames(framed, 0, source, records, lambda _data, error: problems.append(error))
+        self.decode_frames(framed, 0, source, batch, lambda _data, error: problems.append(error))
         if problems:
             raise problems[0]
-        return records[0]
+        return batch.columns().records()[0]
 
     def _read_tail(self, raw: bytes) -> Tail:
         """``file``, ``function``, ``line`` and ``topics`` from the end of a message, cached when short."""

@@ -15,21 +15,15 @@ window. Outside a window the cost is keeping each batch's last message per node.
 
 from __future__ import annotations
 
-from operator import attrgetter
-
-from ...model.record import LogRecord
+from ...model.record_batch import RecordColumns
 
 #: Keys kept for a window at most (a topic switch opens one for 4 s: 80,000 keys at 20k/s).
 WINDOW_KEYS = 200_000
 #: Nodes whose last message is kept at most.
 NODES_KEPT = 10_000
 
-
-_node = attrgetter("node")
-
-
-def _key(record: LogRecord) -> tuple[int, str, str]:
-    return (record.stamp_ns, record.node, record.msg)
+#: What makes two messages one: ``(stamp, node, text)``.
+Key = tuple[int, str, str]
 
 
 class Deduplicator:
@@ -38,9 +32,9 @@ class Deduplicator:
     __slots__ = ("_last", "_window", "_window_until", "dropped")
 
     def __init__(self) -> None:
-        #: Each node's last message, to recognise a latched replay.
-        self._last: dict[str, LogRecord] = {}
-        self._window: set[tuple[int, str, str]] = set()
+        #: Each node's last message, ``(stamp, text)``, to recognise a latched replay.
+        self._last: dict[str, tuple[int, str]] = {}
+        self._window: set[Key] = set()
         self._window_until = 0.0
         #: Messages dropped as repeats so far.
         self.dropped = 0
@@ -49,29 +43,31 @@ class Deduplicator:
         """Check every message until the monotonic time ``until`` (a later ``until`` extends it)."""
         self._window_until = max(self._window_until, until)
 
-    def is_replay(self, record: LogRecord) -> bool:
-        """Whether the first message of a new connection is its node's last message, seen before."""
-        last = self._last.get(record.node)
-        return last is not None and _key(last) == _key(record)
+    def is_replay(self, key: Key) -> bool:
+        """Whether the first message of a new connection (its ``(stamp, node, text)``) is its
+        node's last message, seen before."""
+        stamp, node, text = key
+        return self._last.get(node) == (stamp, text)
 
-    def filter(self, records: list[LogRecord], now: float) -> list[LogRecord]:
-        """``records`` less those seen before within the window; remembers each node's last one."""
+    def filter(self, batch: RecordColumns, now: float) -> RecordColumns:
+        """``batch`` less the records seen before within the window; remembers each node's last one."""
         if now < self._window_until:
             seen = self._window
-            kept = []
-            for record in records:
-                key = _key(record)
+            keep: list[bool] = []
+            for key in zip(batch.stamps, batch.nodes, batch.msgs, strict=True):
                 if key in seen:
                     self.dropped += 1
+                    keep.append(False)
                     continue
                 if len(seen) < WINDOW_KEYS:
                     seen.add(key)
-                kept.append(record)
-            records = kept
+                keep.append(True)
+            if not all(keep):
+                batch = batch.kept(keep)
         elif self._window:
             self._window = set()
         last = self._last
         if len(last) > NODES_KEPT:
             last.clear()
-        last.update(zip(map(_node, records), records, strict=False))
-        return records
+        last.update(zip(batch.nodes, zip(batch.stamps, batch.msgs, strict=True), strict=True))
+        return batch

@@ -2,7 +2,7 @@
 
 One thread waits on all the connections' sockets at once (``selectors``), reads what each
 has (up to ``RECV_BYTES`` at a time), decodes the whole messages straight from the bytes
-received (``Ros1LogDecoder.decode_frames``), drops repeats (``Deduplicator``) and puts one
+received into columns (``Ros1LogDecoder.decode_frames``), drops repeats (``Deduplicator``) and puts one
 batch per turn into the ``IntakeQueue`` (``_deliver``, the one hand-off). When only a
 trickle arrives it pauses after a turn (``coalesce.Coalescer``), so a turn pays for more
 than one message.
@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 from ...model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError
 from ...model.intake_queue import IntakeQueue
-from ...model.record import LogRecord
+from ...model.record_batch import ColumnsBuilder, RecordColumns
 from ..coalesce import Coalescer
 from .dedupe import Deduplicator
 
@@ -166,7 +166,7 @@ class Ros1Intake:
                 events = select(SELECT_TIMEOUT_S)
             except OSError:  # the selector closed under us: stopping
                 break
-            batch: list[LogRecord] = []
+            batch = ColumnsBuilder()
             for key, _mask in events:
                 connection = key.data
                 if connection is None:
@@ -190,22 +190,22 @@ class Ros1Intake:
                 try:
                     end = decode(data, 0, connection.topic, batch, self._refused)
                 except Ros1LogError as error:
-                    del batch[first:]
+                    batch.cut(first)
                     self.last_problem = f"{connection.caller_id} sent a broken {connection.topic} stream: {error}"
                     self._ended(connection, str(error))
                     continue
                 connection.pending = data[end:] if end < len(data) else b""
-                if connection.messages == 0 and len(batch) > first and self.dedupe.is_replay(batch[first]):
-                    del batch[first]
+                if connection.messages == 0 and len(batch) > first and self.dedupe.is_replay(batch.key(first)):
+                    batch.drop(first)
                     self.dedupe.dropped += 1
                 connection.messages += len(batch) - first
             if batch:
-                self._deliver(self.dedupe.filter(batch, time.monotonic()))
+                self._deliver(self.dedupe.filter(batch.columns(), time.monotonic()))
             pause = coalescer.after(len(batch))
             if pause:
                 self._stop.wait(pause)
 
-    def _deliver(self, batch: list[LogRecord]) -> None:
+    def _deliver(self, batch: RecordColumns) -> None:
         """The one hand-off to the rest of the app."""
         self.queue.put(batch)
 
