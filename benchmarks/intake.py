@@ -376,7 +376,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
         control = Ros2LoggerControl(runtime)
         app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
     # Rows for the keys to move over before anything arrives (not counted as received).
-    app.store.extend([synthetic_record(number) for number in range(APP_PREFILL)])
+    app.store.extend_records([synthetic_record(number) for number in range(APP_PREFILL)])
     quit_event = threading.Event()
     state: dict[str, Any] = {}
 
@@ -480,6 +480,7 @@ def run_intake_events_executor() -> None:
 
     from console_tui.model.formats.ros2_log_msg import LogDecoder
     from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.record_batch import RecordColumns
     from console_tui.model.store import LogStore
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
@@ -497,8 +498,9 @@ def run_intake_events_executor() -> None:
         nonlocal pending
         while not stop.wait(0.05):
             batch, pending = pending, []
-            queue.put(batch)
-            store.extend(queue.drain())
+            queue.put(RecordColumns.from_records(batch))
+            for columns in queue.drain_batches():
+                store.extend(columns)
 
     spinner = EventsExecutorThread(node)
     drain = threading.Thread(target=app_drain, daemon=True)

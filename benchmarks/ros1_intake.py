@@ -89,14 +89,15 @@ def run_console() -> None:
     # run at the publisher's maximum sends.
     received = 0
     while not commands.closed.is_set():
-        batch = queue.drain()
-        if batch:
+        batches = queue.drain_batches()  # as the app does
+        if batches:
             now = time.monotonic()
             if not first_at:
                 first_at, cpu_at_first = now, cpu_seconds()
             last_at = now
-            received += len(batch)
-            store.extend(batch)
+            for batch in batches:
+                received += len(batch)
+                store.extend(batch)
         if commands.report.is_set():
             commands.report.clear()
             status = source.status

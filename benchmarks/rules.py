@@ -243,7 +243,7 @@ def main() -> None:
     store = LogStore(max_messages=args.records)
     records = make_records(args.records)
     made = time.perf_counter() - t0
-    store.extend(records)
+    store.extend_records(records)
     del records
     print(
         f"{machine_line()}\n{args.records:,} records made in {made:.1f} s, stored in {time.perf_counter() - t0 - made:.1f} s; "

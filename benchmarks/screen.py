@@ -44,6 +44,7 @@ from _report import machine_line, table, verdict
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
+from console_tui.model.record_batch import RecordColumns
 from console_tui.sources.intake_process.parent import ProcessSource
 from console_tui.sources.intake_process.synthetic import PERIOD_S, START_NS, synthetic_record
 from console_tui.sources.status import SourceStatus
@@ -87,10 +88,12 @@ class ThreadFeed:
             due = int((time.monotonic() - began) * self.rate)
             every = self.every
             self.queue.put(
-                [
-                    storm_record(number) if every and number % every == 0 else synthetic_record(number)
-                    for number in range(made, due)
-                ]
+                RecordColumns.from_records(
+                    [
+                        storm_record(number) if every and number % every == 0 else synthetic_record(number)
+                        for number in range(made, due)
+                    ]
+                )
             )
             made = due
 
@@ -105,7 +108,7 @@ async def run(
         else ThreadFeed(queue, rate, repeats)
     )
     app = ConsoleApp(queue=queue, sources=[source] if rate else [])
-    app.store.extend([synthetic_record(number) for number in range(PREFILL)])
+    app.store.extend_records([synthetic_record(number) for number in range(PREFILL)])
     gc.collect()
     async with app.run_test(size=size):
         if not overview:

@@ -107,7 +107,7 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
     records[near].msg = message
     records[far].msg = message.replace("42", "43")
     store = LogStore(max_messages=count)
-    store.extend(records)
+    store.extend_records(records)
     del records
     gc.collect()
     app = ConsoleApp(store=store, utc=True)
@@ -179,7 +179,7 @@ def walk_alone(count: int, text: str, message: str) -> dict[str, float]:
     records[NEAR].msg = message
     records[count - FAR_BEFORE_END].msg = message.replace("42", "43")
     store = LogStore(max_messages=count)
-    store.extend(records)
+    store.extend_records(records)
     del records
     gc.collect()
     search = Search(LogView(store), parse_search(text), 0)

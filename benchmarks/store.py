@@ -132,7 +132,7 @@ def fill(store: LogStore, maker: RecordMaker, count: int) -> float:
     for _ in range(count // BATCH):
         batch = maker.batch()
         began = time.perf_counter()
-        store.extend(batch)
+        store.extend_records(batch)
         spent += time.perf_counter() - began
     return spent
 

@@ -64,7 +64,7 @@ def model_costs(count: int) -> tuple[dict[str, float], Timeline]:
     feed = records(count)
     spent = {"timeline": 0.0, "storms": 0.0}
     for start in range(0, count, BATCH):
-        store.extend(feed[start : start + BATCH])
+        store.extend_records(feed[start : start + BATCH])
         view.update()
         began = time.perf_counter()
         timeline.sync()

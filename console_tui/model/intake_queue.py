@@ -10,12 +10,9 @@ from .record_batch import RecordColumns
 
 DEFAULT_QUEUE_LIMIT = 2_000_000
 
-#: What a source hands over: records, or the same in columns (``RecordColumns``).
-Batch = list[LogRecord] | RecordColumns
-
 
 class IntakeQueue:
-    """A thread-safe queue of record batches that the UI drains on a timer.
+    """A thread-safe queue of record batches (``RecordColumns``) that the UI drains on a timer.
 
     Sources ``put`` whole batches from their own threads; the UI calls ``drain_batches``
     (or ``drain``, for ``LogRecord``s) a few times a second and gets everything that
@@ -27,12 +24,12 @@ class IntakeQueue:
     def __init__(self, limit: int = DEFAULT_QUEUE_LIMIT) -> None:
         self.limit = limit
         self._lock = threading.Lock()
-        self._batches: deque[Batch] = deque()
+        self._batches: deque[RecordColumns] = deque()
         self._waiting = 0
         self.dropped = 0
         self.received = 0
 
-    def put(self, batch: Batch) -> None:
+    def put(self, batch: RecordColumns) -> None:
         """Queue a batch; the caller hands it over and must not use it again."""
         size = len(batch)
         if not size:
@@ -45,10 +42,10 @@ class IntakeQueue:
             self._batches.append(batch)
             self._waiting += size
 
-    def drain_batches(self, limit: int | None = None) -> list[Batch]:
+    def drain_batches(self, limit: int | None = None) -> list[RecordColumns]:
         """What is waiting, oldest first, as the batches that were put (the last one cut
         to fit), at most ``limit`` records in all."""
-        out: list[Batch] = []
+        out: list[RecordColumns] = []
         taken = 0
         with self._lock:
             batches = self._batches
@@ -57,11 +54,7 @@ class IntakeQueue:
                 size = len(batch)
                 if limit is not None and size > limit - taken:
                     room = limit - taken
-                    rest: Batch
-                    if isinstance(batch, RecordColumns):
-                        batch, rest = batch.slice(0, room), batch.slice(room, size)
-                    else:
-                        batch, rest = batch[:room], batch[room:]
+                    batch, rest = batch.slice(0, room), batch.slice(room, size)
                     batches.appendleft(rest)
                     size = room
                 out.append(batch)
@@ -73,11 +66,7 @@ class IntakeQueue:
         """What is waiting, oldest first, as records, at most ``limit`` (an empty list if none)."""
         out: list[LogRecord] = []
         for batch in self.drain_batches(limit):
-            records = batch.records() if isinstance(batch, RecordColumns) else batch
-            if out:
-                out.extend(records)
-            else:
-                out = records  # handed over by the producer: ours to extend
+            out.extend(batch.records())
         return out
 
     def __len__(self) -> int:

@@ -27,7 +27,6 @@ import time
 from collections.abc import Callable, Hashable
 from typing import NamedTuple
 
-from .intake_queue import Batch
 from .record_batch import RecordColumns
 from .store import LogStore
 
@@ -69,15 +68,16 @@ class Placed(NamedTuple):
     moved: dict[int, int]
 
 
-def _span(batch: Batch) -> tuple[int, int] | None:
+def _span(batch: RecordColumns) -> tuple[int, int] | None:
     """The oldest and the newest stamp of ``batch`` (None when it is empty)."""
     if not len(batch):
         return None
-    stamps = batch.stamps if isinstance(batch, RecordColumns) else [record.stamp_ns for record in batch]
-    return min(stamps), max(stamps)
+    return min(batch.stamps), max(batch.stamps)
 
 
-def add_in_time_order(store: LogStore, batch: Batch, *, late_ns: int = LATE_NS, window: int = WINDOW) -> Placed | None:
+def add_in_time_order(
+    store: LogStore, batch: RecordColumns, *, late_ns: int = LATE_NS, window: int = WINDOW
+) -> Placed | None:
     """Add ``batch`` to ``store``, in time order when it is late: placed by stamp among the
     newest ``window`` records (returns where), or, with ``window`` 0 or when only the
     batch itself is out of order, sorted among itself (returns None)."""
@@ -88,12 +88,11 @@ def add_in_time_order(store: LogStore, batch: Batch, *, late_ns: int = LATE_NS, 
         store.extend(batch)
         return None
     oldest = span[0]
-    columns = batch if isinstance(batch, RecordColumns) else RecordColumns.from_records(batch)
     start = end
     floor = max(store.first_seq, end - window)
     while behind and start > floor and store.stamp_of(start - 1) > oldest:
         start -= 1
-    merged = RecordColumns.joined([store.columns(start, end), columns]) if start < end else columns
+    merged = RecordColumns.joined([store.columns(start, end), batch]) if start < end else batch
     order = merged.time_order()
     if order is None:
         store.extend(batch)

@@ -120,11 +120,11 @@ class RecordColumns:
         return _made(columns, _optional_joined(parts, "topics"), _optional_joined(parts, "robots"))
 
     @classmethod
-    def in_time_order(cls, parts: Sequence[RecordColumns | Sequence[LogRecord]]) -> RecordColumns:
+    def in_time_order(cls, parts: Sequence[RecordColumns]) -> RecordColumns:
         """The records of ``parts`` as one batch, ordered by stamp (records with one stamp in
         the order given): a fleet's robots' messages, taken in at one time, merged. A batch
         already in order is returned as joined (a C-level comparison, no reordering)."""
-        joined = cls.joined([part if isinstance(part, RecordColumns) else cls.from_records(part) for part in parts])
+        joined = cls.joined(parts)
         order = joined.time_order()
         return joined if order is None else joined.reordered(order)
 
@@ -264,8 +264,7 @@ class BatchPacker:
                     found[index] = ident
         return array("I", found)
 
-    def pack(self, batch: Sequence[LogRecord] | RecordColumns) -> bytes:
-        columns = batch if isinstance(batch, RecordColumns) else RecordColumns.from_records(batch)
+    def pack(self, columns: RecordColumns) -> bytes:
         count = len(columns)
         if len(self._ids) + 5 * count > self.table_limit:
             self._ids.clear()

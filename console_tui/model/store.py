@@ -7,9 +7,9 @@ repeated strings (node, file, function, source) as ids into string tables, messa
 fleet: several ROS 2 domains or ROS 1 masters, or files named for their robots). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
 when one does not); a full chunk keeps its messages joined in one string
 (``PackedTexts``), so a message costs its text and 4 bytes. Dropping the oldest chunk
-when the bound is passed costs O(1). ``extend`` works column by column, and takes
-``RecordColumns`` (a batch already in columns, as a live intake in a child process hands
-them over) without a Python step per record.
+when the bound is passed costs O(1). ``extend`` takes one shape, ``RecordColumns`` (a batch
+already in columns, as every source hands them over), and works column by column without a
+Python step per record.
 
 Every record gets a sequence number (``seq``) in arrival order; a seq never changes and
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record
@@ -193,13 +193,8 @@ class LogStore:
     def __contains__(self, seq: int) -> bool:
         return self.first_seq <= seq < self.end_seq
 
-    def extend(self, records: Iterable[LogRecord] | RecordColumns) -> range:
-        """Append records (assigning the ``seq`` of ``LogRecord``s); returns the range of new seqs."""
-        if isinstance(records, RecordColumns):
-            columns, objects = records, None
-        else:
-            objects = records if isinstance(records, list) else list(records)
-            columns = RecordColumns.from_records(objects)
+    def extend(self, columns: RecordColumns) -> range:
+        """Append a batch of records; returns the range of their seqs (those still kept)."""
         count = len(columns)
         start = self.end_seq
         chunks = self._chunks
@@ -214,9 +209,6 @@ class LogStore:
             done += len(piece)
             if len(chunk) >= CHUNK_SIZE:
                 chunk.seal()
-        if objects is not None:
-            for seq, record in enumerate(objects, start):
-                record.seq = seq
         self.end_seq = start + count
         if len(self) > self.max_messages:
             self._evict_to(self.end_seq - self.max_messages)
@@ -312,9 +304,17 @@ class LogStore:
             self._base_seq = end
         self.end_seq = end
 
+    def extend_records(self, records: Iterable[LogRecord]) -> range:
+        """``extend`` for records made one by one (tests, a rule's sample), setting their ``seq``."""
+        objects = records if isinstance(records, list) else list(records)
+        added = self.extend(RecordColumns.from_records(objects))
+        for seq, record in enumerate(objects, added.stop - len(objects)):
+            record.seq = seq
+        return added
+
     def append(self, record: LogRecord) -> int:
         """Append one record; returns its seq."""
-        self.extend((record,))
+        self.extend_records((record,))
         return record.seq
 
     def get(self, seq: int) -> LogRecord:

@@ -24,6 +24,7 @@ from typing import IO, Any
 from ..model.intake_queue import IntakeQueue
 from ..model.levels import Severity
 from ..model.record import LogRecord
+from ..model.record_batch import RecordColumns
 from ..model.text import one_line, strip_colour
 
 #: The node and source the caught lines are shown under.
@@ -148,7 +149,8 @@ class NativeOutput:
             self.kept.extend(texts)
             self.caught += len(texts)
         now = time.time_ns()
-        self.queue.put([LogRecord(now, level_of(text), NODE, text, source=SOURCE) for text in texts])
+        records = [LogRecord(now, level_of(text), NODE, text, source=SOURCE) for text in texts]
+        self.queue.put(RecordColumns.from_records(records))
 
 
 def _terminal_stream(fd: int, like: Any) -> IO[str]:

@@ -14,7 +14,7 @@ from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Protocol
 
-from ..model.intake_queue import Batch, IntakeQueue
+from ..model.intake_queue import IntakeQueue
 from ..model.late_records import WINDOW, HistoryWindow, add_in_time_order
 from ..model.marks import Marks
 from ..model.node_stats import NodeStats
@@ -141,7 +141,7 @@ class IntakeActions(AppPart):
             self.histories.note(id(source), status.publishers, status.topic)
         if not self.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
-            live: list[Batch] = self.queue.drain_batches(room)
+            live: list[RecordColumns] = self.queue.drain_batches(room)
             if len(live) > 1 and len(self.robots) > 1:  # a fleet: what its robots sent meanwhile, by time
                 live = [RecordColumns.in_time_order(live)]
         else:
@@ -170,10 +170,11 @@ class IntakeActions(AppPart):
                 return
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
-        self.add_batches([records if isinstance(records, list) else list(records)])
+        """Put records made one by one into the store and the view (tests, demos)."""
+        self.add_batches([RecordColumns.from_records(list(records))])
 
-    def add_batches(self, batches: Sequence[list[LogRecord] | RecordColumns], *, live_from: int | None = None) -> int:
-        """Put batches (records, or records in columns) into the store and the view; how many.
+    def add_batches(self, batches: Sequence[RecordColumns], *, live_from: int | None = None) -> int:
+        """Put batches into the store and the view; how many.
         Batches from ``live_from`` on are live: one that is late is sorted, and while the table
         follows the tail (nobody reads rows that would move) placed among the newest rows by its
         stamps."""

@@ -29,7 +29,7 @@ CONTROLS = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f]")
 
 def app_with(*msgs: str, **options) -> ConsoleApp:
     store = LogStore()
-    store.extend(
+    store.extend_records(
         LogRecord(stamp_ns=1_795_000_000_000_000_000 + i, level=20, node="n", msg=msg) for i, msg in enumerate(msgs)
     )
     return ConsoleApp(store=store, utc=True, **options)

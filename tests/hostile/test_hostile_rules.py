@@ -27,7 +27,7 @@ HOSTILE = "a" * 30 + "b"  # /(a+)+$/ backtracks 2**30 ways on each of these
 def hostile_app(count: int) -> ConsoleApp:
     """``count`` hostile messages, every one its own row (two texts in turn: no storm collapses them)."""
     store = LogStore()
-    store.extend(
+    store.extend_records(
         LogRecord(stamp_ns=1_795_000_000_000_000_000 + i, level=20, node="n", msg=HOSTILE + "b" * (i % 2))
         for i in range(count)
     )
@@ -72,7 +72,7 @@ async def test_esc_stops_a_long_filtering(monkeypatch):
     monkeypatch.setattr(rule_actions, "REFILTER_BUDGET_S", 0.0005)
     monkeypatch.setattr(rule_actions, "REFILTER_PAUSE_S", 0.2)
     store = LogStore()
-    store.extend(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
+    store.extend_records(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
     app = ConsoleApp(store=store, utc=True)
     app.view.clock = TickingClock(0.001)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:

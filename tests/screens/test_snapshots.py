@@ -13,7 +13,7 @@ from support.feed import PLANNER, feed_logger_pane, records
 
 def feed_app(count: int = 200) -> ConsoleApp:
     store = LogStore()
-    store.extend(records(count))
+    store.extend_records(records(count))
     return ConsoleApp(store=store, utc=True, clock=lambda: 0.0)  # a still clock: the rate reads 0/s
 
 

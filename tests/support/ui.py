@@ -20,7 +20,7 @@ from support.rosproc import PATIENCE_S
 def make_app(count: int = 100, *, max_messages: int = DEFAULT_MAX_MESSAGES, **options) -> ConsoleApp:
     """The app over ``count`` fixed records (``support.feed``), times in UTC."""
     store = LogStore(max_messages=max_messages)
-    store.extend(records(count))
+    store.extend_records(records(count))
     options.setdefault("utc", True)
     return ConsoleApp(store=store, **options)
 

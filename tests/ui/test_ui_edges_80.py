@@ -19,7 +19,7 @@ ROS1_NODES = ["/navigation/planner", "/sensors/lidar_driver", "/count_and_log"]
 
 def ros1_app(count: int = 60) -> ConsoleApp:
     store = LogStore()
-    store.extend(
+    store.extend_records(
         LogRecord(
             BASE_NS + i * 100_000_000,
             40 if i % 10 == 9 else 20,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.record_batch import RecordColumns
 from console_tui.model.store import LogStore
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
@@ -49,7 +50,7 @@ async def test_a_live_source_with_no_publisher_yet_is_waited_for_on_screen():
             lambda: in_table(app, "2 publishers of /rosout on ROS 2 domain 7: waiting for the first message…"),
             what="the publishers counted",
         )
-        queue.put(records(3))
+        queue.put(RecordColumns.from_records(records(3)))
         await until(pilot, lambda: "3/3 shown" in screen_text(app), what="the rows")
         assert "waiting" not in line_with(app, "3/3 shown")[1] and not in_table(app, "waiting")
 

@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 from console_tui.model.formats.save import save_records
+from console_tui.model.record_batch import RecordColumns
 from console_tui.model.store import LogStore
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.files import OpenScreen, SaveScreen
@@ -28,7 +29,7 @@ def source_of(line: str) -> str:
 
 def app_with(count: int) -> ConsoleApp:
     store = LogStore()
-    store.extend(records(count))
+    store.extend_records(records(count))
     return ConsoleApp(store=store)
 
 
@@ -147,7 +148,7 @@ async def test_a_large_load_shows_progress_answers_keys_and_cancels(tmp_path, mo
 
 async def test_save_what_is_shown_then_load_it_back(tmp_path):
     store = LogStore()
-    store.extend(records(40))
+    store.extend_records(records(40))
     app = ConsoleApp(store=store, utc=True)
     target = tmp_path / "saved.jsonl"
     async with app.run_test(size=(120, 30)) as pilot:
@@ -197,7 +198,7 @@ async def test_with_live_records_waiting_the_files_come_first(tmp_path):
 
     write_jsonl(tmp_path / "old.jsonl", 500)
     live = IntakeQueue()
-    live.put(records(5, start=10_000))  # newer than every file record, already waiting
+    live.put(RecordColumns.from_records(records(5, start=10_000)))  # newer than every file record, already waiting
     app = ConsoleApp(queue=live, files=[str(tmp_path / "old.jsonl")])
     async with app.run_test(size=(120, 30)) as pilot:
         await until(pilot, lambda: "505/505 shown" in screen_text(app), what="the file and the live records")

@@ -27,7 +27,7 @@ CONTROL = re.compile(r"[\x00-\x1f\x7f-\x9f\u202a-\u202e\u2066-\u2069\u200e\u200f
 
 def hostile_app() -> ConsoleApp:
     store = LogStore()
-    store.extend(
+    store.extend_records(
         LogRecord(
             stamp_ns=1_795_000_000_000_000_000 + i,
             level=20 + 10 * (i % 3),

@@ -64,7 +64,7 @@ def big_app(count: int = 100_000, *, needles=NEEDLES, error_at: int | None = Non
         made[error_at].level = 40
         made[error_at].msg = "the only error"
     store = LogStore()
-    store.extend(made)
+    store.extend_records(made)
     return ConsoleApp(store=store, utc=True, **options)
 
 
@@ -288,7 +288,7 @@ async def test_node_panel_solo_and_mute():
 
 async def test_node_panel_with_80_nodes_filters_and_sorts():
     store = LogStore()
-    store.extend(
+    store.extend_records(
         LogRecord(stamp_ns=BASE_NS + i, level=40 if i % 80 == 7 else 20, node=f"robot.part_{i % 80:02d}", msg="m")
         for i in range(8000)
     )
@@ -358,7 +358,7 @@ async def test_every_time_format_on_a_fixed_data_set():
 
 async def test_sim_time_is_said():
     store = LogStore()
-    store.extend(
+    store.extend_records(
         LogRecord(stamp_ns=12_500_000_000 + i * 10**8, level=20, node="sim", msg=f"tick {i}") for i in range(50)
     )
     app = ConsoleApp(store=store, utc=True)
@@ -391,7 +391,7 @@ async def test_the_source_opens_in_the_editor_at_its_line(tmp_path, fake_editor)
     source.parent.mkdir()
     source.write_text("int main() {}\n" * 50)
     store = LogStore()
-    store.extend(
+    store.extend_records(
         [
             LogRecord(stamp_ns=BASE_NS, level=40, node="planner", msg="here", file=str(source), line=42),
             LogRecord(stamp_ns=BASE_NS, level=40, node="planner", msg="robot", file="/opt/robot/src/x.cpp", line=7),

@@ -3,6 +3,7 @@ from a column by key and by click, the table's place), storms collapsed (10,000 
 messages as one ``×10000`` row, expanded and collapsed again, collapsing off), the summary."""
 
 from console_tui.model.record import LogRecord
+from console_tui.model.record_batch import RecordColumns
 from console_tui.model.store import LogStore
 from console_tui.ui.app import ConsoleApp
 
@@ -26,7 +27,7 @@ def burst_store() -> LogStore:
                 LogRecord(stamp_ns=stamp + k * 1_000_000, level=40, node="tf", msg=f"lookup failed {k}")
                 for k in range(30)
             )
-    store.extend(records)
+    store.extend_records(records)
     return store
 
 
@@ -85,8 +86,10 @@ async def test_a_key_or_a_click_on_a_column_shows_that_time_in_the_table():
 
 def storm_app(**options) -> ConsoleApp:
     store = LogStore()
-    store.extend(LogRecord(stamp_ns=BASE + i * S, level=20, node="planner", msg=f"before {i}") for i in range(5))
-    store.extend(
+    store.extend_records(
+        LogRecord(stamp_ns=BASE + i * S, level=20, node="planner", msg=f"before {i}") for i in range(5)
+    )
+    store.extend_records(
         LogRecord(stamp_ns=BASE + 10 * S + i * 1000, level=30, node="tf", msg="Lookup would require extrapolation")
         for i in range(10_000)
     )
@@ -131,7 +134,7 @@ async def test_collapsing_off_shows_every_message():
 
 async def test_jumps_land_on_a_storms_row_and_go_on_past_it():
     app = storm_app()
-    app.store.extend([LogRecord(stamp_ns=BASE + 30 * S, level=30, node="planner", msg="after the storm")])
+    app.store.extend_records([LogRecord(stamp_ns=BASE + 30 * S, level=30, node="planner", msg="after the storm")])
     async with app.run_test(size=(100, 30)) as pilot:
         await until(pilot, lambda: "×10000" in screen_text(app), what="the storm's row")
 
@@ -154,15 +157,17 @@ async def test_storms_count_repeats_as_they_arrive():
         await until(pilot, lambda: "×10000" in screen_text(app), what="the storm's row")
         for batch in range(5):
             app.queue.put(
-                [
-                    LogRecord(
-                        stamp_ns=BASE + 20 * S + (batch * 1000 + i) * 1000,
-                        level=30,
-                        node="tf",
-                        msg="Lookup would require extrapolation",
-                    )
-                    for i in range(1000)
-                ]
+                RecordColumns.from_records(
+                    [
+                        LogRecord(
+                            stamp_ns=BASE + 20 * S + (batch * 1000 + i) * 1000,
+                            level=30,
+                            node="tf",
+                            msg="Lookup would require extrapolation",
+                        )
+                        for i in range(1000)
+                    ]
+                )
             )
         await until(pilot, lambda: "×15000" in screen_text(app), what="the count to grow")
         assert app.table.row_count == 6

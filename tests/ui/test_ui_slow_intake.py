@@ -6,6 +6,7 @@ from __future__ import annotations
 from types import SimpleNamespace
 
 from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.record_batch import RecordColumns
 from console_tui.model.store import LogStore
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
@@ -45,7 +46,7 @@ async def test_the_app_says_it_once_on_screen():
         await until(pilot, lambda: "Slower intake" in screen_text(app), what="the slower path said")
         assert "the take loop in C is not used" in screen_text(app)
         for batch in range(3):  # more ticks with records: said once only
-            queue.put(records(5))
+            queue.put(RecordColumns.from_records(records(5)))
             await until(pilot, lambda n=batch: f"{5 * (n + 1)}/{5 * (n + 1)} shown" in screen_text(app), what="rows")
     assert [message for message in told if "Slower intake" in message] == [told[0]]
 
@@ -55,6 +56,6 @@ async def test_the_fast_path_says_nothing():
     source = reporting(SourceStatus(origin="ROS 2 domain 7", path="c+cdr", running=True))
     app = ConsoleApp(store=LogStore(), queue=queue, sources=[source], utc=True)
     async with app.run_test(size=(120, 40), notifications=True) as pilot:
-        queue.put(records(5))
+        queue.put(RecordColumns.from_records(records(5)))
         await until(pilot, lambda: "5/5 shown" in screen_text(app), what="rows")
         assert "intake" not in screen_text(app).lower()

@@ -6,6 +6,7 @@ from __future__ import annotations
 import re
 
 from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.record_batch import RecordColumns
 from console_tui.model.store import LogStore
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
@@ -54,7 +55,7 @@ async def test_a_source_that_cannot_start_is_named_on_screen_and_the_rest_runs()
         await until(pilot, lambda: "Could not start CannotStart" in screen_text(app), what="the notification")
         assert "no route to the robot" in screen_text(app)
         assert good.calls == ["start"], "the next source started all the same"
-        queue.put(records(3))
+        queue.put(RecordColumns.from_records(records(3)))
         await until(pilot, lambda: "3/3 shown" in status_line(app), what="records from the queue")
         assert "/rosout 2 pubs  raw+cdr" in status_line(app)
         await pilot.press("space")
@@ -141,7 +142,7 @@ async def test_the_summary_says_what_each_source_reads_how_and_what_it_lost():
     queue = IntakeQueue()
     app = ConsoleApp(store=LogStore(), queue=queue, sources=[Source(status), helper], utc=True)
     async with app.run_test(size=(80, 24)) as pilot:
-        queue.put(records(3))
+        queue.put(RecordColumns.from_records(records(3)))
         await until(pilot, lambda: " 3/3" in status_line(app), what="records from the queue")
         await pilot.press("S")
         await until(pilot, lambda: "Summary: 3 messages kept" in screen_text(app), what="the summary")
@@ -169,7 +170,7 @@ async def test_the_status_line_keeps_source_and_state_at_100_and_80_columns():
     """Narrow terminals: the parts that matter least are shortened, then left out; the
     state, the topic, its publishers and the master stay (they showed only at 170 columns)."""
     store = LogStore()
-    store.extend(records(40))
+    store.extend_records(records(40))
     for size, expected, gone in [
         ((100, 30), ["FOLLOW", "40/40", "/rosout_agg 5 pubs", "127.0.0.1:41231", "demo"], ["roscore on port"]),
         ((80, 24), ["FOLLOW", "40/40", "/rosout_agg 5", "127.0.0.1:41231"], ["roscore on port"]),

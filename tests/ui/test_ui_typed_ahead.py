@@ -40,7 +40,7 @@ class StartingApp(ConsoleApp):
 
 async def test_keys_pressed_while_the_app_starts_are_all_kept():
     app = StartingApp(utc=True)
-    app.store.extend(records(50))
+    app.store.extend_records(records(50))
     async with app.run_test(size=(100, 30)) as pilot:
         await until(pilot, lambda: app.query_bar.input.value == "warn", what="the typed text")
         await pilot.pause()

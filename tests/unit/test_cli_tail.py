@@ -272,7 +272,7 @@ def test_stream_filter_agrees_with_the_view():
     for query in ("level>=warn", "-node:nav* +timeout", "+level:error", "node:sensors.*"):
         rules = RuleSet().with_query(parse_query(query))
         store = LogStore()
-        store.extend(
+        store.extend_records(
             [
                 LogRecord(
                     **{

@@ -127,7 +127,7 @@ def test_robots_cross_batches_and_the_pipe_and_cost_nothing_without():
     assert RecordColumns.from_records([record(1)]).robots is None
     packer, unpacker = BatchPacker(), BatchUnpacker()
     assert [r.robot for r in unpacker.unpack(packer.pack(columns)).records()] == list("ababab")
-    assert unpacker.unpack(packer.pack([record(1)])).robots is None
+    assert unpacker.unpack(packer.pack(RecordColumns.from_records([record(1)]))).robots is None
     joined = RecordColumns.joined([columns, RecordColumns.from_records([record(9)])])
     assert joined.robots == [*"ababab", ""]
     assert columns.kept([True, False] * 3).robots == ["a"] * 3
@@ -138,13 +138,13 @@ def test_robots_cross_batches_and_the_pipe_and_cost_nothing_without():
 
 def test_the_store_keeps_each_records_robot_in_a_column_made_only_when_needed():
     store = LogStore()
-    store.extend([record(i) for i in range(3)])
+    store.extend_records([record(i) for i in range(3)])
     assert store.get(0).robot == "" and store.robot_id_of(0) == 0
     chunk = next(store.spans(0, 3)).chunk
     assert chunk.robots is None
     store.extend(RecordColumns.from_records([record(i) for i in range(3)]).of_robot("picker"))
     assert chunk.robots is not None and list(chunk.robots) == [0, 0, 0, 1, 1, 1]
-    store.extend([record(9)])
+    store.extend_records([record(9)])
     assert [r.robot for r in store] == ["", "", "", "picker", "picker", "picker", ""]
     assert store.robots[store.robot_id_of(4)] == "picker"
     store.extend(RecordColumns.from_records([record(i) for i in range(CHUNK_SIZE)]).of_robot("cart"))
@@ -192,7 +192,7 @@ def test_the_demo_is_no_fleet(capsys):
 
 def test_a_fleets_batches_of_one_moment_merge_by_stamp():
     picker = RecordColumns.from_records([record(i * 10, "picker") for i in range(4)])  # 1000, 1010 ...
-    cart = [record(i * 10 + 5, "cart") for i in range(3)]
+    cart = RecordColumns.from_records([record(i * 10 + 5, "cart") for i in range(3)])
     merged = RecordColumns.in_time_order([picker, cart])
     assert list(merged.stamps) == [1000, 1005, 1010, 1015, 1020, 1025, 1030]
     assert merged.robots == ["picker", "cart"] * 3 + ["picker"]

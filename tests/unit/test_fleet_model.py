@@ -19,9 +19,9 @@ from console_tui.ui.widgets.status_bar import StatusFacts, empty_hint, render_st
 
 def fleet_store(*robots: str, per_robot: int = 3) -> LogStore:
     store = LogStore()
-    store.extend([LogRecord(1_000, 20, "/talker", "m")])  # before the fleet: no robot
+    store.extend_records([LogRecord(1_000, 20, "/talker", "m")])  # before the fleet: no robot
     for robot in robots:
-        store.extend(
+        store.extend_records(
             [LogRecord(2_000 + i, 20 + 10 * (i % 2), "/talker", f"{robot} {i}", robot=robot) for i in range(per_robot)]
         )
     return store
@@ -80,9 +80,9 @@ def test_the_same_node_on_two_robots_is_two_nodes():
 def test_counts_per_robot_follow_the_store_dropping_the_oldest():
     store = LogStore(max_messages=4)
     stats = NodeStats(store)
-    store.extend([LogRecord(i, 20, "/n", "x", robot="a") for i in range(3)])
+    store.extend_records([LogRecord(i, 20, "/n", "x", robot="a") for i in range(3)])
     stats.update()
-    store.extend([LogRecord(10 + i, 20, "/n", "x", robot="b") for i in range(3)])
+    store.extend_records([LogRecord(10 + i, 20, "/n", "x", robot="b") for i in range(3)])
     stats.update()
     assert {entry.robot: entry.total for entry in stats.nodes()} == {"a": 1, "b": 3}
 
@@ -91,8 +91,8 @@ def test_a_message_repeated_by_two_robots_is_no_storm():
     from console_tui.model.storms import StormRows
 
     store = LogStore()
-    store.extend([LogRecord(i, 20, "/talker", "same", robot="ab"[i % 2]) for i in range(6)])
-    store.extend([LogRecord(10 + i, 20, "/talker", "again", robot="a") for i in range(3)])
+    store.extend_records([LogRecord(i, 20, "/talker", "same", robot="ab"[i % 2]) for i in range(6)])
+    store.extend_records([LogRecord(10 + i, 20, "/talker", "again", robot="a") for i in range(3)])
     rows = StormRows(store, LogView(store))
     assert rows.sync()
     assert len(rows) == 7  # the six alternating rows, and one storm of three

@@ -7,6 +7,7 @@ import time
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record import LogRecord
+from console_tui.model.record_batch import RecordColumns
 
 
 def batch(first: int, count: int) -> list[LogRecord]:
@@ -19,8 +20,8 @@ def stamps(records: list[LogRecord]) -> list[int]:
 
 def test_drain_with_a_limit_splits_a_batch_and_keeps_the_rest_in_order():
     queue = IntakeQueue()
-    queue.put(batch(0, 5))
-    queue.put(batch(5, 5))
+    queue.put(RecordColumns.from_records(batch(0, 5)))
+    queue.put(RecordColumns.from_records(batch(5, 5)))
     assert stamps(queue.drain(3)) == [0, 1, 2]
     assert len(queue) == 7, "the rest of the split batch still waits"
     assert stamps(queue.drain(4)) == [3, 4, 5, 6], "the rest first, then the next batch, split again"
@@ -32,21 +33,21 @@ def test_drain_with_a_limit_splits_a_batch_and_keeps_the_rest_in_order():
 
 def test_drain_with_a_limit_of_whole_batches_and_more_than_is_waiting():
     queue = IntakeQueue()
-    queue.put(batch(0, 2))
-    queue.put(batch(2, 2))
+    queue.put(RecordColumns.from_records(batch(0, 2)))
+    queue.put(RecordColumns.from_records(batch(2, 2)))
     assert stamps(queue.drain(2)) == [0, 1] and len(queue) == 2
     assert stamps(queue.drain(100)) == [2, 3] and len(queue) == 0
 
 
 def test_a_full_queue_counts_whole_batches_as_dropped_and_takes_them_again_when_drained():
     queue = IntakeQueue(limit=5)
-    queue.put(batch(0, 3))
-    queue.put(batch(3, 3))  # 6 would be over 5: dropped whole, counted
-    queue.put(batch(6, 2))  # 5 fits exactly
-    queue.put([])  # nothing to count
+    queue.put(RecordColumns.from_records(batch(0, 3)))
+    queue.put(RecordColumns.from_records(batch(3, 3)))  # 6 would be over 5: dropped whole, counted
+    queue.put(RecordColumns.from_records(batch(6, 2)))  # 5 fits exactly
+    queue.put(RecordColumns.from_records([]))  # nothing to count
     assert len(queue) == 5 and queue.dropped == 3 and queue.received == 8
     assert stamps(queue.drain()) == [0, 1, 2, 6, 7]
-    queue.put(batch(8, 5))
+    queue.put(RecordColumns.from_records(batch(8, 5)))
     assert stamps(queue.drain()) == [8, 9, 10, 11, 12] and queue.dropped == 3
 
 
@@ -55,7 +56,7 @@ def test_batches_from_several_threads_arrive_whole_and_none_is_lost():
 
     def produce(base: int) -> None:
         for n in range(200):
-            queue.put(batch(base + n * 3, 3))
+            queue.put(RecordColumns.from_records(batch(base + n * 3, 3)))
 
     threads = [threading.Thread(target=produce, args=(k * 100_000,)) for k in range(4)]
     for thread in threads:

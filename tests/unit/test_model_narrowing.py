@@ -38,7 +38,7 @@ def loaded_store() -> LogStore:
     finally:
         path.unlink(missing_ok=True)
     store = LogStore()
-    store.extend(records)
+    store.extend_records(records)
     return store
 
 
@@ -140,7 +140,7 @@ def counted(storms: StormRows, timeline: Timeline) -> tuple:
 
 def test_back_to_every_record_shown_takes_back_the_counts_and_counts_only_what_arrived():
     store = LogStore()
-    store.extend(list(loaded_store())[:5000])
+    store.extend_records(list(loaded_store())[:5000])
     view = LogView(store)
     storms, timeline = StormRows(store, view), Timeline(store, view)
     assert storms.sync() and timeline.sync()
@@ -151,7 +151,7 @@ def test_back_to_every_record_shown_takes_back_the_counts_and_counts_only_what_a
             pass
         assert storms.sync() and timeline.sync()
         before = store.end_seq
-        store.extend(list(loaded_store())[before : before + arrive])  # arrived while INFO was hidden
+        store.extend_records(list(loaded_store())[before : before + arrive])  # arrived while INFO was hidden
         view.update()
         assert storms.sync() and timeline.sync()
         view.set_rules(RuleSet())
@@ -163,7 +163,7 @@ def test_back_to_every_record_shown_takes_back_the_counts_and_counts_only_what_a
 
 def test_highlight_rules_count_nothing_again_and_records_dropped_meanwhile_mean_a_recount():
     store = LogStore(max_messages=6000)
-    store.extend(list(loaded_store())[:5000])
+    store.extend_records(list(loaded_store())[:5000])
     view = LogView(store)
     storms, timeline = StormRows(store, view), Timeline(store, view)
     assert storms.sync() and timeline.sync()
@@ -173,7 +173,7 @@ def test_highlight_rules_count_nothing_again_and_records_dropped_meanwhile_mean_
     while not view.refilter_step(1.0):
         pass
     assert storms.sync() and timeline.sync()
-    store.extend(list(loaded_store())[5000:7000])  # 1,000 of the oldest go
+    store.extend_records(list(loaded_store())[5000:7000])  # 1,000 of the oldest go
     view.update()
     assert storms.sync() and timeline.sync()
     view.set_rules(RuleSet())

@@ -137,6 +137,6 @@ def test_view_shows_only_rows_the_rules_let_through():
     from console_tui.model.seek import view_shows
 
     store = LogStore()
-    store.extend([record(20), record(40), record(20)])
+    store.extend_records([record(20), record(40), record(20)])
     view = LogView(store, toggles.with_minimum(RuleSet(), 40))
     assert [view_shows(view, seq) for seq in range(4)] == [False, True, False, False]

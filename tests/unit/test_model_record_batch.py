@@ -34,7 +34,7 @@ def test_pack_then_unpack_gives_the_same_records(texts):
     first = [make(i, text) for i, text in enumerate(texts)]
     second = [make(i + 100) for i in range(5)]
     for batch in (first, second, []):
-        assert fields(unpacker.unpack(packer.pack(batch)).records()) == fields(batch)
+        assert fields(unpacker.unpack(packer.pack(RecordColumns.from_records(batch))).records()) == fields(batch)
 
 
 def test_strings_travel_once_and_a_new_table_starts_when_full():
@@ -42,14 +42,14 @@ def test_strings_travel_once_and_a_new_table_starts_when_full():
     sizes = []
     for round_ in range(6):
         batch = [make(i) for i in range(round_ * 5, round_ * 5 + 5)]
-        data = packer.pack(batch)
+        data = packer.pack(RecordColumns.from_records(batch))
         sizes.append(len(data))
         assert fields(unpacker.unpack(data).records()) == fields(batch)
     assert sizes[1] < sizes[0]  # the second batch names no new node, file or function
 
 
 def test_damaged_batches_are_refused():
-    data = BatchPacker().pack([make(i) for i in range(4)])
+    data = BatchPacker().pack(RecordColumns.from_records([make(i) for i in range(4)]))
     for damaged in (data[:-1], data[:10], data + b"x", b""):
         with pytest.raises(BatchError):
             BatchUnpacker().unpack(damaged)
@@ -80,8 +80,8 @@ def test_columns_joined_and_kept_in_order():
 
 def test_store_widens_columns_for_big_ids_and_lines():
     store = LogStore()
-    store.extend([make(i) for i in range(10)])
-    store.extend(
+    store.extend_records([make(i) for i in range(10)])
+    store.extend_records(
         [LogRecord(5, 20, f"n{i}", "m", "f", "g", 100_000 + i, "s") for i in range(70_000)]
     )  # more than 65,536 node names
     assert store.get(3).line == 3
@@ -94,7 +94,7 @@ def test_full_chunks_keep_their_messages_packed_and_read_the_same():
     store = LogStore()
     texts = [f"message {i}" for i in range(CHUNK_SIZE * 2 + 1)]
     texts[5] = "ünïcødé"
-    store.extend([make(i, text) for i, text in enumerate(texts)])
+    store.extend_records([make(i, text) for i, text in enumerate(texts)])
     chunk = next(store.spans(0, 1)).chunk
     assert isinstance(chunk.msgs, PackedTexts)
     assert chunk.msgs[3:7] == texts[3:7] and chunk.msgs[5] == "ünïcødé" and chunk.msgs[-1] == texts[CHUNK_SIZE - 1]
@@ -122,8 +122,8 @@ def test_ros1_topics_travel_and_are_stored_only_where_there_are_some():
         record.topics = "/chatter,/rosout"
     packer, unpacker = BatchPacker(), BatchUnpacker()
     store = LogStore()
-    store.extend(unpacker.unpack(packer.pack(plain)))
+    store.extend(unpacker.unpack(packer.pack(RecordColumns.from_records(plain))))
     assert next(store.spans(0, 1)).chunk.topics is None
-    store.extend(unpacker.unpack(packer.pack(with_topics)))
-    store.extend(plain)
+    store.extend(unpacker.unpack(packer.pack(RecordColumns.from_records(with_topics))))
+    store.extend_records(plain)
     assert [store.get(seq).topics for seq in range(9)] == [""] * 3 + ["/chatter,/rosout"] * 3 + [""] * 3

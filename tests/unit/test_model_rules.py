@@ -85,7 +85,7 @@ def test_caseless_fast_path_over_many_messages():
     """Case folding string by string over whole chunks, separators and empty strings included."""
     store = LogStore()
     msgs = ["abc", "xABCx", "", "ab", "c abc abc", "\x00abc", "nothing", "ABC"] * 700
-    store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in msgs)
+    store.extend_records(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in msgs)
     test = MessageRule("abc", ignore_case=True).compile(store)
     got = b"".join(test(span.chunk, span.lo, span.hi) for span in store.spans(0, len(msgs)))
     assert list(got) == [int("abc" in m.casefold()) for m in msgs]
@@ -147,7 +147,7 @@ def test_node_lookup_grows_with_the_string_table():
     test = NodeRule(("b*",)).compile(store)
     for batch in (["a", "b1"], ["c", "b2", "a"], [f"x{i}" for i in range(300)] + ["b3"]):
         start = store.end_seq
-        store.extend(LogRecord(stamp_ns=0, level=20, node=n, msg="") for n in batch)
+        store.extend_records(LogRecord(stamp_ns=0, level=20, node=n, msg="") for n in batch)
         got = b"".join(test(s.chunk, s.lo, s.hi) for s in store.spans(start, store.end_seq))
         assert list(got) == [int(n.startswith("b")) for n in batch]
 
@@ -369,7 +369,7 @@ def test_regex_prefilter_agrees_with_plain_search(pattern, ignore_case):
     ] * 300
     for chunk in (msgs, [m for m in msgs if m.isascii() and "\x00" not in m]):
         store = LogStore()
-        store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in chunk)
+        store.extend_records(LogRecord(stamp_ns=0, level=20, node="n", msg=m) for m in chunk)
         test = MessageRule(pattern, ignore_case=ignore_case, regex=True).compile(store)
         got = b"".join(test(s.chunk, s.lo, s.hi) for s in store.spans(0, len(chunk)))
         search = re.compile(pattern, re.I if ignore_case else 0).search
@@ -382,7 +382,7 @@ def test_custom_rule_narrowing_agrees_with_each_part():
         rec(level=10 * (1 + i % 5), node=f"n{i % 9}", msg=f"goal {i} {'x' * (i % 4)}", line=i % 11) for i in range(5000)
     ]
     store = LogStore()
-    store.extend(records)
+    store.extend_records(records)
     for parts in (
         (SeverityRule.of("warn"), MessageRule("xx"), MessageRule("goal 1", regex=True)),
         (NodeRule(("n1",)), LocationRule(line=3), MessageRule("X", ignore_case=True)),

@@ -28,7 +28,7 @@ WORDS = ["Timeout waiting", "timed out", "goal reached", "Größe 3", "ok", "sca
 def make_store(count: int, seed: int = 1, max_messages: int = 1_000_000, words=WORDS) -> LogStore:
     rng = random.Random(seed)
     store = LogStore(max_messages=max_messages)
-    store.extend(
+    store.extend_records(
         LogRecord(stamp_ns=i, level=rng.choice([10, 20, 20, 30, 40]), node="n", msg=f"{rng.choice(words)} {i}")
         for i in range(count)
     )
@@ -88,8 +88,8 @@ def test_search_finds_what_a_plain_test_finds(text, filtered):
 
 def test_the_nearest_match_is_known_before_the_search_completes():
     store = make_store(10 * CHUNK_SIZE)
-    store.extend([LogRecord(stamp_ns=0, level=20, node="n", msg="the needle")])
-    store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg="hay") for _ in range(CHUNK_SIZE))
+    store.extend_records([LogRecord(stamp_ns=0, level=20, node="n", msg="the needle")])
+    store.extend_records(LogRecord(stamp_ns=0, level=20, node="n", msg="hay") for _ in range(CHUNK_SIZE))
     view = LogView(store)
     view.clock = TickingClock(0.001)  # a step of 1 ms walks one piece, on any machine
     search = Search(view, parse_search("needle"), store.first_seq)
@@ -109,7 +109,7 @@ def test_arrivals_are_searched_and_evicted_matches_forgotten():
     search = Search(view, parse_search("timeout"), store.end_seq - 1)
     run(search)
     before = search.count()
-    store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg=f"timeout {i}") for i in range(2 * CHUNK_SIZE))
+    store.extend_records(LogRecord(stamp_ns=0, level=20, node="n", msg=f"timeout {i}") for i in range(2 * CHUNK_SIZE))
     view.update()
     assert not search.complete
     run(search)
@@ -130,7 +130,7 @@ def test_count_before_a_limit():
 def test_a_catastrophic_regex_is_abandoned(monkeypatch):
     monkeypatch.setattr("console_tui.model.search.HITS_LIMIT_S", 0.05)
     store = LogStore()
-    store.extend(LogRecord(stamp_ns=0, level=20, node="n", msg="a" * 28 + "!") for _ in range(20))
+    store.extend_records(LogRecord(stamp_ns=0, level=20, node="n", msg="a" * 28 + "!") for _ in range(20))
     search = Search(LogView(store), parse_search("/(a+)+$/"), 0)
     assert search.step(5.0)
     assert "too slow" in search.failed
@@ -208,7 +208,7 @@ def test_seeker_finds_the_nearest_shown_error(forward):
 
 def test_seeker_says_none_past_the_end_and_stops_at_a_limit():
     store = LogStore()
-    store.extend(LogRecord(stamp_ns=0, level=20 if i != 90 else 40, node="n", msg="x") for i in range(100))
+    store.extend_records(LogRecord(stamp_ns=0, level=20 if i != 90 else 40, node="n", msg="x") for i in range(100))
     view = LogView(store)
     seeker = Seeker(view, level_hits(40), 95, forward=True)
     assert seeker.step() and seeker.found is None

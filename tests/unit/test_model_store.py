@@ -21,7 +21,7 @@ def make(i: int, level: int = 20) -> LogRecord:
 
 def test_extend_assigns_seqs_and_get_returns_every_field():
     store = LogStore(max_messages=10)
-    added = store.extend(make(i) for i in range(3))
+    added = store.extend_records(make(i) for i in range(3))
     assert list(added) == [0, 1, 2]
     record = store.get(1)
     assert record.msg == "message 1"
@@ -39,7 +39,7 @@ def test_extend_assigns_seqs_and_get_returns_every_field():
 
 def test_bound_drops_oldest_and_keeps_numbering():
     store = LogStore(max_messages=5)
-    store.extend(make(i) for i in range(12))
+    store.extend_records(make(i) for i in range(12))
     assert len(store) == 5
     assert store.first_seq == 7 and store.end_seq == 12
     assert [r.msg for r in store] == [f"message {i}" for i in range(7, 12)]
@@ -50,7 +50,7 @@ def test_bound_drops_oldest_and_keeps_numbering():
 
 def test_eviction_across_chunks_releases_chunks():
     store = LogStore(max_messages=CHUNK_SIZE + 10)
-    store.extend(make(i) for i in range(CHUNK_SIZE * 5 + 3))
+    store.extend_records(make(i) for i in range(CHUNK_SIZE * 5 + 3))
     assert len(store) == CHUNK_SIZE + 10
     assert len(store._chunks) <= 3
     assert store.get(store.first_seq).msg == f"message {store.first_seq}"
@@ -59,27 +59,27 @@ def test_eviction_across_chunks_releases_chunks():
 
 def test_counts_follow_eviction_and_clear():
     store = LogStore(max_messages=4)
-    store.extend([make(0, 10), make(1, 30), make(2, 40), make(3, 40), make(4, 50)])
+    store.extend_records([make(0, 10), make(1, 30), make(2, 40), make(3, 40), make(4, 50)])
     assert store.counts == {10: 0, 20: 0, 30: 1, 40: 2, 50: 1}
     store.clear()
     assert len(store) == 0 and store.counts[40] == 0
-    added = store.extend([make(9)])
+    added = store.extend_records([make(9)])
     assert list(added) == [5]
     assert store.get(5).msg == "message 9"
 
 
 def test_clear_mid_chunk_then_fill_past_chunk():
     store = LogStore(max_messages=CHUNK_SIZE * 2)
-    store.extend(make(i) for i in range(100))
+    store.extend_records(make(i) for i in range(100))
     store.clear()
-    store.extend(make(i) for i in range(CHUNK_SIZE + 50))
+    store.extend_records(make(i) for i in range(CHUNK_SIZE + 50))
     assert store.first_seq == 100
     assert store.get(100 + CHUNK_SIZE + 49).msg == f"message {CHUNK_SIZE + 49}"
 
 
 def test_spans_cover_range_both_directions():
     store = LogStore(max_messages=CHUNK_SIZE * 3)
-    store.extend(make(i) for i in range(CHUNK_SIZE * 2 + 7))
+    store.extend_records(make(i) for i in range(CHUNK_SIZE * 2 + 7))
     spans = list(store.spans(5, CHUNK_SIZE * 2 + 3))
     assert sum(s.hi - s.lo for s in spans) == CHUNK_SIZE * 2 - 2
     assert spans[0].seq == 5
@@ -101,7 +101,7 @@ def test_bad_values_in_a_batch_are_clamped_and_the_rest_kept_exactly():
         LogRecord(stamp_ns=-(1 << 70), level=-3, node="new node", msg="low", line=1 << 40),
         LogRecord(stamp_ns=5.0, level=20.0, node="node1", msg="floats", line=7.9),  # type: ignore[arg-type]
     ]
-    added = store.extend([*good[:10], *bad, *good[10:], make(99_999, level=40)])  # the last one starts a chunk
+    added = store.extend_records([*good[:10], *bad, *good[10:], make(99_999, level=40)])  # the last one starts a chunk
     assert len(added) == CHUNK_SIZE + 1
     assert [store.get(seq).msg for seq in (9, 10, 11, 12)] == ["message 9", "low", "floats", "message 10"]
     low, floats = store.get(10), store.get(11)
@@ -119,11 +119,11 @@ def test_max_messages_must_be_positive():
 
 def test_ros1_topics_are_kept_and_cost_nothing_for_records_without():
     store = LogStore()
-    store.extend(make(i) for i in range(CHUNK_SIZE + 10))  # ROS 2 records: no topics column made
+    store.extend_records(make(i) for i in range(CHUNK_SIZE + 10))  # ROS 2 records: no topics column made
     assert all(chunk.topics is None for chunk in store._chunks)
     with_topics = make(99)
     with_topics.topics = "/rosout,/chatter"
-    store.extend([make(100), with_topics, make(101)])
+    store.extend_records([make(100), with_topics, make(101)])
     last = store._chunks[-1]
     assert last.topics is not None and len(last.topics) == len(last)
     assert [store.get(seq).topics for seq in range(store.end_seq - 4, store.end_seq)] == [
@@ -143,6 +143,6 @@ def test_evict_listeners_see_the_records_that_go():
         seen.append((first, new_first, [store.get(seq).msg for seq in (first, new_first - 1)]))
 
     store.evict_listeners.append(going)
-    store.extend(LogRecord(stamp_ns=i, level=20, node="n", msg=f"m{i}") for i in range(6000))
+    store.extend_records(LogRecord(stamp_ns=i, level=20, node="n", msg=f"m{i}") for i in range(6000))
     assert seen == [(0, 1000, ["m0", "m999"])]
     assert store.stamp_of(1000) == 1000 and store.nodes[store.node_id_of(1000)] == "n"

@@ -18,7 +18,7 @@ def rec(i, node="a", msg="same", level=20, source=""):
 def storm_rows(records=()) -> tuple[LogStore, LogView, StormRows]:
     """A store holding ``records``, its view and their storm rows (not synced yet)."""
     store = LogStore()
-    store.extend(records)
+    store.extend_records(records)
     view = LogView(store)
     return store, view, StormRows(store, view)
 
@@ -88,7 +88,7 @@ def test_other_nodes_between_do_not_break_a_storm_another_text_does():
 
 def test_severity_and_source_are_part_of_a_storm():
     store = LogStore()
-    store.extend([rec(0, level=20), rec(1, level=30), rec(2, level=30), rec(3, level=30, source="rosout.log")])
+    store.extend_records([rec(0, level=20), rec(1, level=30), rec(2, level=30), rec(3, level=30, source="rosout.log")])
     rows = StormRows(store, LogView(store))
     assert rows.sync()
     assert rows_of(rows) == [0, 1, 3]
@@ -106,7 +106,7 @@ def test_digits_masked_on_request():
 def test_counts_exact_as_repeats_arrive():
     store, view, rows = storm_rows()
     for batch in range(20):
-        store.extend(rec(batch * 500 + i, node="a" if i % 3 else "b", msg="x") for i in range(500))
+        store.extend_records(rec(batch * 500 + i, node="a" if i % 3 else "b", msg="x") for i in range(500))
         view.update()
         rows.sync()
         badge = rows.badge(1)  # node a's storm (b logs every third message)
@@ -126,7 +126,7 @@ def test_expand_and_collapse():
     assert rows.badge(0) == (3, 0, 4, True, True)
     assert rows.badge(2) == (3, 0, 4, True, False)
     # New repeats of an expanded storm are rows too.
-    store.extend([rec(5, "a", "x")])
+    store.extend_records([rec(5, "a", "x")])
     view.update()
     rows.sync()
     assert rows_of(rows) == [0, 1, 2, 3, 4, 5]
@@ -151,7 +151,7 @@ def test_off_shows_the_view():
 def test_rows_not_caught_up_are_the_views():
     store, view, rows = storm_rows(rec(i) for i in range(10))
     rows.sync()
-    store.extend(rec(i) for i in range(10, 15))
+    store.extend_records(rec(i) for i in range(10, 15))
     view.update()
     assert rows_of(rows) == [0, 10, 11, 12, 13, 14]
     assert rows.row_of(12) == 3
@@ -188,7 +188,7 @@ def test_random_histories_against_brute_force():
                 source = "b.log" if rng.random() < 0.05 else ""
                 batch.append(rec(seq, node, text, level=rng.choice([10, 20, 20, 30]), source=source))
                 seq += 1
-            store.extend(batch)
+            store.extend_records(batch)
             view.update()
             if rng.random() < 0.2:
                 rule = rng.choice([SeverityRule.of("debug"), NodeRule(("b",))])
@@ -209,7 +209,7 @@ def test_random_histories_against_brute_force():
             storm = rows.storm_of(head)
             rows.expand(storm)
             check(store, view, rows, masked=masked, expanded_heads=[head])
-            store.extend([rec(seq, "a", "x", level=20)])
+            store.extend_records([rec(seq, "a", "x", level=20)])
             view.update()
             rows.sync()
             rows.collapse(storm)

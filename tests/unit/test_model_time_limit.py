@@ -84,7 +84,7 @@ def test_text_match_mask_is_the_safe_entry_point():
 
 def _store(msgs: list[str]) -> LogStore:
     store = LogStore()
-    store.extend(LogRecord(stamp_ns=i, level=20 + 10 * (i % 2), node="n", msg=m) for i, m in enumerate(msgs))
+    store.extend_records(LogRecord(stamp_ns=i, level=20 + 10 * (i % 2), node="n", msg=m) for i, m in enumerate(msgs))
     return store
 
 

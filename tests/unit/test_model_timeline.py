@@ -41,8 +41,8 @@ def brute_columns(store, view, columns):
 
 def test_an_error_burst_in_the_middle_is_its_own_column():
     store = LogStore()
-    store.extend(rec(i * S // 10) for i in range(1000))  # 100 s of INFO, ten a second
-    store.extend(rec(50 * S + i, level=40) for i in range(30))  # 30 errors at 50 s
+    store.extend_records(rec(i * S // 10) for i in range(1000))  # 100 s of INFO, ten a second
+    store.extend_records(rec(50 * S + i, level=40) for i in range(30))  # 30 errors at 50 s
     view = LogView(store)
     timeline = Timeline(store, view)
     assert timeline.sync()
@@ -57,7 +57,7 @@ def test_an_error_burst_in_the_middle_is_its_own_column():
 
 def test_hidden_records_are_not_counted():
     store = LogStore()
-    store.extend(rec(i * S, level=10 * (1 + i % 5), node=f"n{i % 3}") for i in range(300))
+    store.extend_records(rec(i * S, level=10 * (1 + i % 5), node=f"n{i % 3}") for i in range(300))
     view = LogView(store)
     timeline = Timeline(store, view)
     timeline.sync()
@@ -89,7 +89,7 @@ def test_live_tail_and_eviction_against_brute_force():
                 batch.append(
                     rec(stamp + rng.randint(-S, S), level=rng.choice([10, 20, 30, 40, 50]), node=rng.choice("abc"))
                 )
-            store.extend(batch)
+            store.extend_records(batch)
             view.update()
             if rng.random() < 0.2:
                 view.set_rules(RuleSet((exclude(NodeRule(("b",))),)), first_screen=5)
@@ -120,10 +120,10 @@ def test_the_span_starts_again_when_every_record_counted_went():
     store = LogStore(max_messages=100)
     view = LogView(store)
     timeline = Timeline(store, view)
-    store.extend(rec(i * 10 * S) for i in range(100))  # 0 to 990 s
+    store.extend_records(rec(i * 10 * S) for i in range(100))  # 0 to 990 s
     view.update()
     timeline.sync()
-    store.extend(rec(500 * S + i * S // 10) for i in range(100))  # every record before goes
+    store.extend_records(rec(500 * S + i * S // 10) for i in range(100))  # every record before goes
     view.update()
     timeline.sync()
     columns = timeline.columns(100)
@@ -137,7 +137,7 @@ def test_a_long_history_widens_its_buckets():
     view = LogView(store)
     timeline = Timeline(store, view)
     for day in range(40):
-        store.extend(rec(day * 86_400 * S + i * S) for i in range(100))
+        store.extend_records(rec(day * 86_400 * S + i * S) for i in range(100))
         view.update()
         timeline.sync()
     assert timeline.bucket_ns >= 60 * S
@@ -157,7 +157,7 @@ def test_node_stats_against_brute_force():
             for _ in range(rng.randint(1, 200)):
                 stamp += rng.randint(0, 2 * S)
                 batch.append(rec(stamp, level=rng.choice([10, 20, 30, 40, 50, 25]), node=rng.choice(["a", "b", "c"])))
-            store.extend(batch)
+            store.extend_records(batch)
             stats.update()
         records = list(store)
         newest = max(r.stamp_ns for r in records) // S
@@ -177,8 +177,8 @@ def test_node_stats_against_brute_force():
 
 def test_first_of_a_severity_and_of_a_node():
     store = LogStore(max_messages=10_000)
-    store.extend(rec(i, level=20, node="a") for i in range(9000))
-    store.extend([rec(9000, level=45, node="b"), rec(9001, level=50, node="c"), rec(9002, level=40, node="b")])
+    store.extend_records(rec(i, level=20, node="a") for i in range(9000))
+    store.extend_records([rec(9000, level=45, node="b"), rec(9001, level=50, node="c"), rec(9002, level=40, node="b")])
     stats = NodeStats(store)
     stats.update()
     assert stats.first_of(40) == 9000
@@ -204,11 +204,11 @@ def test_counting_again_after_a_rule_change_gives_what_counting_as_they_arrived_
     arrived_view = LogView(arrived_store, rules)
     arrived = Timeline(arrived_store, arrived_view)
     for at in range(0, len(records), 100):
-        arrived_store.extend(records[at : at + 100])
+        arrived_store.extend_records(records[at : at + 100])
         arrived_view.update()
         arrived.sync()
     store = LogStore()
-    store.extend(records)
+    store.extend_records(records)
     view = LogView(store)
     timeline = Timeline(store, view)
     assert timeline.sync()
@@ -233,7 +233,7 @@ def test_followers_synced_together_end_as_synced_one_by_one():
     results = []
     for together in (False, True):
         store = LogStore()
-        store.extend(records)
+        store.extend_records(records)
         view = LogView(store, RuleSet((exclude(SeverityRule.of("debug")),)))
         while not view.refilter_step(0.01):
             pass

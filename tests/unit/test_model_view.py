@@ -23,7 +23,7 @@ WARN_AND_ABOVE = RuleSet((exclude(SeverityRule.of("debug", "info")),))
 
 
 def fill(store, n, start=0):
-    store.extend(
+    store.extend_records(
         LogRecord(stamp_ns=i, level=10 * (1 + i % 5), node=f"n{i % 7}", msg=f"m{i} {'x' * (i % 3)}")
         for i in range(start, start + n)
     )

@@ -39,7 +39,7 @@ class StreamFilter:
         if not self._active or not records:
             return [(record, None) for record in records]
         store = LogStore(len(records))
-        store.extend(list(records))
+        store.extend_records(records)
         tests = {rule: rule.compile(store) for rule in self._active}
         shown: list[tuple[LogRecord, Decoration]] = []
         done = 0

@@ -5,7 +5,7 @@ the ``files`` extra (rosbags, mcap).
 The UI's entry points:
 
 - ``FileLoad(paths, sink, log_format=..., on_change=...)`` (``sink``: an ``IntakeQueue``, or
-  a callable taking each batch): ``start()``, ``cancel()``, ``progress`` (``LoadProgress``),
+  a callable taking each batch, ``RecordColumns``): ``start()``, ``cancel()``, ``progress`` (``LoadProgress``),
   ``problems()``, ``notes()``; a path may be a folder (every log in it, ``folders``);
 - ``open_logs(paths)`` -> ``OpenedLogs`` (files, failures, skipped), ``open_log_file(path)``
   -> ``LogFile`` (``batches(cancel)``, ``done``/``total``, ``problems``, ``notes()``), and

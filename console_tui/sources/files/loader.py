@@ -12,6 +12,7 @@ from pathlib import Path
 from ...model.formats import FormatError, Problem
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from ...model.record_batch import RecordColumns
 from ...model.text import plural
 from .folders import Expansion, LogPaths, expand_paths, source_names
 from .log_file import LogFile, describe_error, reading_stopped
@@ -174,7 +175,7 @@ def _counted(file: LogFile, cancel: threading.Event | None) -> Iterator[list[Log
 
 class FileLoad:
     """Reads files in a background thread into ``sink`` (an ``IntakeQueue`` or a callable
-    taking each batch), merged by stamp, each record's ``source`` naming its file.
+    taking each batch, as ``RecordColumns``), merged by stamp, each record's ``source`` naming its file.
 
     From the UI thread: ``start()``, ``cancel()``, and read ``progress`` and
     ``problems()`` at any time. ``on_change`` (optional) is called from the loading
@@ -185,7 +186,7 @@ class FileLoad:
     def __init__(
         self,
         paths: Sequence[str | os.PathLike[str]],
-        sink: IntakeQueue | Callable[[list[LogRecord]], None],
+        sink: IntakeQueue | Callable[[RecordColumns], None],
         *,
         log_format: str | None = None,
         on_change: Callable[[], None] | None = None,
@@ -290,7 +291,8 @@ class FileLoad:
             self._finished = True
             self._changed()
 
-    def _deliver(self, batch: list[LogRecord]) -> None:
+    def _deliver(self, records: list[LogRecord]) -> None:
+        batch = RecordColumns.from_records(records)
         sink = self.sink
         if isinstance(sink, IntakeQueue):
             while len(sink) > QUEUE_HIGH_WATER and not self.cancel_event.is_set():

@@ -9,6 +9,7 @@ from dataclasses import replace
 
 from ...model.intake_queue import IntakeQueue
 from ...model.record import LogRecord
+from ...model.record_batch import RecordColumns
 from ..status import SourceStatus
 
 PERIOD_S = 0.02
@@ -68,7 +69,7 @@ class SyntheticSource:
             if self.count is not None:
                 due = min(due, self.count)
             if due > made:
-                self.queue.put([synthetic_record(number) for number in range(made, due)])
+                self.queue.put(RecordColumns.from_records([synthetic_record(number) for number in range(made, due)]))
                 made = due
             lost = self.queue.dropped
             if lost != self.status.lost:
