@@ -26,7 +26,7 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from ..record import LogRecord
-from ..record_batch import RecordColumns
+from ..record_batch import ColumnsBuilder, RecordColumns
 
 #: Encapsulation ids this decoder reads: CDR (XCDR1) and PLAIN_CDR2, big and little endian.
 _LITTLE_ENDIAN = {b"\x00\x01", b"\x00\x07"}
@@ -90,12 +90,9 @@ class LogDecoder:
         Written out field by field in one loop, without helper calls and without a
         ``LogRecord`` per message: the intake's hot path.
         """
-        stamps: list[int] = []
-        levels: list[int] = []
-        nodes: list[str] = []
-        texts: list[str] = []
-        #: (file, function, line) per message: one shared tuple per log statement.
-        tails: list[tuple[str, str, int]] = []
+        batch = ColumnsBuilder()
+        # (file, function, line) per message in ``tails``: one shared tuple per log statement.
+        stamps, levels, nodes, texts, tails = batch.stamps, batch.levels, batch.nodes, batch.msgs, batch.tails
         names_get = self._names.get
         for data in messages:
             if type(data) is not bytes:
@@ -145,8 +142,8 @@ class LogDecoder:
             nodes.append(name)
             texts.append(msg)
             tails.append(tail)
-        files, functions, lines = zip(*tails, strict=True) if tails else ((), (), ())
-        return RecordColumns(stamps, levels, nodes, texts, files, functions, lines, (source,) * len(texts))
+        batch.sourced(source)
+        return batch.columns()
 
     def _read_tail(self, raw: bytes, u32: Any, tails: dict[bytes, tuple[str, str, int]]) -> tuple[str, str, int]:
         """``file``, ``function`` and ``line`` from the end of a message, cached when short."""
