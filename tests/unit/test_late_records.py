@@ -38,7 +38,7 @@ def fresh(records: list[LogRecord]) -> LogStore:
     store = LogStore()
     for record in records:
         record.seq = -1
-    store.extend(sorted(records, key=lambda r: r.stamp_ns))
+    store.extend_records(sorted(records, key=lambda r: r.stamp_ns))
     return store
 
 
