@@ -4,7 +4,7 @@ import pytest
 
 from console_tui.model.packed_texts import PackedTexts, pack
 from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import BatchError, BatchPacker, BatchUnpacker, RecordColumns
+from console_tui.model.record_batch import BatchError, BatchPacker, BatchUnpacker, ColumnsBuilder, RecordColumns
 from console_tui.model.store import CHUNK_SIZE, LogStore
 
 
@@ -127,3 +127,26 @@ def test_ros1_topics_travel_and_are_stored_only_where_there_are_some():
     store.extend(unpacker.unpack(packer.pack(RecordColumns.from_records(with_topics))))
     store.extend_records(plain)
     assert [store.get(seq).topics for seq in range(9)] == [""] * 3 + ["/chatter,/rosout"] * 3 + [""] * 3
+
+
+def test_a_columns_builder_gives_each_record_its_source_and_forgets_what_it_is_told():
+    batch = ColumnsBuilder()
+    for i, (tail, source) in enumerate(
+        [(("f", "g", 1, ""), "/a"), (("f", "g", 2, "/t"), "/a"), (("h", "k", 3, ""), "/b")]
+    ):
+        batch.stamps.append(i)
+        batch.levels.append(20)
+        batch.nodes.append(f"n{i}")
+        batch.msgs.append(f"m{i}")
+        batch.tails.append(tail)
+        batch.sourced(source)
+    assert len(batch) == 3 and batch.key(1) == (1, "n1", "m1")
+    records = batch.columns().records()
+    assert [(r.source, r.topics, r.line) for r in records] == [("/a", "", 1), ("/a", "/t", 2), ("/b", "", 3)]
+    batch.drop(1)
+    assert [(r.msg, r.source) for r in batch.columns().records()] == [("m0", "/a"), ("m2", "/b")]
+    assert batch.columns().topics is None, "no record left with topics"
+    batch.cut(1)
+    assert batch.columns().records() == [LogRecord(0, 20, "n0", "m0", "f", "g", 1, "/a")]
+    batch.cut(0)
+    assert len(batch.columns()) == 0

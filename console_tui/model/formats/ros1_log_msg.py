@@ -15,10 +15,10 @@ md5sum acffd30cd6b6de30f120938c17c593fb (what a TCPROS subscriber sends for the 
 
 One decoder serves the live ROS 1 intake (``decode_frames``: length-prefixed messages as
 they come off a TCPROS socket, decoded straight from the receive buffer into columns, the
-shape the store keeps) and ROS 1 bags (``decode``). Node names and the file/function/line/topics tail repeat in almost every
-message: a bounded cache lets records share one ``str`` each. Malformed input raises
-``Ros1LogError``; nothing here loops on a length read from the input without checking it
-against the message's end first.
+shape the store keeps) and ROS 1 bags (``decode``). Node names and the
+file/function/line/topics tail repeat in almost every message: a bounded cache lets records
+share one ``str`` each. Malformed input raises ``Ros1LogError``; nothing here loops on a
+length read from the input without checking it against the message's end first.
 """
 
 from __future__ import annotations
