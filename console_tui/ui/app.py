@@ -265,7 +265,6 @@ class ConsoleApp(
         self.exit_signals.install()
         if not self.is_headless and sys.__stdin__ is not None and sys.__stdin__.isatty():
             self.set_interval(1.0, self._watch_terminal)
-        self.collection_policy.start()
         if self._keymap_problems:
             listed = "\n".join(self._keymap_problems[:5])
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
@@ -277,6 +276,7 @@ class ConsoleApp(
         # After the first frame: starting sources (threads, child processes) costs CPU
         # the first frame should not wait for.
         self.call_after_refresh(self.start_sources)
+        self.call_after_refresh(self.collection_policy.start)  # a collection of all start-up made
         if self._initial_files:
             self.open_files(self._initial_files, log_format=self.log_format, robots=self._file_robots)
 

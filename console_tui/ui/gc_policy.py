@@ -24,7 +24,7 @@ SETTLED_S = 10.0
 
 
 class CollectionPolicy:
-    """Call ``start`` once the app is up and ``tick`` on every drain of the intake.
+    """Call ``start`` once the app has drawn its first frame and ``tick`` on every drain of the intake.
 
     ``start`` freezes what exists then; each full collection until ``settled`` seconds
     later (that one included) freezes what is still alive once more: what the app makes while
@@ -57,10 +57,13 @@ class CollectionPolicy:
         self.longest_cpu = 0.0
 
     def start(self) -> None:
+        """Collect, freeze what is left, and turn the collector on: start-up runs without it
+        (``cli.main``), and this comes after the first frame."""
         gc.collect()
         gc.freeze()
         young, middle, _ = gc.get_threshold()
         gc.set_threshold(young, middle, NO_AUTOMATIC_FULL_COLLECTIONS)
+        gc.enable()
         self.last_full = self.started = self.clock()
 
     def tick(self) -> None:
