@@ -51,6 +51,39 @@ def test_files_only_show_their_records_start_no_ros_and_exit_0(tmp_path, monkeyp
     assert "/rosout " not in str(during["status"]) and "pubs" not in str(during["status"])
 
 
+def test_start_up_runs_without_garbage_collections_until_after_the_first_frame(tmp_path, monkeypatch, no_ros):
+    """The collector is off from the command line to the app's first frame; then the app
+    collects once (its ``CollectionPolicy``) and it is on again, also after the run."""
+    import gc
+
+    from console_tui.ui.gc_policy import CollectionPolicy
+
+    path = tmp_path / "saved.jsonl"
+    save_records(records(5), path, "jsonl")
+    seen: dict[str, object] = {}
+    start = CollectionPolicy.start
+
+    def watched_start(policy: CollectionPolicy) -> None:
+        seen["on before"] = gc.isenabled()
+        start(policy)
+        seen["on after"] = gc.isenabled()
+
+    monkeypatch.setattr(CollectionPolicy, "start", watched_start)
+
+    async def script(pilot) -> None:
+        await until(pilot, lambda: "5/5 shown" in screen_text(pilot.app), what="the file's records")
+        await until(pilot, lambda: "on after" in seen, what="the collection after the first frame")
+        await pilot.press("q")
+
+    try:
+        code, _apps = run_main(monkeypatch, [str(path)], script)
+        assert code == 0
+        assert seen["on before"] is False, "collections during start-up"
+        assert seen["on after"] is True and gc.isenabled()
+    finally:
+        gc.enable()
+
+
 def test_without_rclpy_exit_2_with_what_to_do_and_no_app(monkeypatch, capsys, no_ros):
     async def script(pilot) -> None:  # never runs: the app is not started
         raise AssertionError("the app started")
