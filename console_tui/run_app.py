@@ -137,18 +137,19 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
                 raise RosUnavailable(str(error)) from None
             # Out of the user's graph: the demo nodes, the intake and the levels all on it.
             os.environ.update(DEMO_ENVIRONMENT, ROS_DOMAIN_ID=str(domain))
-    # The ROS 2 intake process starts at once, while this process starts ROS and imports the
-    # UI: it finds the graph meanwhile, on the other core, and the first live rows come sooner
-    # (the app's ``start_sources`` finds it started). ROS 1's waits for the demo's roscore.
-    live = open_live(queue, topic=args.topic, ros=ros, start_ros2_intake=True)
+    live = open_live(queue, topic=args.topic, ros=ros)
     cleanups.append(live.close)
     sources.append(live.source)
-    if live.runtime is None:  # ROS 1
+    if live.runtime is None:  # ROS 1 (its intake starts after the demo's roscore, if any)
         from .sources.ros1.logger_control import Ros1LoggerControl
 
         ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
         cleanups.append(ros1_control.close)  # puts temporary levels back
         return ros1_control
+    # Started now, while this process imports the UI: the intake process starts ROS and finds
+    # the graph meanwhile, on the other core, and the first live rows come sooner. The app's
+    # ``start_sources`` finds it started.
+    live.source.start()
     from .sources.ros2.logger_control import Ros2LoggerControl
 
     logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame

@@ -18,7 +18,6 @@ of its own for the logger levels.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -74,15 +73,11 @@ def start_ros2(domain_id: int | None = None) -> Any:
         raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None
 
 
-def open_live(
-    queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None, start_ros2_intake: bool = False
-) -> LiveIntake:
+def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None) -> LiveIntake:
     """The live log stream into ``queue`` (not started yet: call ``source.start()``).
 
     ``ros`` is 1 or 2 (``--ros1``/``--ros2``), or None to decide from the environment.
     ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``.
-    ``start_ros2_intake``: a ROS 2 source's intake process is started at once, before this
-    process starts ROS (the app's first live rows come sooner), and stopped again if that fails.
     Raises ``RosUnavailable`` (with what to do) when there is no ROS to read from.
     """
     from .intake_process.parent import ProcessSource
@@ -93,30 +88,15 @@ def open_live(
 
         origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
         return LiveIntake(ProcessSource(queue, "ros1", topic=topic, origin=origin))
+    try:
+        runtime = start_ros2()
+    except RosUnavailable as error:
+        raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
     # A ROS 1 user would wonder why ROS 2: the status line says so.
     remark = f"no ROS 1 master answered at {choice.master_silent} (--ros1 waits for it)" if choice.master_silent else ""
     source = ProcessSource(queue, "ros2", topic=topic, origin=origin, remark=remark)
-    if start_ros2_intake and _ros2_may_start():
-        source.start()
-    try:
-        runtime = start_ros2()
-    except RosUnavailable as error:
-        source.stop()
-        raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     return LiveIntake(source, runtime, [runtime.shutdown])
-
-
-def _ros2_may_start() -> bool:
-    """Whether this Python has rclpy and ``ROS_DOMAIN_ID`` is a domain DDS can use: what
-    ``start_ros2`` needs first, looked at without importing rclpy."""
-    from .ros2.runtime import check_domain_id
-
-    try:
-        check_domain_id(os.environ)
-        return importlib.util.find_spec("rclpy") is not None
-    except (RosUnavailable, ImportError, ValueError):
-        return False
 
 
 def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None = None) -> list[LiveIntake]:
