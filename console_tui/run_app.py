@@ -55,11 +55,6 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
         )
         app.native_output = native
     except BaseException as error:
-        for cleanup in reversed(cleanups):  # what was started already (the intake process)
-            try:
-                cleanup()
-            except Exception:
-                pass
         if native is not None:
             native.stop()
         if isinstance(error, RosUnavailable):
@@ -140,16 +135,12 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
     live = open_live(queue, topic=args.topic, ros=ros)
     cleanups.append(live.close)
     sources.append(live.source)
-    if live.runtime is None:  # ROS 1 (its intake starts after the demo's roscore, if any)
+    if live.runtime is None:  # ROS 1
         from .sources.ros1.logger_control import Ros1LoggerControl
 
         ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
         cleanups.append(ros1_control.close)  # puts temporary levels back
         return ros1_control
-    # Started now, while this process imports the UI: the intake process starts ROS and finds
-    # the graph meanwhile, on the other core, and the first live rows come sooner. The app's
-    # ``start_sources`` finds it started.
-    live.source.start()
     from .sources.ros2.logger_control import Ros2LoggerControl
 
     logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
