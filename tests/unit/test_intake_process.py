@@ -49,21 +49,6 @@ def test_records_and_status_cross_the_pipe_in_order_then_stop_ends_the_process()
     assert source.status.running is False and source.status.problem == ""
 
 
-def test_starting_again_starts_no_second_process():
-    """``run_app`` starts the ROS 2 intake before the app, whose ``start_sources`` starts it again."""
-    queue = IntakeQueue()
-    source = ProcessSource(queue, "synthetic", args=["--rate", "5000", "--count", "100"])
-    source.start()
-    reader = source._reader
-    source.start()
-    try:
-        records = collect(queue, 100)
-    finally:
-        source.stop()
-    records += queue.drain()
-    assert source._reader is reader and len(records) == 100, "records twice: a second process"
-
-
 def test_batches_reach_the_queue_as_columns():
     queue = IntakeQueue()
     source = ProcessSource(queue, "synthetic", args=["--rate", "5000", "--count", "100"])
