@@ -57,9 +57,11 @@ class CollectionPolicy:
         self.longest_cpu = 0.0
 
     def start(self) -> None:
-        """Collect, freeze what is left, and turn the collector on: start-up runs without it
-        (``cli.main``), and this comes after the first frame."""
-        gc.collect()
+        """Freeze what exists and turn the collector on: start-up runs without it (``cli.main``),
+        and this comes after the first frame. Nothing is collected first: a collection of all
+        that start-up made (100,000 objects, none ever collected, so none untracked) took
+        0.1-0.2 s, a stall just after the first frame, for the 7,000 objects (1 MB) of garbage
+        start-up leaves, which stay frozen."""
         gc.freeze()
         young, middle, _ = gc.get_threshold()
         gc.set_threshold(young, middle, NO_AUTOMATIC_FULL_COLLECTIONS)
