@@ -218,7 +218,7 @@ def write_bytecode() -> None:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--domain", type=int, default=60, help="the first of the ROS domains the runs use")
+    parser.add_argument("--domain", type=int, default=60, help="the first of the ten ROS domains the runs use")
     parser.add_argument("args", nargs="*", help="arguments for console-tui (after --)")
     args = parser.parse_args()
     write_bytecode()
@@ -235,7 +235,7 @@ def main() -> int:
     live_label = ""
     for n, (case, publisher) in enumerate(cases):
         measure = with_publisher if publisher else launch
-        runs = [measure([command, *case], args.domain + n * 10 + run % 10) for run in range(args.runs)]
+        runs = [measure([command, *case], args.domain + (n * args.runs + run) % 10) for run in range(args.runs)]
         if publisher:
             live_rows, live_label = runs, " ".join(["console-tui", *case])
         frames = [run.frame for run in runs]
