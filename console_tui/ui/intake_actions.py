@@ -12,7 +12,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 from ..model.intake_queue import IntakeQueue
 from ..model.late_records import WINDOW, HistoryWindow, add_in_time_order
@@ -34,6 +34,8 @@ DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
+#: The logger control starts with the first live records, or this long after the sources.
+LOGGERS_AFTER_S = 5.0
 #: How long quitting waits for the sources to stop, at most.
 SOURCE_STOP_TIMEOUT_S = 2.0
 
@@ -81,6 +83,8 @@ class IntakeActions(AppPart):
     clock: Callable[[], float]
     _rate = 0.0
     _rate_at = 0.0
+    _loggers_started = False
+    _loggers_from = float("inf")
     #: The Robot column was shown once records of two robots came (the user may hide it again).
     _robots_shown = False
 
@@ -98,14 +102,25 @@ class IntakeActions(AppPart):
     # -- the sources ------------------------------------------------------------------------------
 
     def start_sources(self) -> None:
-        starting: list = list(self.sources)
-        if self.logger_control is not None:
-            starting.append(self.logger_control)  # started here, but closed by whoever made it
-        for source in starting:
-            try:
-                source.start()
-            except Exception as error:
-                self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
+        """Start the sources; the logger control once the first live records came
+        (``start_logger_control``), or when the logger levels pane opens."""
+        for source in self.sources:
+            self._start(source)
+        self._loggers_from = self.clock() + (LOGGERS_AFTER_S if self.sources else 0.0)
+
+    def start_logger_control(self) -> None:
+        """Start the logger control (started here, but closed by whoever made it). Its ROS 2
+        context is a second DDS participant in a session; discovered beside the intake
+        process's, it held up the first live rows by seconds, so it starts after them."""
+        if self.logger_control is not None and not self._loggers_started:
+            self._loggers_started = True
+            self._start(self.logger_control)
+
+    def _start(self, source: Any) -> None:
+        try:
+            source.start()
+        except Exception as error:
+            self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
 
     def begin_stopping_sources(self) -> None:
         """Start stopping every source, all at once, each in a thread of its own: each may
@@ -136,6 +151,8 @@ class IntakeActions(AppPart):
         a late history among them (``late_records``) is placed by its stamp while the table
         follows the tail, in the moments histories are due (``HistoryWindow``)."""
         batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
+        if not self._loggers_started and (self.queue.received or self.clock() >= self._loggers_from):
+            self.start_logger_control()
         for source in self.sources:
             status = source.status
             self.histories.note(id(source), status.publishers, status.topic)

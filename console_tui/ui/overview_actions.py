@@ -34,7 +34,7 @@ FOLLOW_BUDGET_S = 0.010
 #: Catching up after a rule change (or over a history at start): slices of this long, the
 #: event loop free between them. A slice adds to the frame drawn in the same turn of the
 #: loop, as the search's do (docs/architecture.md, "Background work in slices").
-CATCH_UP_BUDGET_S = 0.005
+CATCH_UP_BUDGET_S = 0.010
 CATCH_UP_PAUSE_S = 0.001
 #: While the view is still filtering the oldest records, the catch-up looks again this often.
 REFILTER_POLL_S = 0.01

@@ -132,7 +132,11 @@ class LoggerControl(ABC):
         return self.read_when_asked
 
     def start(self) -> None:
-        self._thread = threading.Thread(target=self._run, name="console-tui-loggers", daemon=True)
+        """Start the loggers thread (once: later calls do nothing)."""
+        with self._lock:
+            if self._thread is not None or self._stop.is_set():
+                return
+            self._thread = threading.Thread(target=self._run, name="console-tui-loggers", daemon=True)
         self._thread.start()
 
     def close(self, timeout: float | None = None) -> None:
