@@ -11,6 +11,7 @@ from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from functools import partial
 
+import pytest
 from textual.pilot import Pilot
 
 from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
@@ -279,7 +280,8 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
         control.close()
 
 
-async def test_the_logger_control_starts_after_the_first_live_records_or_when_the_pane_opens():
+@pytest.mark.parametrize("opens_pane", [False, True])
+async def test_the_logger_control_starts_after_the_first_live_records_or_when_the_pane_opens(opens_pane):
     """Its DDS participant beside the intake process's held up the first live rows: it starts
     once they came (or a while after the start, or when the pane opens)."""
     from console_tui.model.intake_queue import IntakeQueue
@@ -289,22 +291,21 @@ async def test_the_logger_control_starts_after_the_first_live_records_or_when_th
     from support.feed import StaticSource
     from support.memory_control import MemoryControl, MemoryNode
 
-    for opens_pane in (False, True):
-        control = MemoryControl([MemoryNode("/talker")])
-        queue = IntakeQueue()
-        source = StaticSource(SourceStatus(topic="/rosout", publishers=1, running=True))
-        app = make_app(logger_control=control, queue=queue, sources=[source])  # its clock stands still
-        try:
-            async with app.run_test(size=(120, 30)) as pilot:
-                await until(pilot, lambda: cursor_number(app) == 100, what="the table")
-                await pilot.pause(0.2)
-                assert control._thread is None, "started before any live record"
-                if opens_pane:
-                    await pilot.press("l")
-                    await until(pilot, lambda: pane_says(app, "talker"), what="the node listed")
-                else:
-                    queue.put(RecordColumns.from_records(records(1, start=500)))
-                    await until(pilot, lambda: control._thread is not None, what="the control started")
-                assert control._thread is not None
-        finally:
-            control.close()
+    control = MemoryControl([MemoryNode("/talker")])
+    queue = IntakeQueue()
+    source = StaticSource(SourceStatus(topic="/rosout", publishers=1, running=True))
+    app = make_app(logger_control=control, queue=queue, sources=[source])  # its clock stands still
+    try:
+        async with app.run_test(size=(120, 30)) as pilot:
+            await until(pilot, lambda: cursor_number(app) == 100, what="the table")
+            await pilot.pause(0.2)
+            assert control._thread is None, "started before any live record"
+            if opens_pane:
+                await pilot.press("l")
+                await until(pilot, lambda: pane_says(app, "talker"), what="the node listed")
+            else:
+                queue.put(RecordColumns.from_records(records(1, start=500)))
+                await until(pilot, lambda: control._thread is not None, what="the control started")
+            assert control._thread is not None
+    finally:
+        control.close()
