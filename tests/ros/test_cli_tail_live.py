@@ -4,14 +4,13 @@ JSON, hostile text printed inert, and ``| head -1`` exiting 0."""
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 import time
 
 import pytest
 
-from support.rosproc import wait_until
+from support.rosproc import group_alive, wait_until
 from support.tail_process import TailProcess
 
 pytestmark = pytest.mark.ros2
@@ -173,12 +172,4 @@ def test_a_hanging_compiler_does_not_blind_the_intake(nodes, ros_env, ros_runtim
     finally:
         tail.stop()
     group = int(group_file.read_text())
-    assert wait_until(lambda: not _group_alive(group), 20), "the compiler outlived the console"
-
-
-def _group_alive(group: int) -> bool:
-    try:
-        os.killpg(group, 0)
-    except ProcessLookupError:
-        return False
-    return True
+    assert wait_until(lambda: not group_alive(group), 20), "the compiler outlived the console"

@@ -161,6 +161,15 @@ def pid_alive(pid: int) -> bool:
     return True
 
 
+def group_alive(group: int) -> bool:
+    """Whether any process of the process group ``group`` is still running."""
+    try:
+        os.killpg(group, 0)
+    except OSError:
+        return False
+    return True
+
+
 class BusyProcesses:
     """``count`` processes that only spin, to load the machine while a test runs (a context
     manager: they are killed at the end)."""

@@ -43,6 +43,15 @@ def put(queue: IntakeQueue, robot: str, count: int, start: int = 0) -> None:
     queue.put(RecordColumns.from_records(records).of_robot(robot))
 
 
+async def node_panel_over(pilot, app, queue: IntakeQueue, *, picker: int, forklift: int) -> None:
+    """Both robots' ``/talker`` messages on the screen, then the node panel open."""
+    put(queue, "picker", picker)
+    put(queue, "forklift", forklift, start=10)
+    await until(pilot, lambda: f"forklift says {forklift - 1}" in screen_text(app), what="the rows")
+    await pilot.press("ctrl+n")
+    await until(pilot, lambda: "Nodes: 2" in screen_text(app), what="the node panel")
+
+
 def header(app) -> str:
     return screen_text(app).splitlines()[app.table.region.y]
 
@@ -83,11 +92,7 @@ async def test_a_robots_colour_paints_its_name():
 async def test_the_node_panel_and_the_summary_count_per_robot():
     app, queue = fleet_app()
     async with app.run_test(size=(120, 34)) as pilot:
-        put(queue, "picker", 4)
-        put(queue, "forklift", 6, start=10)
-        await until(pilot, lambda: "forklift says 5" in screen_text(app), what="the rows")
-        await pilot.press("ctrl+n")
-        await until(pilot, lambda: "Nodes: 2" in screen_text(app), what="the node panel")
+        await node_panel_over(pilot, app, queue, picker=4, forklift=6)
         assert line_with(app, "picker: /talker")[1].split("▏")[1].split()[3:5] == ["2", "2"]
         assert line_with(app, "forklift: /talker")[1].split("▏")[1].split()[3:5] == ["3", "3"]
         await pilot.press("ctrl+n", "S")
@@ -124,11 +129,7 @@ async def test_solo_and_mute_act_on_one_robots_node():
     forklift's /talker out, and muting it from a row hides that robot's only."""
     app, queue = fleet_app()
     async with app.run_test(size=(120, 34)) as pilot:
-        put(queue, "picker", 4)
-        put(queue, "forklift", 4, start=10)
-        await until(pilot, lambda: "forklift says 3" in screen_text(app), what="the rows")
-        await pilot.press("ctrl+n")
-        await until(pilot, lambda: "Nodes: 2" in screen_text(app), what="the node panel")
+        await node_panel_over(pilot, app, queue, picker=4, forklift=4)
         for _ in range(2):
             if app.node_pane.highlighted_option_id == "picker: /talker":
                 break
