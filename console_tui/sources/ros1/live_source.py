@@ -47,7 +47,10 @@ MASTER_RETRY_S = 1.0
 #: A refused ``getSystemState`` (malformed, too large) is asked again after 1, 2, 4 ... s, this at most.
 STATE_RETRY_MAX_S = 30.0
 #: How long both topics are read when moving between /rosout and /rosout_agg, at most.
-OVERLAP_S = 2.0
+OVERLAP_S = 6.0
+#: Both are read until the new topic has delivered messages for this long: a rosout node's
+#: ``/rosout_agg`` may be connected before it has connected to the nodes it relays.
+RELAY_SETTLE_S = 1.0
 #: Publishers asked for a connection at once; a slow one holds a worker for its calls'
 #: timeouts at most, and retries back off, so slow peers cannot keep the others waiting long.
 CONNECT_WORKERS = 16
@@ -82,6 +85,8 @@ class Ros1LiveSource:
         self._topic_names: tuple[str, ...] = ()
         self._current = topic or ""
         self._retiring: tuple[str, float] | None = None
+        #: When the topic moved to first delivered a message (while the old one is retiring).
+        self._delivering_since: float | None = None
         self._dead_agg: frozenset[str] = frozenset()
         #: The master's ``/run_id`` and pid when last reached; a change means it restarted.
         self._master_key: tuple[str, int] | None = None
@@ -260,6 +265,7 @@ class Ros1LiveSource:
             assert self._intake is not None
             self._intake.dedupe_for(OVERLAP_S + 2.0)
             self._retiring = (old, time.monotonic() + OVERLAP_S)
+            self._delivering_since = None
         self._subscribe(wanted)
 
     def _subscribe(self, name: str) -> SubscribedTopic:
@@ -288,19 +294,29 @@ class Ros1LiveSource:
                 pass
 
     def _retire_if_ready(self) -> None:
-        """End the old topic once the new one has a connection, or its time is up."""
+        """End the old topic once the new one has delivered messages for ``RELAY_SETTLE_S``
+        (or has no publisher to wait for), or its time is up."""
         if self._retiring is None:
             return
         old, deadline = self._retiring
+        now = time.monotonic()
         new = self._topics.get(self._current)
-        ready = new is not None and (bool(new.connected) or (new.registered and not new.publishers))
-        if ready or time.monotonic() >= deadline:
+        if new is not None and new.connected and self._delivering_since is None and self._delivering(self._current):
+            self._delivering_since = now
+        settled = self._delivering_since is not None and now - self._delivering_since >= RELAY_SETTLE_S
+        nothing_to_wait_for = new is not None and new.registered and not new.publishers
+        if settled or nothing_to_wait_for or now >= deadline:
             self._retiring = None
             self._unregister(old)
             # What both topics delivered may still be on its way (a busy machine, a slow
             # rosout node): the check for repeats lasts until well after the old one closed.
             assert self._intake is not None
             self._intake.dedupe_for(OVERLAP_S)
+
+    def _delivering(self, topic: str) -> bool:
+        """Whether a connection of ``topic`` has delivered a message."""
+        assert self._intake is not None
+        return any(c.topic == topic and c.messages for c in self._intake.connections())
 
     # -- publishers -----------------------------------------------------------------------------
 
