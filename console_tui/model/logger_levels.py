@@ -117,7 +117,7 @@ class GraphNode:
 
     @property
     def fqn(self) -> str:
-        return f"{self.robot}{ROBOT_SEPARATOR}{self.path}" if self.robot else self.path
+        return robot_qualified(self.robot, self.path)
 
     @property
     def logger_name(self) -> str:
@@ -130,6 +130,19 @@ class GraphNode:
 
 #: Between a fleet's robot's name and its node's in a node's ``fqn``: ``picker:/talker``.
 ROBOT_SEPARATOR = ":"
+
+
+def robot_qualified(robot: str, node: str) -> str:
+    """A node of one robot of a fleet: ``picker:/talker`` (``node`` alone when ``robot`` is
+    "": no fleet). The logger pane's nodes, solo and mute, and node rules name nodes so."""
+    return f"{robot}{ROBOT_SEPARATOR}{node}" if robot else node
+
+
+def split_robot(name: str) -> tuple[str, str]:
+    """``picker:/talker`` -> (``picker``, ``/talker``); a name of no robot -> ("", name).
+    (Neither a ROS node name, a logger name nor a robot's name holds the separator.)"""
+    robot, separator, node = name.partition(ROBOT_SEPARATOR)
+    return (robot, node) if separator and robot and node else ("", name)
 
 
 def node_loggers(nodes: Iterable[GraphNode]) -> dict[str, GraphNode]:

@@ -14,7 +14,7 @@ from textual.binding import Binding
 
 from ..model import toggles
 from ..model.levels import MESSAGE_SEVERITIES
-from ..model.rules.node import robot_node
+from ..model.logger_levels import robot_qualified
 from ..model.rules.ruleset import RuleSet
 from ..model.time_column import TimeFormat, format_info, next_format, sim_time_note
 from .app_part import AppPart
@@ -102,7 +102,7 @@ class ToggleActions(AppPart):
         if seq is None or seq not in self.store:
             return None
         record = self.store.get(seq)
-        return robot_node(record.robot, record.node)
+        return robot_qualified(record.robot, record.node)
 
     def action_solo_row_node(self) -> None:
         node = self._row_node()

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from fnmatch import translate
 from typing import Any, TypeVar
 
+from ..logger_levels import split_robot
 from ..store import Chunk, LogStore
 from .fields import read_str_list
 from .rule import IdLookup, Rule, SpanTest, mask_and, mask_or
@@ -22,19 +23,6 @@ def logger_name(name: str) -> str:
     if name.startswith("/"):
         name = name.lstrip("/").replace("/", ".")
     return name
-
-
-def robot_node(robot: str, node: str) -> str:
-    """A node of one robot as a node rule names it: ``picker:/talker`` (``node`` alone when
-    ``robot`` is "": no fleet)."""
-    return f"{robot}:{node}" if robot else node
-
-
-def split_robot(name: str) -> tuple[str, str]:
-    """``picker:/talker`` -> (``picker``, ``/talker``); a name of no robot -> ("", name).
-    (Neither a ROS node name, a logger name nor a robot's name holds a colon.)"""
-    robot, colon, node = name.partition(":")
-    return (robot, node) if colon and robot and node else ("", name)
 
 
 def is_glob(pattern: str) -> bool:
@@ -91,7 +79,7 @@ class NodeRule(NamesRule):
     """Matches records from any of ``names``: exact logger names or globs (case-sensitive).
 
     A name written as a ROS node name (``/ns/talker``) matches its logger name (``ns.talker``);
-    one written ``ROBOT:NAME`` (``robot_node``) matches that robot's records only.
+    one written ``ROBOT:NAME`` (``logger_levels.robot_qualified``) matches that robot's records only.
     """
 
     kind = "node"

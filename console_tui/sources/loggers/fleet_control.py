@@ -16,7 +16,7 @@ from concurrent.futures import Future
 from dataclasses import replace
 from typing import Any
 
-from ...model.logger_levels import ROBOT_SEPARATOR, GraphNode, TemporaryLevel
+from ...model.logger_levels import GraphNode, TemporaryLevel, robot_qualified, split_robot
 from .control import LoggerControl
 from .errors import LoggerCallError, NoLoggerServices
 from .events import LoggerEvent, NodesChanged, TemporaryEnded
@@ -37,10 +37,8 @@ def _by_robot(nodes: Iterable[GraphNode]) -> tuple[GraphNode, ...]:
 def split_node(name: str, robots: Iterable[str]) -> tuple[str, str]:
     """``picker:/talker`` -> (``picker``, ``/talker``); a name that names no robot of
     ``robots`` -> ("", name)."""
-    robot, separator, node = name.partition(ROBOT_SEPARATOR)
-    if separator and robot in robots:
-        return robot, node
-    return "", name
+    robot, node = split_robot(name)
+    return (robot, node) if robot in robots else ("", name)
 
 
 class FleetLoggerControl(LoggerControl):
@@ -87,7 +85,7 @@ class FleetLoggerControl(LoggerControl):
 
     @staticmethod
     def _renamed(robot: str, entry: TemporaryLevel) -> TemporaryLevel:
-        return replace(entry, node=f"{robot}{ROBOT_SEPARATOR}{entry.node}")
+        return replace(entry, node=robot_qualified(robot, entry.node))
 
     def subscribe(self, listener: Callable[[LoggerEvent], None]) -> None:
         with self._fleet_lock:

@@ -28,8 +28,8 @@ from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
 from ...model.levels import SEVERITY_TABLE
+from ...model.logger_levels import robot_qualified
 from ...model.node_stats import NodeCounts, NodeStats
-from ...model.rules.node import robot_node
 from ...model.text import one_line, shorten_name
 from ..focus import focus_now
 from ..keys import Hint, hint_line
@@ -291,11 +291,12 @@ class NodePane(RightPane):
             options.clear_options()
             styles = {name: self.get_component_rich_style(name, partial=True) for name in self.COMPONENT_CLASSES}
             # A robot's node is one option (the same node name on two robots is two).
-            self._option_nodes = {row.label: robot_node(row.robot, row.node) for row in rows}
+            self._option_nodes = {row.label: robot_qualified(row.robot, row.node) for row in rows}
             options.add_options(
                 [
                     Option(
-                        node_line(row, states.get(robot_node(row.robot, row.node), ""), widths, styles), id=row.label
+                        node_line(row, states.get(robot_qualified(row.robot, row.node), ""), widths, styles),
+                        id=row.label,
                     )
                     for row in rows
                 ]
