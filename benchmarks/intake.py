@@ -59,7 +59,7 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _probe import process_cpu
+from _probe import process_cpu, thread_cpu
 from _report import ros_environment, ros_header, run_under_header, table, verdict
 
 TOPIC = "/console_tui_bench_log"
@@ -334,6 +334,7 @@ def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) ->
             "stored": store.end_seq,
             "cpu": cpu_seconds(source),
             "cpu_intake": intake_cpu_seconds(source),
+            "intake_pids": intake_pids(source),
         }
 
     serve_commands(lambda: queue.received, lambda: source.status.publishers, loss)
@@ -389,6 +390,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "stored": app.store.end_seq,
             "cpu": cpu_seconds(source),
             "cpu_intake": intake_cpu_seconds(source),
+            "intake_pids": pids,
             "stall_max": max(stalls, default=0.0) * 1000,
             "stall_p99": percentile(stalls, 0.99) * 1000,
             "key_median": percentile(keys, 0.5) * 1000,
@@ -621,6 +623,8 @@ class Row:
     #: The whole app's figures (APP_KINDS): during the load, and with nothing arriving.
     app: dict[str, float] | None = None
     floor: dict[str, float] | None = None
+    #: CPU seconds while the publishers sent, by (process, thread name).
+    threads: dict[tuple[str, str], float] | None = None
 
     @property
     def received_per_s(self) -> float:
@@ -693,9 +697,16 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
             floor = subscriber.ask("count", cmd="count")
             subscriber.ask("marked", cmd="mark")
         per_publisher = 0.0 if rate == "max" else float(rate) / len(publishers)
+        roles = {
+            "publisher": [child.process.pid for child in publishers],
+            "subscriber": [subscriber.process.pid],
+            "intake": before.get("intake_pids", []),
+        }
+        threads_before = cpu_by_thread(roles)
         for child in publishers:
             child.send(cmd="go", rate=per_publisher, duration=args.duration)
         done = [child.expect("done", args.duration + 120) for child in publishers]
+        threads_after = cpu_by_thread(roles)
         window = subscriber.ask("count", cmd="count")
         after = settle(subscriber)
         subscriber.send(cmd="quit")
@@ -730,6 +741,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         stop_ms=stopped["seconds"] * 1000 if stopped else None,
         app={key: window[key] for key in app_keys} if kind in APP_KINDS else None,
         floor={key: floor[key] for key in app_keys} if floor else None,
+        threads={key: threads_after[key] - threads_before.get(key, 0.0) for key in threads_after},
     )
     print(
         f"  {row.publishers} pub, {rate:>5}, {kind:<12}: sent {row.sent:>8,} received {row.received:>8,} "
@@ -739,6 +751,35 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         flush=True,
     )
     return row
+
+
+def cpu_by_thread(roles: dict[str, list[int]]) -> dict[tuple[str, str], float]:
+    """CPU seconds so far of every thread of the processes in each role, by (role, thread name)."""
+    used: dict[tuple[str, str], float] = {}
+    for role, pids in roles.items():
+        for pid in pids:
+            for name, seconds in thread_cpu(pid).items():
+                used[role, name] = used.get((role, name), 0.0) + seconds
+    return used
+
+
+def threads_table(row: Row) -> str:
+    """Where the CPU went while the publishers sent: each process's threads, in cores and in
+    microseconds a message received; the threads that used under 1% of a core are summed."""
+    threads = row.threads or {}
+    seconds = row.seconds or 1.0
+    messages = max(row.in_window, 1)
+    body, small = [], {}
+    for (role, name), used in sorted(threads.items(), key=lambda item: -item[1]):
+        if used / seconds < 0.01:
+            small[role] = small.get(role, 0.0) + used
+            continue
+        body.append([role, name, f"{used / seconds:.2f}", f"{used / messages * 1e6:.1f}"])
+    for role, used in small.items():
+        body.append([role, "(the rest)", f"{used / seconds:.2f}", f"{used / messages * 1e6:.1f}"])
+    total = sum(threads.values())
+    body.append(["all", "", f"{total / seconds:.2f}", f"{total / messages * 1e6:.1f}"])
+    return table(["process", "thread", "cores", "us/msg received"], body)
 
 
 CONSOLE_KINDS = {"intake", "intake-thread", "intake-typed", "intake-ee", *APP_KINDS}
@@ -783,6 +824,10 @@ def report(rows: list[Row], args: argparse.Namespace) -> str:
         lines += ["", "The whole app (headless at 160x48, drawing) while the messages arrive; in brackets, the same"]
         lines += ["app before the publishers start (nothing arriving: the floor this machine sets):", ""]
         lines.append(app_table(app_rows))
+    for row in rows:
+        if args.threads and row.threads and (row.kind in PRODUCT_KINDS or row.kind == "raw-ee"):
+            lines += ["", f"Where the CPU went while sending ({row.kind}, {row.publishers} pub, {row.rate}/s):", ""]
+            lines.append(threads_table(row))
     lines.append("")
     lines.append("Targets:")
     for row in rows:
@@ -890,6 +935,11 @@ def main() -> None:
         help="app kinds: seconds measured with nothing arriving first, for the stall floor (default 5)",
     )
     parser.add_argument(
+        "--threads",
+        action="store_true",
+        help="where the CPU went, thread by thread, for the intake, the app and raw-ee (on with --sustained)",
+    )
+    parser.add_argument(
         "--udp", action="store_true", help="Fast DDS over UDP only (default: its defaults, shared memory)"
     )
     parser.add_argument(
@@ -925,6 +975,7 @@ def main() -> None:
     args.rates = args.rates or ([str(LOSSLESS_RATE)] if sustained else list(DEFAULT_RATES))
     args.kinds = args.kinds or (["app"] if sustained else list(DEFAULT_KINDS))
     args.duration = args.duration or (args.sustained if sustained else 5.0)
+    args.threads = args.threads or sustained
     if args.domains > 1 and not set(args.kinds) <= {"intake", "app"}:
         parser.error("--domains: only the kinds intake and app read a fleet")
     if args.domains < 1 or args.domain + args.domains - 1 > 232:

@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""Cost benchmark: what one log message costs on its way from the pipe to the screen, by stage.
+
+    .venv/bin/python benchmarks/cost.py [--rates 20000 50000] [--records 300000] [--rounds 5]
+
+Each stage runs alone on the same realistic records (``benchmarks/store.py``'s
+``RecordMaker``: messages of 60-120 characters, 40 nodes, 120 files), in the batches the intake process sends at each rate (one
+every 20 ms), timed with the thread's own CPU clock (``time.thread_time``: what the stage
+costs, not how long the machine made it wait); the table shows medians of ``--rounds``.
+
+- ``pack``: the intake process turns a batch of columns into a frame's bytes (``BatchPacker``);
+- ``pipe``: writing the frame into a pipe and reading it out (both ends' system calls and
+  the frame reader);
+- ``unpack``: the app's pipe thread turns the bytes into columns again (``BatchUnpacker``);
+- ``store``: ``LogStore.extend``, sealing and packing full chunks included;
+- ``view and overview``: the rows shown (``LogView.update``), the storms and the timeline
+  following them, the nodes' counts, as the app does on each tick (15 a second);
+- ``frame``: drawing the table, the timeline strip and the status line again (160x48), as
+  the app does once a tick while records arrive, divided among the tick's records (measured
+  in the real app, headless: ``--frames`` seconds of frames, their median).
+
+Taking a message from DDS and decoding it (the intake's take loop in C) needs ROS:
+``benchmarks/take_loop.py`` measures it, and ``benchmarks/intake.py`` the whole intake
+process (Fast DDS's receive thread included) and the whole app.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import fcntl
+import os
+import statistics
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from _report import machine_line, table
+from store import RecordMaker
+
+from console_tui.model.record_batch import BatchPacker, BatchUnpacker, RecordColumns
+from console_tui.model.store import LogStore
+from console_tui.sources.intake_process.frames import BATCH, read_frames, write_frame
+
+#: The intake process sends what it took every this many seconds (``child.FLUSH_S``).
+FLUSH_S = 0.02
+#: The app moves what came into the store and draws once a tick (``DRAIN_INTERVAL``).
+TICK_S = 1 / 15
+_F_SETPIPE_SZ = 1031
+
+
+def realistic_batches(records: int, rate: int) -> list[RecordColumns]:
+    """``records`` realistic records in the batches the intake process sends at ``rate``."""
+    size = max(1, int(rate * FLUSH_S))
+    made = RecordMaker().batch(records)
+    return [RecordColumns.from_records(made[at : at + size]) for at in range(0, records, size)]
+
+
+def timed(work: Callable[[], Any]) -> float:
+    """CPU seconds of this thread that ``work`` took."""
+    began = time.thread_time()
+    work()
+    return time.thread_time() - began
+
+
+def stage_costs(batches: list[RecordColumns]) -> dict[str, float]:
+    """CPU seconds of each stage over all of ``batches``."""
+    from console_tui.model.node_stats import NodeStats
+    from console_tui.model.storms import StormRows
+    from console_tui.model.timeline import Timeline
+    from console_tui.model.view import LogView
+
+    packer = BatchPacker()
+    payloads: list[bytes] = []
+    costs = {"pack": timed(lambda: payloads.extend(packer.pack(batch) for batch in batches))}
+
+    reading, writing = os.pipe()
+    try:
+        fcntl.fcntl(writing, _F_SETPIPE_SZ, 1 << 20)
+        largest = max(len(payload) for payload in payloads)
+        if largest + 16 > fcntl.fcntl(writing, 1032):  # F_GETPIPE_SZ: a frame must fit
+            raise SystemExit("a frame is larger than the pipe can hold; use a lower rate")
+        frames = read_frames(reading)
+        received: list[bytes] = []
+
+        def through_pipe() -> None:
+            for payload in payloads:
+                write_frame(writing, BATCH, payload)
+                received.append(next(frames)[1])
+
+        costs["pipe"] = timed(through_pipe)
+    finally:
+        os.close(writing)
+        os.close(reading)
+
+    unpacker = BatchUnpacker()
+    columns: list[RecordColumns] = []
+    costs["unpack"] = timed(lambda: columns.extend(unpacker.unpack(payload) for payload in received))
+
+    store = LogStore()
+    view = LogView(store)
+    storms, timeline, nodes = StormRows(store, view), Timeline(store, view), NodeStats(store)
+    store_s = overview_s = 0.0
+    per_tick = max(1, round(TICK_S / FLUSH_S))
+    for tick in range(0, len(columns), per_tick):
+        for batch in columns[tick : tick + per_tick]:
+            store_s += timed(lambda batch=batch: store.extend(batch))
+        began = time.thread_time()
+        view.update()
+        storms.sync()
+        timeline.sync()
+        nodes.update()
+        overview_s += time.thread_time() - began
+    costs["store"] = store_s
+    costs["view and overview"] = overview_s
+    return costs
+
+
+def frame_cost(size: tuple[int, int], seconds: float) -> float:
+    """CPU seconds a frame of the app takes: the table (last rows changed), its scroll bar,
+    the timeline strip and the status line drawn anew, in the real app, headless."""
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.ui.app import ConsoleApp
+
+    app = ConsoleApp(queue=IntakeQueue(), sources=[])
+    records = RecordMaker().batch(200_000)
+    app.store.extend(RecordColumns.from_records(records[:100_000]))
+    costs: list[float] = []
+
+    async def run() -> None:
+        async with app.run_test(size=size) as pilot:
+            await pilot.pause()
+            at, step = 100_000, 200
+            deadline = time.monotonic() + seconds
+            while time.monotonic() < deadline and at + step <= len(records):
+                app.queue.put(RecordColumns.from_records(records[at : at + step]))
+                at += step
+                await pilot.pause()  # the tick drains them
+                await pilot.pause()
+                began = time.thread_time()
+                for widget in (app.table, app.status_bar, app.timeline_strip):
+                    widget.refresh()
+                await pilot.pause()
+                costs.append(time.thread_time() - began)
+
+    asyncio.run(run())
+    return statistics.median(costs) if costs else 0.0
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rates", type=int, nargs="+", default=[20_000, 50_000])
+    parser.add_argument("--records", type=int, default=300_000)
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--frames", type=float, default=5.0, metavar="S", help="seconds of frames measured (0: none)")
+    parser.add_argument("--size", default="160x48")
+    args = parser.parse_args()
+    width, height = (int(n) for n in args.size.split("x"))
+    print(machine_line(), file=sys.stderr, flush=True)
+    stages = ["pack", "pipe", "unpack", "store", "view and overview"]
+    per_rate: dict[int, dict[str, float]] = {}
+    for rate in args.rates:
+        batches = realistic_batches(args.records, rate)
+        rounds = [stage_costs(batches) for _ in range(args.rounds)]
+        per_rate[rate] = {stage: statistics.median(r[stage] for r in rounds) / args.records * 1e6 for stage in stages}
+    frame_s = frame_cost((width, height), args.frames) if args.frames > 0 else 0.0
+    ticks = 1 / TICK_S
+    body = []
+    for stage in stages:
+        body.append([stage, *(f"{per_rate[rate][stage]:.2f}" for rate in args.rates)])
+    if frame_s:
+        body.append(["frame", *(f"{frame_s * ticks / rate * 1e6:.2f}" for rate in args.rates)])
+    totals = [sum(per_rate[rate].values()) + (frame_s * ticks / rate * 1e6 if frame_s else 0.0) for rate in args.rates]
+    body.append(["all of these", *(f"{total:.2f}" for total in totals)])
+    print("## Cost benchmark (benchmarks/cost.py)\n")
+    print(machine_line())
+    print(
+        f"{args.records:,} realistic records in the batches the intake sends every {FLUSH_S * 1000:.0f} ms; "
+        f"CPU a message in microseconds, medians of {args.rounds}"
+        + (f"; a frame ({args.size}) costs {frame_s * 1000:.1f} ms, {ticks:.0f} a second" if frame_s else "")
+        + "\n"
+    )
+    print(table(["stage", *(f"at {rate:,}/s" for rate in args.rates)], body))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
