@@ -5,6 +5,7 @@ SIGKILL leaves a readable file, rotation keeps its count, SIGTERM exits cleanly.
 from __future__ import annotations
 
 import asyncio
+import itertools
 import os
 import re
 import signal
@@ -12,13 +13,12 @@ import subprocess
 import sys
 import threading
 import time
-from pathlib import Path
 
 import pytest
 
 from console_tui.model.formats.rosout_log import ROS2_HEADER
-from console_tui.sources.files import load_records, open_files
 
+from support.aggregator import Aggregator
 from support.rosproc import wait_until
 
 pytestmark = pytest.mark.ros2
@@ -26,52 +26,6 @@ pytestmark = pytest.mark.ros2
 #: How long the count program runs before a console starts. The issue's run is 60 s
 #: (CONSOLE_TUI_E2E_SPAN_S=60); the default is shorter but still past /rosout's 10 s lifespan.
 SPAN_S = float(os.environ.get("CONSOLE_TUI_E2E_SPAN_S", "15"))
-
-
-class Aggregator:
-    """``console-tui rosout`` in a process of its own, writing into ``log_dir``."""
-
-    def __init__(self, env: dict[str, str], log_dir: Path, *args: str) -> None:
-        self.log_dir = log_dir
-        self.path = log_dir / "rosout.log"
-        self.process = subprocess.Popen(
-            [sys.executable, "-m", "console_tui", "rosout", "--log-dir", str(log_dir), *args],
-            stdin=subprocess.DEVNULL,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            env=env,
-        )
-
-    def records(self, *paths: Path) -> list:
-        files, failures = open_files([str(p) for p in (paths or (self.path,))])
-        assert failures == []
-        try:
-            records = [r for batch in load_records(files) for r in batch]
-            assert [str(p) for f in files for p in f.problems] == []
-        finally:
-            for f in files:
-                f.close()
-        return records
-
-    def wait_running(self, timeout: float = 30) -> None:
-        """Until its own start-up message came back through /rosout into rosout.log."""
-        assert wait_until(lambda: self.path.exists() and b"republishing /rosout" in self.path.read_bytes(), timeout), (
-            self.stop_and_read()
-        )
-
-    def stop(self, sig: int = signal.SIGINT, timeout: float = 15) -> int:
-        if self.process.poll() is None:
-            self.process.send_signal(sig)
-            try:
-                self.process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                self.process.kill()
-                self.process.wait()
-        return self.process.returncode
-
-    def stop_and_read(self) -> str:
-        self.stop()
-        return self.process.stderr.read().decode(errors="replace")[-3000:]
 
 
 @pytest.fixture
@@ -159,14 +113,12 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
                     timeout=30,
                     what=lambda: f"the first message (status {live.source.status}, {len(app.store)} records)",
                 )
+                await until(pilot, lambda: live.source.status.topic == "/rosout_agg", what="the switch")
                 await pilot.pause(1.0)
-                # In time order: when discovery finds the aggregator only after the console
-                # began showing /rosout (a loaded machine), its older history comes after.
-                shown = sorted(
-                    (r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns),
-                    key=lambda r: r.stamp_ns,
-                )
-                assert live.source.status.topic == "/rosout_agg"
+                # The console shows /rosout at once: when discovery finds the aggregator after
+                # the first rows, its older history is placed among them by its stamps.
+                shown = [r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
+                assert_in_time_order_on_screen(app)
         finally:
             live.close()
     finally:
@@ -184,6 +136,65 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
     # their way when the aggregator stopped (a number logs several lines: its tail may be cut).
     expected = counted(range(1, int(from_file[-1].msg.split()[0]) + 1))
     assert [(r.level, r.msg) for r in from_file] == expected[: len(from_file)]
+
+
+def in_time_order(stamps: list[int]) -> bool:
+    """In the order of their stamps, but for what came less than ``LATE_NS`` out of order
+    (two nodes' messages of one moment, which the app leaves as they came)."""
+    from console_tui.model.late_records import LATE_NS
+
+    return all(
+        stamp >= newest - LATE_NS for stamp, newest in zip(stamps[1:], itertools.accumulate(stamps, max), strict=False)
+    )
+
+
+def assert_in_time_order_on_screen(app) -> None:
+    """The store, and the table's rows on the screen, are in the order of their stamps."""
+    from support.ui import table_rows
+
+    assert in_time_order([record.stamp_ns for record in app.store])
+    rows = table_rows(app)  # by the number in the # column: a record's seq + 1
+    shown = [app.store.get(number - 1).stamp_ns for _, number in sorted((y, n) for n, (y, _) in rows.items())]
+    assert len(shown) > 10 and in_time_order(shown), "\n".join(line for _, line in sorted(rows.values()))
+
+
+async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_nothing_twice(aggregators, nodes):
+    """The console shows /rosout at once; when an aggregator starts later it switches to
+    /rosout_agg: every message of a node logging all along comes once, in order."""
+    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.sources.live import open_live
+    from console_tui.ui.app import ConsoleApp
+
+    from support.ui import screen_text, until
+
+    talker = nodes.start("talker.py", "--name", "switching")
+    await asyncio.to_thread(talker.expect, "ready")
+    talker.send({"cmd": "periodic", "period": 0.1})
+    await asyncio.to_thread(talker.expect_next, "periodic")
+    queue = IntakeQueue()
+    live = open_live(queue)
+    app = ConsoleApp(queue=queue, sources=[live.source], utc=True)
+
+    def ticks() -> list[int]:
+        return [int(r.msg.split()[1]) for r in app.store if r.node == "switching"]
+
+    try:
+        async with app.run_test(size=(160, 40)) as pilot:
+            await until(pilot, lambda: "switching tick" in screen_text(app), timeout=60, what="rows from /rosout")
+            assert live.source.status.topic == "/rosout"
+            aggregator = aggregators()
+            await until(pilot, lambda: live.source.status.topic == "/rosout_agg", timeout=60, what="the switch")
+            switched = ticks()[-1]
+            await until(pilot, lambda: ticks()[-1] >= switched + 20, timeout=60, what="ticks after the switch")
+            await asyncio.to_thread(aggregator.wait_running)  # its own first message on screen too
+            await until(pilot, lambda: any(r.msg.startswith("republishing /rosout") for r in app.store))
+            got = ticks()
+            assert got == list(range(1, got[-1] + 1))
+            assert len({(r.node, r.stamp_ns, r.msg) for r in app.store}) == len(app.store)
+            await pilot.pause(0.3)
+            assert_in_time_order_on_screen(app)
+    finally:
+        live.close()
 
 
 async def test_the_rosout_log_opens_in_the_app(aggregators, nodes):

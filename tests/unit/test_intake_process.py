@@ -13,6 +13,7 @@ import pytest
 
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record_batch import RecordColumns
+from console_tui.sources.intake_process.child import Sender
 from console_tui.sources.intake_process.frames import BATCH, STATUS, read_frames, status_from, write_frame
 from console_tui.sources.intake_process.parent import ProcessSource
 from console_tui.sources.intake_process.synthetic import synthetic_record
@@ -47,6 +48,43 @@ def test_records_and_status_cross_the_pipe_in_order_then_stop_ends_the_process()
     assert source.process is not None and source.process.returncode == 0
     assert not pid_alive(source.process.pid)
     assert source.status.running is False and source.status.problem == ""
+
+
+def test_a_second_start_starts_no_second_process():
+    queue = IntakeQueue()
+    source = ProcessSource(queue, "synthetic", args=["--rate", "5000", "--count", "100"])
+    source.start()
+    try:
+        assert wait_until(lambda: source.process is not None)
+        first = source.process
+        source.start()  # as the app does after its first frame
+        assert wait_until(lambda: len(queue) >= 100)
+        assert source.process is first
+    finally:
+        source.stop()
+    assert len(queue.drain()) == 100
+
+
+def test_a_status_that_changed_before_records_were_taken_is_sent_before_them():
+    """The app learns of a new topic before that topic's history (placed by its stamps then)."""
+
+    class Switching:
+        status = SourceStatus(topic="/rosout")
+
+    read_end, write_end = os.pipe()
+    queue = IntakeQueue()
+    sender = Sender(write_end, queue)
+    source = Switching()
+    sender.flush(source)
+    source.status = SourceStatus(topic="/rosout_agg")
+    queue.put(RecordColumns.from_records([synthetic_record(0)]))
+    sender.flush(source)
+    os.close(write_end)
+    frames = [
+        (kind, status_from(payload).topic if kind == STATUS else "records") for kind, payload in read_frames(read_end)
+    ]
+    os.close(read_end)
+    assert frames == [(STATUS, "/rosout"), (STATUS, "/rosout_agg"), (BATCH, "records")]
 
 
 def test_batches_reach_the_queue_as_columns():

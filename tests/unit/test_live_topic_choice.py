@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from console_tui.model.record import LogRecord
 from console_tui.model.record_batch import RecordColumns
-from console_tui.sources.ros2.topic_choice import AUTO_TOPIC_MAX_S, SWITCH_DEDUPE_S, TopicChoice
+from console_tui.sources.ros2.topic_choice import DISCOVERY_S, SWITCH_DEDUPE_S, TopicChoice
 
 
 def records(node: str, *stamps: int) -> list[LogRecord]:
@@ -21,27 +21,31 @@ def passed(choice: TopicChoice, records: list[LogRecord], topic: str, now: float
     return choice.filter(taken(records), topic, now).records()
 
 
-def test_held_at_start_then_released_in_order_without_an_aggregator():
+def test_rosout_goes_on_at_once_without_an_aggregator():
     choice = TopicChoice(0.0)
-    assert passed(choice, records("a", 1, 2), "/rosout", 0.1) == []
-    assert passed(choice, records("a", 3), "/rosout", 1.0) == []
-    released = passed(choice, [], "/rosout", AUTO_TOPIC_MAX_S + 0.1)
-    assert [r.stamp_ns for r in released] == [1, 2, 3]
-    assert [r.stamp_ns for r in passed(choice, records("a", 4), "/rosout", 9.0)] == [4]
+    assert [r.stamp_ns for r in passed(choice, records("a", 1, 2), "/rosout", 0.1)] == [1, 2]
+    assert [r.stamp_ns for r in passed(choice, records("a", 3), "/rosout", 9.0)] == [3]
 
 
-def test_aggregator_found_at_start_drops_what_was_held():
+def test_aggregator_found_at_once_gives_all_of_its_history():
     choice = TopicChoice(0.0)
-    passed(choice, records("a", 5, 6), "/rosout", 0.5)
-    choice.switched(1.0)
+    choice.switched(0.1)
     history = records("a", 1, 2, 3, 4, 5, 6)
-    assert passed(choice, history, "/rosout_agg", 1.1) == history
+    assert passed(choice, history, "/rosout_agg", 0.2) == history
+
+
+def test_aggregator_found_after_the_first_rows_gives_only_what_was_not_shown():
+    choice = TopicChoice(0.0)
+    assert len(passed(choice, records("a", 5, 6), "/rosout", 0.5)) == 2
+    choice.switched(1.0)
+    history = records("a", 1, 2, 3, 4, 5, 6, 7)
+    assert [r.stamp_ns for r in passed(choice, history, "/rosout_agg", 1.1)] == [1, 2, 3, 4, 7]
 
 
 def test_aggregator_found_later_gives_only_what_was_not_seen():
     choice = TopicChoice(0.0)
-    passed(choice, records("a", 1), "/rosout", 0.1)
-    assert [r.stamp_ns for r in passed(choice, records("a", 2) + records("b", 7), "/rosout", 5.0)] == [1, 2, 7]
+    assert [r.stamp_ns for r in passed(choice, records("a", 1), "/rosout", 0.1)] == [1]
+    assert [r.stamp_ns for r in passed(choice, records("a", 2) + records("b", 7), "/rosout", 5.0)] == [2, 7]
     choice.switched(10.0)
     history = records("a", 1, 2, 3) + records("b", 6, 7, 8) + records("c", 1)
     got = passed(choice, history, "/rosout_agg", 10.1)
@@ -51,19 +55,7 @@ def test_aggregator_found_later_gives_only_what_was_not_seen():
     assert passed(choice, later, "/rosout_agg", 10.0 + SWITCH_DEDUPE_S + 1) == later
 
 
-def test_holding_ends_once_the_publishers_found_have_settled():
-    choice = TopicChoice(0.0)
-    choice.publishers(0, 0.2)
-    assert choice.holding(0.9)
-    choice.publishers(2, 0.9)  # found two
-    choice.publishers(2, 1.5)
-    assert choice.holding(1.6)
-    choice.publishers(3, 1.7)  # another one: wait again
-    choice.publishers(3, 2.5)
-    assert choice.holding(2.6)
-    choice.publishers(3, 2.8)  # unchanged for a second
-    assert not choice.holding(2.8)
-    nothing = TopicChoice(0.0)
-    for step in range(50):
-        nothing.publishers(0, step * 0.1)
-    assert nothing.holding(4.9) and not nothing.holding(AUTO_TOPIC_MAX_S)
+def test_discovery_is_watched_closely_for_the_first_seconds_only():
+    choice = TopicChoice(10.0)
+    assert choice.discovering(10.0) and choice.discovering(10.0 + DISCOVERY_S - 0.01)
+    assert not choice.discovering(10.0 + DISCOVERY_S)

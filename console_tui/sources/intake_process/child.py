@@ -110,16 +110,20 @@ class Sender:
         self.packer = BatchPacker()
         self._sent: SourceStatus | None = None
 
-    def flush(self, status: SourceStatus) -> None:
+    def flush(self, source: Any) -> None:
+        """Send what ``source`` queued, each part after the source's status when that changed:
+        the status is read once the part is taken from the queue, so that it tells what came
+        before those records (the app learns of a new topic before that topic's history)."""
         while True:
             batches = self.queue.drain_batches(FRAME_RECORDS)
+            status = source.status
+            if status != self._sent:
+                write_frame(self.fd, STATUS, status_payload(status))
+                self._sent = status
             if not batches:
                 break
             for batch in batches:
                 write_frame(self.fd, BATCH, self.packer.pack(batch))
-        if status != self._sent:
-            write_frame(self.fd, STATUS, status_payload(status))
-            self._sent = status
 
 
 def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event) -> None:
@@ -128,10 +132,10 @@ def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event) -> No
     source.start()
     try:
         while not stop.wait(FLUSH_S):
-            sender.flush(source.status)
+            sender.flush(source)
     finally:
         source.stop()
-    sender.flush(source.status)
+    sender.flush(source)
 
 
 def _stop_at_end_of_input(stop: threading.Event) -> None:

@@ -34,7 +34,7 @@ from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
 from .loss_counts import LossCounts
 from .runtime import RosRuntime
-from .topic_choice import TopicChoice
+from .topic_choice import START_GRAPH_PERIOD_S, TopicChoice
 from .topic_reader import PATH_RAW, PATH_TYPED, TopicReader
 
 WAIT_TIMEOUT_NS = 100_000_000
@@ -133,19 +133,17 @@ class LiveLogSource:
             if (
                 choice is not None
                 and reader.topic == ROSOUT
-                and (now >= next_graph_check or choice.holding(now))
+                and now >= next_graph_check
                 and _has_publishers(node, ROSOUT_AGG)
             ):
                 reader.close()
                 reader = TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
                 choice.switched(now)
                 next_graph_check = 0.0
-            holding = choice is not None and choice.holding(now)
-            if now >= next_graph_check or reader.graph_changed or holding:
-                next_graph_check = now + GRAPH_PERIOD_S
+            if now >= next_graph_check or reader.graph_changed:
+                discovering = choice is not None and choice.discovering(now)
+                next_graph_check = now + (START_GRAPH_PERIOD_S if discovering else GRAPH_PERIOD_S)
                 reader.refresh_graph()
-                if holding and choice is not None:
-                    choice.publishers(reader.publisher_count, now)
                 self._set_status(topic=reader.topic, publishers=reader.publisher_count)
             subs, events = reader.handles(), reader.event_handlers()
             if wait_set is None or (subs, events) != wait_set_entities:
@@ -166,6 +164,9 @@ class LiveLogSource:
                 reader.handle_events(wait_set)
             batch = reader.take_all(MAX_BATCH)
             taken = len(batch)
+            if reader.graph_changed:  # a new publisher's history: the app learns of it first
+                reader.refresh_graph()
+                self._set_status(publishers=reader.publisher_count)
             if choice is not None:
                 batch = choice.filter(batch, reader.topic, time.monotonic())
             if batch:

@@ -78,7 +78,8 @@ class TopicReader:
             compiled_take.start_loading()
             self._adopt_compiled()
         self.publisher_count = 0
-        #: Set by an incompatible-QoS event on the main subscription: look at the graph now.
+        #: Set by an incompatible-QoS event on the main subscription, and by the first
+        #: messages of a publisher (its history): look at the graph now.
         self.graph_changed = False
         self._volatile_qos = QoSProfile(
             history=HistoryPolicy.KEEP_LAST,
@@ -259,7 +260,11 @@ class TopicReader:
         if self._compiled_pending:
             self._adopt_compiled()
         parts: list[RecordColumns] = []
+        publishers_seen = self._gaps(self.main).last_seen
+        known = len(publishers_seen)
         taken = self._take_into(parts, self.main, limit, None)
+        if len(publishers_seen) > known:
+            self.graph_changed = True
         if self.extra is not None and taken < limit:
             extra: list[RecordColumns] = []
             self._take_into(extra, self.extra, limit - taken, self._keep_from_extra)
