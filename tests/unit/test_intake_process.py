@@ -50,21 +50,6 @@ def test_records_and_status_cross_the_pipe_in_order_then_stop_ends_the_process()
     assert source.status.running is False and source.status.problem == ""
 
 
-def test_a_second_start_starts_no_second_process():
-    queue = IntakeQueue()
-    source = ProcessSource(queue, "synthetic", args=["--rate", "5000", "--count", "100"])
-    source.start()
-    try:
-        assert wait_until(lambda: source.process is not None)
-        first = source.process
-        source.start()  # as the app does after its first frame
-        assert wait_until(lambda: len(queue) >= 100)
-        assert source.process is first
-    finally:
-        source.stop()
-    assert len(queue.drain()) == 100
-
-
 def test_a_status_that_changed_before_records_were_taken_is_sent_before_them():
     """The app learns of a new topic before that topic's history (placed by its stamps then)."""
 

@@ -74,9 +74,7 @@ class ProcessSource:
     def start(self) -> None:
         """Start the intake process, from a thread of its own: starting a process stalls the
         caller until the new process runs (a second and more on a busy machine), and the
-        caller may be the app's event loop. Once started, ``start()`` does nothing."""
-        if self._reader is not None:
-            return
+        caller is the app's event loop."""
         self._reader = threading.Thread(target=self._run, name="console-tui-intake-pipe", daemon=True)
         self._reader.start()
 
