@@ -13,7 +13,7 @@ robot, all feeding the one queue, each record named for its robot.
 
 The stream, ROS 1's and ROS 2's alike, is taken in a child process (``intake_process``),
 where nothing the app does can hold it up; for ROS 2 this process keeps an rclpy context
-of its own for the logger levels.
+of its own for the logger levels, made at its first use.
 """
 
 from __future__ import annotations
@@ -60,13 +60,14 @@ class LiveIntake:
                 pass
 
 
-def start_ros2(domain_id: int | None = None) -> Any:
+def start_ros2(domain_id: int | None = None, *, deferred: bool = False) -> Any:
     """An rclpy context of our own (``RosRuntime``), on ``domain_id`` (default ``ROS_DOMAIN_ID``'s);
-    ``RosUnavailable`` with advice if ROS 2 cannot start."""
+    ``RosUnavailable`` with advice if ROS 2 cannot start. ``deferred``: rclpy is imported at the
+    context's first use (see ``RosRuntime``)."""
     from .ros2.runtime import RosRuntime
 
     try:
-        return RosRuntime(domain_id=domain_id)
+        return RosRuntime(domain_id=domain_id, deferred=deferred)
     except RosUnavailable:
         raise
     except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
@@ -89,7 +90,7 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
         origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
         return LiveIntake(ProcessSource(queue, "ros1", topic=topic, origin=origin))
     try:
-        runtime = start_ros2()
+        runtime = start_ros2(deferred=True)  # this process's ROS: for the logger levels, later
     except RosUnavailable as error:
         raise RosUnavailable(f"{error}\n{HOW_TO_USE_ROS1}") from None
     origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"

@@ -87,3 +87,38 @@ def test_a_domain_no_dds_can_use_is_refused_before_ros_starts():
         check_domain_id(fine)  # text is rcl's to refuse, with its own words
     with pytest.raises(RosUnavailable, match=r"ROS_DOMAIN_ID=233 is out of range: DDS domains go from 0 to 232"):
         check_domain_id({"ROS_DOMAIN_ID": "233"})
+
+
+def test_the_fast_dds_of_this_rclpy_is_told_without_importing_it():
+    import importlib.metadata
+    import os
+
+    from console_tui.sources.ros2.runtime import uses_fast_dds_2
+
+    environ = {key: value for key, value in os.environ.items() if key != "ROS_DISTRO"}
+    major = int(importlib.metadata.version("rclpy").split(".")[0])
+    assert uses_fast_dds_2(environ) == (major < 9)
+
+
+def test_a_deferred_runtime_starts_rclpy_at_its_first_use_and_the_app_imports_none_before(ros_env):
+    """``open_live`` (the app, ``tail``) leaves rclpy unimported in this process: the app's
+    own context is made when the logger levels start, after the first frame."""
+    code = (
+        "import sys\n"
+        "from console_tui.model.intake_queue import IntakeQueue\n"
+        "from console_tui.sources.live import open_live\n"
+        "live = open_live(IntakeQueue(), ros=2)\n"
+        "assert 'rclpy' not in sys.modules and 'importlib.metadata' not in sys.modules, 'imported'\n"
+        "assert live.runtime.ok\n"
+        "node = live.runtime.create_node('probe')\n"
+        "assert 'rclpy' in sys.modules and node.get_name().startswith('_console_tui_probe')\n"
+        "live.close()\n"
+        "assert not live.runtime.ok\n"
+    )
+    import subprocess
+    import sys
+
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=PATIENCE_S, env=ros_env
+    )
+    assert result.returncode == 0, result.stderr[-3000:]

@@ -29,8 +29,15 @@ def load_rclpy() -> ModuleType:
         rclpy = importlib.import_module("rclpy")
         importlib.import_module("rcl_interfaces.msg")
     except Exception as error:  # ImportError, or a broken install raising anything
-        raise RosUnavailable(import_failure_text(error, _rclpy_location(), _venv_without_system_packages())) from None
+        raise RosUnavailable(import_failure_text(error, rclpy_location(), _venv_without_system_packages())) from None
     return rclpy
+
+
+def require_rclpy() -> None:
+    """``RosUnavailable`` when this Python finds no rclpy at all: the check ``load_rclpy`` makes
+    first, without the cost of importing it."""
+    if rclpy_location() is None:
+        raise RosUnavailable(import_failure_text(ModuleNotFoundError("rclpy"), None, False))
 
 
 def import_failure_text(error: BaseException, rclpy_location: str | None, isolated_venv: bool) -> str:
@@ -62,7 +69,8 @@ def import_failure_text(error: BaseException, rclpy_location: str | None, isolat
     )
 
 
-def _rclpy_location() -> str | None:
+def rclpy_location() -> str | None:
+    """Where this Python finds rclpy (without importing it), None when it finds none."""
     try:
         spec = importlib.util.find_spec("rclpy")
     except Exception:

@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-import importlib.metadata
 import os
+import re
 import threading
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .rclpy_loader import RosUnavailable, load_rclpy
+from .rclpy_loader import RosUnavailable, load_rclpy, rclpy_location, require_rclpy
 
 FASTDDS_PROFILE = Path(__file__).with_name("fastdds_reader_profile.xml")
 _PROFILE_VARIABLES = ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE")
@@ -45,11 +45,26 @@ def uses_fast_dds_2(environ: Mapping[str, str]) -> bool:
     distro = environ.get("ROS_DISTRO", "")
     if distro:
         return distro in _FAST_DDS_2_DISTROS
+    major = _rclpy_major()
+    return major is not None and major < 9
+
+
+def _rclpy_major() -> int | None:
+    """rclpy's major version, from the name of its metadata beside it (``rclpy-9.1.2.dist-info``,
+    ``rclpy-9.1.2-py3.11.egg-info``), else from ``importlib.metadata``; None when unknown.
+    (Importing ``importlib.metadata`` costs tens of ms at start, before the first frame.)"""
+    location = rclpy_location()
+    if location is not None and Path(location).is_dir():
+        for info in Path(location).parent.glob("rclpy-*-info"):
+            found = re.match(r"rclpy-(\d+)\.", info.name)
+            if found:
+                return int(found.group(1))
+    import importlib.metadata
+
     try:
-        major = int(importlib.metadata.version("rclpy").split(".")[0])
+        return int(importlib.metadata.version("rclpy").split(".")[0])
     except (importlib.metadata.PackageNotFoundError, ValueError):
-        return False
-    return major < 9
+        return None
 
 
 #: The highest DDS domain: above it the ports a participant needs pass 65535 (Fast DDS ends
@@ -74,36 +89,65 @@ class RosRuntime:
     ``shutdown`` is idempotent and safe to call from any thread.
     """
 
-    def __init__(self, args: list[str] | None = None, *, domain_id: int | None = None) -> None:
-        """``domain_id``: the DDS domain of this context (a fleet's robot), else ``ROS_DOMAIN_ID``'s."""
+    def __init__(self, args: list[str] | None = None, *, domain_id: int | None = None, deferred: bool = False) -> None:
+        """``domain_id``: the DDS domain of this context (a fleet's robot), else ``ROS_DOMAIN_ID``'s.
+        ``deferred``: rclpy is imported and the context made at the first use (``create_node``,
+        ``context``), from whichever thread; now only what needs no rclpy is checked (the domain,
+        that there is an rclpy to import). The app's own context is used only once the first
+        live rows have come, and importing rclpy took a fifth of a second before its first frame."""
         check_domain_id(os.environ)
-        # Before the first participant of the process: Fast DDS reads its profiles once.
+        # Before the first participant of the process: Fast DDS reads its profiles once. (And
+        # before the intake process is started: it inherits them.)
         os.environ.update(reader_profile_environment(os.environ))
-        rclpy = load_rclpy()
-        from rclpy.context import Context
-        from rclpy.signals import SignalHandlerOptions
-
-        self._rclpy = rclpy
-        self.context = Context()
-        rclpy.init(args=args, context=self.context, domain_id=domain_id, signal_handler_options=SignalHandlerOptions.NO)
+        self._args, self._domain_id = args, domain_id
+        self._context: Any = None
         self._nodes: list[Any] = []
         self._lock = threading.Lock()
         self._closed = False
+        if deferred:
+            require_rclpy()
+        else:
+            self._start()
+
+    def _start(self) -> Any:
+        """The context, made now if it was not yet (``RosUnavailable`` when rclpy cannot be imported)."""
+        with self._lock:
+            if self._context is None:
+                if self._closed:
+                    raise RuntimeError("ROS 2 was shut down")
+                rclpy = load_rclpy()
+                from rclpy.context import Context
+                from rclpy.signals import SignalHandlerOptions
+
+                context = Context()
+                rclpy.init(
+                    args=self._args,
+                    context=context,
+                    domain_id=self._domain_id,
+                    signal_handler_options=SignalHandlerOptions.NO,
+                )
+                self._context = context
+            return self._context
+
+    @property
+    def context(self) -> Any:
+        return self._start()
 
     def create_node(self, role: str, *, name: str | None = None, enable_rosout: bool = False, **options: Any) -> Any:
         """A hidden node (its name starts with ``_``) unique to this process, or, given
         ``name``, a node of that name (``console-tui rosout`` is a node people see)."""
+        context = self.context
         from rclpy.node import Node
 
         node_name = name or f"_console_tui_{role}_{os.getpid()}"
-        node = Node(node_name, context=self.context, enable_rosout=enable_rosout, **options)
+        node = Node(node_name, context=context, enable_rosout=enable_rosout, **options)
         with self._lock:
             self._nodes.append(node)
         return node
 
     @property
     def ok(self) -> bool:
-        return not self._closed and self.context.ok()
+        return not self._closed and (self._context is None or self._context.ok())
 
     def shutdown(self) -> None:
         with self._lock:
@@ -111,12 +155,14 @@ class RosRuntime:
                 return
             self._closed = True
             nodes, self._nodes = self._nodes, []
+            context = self._context
         for node in nodes:
             try:
                 node.destroy_node()
             except Exception:
                 pass
-        try:
-            self.context.try_shutdown()
-        except Exception:
-            pass
+        if context is not None:
+            try:
+                context.try_shutdown()
+            except Exception:
+                pass
