@@ -111,7 +111,8 @@ class IntakeActions(AppPart):
     def start_logger_control(self) -> None:
         """Start the logger control (started here, but closed by whoever made it). Its ROS 2
         context is a second DDS participant in a session; discovered beside the intake
-        process's, it held up the first live rows by seconds, so it starts after them."""
+        process's, it held up the first live rows by seconds, so it starts after them (and
+        imports rclpy then: ``RosRuntime(deferred=True)``)."""
         if self.logger_control is not None and not self._loggers_started:
             self._loggers_started = True
             self._start(self.logger_control)
@@ -152,7 +153,7 @@ class IntakeActions(AppPart):
         follows the tail, in the moments histories are due (``HistoryWindow``)."""
         batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
         if not self._loggers_started and (self.queue.received or self.clock() >= self._loggers_from):
-            self.start_logger_control()
+            self.call_after_refresh(self.start_logger_control)  # once these rows are on the screen
         for source in self.sources:
             status = source.status
             self.histories.note(id(source), status.publishers, status.topic)
