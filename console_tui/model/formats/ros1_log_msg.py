@@ -19,6 +19,10 @@ shape the store keeps) and ROS 1 bags (``decode``). Node names and the
 file/function/line/topics tail repeat in almost every message: a bounded cache lets records
 share one ``str`` each. Malformed input raises ``Ros1LogError``; nothing here loops on a
 length read from the input without checking it against the message's end first.
+
+The live intake may give the decoder a ``frame_loop``: the same loop in C
+(``sources/ros1/frame_loop.c``), which reads the frames whose node and tail are cached here
+and stops at any other, for this decoder to read that one (``decode_frames``).
 """
 
 from __future__ import annotations
@@ -53,6 +57,9 @@ class Ros1LogError(ValueError):
 
 
 Tail = tuple[str, str, int, str]
+#: ``frames(buffer, pos, max_length, names, tails, levels_table, stamps, levels, nodes, msgs,
+#: tails_out) -> (pos, stopped)``: see ``sources/ros1/frame_loop.c``.
+FrameLoop = Callable[..., tuple[int, bool]]
 
 
 class Ros1LogDecoder:
@@ -63,9 +70,16 @@ class Ros1LogDecoder:
     over, so hostile input cannot grow them.
     """
 
-    __slots__ = ("_names", "_tails", "intern_limit", "intern_max_bytes")
+    __slots__ = ("_names", "_tails", "frame_loop", "intern_limit", "intern_max_bytes")
 
-    def __init__(self, intern_limit: int = INTERN_LIMIT, intern_max_bytes: int = INTERN_MAX_BYTES) -> None:
+    def __init__(
+        self,
+        intern_limit: int = INTERN_LIMIT,
+        intern_max_bytes: int = INTERN_MAX_BYTES,
+        frame_loop: FrameLoop | None = None,
+    ) -> None:
+        #: The frame loop in C, or ``None`` (this decoder reads every frame).
+        self.frame_loop = frame_loop
         self._names: dict[bytes, str] = {}
         #: (file, function, line, topics) by the bytes from ``file`` to the message's end.
         self._tails: dict[bytes, Tail] = {}
@@ -114,10 +128,36 @@ class Ros1LogDecoder:
         A message this decoder cannot read goes to ``refused(bytes, error)`` and is skipped.
         A stated length above ``max_length`` raises ``Ros1LogError``: the stream is broken
         (the records added before it are in ``batch``, without their source).
-        The hot path of the live ROS 1 intake: written out in one loop, no object per record.
+        The hot path of the live ROS 1 intake: the frame loop in C when there is one, else
+        written out in one loop, no object per record.
         """
+        loop = self.frame_loop
+        if loop is None:
+            pos = self._frames(buffer, start, batch, refused, max_length, -1)
+        else:
+            pos = start
+            while True:
+                pos, stopped = loop(
+                    buffer, pos, max_length, self._names, self._tails, _LEVELS,
+                    batch.stamps, batch.levels, batch.nodes, batch.msgs, batch.tails,
+                )  # fmt: skip
+                if not stopped:
+                    break
+                pos = self._frames(buffer, pos, batch, refused, max_length, 1)
+        batch.sourced(source)
+        return pos
+
+    def _frames(
+        self,
+        buffer: bytes,
+        pos: int,
+        batch: ColumnsBuilder,
+        refused: Callable[[bytes, Ros1LogError], None],
+        max_length: int,
+        count: int,
+    ) -> int:
+        """``decode_frames`` in Python, for ``count`` frames at most (-1: all there are)."""
         size = len(buffer)
-        pos = start
         stamps, levels_of, nodes, msgs, tails = batch.stamps, batch.levels, batch.nodes, batch.msgs, batch.tails
         names_get = self._names.get
         tails_get = self._tails.get
@@ -125,7 +165,7 @@ class Ros1LogDecoder:
         u32 = _U32
         frame = _FRAME
         level_length = _LEVEL_LENGTH
-        while pos + 4 <= size:
+        while count and pos + 4 <= size:
             if pos + 20 <= size:  # the frame's length, then seq (skipped), stamp, len(frame_id)
                 length, secs, nsecs, skip = frame(buffer, pos)
             else:
@@ -138,6 +178,7 @@ class Ros1LogDecoder:
             if end > size:
                 break
             pos = end
+            count -= 1
             try:
                 if length < MIN_LENGTH:
                     raise Ros1LogError(f"Log message truncated: {length} bytes")
@@ -171,7 +212,6 @@ class Ros1LogDecoder:
             nodes.append(name)
             msgs.append(msg)
             tails.append(tail)
-        batch.sourced(source)
         return pos
 
     def _read(self, data: bytes, begin: int, end: int, source: str) -> LogRecord:

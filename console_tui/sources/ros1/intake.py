@@ -2,7 +2,8 @@
 
 One thread waits on all the connections' sockets at once (``selectors``), reads what each
 has (up to ``RECV_BYTES`` at a time), decodes the whole messages straight from the bytes
-received into columns (``Ros1LogDecoder.decode_frames``), drops repeats (``Deduplicator``) and puts one
+received into columns (``Ros1LogDecoder.decode_frames``, through the frame loop in C once
+``compiled_frames`` has built it: until then, or without a compiler, in Python), drops repeats (``Deduplicator``) and puts one
 batch per turn into the ``IntakeQueue`` (``_deliver``, the one hand-off). When only a
 trickle arrives it pauses after a turn (``coalesce.Coalescer``), so a turn pays for more
 than one message.
@@ -26,6 +27,7 @@ from ...model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError
 from ...model.intake_queue import IntakeQueue
 from ...model.record_batch import ColumnsBuilder, RecordColumns
 from ..coalesce import Coalescer
+from . import compiled_frames
 from .dedupe import Deduplicator
 
 RECV_BYTES = 1 << 18
@@ -64,6 +66,9 @@ class Ros1Intake:
         self.queue = queue
         self.on_closed = on_closed
         self.decoder = Ros1LogDecoder()
+        #: Why the frame loop in C is not used (or how it was built); "" while it is built.
+        self.compiled_note = ""
+        self._compiled_pending = True
         self.dedupe = Deduplicator()
         #: Messages neither decodable nor recoverable; read from any thread.
         self.lost_undecodable = 0
@@ -82,6 +87,7 @@ class Ros1Intake:
     # -- any thread ----------------------------------------------------------------------------
 
     def start(self) -> None:
+        compiled_frames.start_loading()
         self._thread = threading.Thread(target=self._run, name="console-tui-ros1-intake", daemon=True)
         self._thread.start()
 
@@ -162,6 +168,8 @@ class Ros1Intake:
         decode = self.decoder.decode_frames
         coalescer = Coalescer()
         while not self._stop.is_set():
+            if self._compiled_pending:
+                self._adopt_compiled()
             try:
                 events = select(SELECT_TIMEOUT_S)
             except OSError:  # the selector closed under us: stopping
@@ -204,6 +212,18 @@ class Ros1Intake:
             pause = coalescer.after(len(batch))
             if pause:
                 self._stop.wait(pause)
+
+    def _adopt_compiled(self) -> None:
+        """Decode through the frame loop in C from the moment its build is done."""
+        done = compiled_frames.loaded_now()
+        if done is not None:
+            self._compiled_pending = False
+            self.decoder.frame_loop, self.compiled_note = done
+
+    @property
+    def compiled(self) -> bool:
+        """Whether the frame loop in C decodes the frames (else the Python decoder alone)."""
+        return self.decoder.frame_loop is not None
 
     def _deliver(self, batch: RecordColumns) -> None:
         """The one hand-off to the rest of the app."""

@@ -56,6 +56,8 @@ RELAY_SETTLE_S = 1.0
 CONNECT_WORKERS = 16
 UNREGISTER_TIMEOUT_S = 1.0
 PATH = "tcpros"
+#: The path once the frame loop in C decodes the frames (``compiled_frames``).
+PATH_COMPILED = "c+tcpros"
 
 
 class Ros1LiveSource:
@@ -416,6 +418,7 @@ class Ros1LiveSource:
             "lost": lost_undecodable + lost_queue,
             "lost_queue": lost_queue,
             "lost_undecodable": lost_undecodable,
+            "path": PATH_COMPILED if intake is not None and intake.compiled else PATH,
         }
         if any(self.status.__dict__[key] != value for key, value in changes.items()):
             self._set_status(**changes)
