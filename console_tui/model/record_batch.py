@@ -252,16 +252,19 @@ class BatchPacker:
     def _ids_of(self, texts: Iterable[str], new: list[str]) -> array:
         ids = self._ids
         found = list(map(ids.get, texts))
-        if None in found:
-            texts = list(texts)
-            for index, ident in enumerate(found):
+        try:
+            return array("I", found)
+        except TypeError:  # a None: strings new to the table (looking for one costs more)
+            pass
+        texts = list(texts)
+        for index, ident in enumerate(found):
+            if ident is None:
+                text = texts[index]
+                ident = ids.get(text)
                 if ident is None:
-                    text = texts[index]
-                    ident = ids.get(text)
-                    if ident is None:
-                        ident = ids[text] = len(ids)
-                        new.append(text)
-                    found[index] = ident
+                    ident = ids[text] = len(ids)
+                    new.append(text)
+                found[index] = ident
         return array("I", found)
 
     def pack(self, columns: RecordColumns) -> bytes:
