@@ -6,18 +6,27 @@ A roscpp flood publisher (tests/nodes/roscpp_node.cpp, built with g++) sends
 ``rosmaster``: as fast as it can ("max") and at fixed rates. In the same run, one after the
 other, each subscriber (a fresh process of its own) counts what it receives:
 
-- ``console``: console-tui's ``Ros1LiveSource`` into an ``IntakeQueue``, drained every 50 ms
-  into a ``LogStore`` as the app does (console-tui's Python);
+- ``console``: console-tui's ``Ros1LiveSource`` in a thread of the subscriber's process, into
+  an ``IntakeQueue`` drained every 50 ms into a ``LogStore`` as the app does;
+- ``process``: the same as ``console-tui`` runs it: the live source in the intake process, its
+  batches packed onto the pipe, unpacked into the ``IntakeQueue`` and drained into a
+  ``LogStore`` (its CPU includes the intake process's);
 - ``rospy``: ``rospy.Subscriber`` with a callback that counts, rqt_console's pattern (the
   system Python, where Debian's rospy imports).
 
 Received/s is what a subscriber received over the time its messages arrived; lost is what was
-sent and never arrived once everything settled; CPU is the subscriber process's CPU time
-(user + system) from its first message to the report, per message received.
+sent and never arrived once everything settled: the messages' numbers (``flood message N``)
+missing from what console-tui received (or, for rospy, sent less received). CPU is the
+subscriber's CPU time (user + system, of its processes) from its first message to the
+report, per message received, less the time spent checking the numbers.
 
-    .venv/bin/python benchmarks/ros1_intake.py                          # the table (about 2 minutes)
+    .venv/bin/python benchmarks/ros1_intake.py                          # the table (about 3 minutes)
     .venv/bin/python benchmarks/ros1_intake.py --repeat 3               # medians of 3
     .venv/bin/python benchmarks/ros1_intake.py --rates max --duration 2 # a quick look
+    .venv/bin/python benchmarks/ros1_intake.py --rates 100000 --duration 60 --kinds process
+                                                                        # 100,000/s for 60 s, 0 lost?
+    CONSOLE_TUI_COMPILED_FRAMES=0 .venv/bin/python benchmarks/ros1_intake.py --kinds console
+                                                                        # without the frame loop in C
 """
 
 from __future__ import annotations
@@ -36,11 +45,11 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 TOPIC = "/console_tui_bench_log"
-KINDS = ("console", "rospy")
-DEFAULT_RATES = ("max", "10000", "20000")
+KINDS = ("console", "process", "rospy")
+DEFAULT_RATES = ("max", "20000", "100000")
 SYSTEM_PYTHON = "/usr/bin/python3"
-LOSSLESS_RATE = 20_000
-TARGET_VS_ROSPY = 1.5
+LOSSLESS_RATE = 100_000
+TARGET_VS_ROSPY = 2.0
 DRAIN_S = 0.05
 SETTLE_S = 1.5
 
@@ -72,32 +81,68 @@ def cpu_seconds() -> float:
     return times.user + times.system
 
 
-def run_console() -> None:
+class Numbers:
+    """The flood's message numbers seen (``flood message N: ...``), in order: what is missing."""
+
+    def __init__(self) -> None:
+        self.next = 0
+        self.missing = 0
+        self.repeated = 0
+        #: This thread's CPU seconds spent here (not the intake's: left out of its CPU).
+        self.cpu = 0.0
+
+    def see(self, msgs: Any) -> None:
+        began = time.thread_time()
+        for msg in msgs:
+            number = int(msg[14 : msg.index(":", 14)])
+            if number >= self.next:
+                self.missing += number - self.next
+                self.next = number + 1
+            else:
+                self.repeated += 1
+        self.cpu += time.thread_time() - began
+
+    def lost(self, sent: int) -> int:
+        return self.missing + max(sent - self.next, 0)
+
+
+def run_console(kind: str) -> None:
     sys.path.insert(0, str(ROOT))
+    sys.path.insert(0, str(Path(__file__).parent))
+    from _probe import process_cpu
+
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.model.store import LogStore
+    from console_tui.sources.intake_process.parent import ProcessSource
     from console_tui.sources.ros1.live_source import Ros1LiveSource
 
     queue = IntakeQueue()
     store = LogStore()
-    source = Ros1LiveSource(queue, topic=TOPIC)
+    source: Any = ProcessSource(queue, "ros1", topic=TOPIC) if kind == "process" else Ros1LiveSource(queue, topic=TOPIC)
     source.start()
+
+    def cpu() -> float:
+        pid = getattr(source, "pid", None)
+        return cpu_seconds() + (process_cpu(pid) if pid else 0.0)
+
     commands = Commands()
     say(event="ready")
     first_at = last_at = cpu_at_first = 0.0
     # Every message drained counts: the store keeps at most its cap (1,000,000), fewer than a
     # run at the publisher's maximum sends.
     received = 0
+    numbers = Numbers()
     while not commands.closed.is_set():
         batches = queue.drain_batches()  # as the app does
         if batches:
             now = time.monotonic()
             if not first_at:
-                first_at, cpu_at_first = now, cpu_seconds()
+                first_at, cpu_at_first = now, cpu()
             last_at = now
             for batch in batches:
                 received += len(batch)
                 store.extend(batch)
+                numbers.see(batch.msgs)
         if commands.report.is_set():
             commands.report.clear()
             status = source.status
@@ -105,9 +150,13 @@ def run_console() -> None:
                 event="report",
                 received=received,
                 seconds=last_at - first_at,
-                cpu=cpu_seconds() - cpu_at_first,
+                cpu=cpu() - cpu_at_first - numbers.cpu,
                 lost_counted=status.lost,
                 problem=status.problem,
+                path=status.path,
+                missing=numbers.missing,
+                next=numbers.next,
+                repeated=numbers.repeated,
             )
         time.sleep(DRAIN_S)
     source.stop()
@@ -200,7 +249,7 @@ class Process:
 
 
 def subscriber_command(kind: str) -> list[str]:
-    python = sys.executable if kind == "console" else SYSTEM_PYTHON
+    python = SYSTEM_PYTHON if kind == "rospy" else sys.executable
     return [python, str(Path(__file__).resolve()), "--role", kind]
 
 
@@ -228,15 +277,20 @@ def one_run(kind: str, rate: str, duration: float, binary: Path, env: dict[str, 
                 break
             time.sleep(0.2)
         received = report["received"]
+        lost = max(0, sent - received)
+        if "missing" in report:  # by the messages' numbers
+            lost = report["missing"] + max(sent - report["next"], 0)
         return {
             "kind": kind,
             "rate": rate,
             "sent": sent,
             "received": received,
             "per_s": received / report["seconds"] if report["seconds"] > 0 else 0.0,
-            "lost": max(0, sent - received),
+            "lost": lost,
+            "repeated": report.get("repeated", 0),
             "cpu_us": report["cpu"] / received * 1e6 if received else 0.0,
             "problem": report.get("problem", ""),
+            "path": report.get("path", ""),
         }
     finally:
         if publisher is not None:
@@ -279,7 +333,8 @@ def main_driver(args: argparse.Namespace) -> int:
                         results.setdefault((rate, kind), []).append(result)
                         print(
                             f"  {kind:8} {rate:>6}/s: sent {result['sent']:,}, received {result['received']:,} "
-                            f"({result['per_s']:,.0f}/s, {result['lost']:,} lost), {result['cpu_us']:.1f} us CPU a message",
+                            f"({result['per_s']:,.0f}/s, {result['lost']:,} lost, {result['repeated']:,} repeated), "
+                            f"{result['cpu_us']:.2f} us CPU a message {result['path']} {os.getloadavg()[0]:.1f} load",
                             file=sys.stderr,
                             flush=True,
                         )
@@ -293,14 +348,14 @@ def main_driver(args: argparse.Namespace) -> int:
     rows = []
     for rate in rates:
         cells = {kind: _median(results[(rate, kind)]) for kind in kinds}
-        console, rospy = cells.get("console"), cells.get("rospy")
+        console, rospy = cells.get("process") or cells.get("console"), cells.get("rospy")
         ratio = console["per_s"] / rospy["per_s"] if console and rospy and rospy["per_s"] else 0.0
         row: list[object] = [f"{int(rate):,}" if rate.isdigit() else "as fast as it can"]
         for kind in kinds:
             cell = cells[kind]
             row.append(f"{cell['per_s']:,.0f} ({_lost(cell)})")
         for kind in kinds:
-            row.append(f"{cells[kind]['cpu_us']:.1f}")
+            row.append(f"{cells[kind]['cpu_us']:.2f}")
         row.append(f"{ratio:.2f}x" if ratio else "")
         if rate == "max":
             row.append(verdict(ratio >= TARGET_VS_ROSPY, f"{ratio:.2f}x < {TARGET_VS_ROSPY}x"))
@@ -315,11 +370,12 @@ def main_driver(args: argparse.Namespace) -> int:
         "offered/s",
         *(f"{kind} received/s (lost)" for kind in kinds),
         *(f"{kind} us CPU/msg" for kind in kinds),
-        "console ÷ rospy",
+        "console-tui ÷ rospy",
         f"target: ≥ {TARGET_VS_ROSPY}x at max, 0 lost at {LOSSLESS_RATE:,}/s",
         "target: CPU/msg below rospy",
     ]
-    print(f"\nROS 1 intake, {args.duration:g} s a run, median of {args.repeat}:\n")
+    compared = "process" if "process" in kinds else "console"
+    print(f"\nROS 1 intake, {args.duration:g} s a run, median of {args.repeat} (console-tui: {compared}):\n")
     print(table(headers[: len(rows[0])] if rows else headers, rows))
     return 0
 
@@ -331,8 +387,8 @@ def _median(runs: list[dict[str, Any]]) -> dict[str, Any]:
 
 
 def _lost(cell: dict[str, Any]) -> str:
-    if not cell["lost"]:
-        return "0"
+    if cell["lost"] < cell["sent"] / 100:
+        return f"{cell['lost']:,}"
     return f"{cell['lost'] / cell['sent']:.0%}"
 
 
@@ -340,12 +396,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--role", choices=KINDS, help=argparse.SUPPRESS)
     parser.add_argument("--rates", default=",".join(DEFAULT_RATES), help="comma-separated: max and/or messages/s")
-    parser.add_argument("--kinds", default=",".join(KINDS), help="subscribers: console, rospy")
+    parser.add_argument("--kinds", default=",".join(KINDS), help="subscribers: console, process, rospy")
     parser.add_argument("--duration", type=float, default=5.0, help="seconds the publisher floods (default 5)")
     parser.add_argument("--repeat", type=int, default=1, help="runs per cell, the median shown (default 1)")
     args = parser.parse_args()
-    if args.role == "console":
-        run_console()
+    if args.role in ("console", "process"):
+        run_console(args.role)
         return 0
     if args.role == "rospy":
         run_rospy()
