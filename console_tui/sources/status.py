@@ -94,5 +94,5 @@ _PATHS = {
     "raw+cdr": "rclpy's take, the CDR decoded directly",
     "typed": "rclpy's take and typed messages",
     "tcpros": "ROS 1's TCPROS, read directly",
-    "c+tcpros": "ROS 1's TCPROS, read directly, the frames decoded in C",
+    "c+tcpros": "ROS 1's TCPROS, read directly, decoded in C",
 }

@@ -37,6 +37,8 @@ def test_records_and_status_of_a_ros1_master_come_through_the_pipe(roscore, ros1
         warn = next(r for r in records if r.node == "/piped_talker" and r.msg.startswith("warn "))
         assert (warn.file, warn.function, warn.source, warn.topics) == ("rospy_node.py", "main", ROSOUT_AGG, "/rosout")
         assert warn.line > 0 and warn.stamp_ns > 1_600_000_000 * 10**9
+        # the frame loop in C decodes them (built beside the intake: a compiler is here)
+        assert wait_until(lambda: source.status.path == "c+tcpros"), source.status
     finally:
         live.close()
     assert source.pid is not None and not pid_alive(source.pid)

@@ -16,6 +16,7 @@ def test_the_path_in_words():
     assert SourceStatus(path="c+cdr").path_text() == "c+cdr: the take loop in C, the CDR decoded directly"
     assert SourceStatus(path="raw+cdr").path_text() == "raw+cdr: rclpy's take, the CDR decoded directly"
     assert SourceStatus(path="tcpros").path_text() == "tcpros: ROS 1's TCPROS, read directly"
+    assert SourceStatus(path="c+tcpros").path_text() == "c+tcpros: ROS 1's TCPROS, read directly, decoded in C"
     assert SourceStatus(path="starting").path_text() == "starting"
 
 

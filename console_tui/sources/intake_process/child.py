@@ -67,9 +67,11 @@ def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[
 
 
 def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ..c_build import stop_building
     from ..ros1.live_source import Ros1LiveSource
 
-    return Ros1LiveSource(queue, topic=args.topic), lambda: None
+    # a compiler still at work on the frame loop would outlive this process
+    return Ros1LiveSource(queue, topic=args.topic), stop_building
 
 
 def _synthetic(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
