@@ -31,7 +31,7 @@ import subprocess
 import sysconfig
 import tempfile
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import ModuleType
 
@@ -155,16 +155,26 @@ def import_built(module: str, built: Path) -> ModuleType:
     return loaded
 
 
-def compile_into(command: list[str], partial: Path, target: Path, what: str, timeout: float) -> str:
-    """Run the compiler ``command`` (which writes ``partial``), then move its output to
-    ``target`` whole; ``""``, or what went wrong (``what`` names the source file)."""
-    returncode, stderr = run_bounded(command, timeout, what)
-    if returncode is None:
-        return f"compiling {what} took longer than {timeout:g} s: stopped"
-    if returncode != 0:
-        lines = [line for line in stderr.splitlines() if line.strip()]
-        return f"compiling {what} failed: {lines[-1] if lines else returncode}"
-    os.replace(partial, target)  # whole or not at all, when two processes build at once
+def compile_module(source: Path, target: Path, timeout: float, flags: Sequence[str] = ()) -> str:
+    """Compile the C file ``source`` into the extension module ``target`` (Python's headers,
+    then ``flags``), within ``timeout`` seconds; ``""``, or what went wrong."""
+    cc = compiler()
+    if cc is None:
+        return "no C compiler (cc)"
+    include = python_include()
+    if include is None:
+        return "no Python.h (python3-dev)"
+    target.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+    with tempfile.TemporaryDirectory(dir=target.parent) as work:
+        partial = Path(work) / target.name
+        command = [cc, "-O2", "-shared", "-fPIC", "-o", str(partial), str(source), f"-I{include}", *flags]
+        returncode, stderr = run_bounded(command, timeout, source.name)
+        if returncode is None:
+            return f"compiling {source.name} took longer than {timeout:g} s: stopped"
+        if returncode != 0:
+            lines = [line for line in stderr.splitlines() if line.strip()]
+            return f"compiling {source.name} failed: {lines[-1] if lines else returncode}"
+        os.replace(partial, target)  # whole or not at all, when two processes build at once
     return ""
 
 

@@ -10,29 +10,19 @@ import pytest
 
 from console_tui.sources.ros2 import compiled_take
 
+from support.compiled import as_in_a_new_process, built_once_then_cached, not_loaded_from_a_shared_cache
+
 pytestmark = pytest.mark.ros2
 
 
 @pytest.fixture
 def fresh(monkeypatch, tmp_path):
     """``compiled_take`` as in a new process, with an empty cache in ``tmp_path``."""
-    monkeypatch.setattr(compiled_take, "_loaded", None)
-    monkeypatch.setattr(compiled_take, "_loading", None)
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
-    monkeypatch.delenv(compiled_take.SWITCH, raising=False)
-    return tmp_path
+    return as_in_a_new_process(compiled_take, monkeypatch, tmp_path)
 
 
 def test_it_is_built_once_and_then_loaded_from_the_cache(fresh, monkeypatch):
-    function, problem = compiled_take.load()
-    assert function is not None and problem == ""
-    built = list((fresh / "console-tui").iterdir())
-    assert len(built) == 1 and built[0].name.startswith("take_loop_")
-    monkeypatch.setattr(compiled_take, "_loaded", None)
-    monkeypatch.setenv("CC", "/nonexistent/cc")  # no compiler now: only the cache can serve
-    function, problem = compiled_take.load()
-    assert function is not None and problem == ""
-    assert list((fresh / "console-tui").iterdir()) == built
+    built_once_then_cached(compiled_take, fresh, monkeypatch, "take_loop")
 
 
 def test_without_a_compiler_it_says_why_and_the_intake_takes_through_rclpy(fresh, monkeypatch):
@@ -55,21 +45,11 @@ def test_it_can_be_switched_off(fresh, monkeypatch):
     assert compiled_take.load() == (None, "CONSOLE_TUI_COMPILED_TAKE=0")
 
 
-def test_a_cache_writable_by_others_is_not_loaded_from(fresh, monkeypatch):
-    """A ``.so`` planted under the expected name in a cache another user can write: never
-    loaded; the loop is built into a private directory, and it says why."""
-    cache = fresh / "console-tui"
-    cache.mkdir()
+def test_a_cache_writable_by_others_is_not_loaded_from(fresh):
     library = compiled_take.loaded_rcl()
     assert library is not None
-    planted = cache / f"take_loop_{compiled_take.build_key(library)}{compiled_take._suffix()}"
-    planted.write_bytes(b"not an ELF file: loading it fails loudly")
-    cache.chmod(0o777)
-    function, note = compiled_take.load()
-    assert function is not None, note
-    assert "private directory" in note and "writable by others" in note
-    assert planted.read_bytes().startswith(b"not an ELF")  # not ours to touch
-    assert [p.name for p in cache.iterdir()] == [planted.name]
+    name = f"take_loop_{compiled_take.build_key(library)}{compiled_take._suffix()}"
+    not_loaded_from_a_shared_cache(compiled_take, fresh, name)
 
 
 @pytest.mark.parametrize("how", ["group-writable", "another user's"])

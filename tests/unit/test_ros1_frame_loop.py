@@ -16,17 +16,14 @@ from console_tui.model.record_batch import ColumnsBuilder
 from console_tui.sources.ros1 import compiled_frames
 from console_tui.sources.ros1.intake import Ros1Intake
 
+from support.compiled import as_in_a_new_process, built_once_then_cached, not_loaded_from_a_shared_cache
 from support.formats import random_ros1_log
 
 
 @pytest.fixture
 def fresh(monkeypatch, tmp_path):
     """``compiled_frames`` as in a new process, with an empty cache in ``tmp_path``."""
-    monkeypatch.setattr(compiled_frames, "_loaded", None)
-    monkeypatch.setattr(compiled_frames, "_loading", None)
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
-    monkeypatch.delenv(compiled_frames.SWITCH, raising=False)
-    return tmp_path
+    return as_in_a_new_process(compiled_frames, monkeypatch, tmp_path)
 
 
 @pytest.fixture(scope="module")
@@ -123,15 +120,7 @@ def test_repeated_strings_are_shared(frame_loop):
 
 
 def test_it_is_built_once_and_then_loaded_from_the_cache(fresh, monkeypatch):
-    loop, note = compiled_frames.load()
-    assert loop is not None and note == ""
-    built = list((fresh / "console-tui").iterdir())
-    assert len(built) == 1 and built[0].name.startswith("frame_loop_")
-    monkeypatch.setattr(compiled_frames, "_loaded", None)
-    monkeypatch.setenv("CC", "/nonexistent/cc")  # no compiler now: only the cache can serve
-    loop, note = compiled_frames.load()
-    assert loop is not None and note == ""
-    assert list((fresh / "console-tui").iterdir()) == built
+    built_once_then_cached(compiled_frames, fresh, monkeypatch, "frame_loop")
 
 
 def test_without_a_compiler_it_says_why_and_python_decodes(fresh, monkeypatch):
@@ -155,12 +144,5 @@ def test_it_can_be_switched_off(fresh, monkeypatch):
 
 
 def test_a_cache_writable_by_others_is_not_loaded_from(fresh):
-    cache = fresh / "console-tui"
-    cache.mkdir()
-    planted = cache / f"frame_loop_{compiled_frames.build_key()}{compiled_frames.c_build.suffix()}"
-    planted.write_bytes(b"not an ELF file: loading it fails loudly")
-    cache.chmod(0o777)
-    loop, note = compiled_frames.load()
-    assert loop is not None, note
-    assert "private directory" in note and "writable by others" in note
-    assert planted.read_bytes().startswith(b"not an ELF")  # not ours to touch
+    name = f"frame_loop_{compiled_frames.build_key()}{compiled_frames.c_build.suffix()}"
+    not_loaded_from_a_shared_cache(compiled_frames, fresh, name)

@@ -17,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import os
 import sys
-import tempfile
 import threading
 from pathlib import Path
 
@@ -81,14 +80,4 @@ def build_key() -> str:
 
 def build(target: Path) -> str:
     """Compile ``frame_loop.c`` into ``target``; ``""``, or what went wrong."""
-    compiler = c_build.compiler()
-    if compiler is None:
-        return "no C compiler (cc)"
-    python_include = c_build.python_include()
-    if python_include is None:
-        return "no Python.h (python3-dev)"
-    target.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-    with tempfile.TemporaryDirectory(dir=target.parent) as work:
-        partial = Path(work) / target.name
-        command = [compiler, "-O2", "-shared", "-fPIC", "-o", str(partial), str(SOURCE), f"-I{python_include}"]
-        return c_build.compile_into(command, partial, target, SOURCE.name, BUILD_TIMEOUT_S)
+    return c_build.compile_module(SOURCE, target, BUILD_TIMEOUT_S)

@@ -23,7 +23,6 @@ from __future__ import annotations
 import hashlib
 import os
 import sys
-import tempfile
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -138,32 +137,10 @@ def build_key(library: Path) -> str:
 
 def build(library: Path, target: Path) -> str:
     """Compile ``take_loop.c`` into ``target``; ``""``, or what went wrong."""
-    compiler = c_build.compiler()
-    if compiler is None:
-        return "no C compiler (cc)"
-    python_include = c_build.python_include()
-    if python_include is None:
-        return "no Python.h (python3-dev)"
     lib_dir = library.parent
     include = lib_dir.parent / "include"
     if not (include / "rcl" / "rcl" / "subscription.h").exists() and not (include / "rcl" / "subscription.h").exists():
         return f"no rcl headers in {include}"
     includes = [f"-I{path}" for path in sorted(include.iterdir()) if path.is_dir()] + [f"-I{include}"]
-    target.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-    with tempfile.TemporaryDirectory(dir=target.parent) as work:
-        partial = Path(work) / target.name
-        command = [
-            compiler,
-            "-O2",
-            "-shared",
-            "-fPIC",
-            "-o",
-            str(partial),
-            str(SOURCE),
-            f"-I{python_include}",
-            *includes,
-            f"-L{lib_dir}",
-            *(f"-l{name}" for name in _LIBRARIES),
-            f"-Wl,-rpath,{lib_dir}",
-        ]
-        return c_build.compile_into(command, partial, target, SOURCE.name, BUILD_TIMEOUT_S)
+    flags = [*includes, f"-L{lib_dir}", *(f"-l{name}" for name in _LIBRARIES), f"-Wl,-rpath,{lib_dir}"]
+    return c_build.compile_module(SOURCE, target, BUILD_TIMEOUT_S, flags)
