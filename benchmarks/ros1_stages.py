@@ -1,15 +1,14 @@
 #!/usr/bin/env python3
-"""What a ROS 1 message costs on its way from the socket to the store, stage by stage (no ROS).
+"""What a ROS 1 message costs in the intake process before it is packed, stage by stage (no ROS).
 
 The flood publisher's ``rosgraph_msgs/Log`` (about 200 bytes framed, one node, one log
 statement) is serialized N times and cut into receive-sized chunks (``RECV_BYTES``); then,
-chunk after chunk as the intake does, each stage is timed on its own: in the intake process,
-decoding the frames (Python's decoder alone, then with the frame loop in C), making columns,
-dropping repeats and packing for the pipe; in the app, unpacking and storing. Young garbage
-collections run as in the intake process (``--gc intake``) or at Python's defaults
-(``--gc default``, as the benchmark's in-thread subscriber runs). Each figure is the best of
-``--repeat`` passes, in µs a message, on one core: what the CPU a message of
-``ros1_intake.py`` is made of, less the sockets and the pipe.
+chunk after chunk as the intake does, each stage is timed on its own: decoding the frames
+(Python's decoder alone, then with the frame loop in C), making columns and dropping repeats.
+What follows, the same for ROS 1 and ROS 2 (packing, the pipe, unpacking, storing, drawing):
+``benchmarks/cost.py``. Young garbage collections run as in the intake process (``--gc
+intake``) or at Python's defaults (``--gc default``, as the intake process had them before).
+Each figure is the best of ``--repeat`` passes, in µs of the thread's CPU a message.
 
     .venv/bin/python benchmarks/ros1_stages.py
     .venv/bin/python benchmarks/ros1_stages.py --gc default
@@ -31,15 +30,13 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _report import machine_line, table  # noqa: E402
 
 from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder, encode_log  # noqa: E402
-from console_tui.model.record_batch import BatchPacker, BatchUnpacker, ColumnsBuilder  # noqa: E402
-from console_tui.model.store import LogStore  # noqa: E402
+from console_tui.model.record_batch import ColumnsBuilder  # noqa: E402
 from console_tui.sources.intake_process.child import YOUNG_COLLECTION_THRESHOLD  # noqa: E402
 from console_tui.sources.ros1 import compiled_frames  # noqa: E402
 from console_tui.sources.ros1.dedupe import Deduplicator  # noqa: E402
 from console_tui.sources.ros1.intake import RECV_BYTES  # noqa: E402
 
-STAGES = ("decode", "columns", "dedupe", "pack", "unpack", "store")
-WHERE = {"unpack": "app", "store": "app"}
+STAGES = ("decode", "columns", "dedupe")
 
 
 def flood_stream(count: int) -> bytes:
@@ -64,9 +61,9 @@ def flood_stream(count: int) -> bytes:
 def one_pass(chunks: list[bytes], frame_loop: object) -> dict[str, float]:
     """Seconds spent in each stage over every chunk."""
     decoder = Ros1LogDecoder(frame_loop=frame_loop)  # type: ignore[arg-type]
-    dedupe, packer, unpacker, store = Deduplicator(), BatchPacker(), BatchUnpacker(), LogStore()
+    dedupe = Deduplicator()
     spent = dict.fromkeys(STAGES, 0.0)
-    clock = time.perf_counter
+    clock = time.thread_time  # this thread's CPU: what a stage costs, not how long the machine made it wait
     pending = b""
     for chunk in chunks:
         began = clock()
@@ -77,27 +74,11 @@ def one_pass(chunks: list[bytes], frame_loop: object) -> dict[str, float]:
         decoded = clock()
         columns = builder.columns()
         made = clock()
-        columns = dedupe.filter(columns, 0.0)
+        dedupe.filter(columns, 0.0)
         filtered = clock()
-        packed = packer.pack(columns)
-        packed_at = clock()
-        unpacked = unpacker.unpack(packed)
-        unpacked_at = clock()
-        store.extend(unpacked)
-        stored = clock()
-        for stage, seconds in zip(
-            STAGES,
-            (
-                decoded - began,
-                made - decoded,
-                filtered - made,
-                packed_at - filtered,
-                unpacked_at - packed_at,
-                stored - unpacked_at,
-            ),
-            strict=True,
-        ):
-            spent[stage] += seconds
+        spent["decode"] += decoded - began
+        spent["columns"] += made - decoded
+        spent["dedupe"] += filtered - made
     return spent
 
 
@@ -129,18 +110,10 @@ def main() -> int:
         paths["frame loop in C"] = best_of(args.repeat, chunks, loop)
     else:
         print(f"the frame loop in C: not built ({note})")
-    rows = []
-    for stage in STAGES:
-        rows.append(
-            [
-                stage,
-                WHERE.get(stage, "intake process"),
-                *(f"{p[stage] / args.messages * 1e6:.3f}" for p in paths.values()),
-            ]
-        )
-    rows.append(["all", "", *(f"{sum(p.values()) / args.messages * 1e6:.3f}" for p in paths.values())])
+    rows = [[stage, *(f"{p[stage] / args.messages * 1e6:.3f}" for p in paths.values())] for stage in STAGES]
+    rows.append(["all three", *(f"{sum(p.values()) / args.messages * 1e6:.3f}" for p in paths.values())])
     print(f"\nµs a message, best of {args.repeat}, young collections: {args.gc}:\n")
-    print(table(["stage", "where", *(f"decoded by {name}" for name in paths)], rows))
+    print(table(["stage", *(f"decoded by {name}" for name in paths)], rows))
     return 0
 
 
