@@ -5,6 +5,7 @@ compiler (or switched off) the Python decoder reads every frame. No ROS is neede
 from __future__ import annotations
 
 import random
+import socket
 import struct
 import time
 
@@ -14,7 +15,7 @@ from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError,
 from console_tui.model.intake_queue import IntakeQueue
 from console_tui.model.record_batch import ColumnsBuilder
 from console_tui.sources.ros1 import compiled_frames
-from console_tui.sources.ros1.intake import Ros1Intake
+from console_tui.sources.ros1.intake import Connection, Ros1Intake
 
 from support.compiled import as_in_a_new_process, built_once_then_cached, not_loaded_from_a_shared_cache
 from support.formats import random_ros1_log
@@ -146,3 +147,46 @@ def test_it_can_be_switched_off(fresh, monkeypatch):
 def test_a_cache_writable_by_others_is_not_loaded_from(fresh):
     name = f"frame_loop_{compiled_frames.build_key()}{compiled_frames.c_build.suffix()}"
     not_loaded_from_a_shared_cache(compiled_frames, fresh, name)
+
+
+def test_through_the_loop_a_broken_stream_ends_its_connection_only(frame_loop, monkeypatch):
+    """Over real sockets, the frame loop in use: a message that cannot be read is counted and
+    skipped, a length no Log has ends that publisher's connection, and another publisher's
+    messages go on arriving."""
+    monkeypatch.setattr(compiled_frames, "_loaded", (frame_loop, ""))
+    queue = IntakeQueue()
+    closed: list[tuple[str, str]] = []
+    intake = Ros1Intake(queue, on_closed=lambda c, reason: closed.append((c.caller_id, reason)))
+    intake.start()
+    bad_ours, bad = socket.socketpair()
+    good_ours, good = socket.socketpair()
+    records: list = []
+
+    def arrived(count: int) -> bool:
+        deadline = time.monotonic() + 60
+        while len(records) < count and time.monotonic() < deadline:
+            records.extend(queue.drain())
+            time.sleep(0.01)
+        return len(records) >= count
+
+    try:
+        intake.add(Connection(bad_ours, "/rosout", "http://bad:1/", "/bad"))
+        intake.add(Connection(good_ours, "/rosout", "http://good:1/", "/good"))
+        message = encode_log(stamp_ns=1, level=2, name="/bad", msg="readable", file="f", function="g")
+        bad.sendall(_framed(message) + _framed(message[:30]) + _framed(message))
+        assert arrived(2) and intake.compiled
+        assert intake.lost_undecodable == 1 and "truncated" in intake.last_problem
+        bad.sendall(struct.pack("<I", 1 << 30) + b"\x00" * 64)
+        for number in range(3):
+            good.sendall(_framed(encode_log(stamp_ns=10 + number, level=4, name="/good", msg=f"still {number}")))
+        assert arrived(5)
+        deadline = time.monotonic() + 60
+        while not closed and time.monotonic() < deadline:
+            time.sleep(0.01)
+        assert closed == [("/bad", "a message of 1,073,741,824 bytes announced: not a Log stream")]
+        assert [r.msg for r in records] == ["readable", "readable", "still 0", "still 1", "still 2"]
+        assert [c.caller_id for c in intake.connections()] == ["/good"]
+    finally:
+        intake.stop()
+        bad.close()
+        good.close()
