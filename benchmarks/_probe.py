@@ -9,6 +9,8 @@ import re
 import time
 from typing import Any
 
+from _report import table
+
 
 class StallProbe:
     """A task that sleeps 1 ms at a time; how late it wakes is how long the loop was busy."""
@@ -162,3 +164,32 @@ def thread_cpu(pid: int) -> dict[str, float]:
         label = "main" if tid == pid else ("other threads" if name == main_name else re.sub(r"\d+", "#", name))
         used[label] = used.get(label, 0.0) + seconds
     return used
+
+
+def cpu_by_thread(roles: dict[str, list[int]]) -> dict[tuple[str, str], float]:
+    """CPU seconds so far of every thread of the processes in each role, by (role, thread name)."""
+    used: dict[tuple[str, str], float] = {}
+    for role, pids in roles.items():
+        for pid in pids:
+            for name, seconds in thread_cpu(pid).items():
+                used[role, name] = used.get((role, name), 0.0) + seconds
+    return used
+
+
+def threads_table(threads: dict[tuple[str, str], float], seconds: float, messages: int) -> str:
+    """Where the CPU went over ``seconds`` (``cpu_by_thread``'s difference): each process's
+    threads, in cores and in microseconds a message received; the threads that used under 1%
+    of a core are summed."""
+    seconds = seconds or 1.0
+    messages = max(messages, 1)
+    body, small = [], {}
+    for (role, name), used in sorted(threads.items(), key=lambda item: -item[1]):
+        if used / seconds < 0.01:
+            small[role] = small.get(role, 0.0) + used
+            continue
+        body.append([role, name, f"{used / seconds:.2f}", f"{used / messages * 1e6:.1f}"])
+    for role, used in small.items():
+        body.append([role, "(the rest)", f"{used / seconds:.2f}", f"{used / messages * 1e6:.1f}"])
+    total = sum(threads.values())
+    body.append(["all", "", f"{total / seconds:.2f}", f"{total / messages * 1e6:.1f}"])
+    return table(["process", "thread", "cores", "us/msg received"], body)

@@ -59,7 +59,8 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).parent))
-from _probe import process_cpu, thread_cpu
+from _probe import cpu_by_thread, process_cpu
+from _probe import threads_table as cpu_table
 from _report import ros_environment, ros_header, run_under_header, table, verdict
 
 TOPIC = "/console_tui_bench_log"
@@ -753,33 +754,9 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
     return row
 
 
-def cpu_by_thread(roles: dict[str, list[int]]) -> dict[tuple[str, str], float]:
-    """CPU seconds so far of every thread of the processes in each role, by (role, thread name)."""
-    used: dict[tuple[str, str], float] = {}
-    for role, pids in roles.items():
-        for pid in pids:
-            for name, seconds in thread_cpu(pid).items():
-                used[role, name] = used.get((role, name), 0.0) + seconds
-    return used
-
-
 def threads_table(row: Row) -> str:
-    """Where the CPU went while the publishers sent: each process's threads, in cores and in
-    microseconds a message received; the threads that used under 1% of a core are summed."""
-    threads = row.threads or {}
-    seconds = row.seconds or 1.0
-    messages = max(row.in_window, 1)
-    body, small = [], {}
-    for (role, name), used in sorted(threads.items(), key=lambda item: -item[1]):
-        if used / seconds < 0.01:
-            small[role] = small.get(role, 0.0) + used
-            continue
-        body.append([role, name, f"{used / seconds:.2f}", f"{used / messages * 1e6:.1f}"])
-    for role, used in small.items():
-        body.append([role, "(the rest)", f"{used / seconds:.2f}", f"{used / messages * 1e6:.1f}"])
-    total = sum(threads.values())
-    body.append(["all", "", f"{total / seconds:.2f}", f"{total / messages * 1e6:.1f}"])
-    return table(["process", "thread", "cores", "us/msg received"], body)
+    """Where the CPU went while the publishers sent (``_probe.threads_table``)."""
+    return cpu_table(row.threads or {}, row.seconds or 1.0, row.in_window)
 
 
 CONSOLE_KINDS = {"intake", "intake-thread", "intake-typed", "intake-ee", *APP_KINDS}

@@ -25,6 +25,7 @@ report, per message received, less the time spent checking the numbers.
     .venv/bin/python benchmarks/ros1_intake.py --rates max --duration 2 # a quick look
     .venv/bin/python benchmarks/ros1_intake.py --rates 100000 --duration 60 --kinds process
                                                                         # 100,000/s for 60 s, 0 lost?
+    .venv/bin/python benchmarks/ros1_intake.py --rates max --threads  # where the CPU goes, thread by thread
     CONSOLE_TUI_COMPILED_FRAMES=0 .venv/bin/python benchmarks/ros1_intake.py --kinds console
                                                                         # without the frame loop in C
 """
@@ -120,13 +121,16 @@ def run_console(kind: str) -> None:
     store = LogStore()
     source: Any = ProcessSource(queue, "ros1", topic=TOPIC) if kind == "process" else Ros1LiveSource(queue, topic=TOPIC)
     source.start()
+    deadline = time.monotonic() + 30
+    while kind == "process" and source.pid is None and time.monotonic() < deadline:
+        time.sleep(0.01)
 
     def cpu() -> float:
         pid = getattr(source, "pid", None)
         return cpu_seconds() + (process_cpu(pid) if pid else 0.0)
 
     commands = Commands()
-    say(event="ready")
+    say(event="ready", intake_pid=getattr(source, "pid", None))
     first_at = last_at = cpu_at_first = 0.0
     # Every message drained counts: the store keeps at most its cap (1,000,000), fewer than a
     # run at the publisher's maximum sends.
@@ -254,14 +258,24 @@ def subscriber_command(kind: str) -> list[str]:
 
 
 def one_run(kind: str, rate: str, duration: float, binary: Path, env: dict[str, str]) -> dict[str, Any]:
+    from _probe import cpu_by_thread
+
     subscriber = Process(subscriber_command(kind), env)
     publisher: Process | None = None
     try:
-        subscriber.expect("ready")
+        intake_pid = subscriber.expect("ready").get("intake_pid")
         offered = "0" if rate == "max" else rate
         publisher = Process([str(binary), "flood", TOPIC, offered, str(duration), "1"], env)
         publisher.expect("matched", timeout=30)
-        sent = publisher.expect("done", timeout=duration + 60)["sent"]
+        roles = {
+            "publisher": [publisher.popen.pid],
+            "subscriber": [subscriber.popen.pid],
+            "intake": [intake_pid] if intake_pid else [],
+        }
+        threads_before = cpu_by_thread(roles)
+        done = publisher.expect("done", timeout=duration + 60)
+        threads_after = cpu_by_thread(roles)
+        sent = done["sent"]
         report: dict[str, Any] = {}
         previous = -1
         settle_until = time.monotonic() + SETTLE_S
@@ -291,6 +305,8 @@ def one_run(kind: str, rate: str, duration: float, binary: Path, env: dict[str, 
             "cpu_us": report["cpu"] / received * 1e6 if received else 0.0,
             "problem": report.get("problem", ""),
             "path": report.get("path", ""),
+            "threads": {key: threads_after[key] - threads_before.get(key, 0.0) for key in threads_after},
+            "seconds": done["seconds"],
         }
     finally:
         if publisher is not None:
@@ -301,6 +317,7 @@ def one_run(kind: str, rate: str, duration: float, binary: Path, env: dict[str, 
 def main_driver(args: argparse.Namespace) -> int:
     sys.path.insert(0, str(Path(__file__).parent))
     sys.path.insert(0, str(ROOT / "tests"))
+    from _probe import threads_table as cpu_table
     from _report import machine_line, table, verdict
 
     from support.ros1 import build_roscpp_node, free_port, ros1_environment, ros1_missing, roscpp_missing
@@ -377,6 +394,11 @@ def main_driver(args: argparse.Namespace) -> int:
     compared = "process" if "process" in kinds else "console"
     print(f"\nROS 1 intake, {args.duration:g} s a run, median of {args.repeat} (console-tui: {compared}):\n")
     print(table(headers[: len(rows[0])] if rows else headers, rows))
+    if args.threads:
+        for (rate, kind), runs in results.items():
+            run = _median(runs)
+            print(f"\nWhere the CPU went while sending ({kind}, {rate}/s, the median run):\n")
+            print(cpu_table(run["threads"], run["seconds"], run["received"]))
     return 0
 
 
@@ -399,6 +421,7 @@ def main() -> int:
     parser.add_argument("--kinds", default=",".join(KINDS), help="subscribers: console, process, rospy")
     parser.add_argument("--duration", type=float, default=5.0, help="seconds the publisher floods (default 5)")
     parser.add_argument("--repeat", type=int, default=1, help="runs per cell, the median shown (default 1)")
+    parser.add_argument("--threads", action="store_true", help="where the CPU went, thread by thread, while sending")
     args = parser.parse_args()
     if args.role in ("console", "process"):
         run_console(args.role)
