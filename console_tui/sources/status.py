@@ -59,15 +59,21 @@ class SourceStatus:
         return f"{self.path}: {meaning}" if meaning else self.path
 
     def slow_path_text(self) -> str:
-        """What is lost on the slower intake path (no take loop in C), said once at start;
-        "" on the fast path (or where there is no faster one)."""
-        if not self.path_note or self.path_note == PATH_NOTE_BUILDING or self.path == "c+cdr":
+        """What is lost on the slower intake path (no loop in C), said once at start; "" on
+        the fast path (or where there is no faster one)."""
+        slow = _SLOW_PATHS.get(self.path)
+        if not self.path_note or self.path_note == PATH_NOTE_BUILDING or slow is None:
             return ""  # the fast path, on its way or in use (the note says how it was built)
         return (
-            f"slower intake: the take loop in C is not used ({self.path_note}): rclpy's take costs "
-            "2-3 times the CPU a message, so high rates are kept up with less well. The fast path "
-            "needs a C compiler (cc) and Python's headers (python3-dev)."
+            f"slower intake: {self.loop_name()} is not used ({self.path_note}): {slow} the CPU a "
+            "message, so high rates are kept up with less well. The fast path needs a C compiler "
+            "(cc) and Python's headers (python3-dev)."
         )
+
+    def loop_name(self) -> str:
+        """The loop in C of this source's intake: ``the take loop in C`` (ROS 2) or ``the frame
+        loop in C`` (ROS 1)."""
+        return "the frame loop in C" if self.path in ("c+tcpros", "tcpros") else "the take loop in C"
 
     @property
     def take_path(self) -> bool:
@@ -87,6 +93,9 @@ class SourceStatus:
         detail = ", ".join(f"{count:,} {cause}" for count, cause in causes if count)
         return f"{self.lost:,} lost ({detail})"
 
+
+#: What the slower path costs, for each path slower than one with a loop in C.
+_SLOW_PATHS = {"raw+cdr": "rclpy's take costs 2-3 times", "tcpros": "Python's decoder costs about twice"}
 
 #: What each ``path`` means.
 _PATHS = {

@@ -26,3 +26,6 @@ def test_the_slower_path_is_not_said_while_the_loop_is_built_or_when_it_is_in_us
     assert SourceStatus(path="raw+cdr", path_note=PATH_NOTE_BUILDING).slow_path_text() == ""
     assert SourceStatus(path="c+cdr", path_note="built into a private directory, as X").slow_path_text() == ""
     assert SourceStatus(path="raw+cdr", path_note="no C compiler (cc)").slow_path_text().startswith("slower intake")
+    ros1 = SourceStatus(path="tcpros", path_note="no C compiler (cc)").slow_path_text()
+    assert ros1.startswith("slower intake: the frame loop in C is not used (no C compiler (cc)): Python's decoder")
+    assert SourceStatus(path="c+tcpros", path_note="built into a private directory, as X").slow_path_text() == ""

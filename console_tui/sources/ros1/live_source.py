@@ -419,6 +419,7 @@ class Ros1LiveSource:
             "lost_queue": lost_queue,
             "lost_undecodable": lost_undecodable,
             "path": PATH_COMPILED if intake is not None and intake.compiled else PATH,
+            "path_note": intake.compiled_note if intake is not None else "",
         }
         if any(self.status.__dict__[key] != value for key, value in changes.items()):
             self._set_status(**changes)

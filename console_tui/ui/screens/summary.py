@@ -215,9 +215,9 @@ class SummaryScreen(ModalScreen[int | None]):
             status.origin,
             f"taken by {status.path_text()}" if status.path else "",
             (
-                f"the take loop in C: {status.path_note}"
-                if status.path == "c+cdr"
-                else f"the take loop in C is not used: {status.path_note}"
+                f"{status.loop_name()}: {status.path_note}"
+                if status.path in ("c+cdr", "c+tcpros")
+                else f"{status.loop_name()} is not used: {status.path_note}"
             )
             if status.path_note
             else "",
