@@ -45,156 +45,14 @@ from pathlib import Path
 from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
-TOPIC = "/console_tui_bench_log"
+SUBSCRIBER = Path(__file__).with_name("_ros1_subscriber.py")
+TOPIC = "/console_tui_bench_log"  # as _ros1_subscriber.py subscribes
 KINDS = ("console", "process", "rospy")
 DEFAULT_RATES = ("max", "20000", "100000")
 SYSTEM_PYTHON = "/usr/bin/python3"
 LOSSLESS_RATE = 100_000
 TARGET_VS_ROSPY = 2.0
-DRAIN_S = 0.05
 SETTLE_S = 1.5
-
-
-def say(**fields: Any) -> None:
-    print(json.dumps(fields), flush=True)
-
-
-# -- the subscriber processes ------------------------------------------------------------------
-
-
-class Commands:
-    """Lines from stdin ("report"), read on a thread; ``closed`` once stdin ends."""
-
-    def __init__(self) -> None:
-        self.report = threading.Event()
-        self.closed = threading.Event()
-        threading.Thread(target=self._read, daemon=True).start()
-
-    def _read(self) -> None:
-        for line in sys.stdin:
-            if line.strip() == "report":
-                self.report.set()
-        self.closed.set()
-
-
-def cpu_seconds() -> float:
-    times = os.times()
-    return times.user + times.system
-
-
-class Numbers:
-    """The flood's message numbers seen (``flood message N: ...``), in order: what is missing."""
-
-    def __init__(self) -> None:
-        self.next = 0
-        self.missing = 0
-        self.repeated = 0
-        #: This thread's CPU seconds spent here (not the intake's: left out of its CPU).
-        self.cpu = 0.0
-
-    def see(self, msgs: Any) -> None:
-        began = time.thread_time()
-        for msg in msgs:
-            number = int(msg[14 : msg.index(":", 14)])
-            if number >= self.next:
-                self.missing += number - self.next
-                self.next = number + 1
-            else:
-                self.repeated += 1
-        self.cpu += time.thread_time() - began
-
-    def lost(self, sent: int) -> int:
-        return self.missing + max(sent - self.next, 0)
-
-
-def run_console(kind: str) -> None:
-    sys.path.insert(0, str(ROOT))
-    sys.path.insert(0, str(Path(__file__).parent))
-    from _probe import process_cpu
-
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.store import LogStore
-    from console_tui.sources.intake_process.parent import ProcessSource
-    from console_tui.sources.ros1.live_source import Ros1LiveSource
-
-    queue = IntakeQueue()
-    store = LogStore()
-    source: Any = ProcessSource(queue, "ros1", topic=TOPIC) if kind == "process" else Ros1LiveSource(queue, topic=TOPIC)
-    source.start()
-    deadline = time.monotonic() + 30
-    while kind == "process" and source.pid is None and time.monotonic() < deadline:
-        time.sleep(0.01)
-
-    def cpu() -> float:
-        pid = getattr(source, "pid", None)
-        return cpu_seconds() + (process_cpu(pid) if pid else 0.0)
-
-    commands = Commands()
-    say(event="ready", intake_pid=getattr(source, "pid", None))
-    first_at = last_at = cpu_at_first = 0.0
-    # Every message drained counts: the store keeps at most its cap (1,000,000), fewer than a
-    # run at the publisher's maximum sends.
-    received = 0
-    numbers = Numbers()
-    while not commands.closed.is_set():
-        batches = queue.drain_batches()  # as the app does
-        if batches:
-            now = time.monotonic()
-            if not first_at:
-                first_at, cpu_at_first = now, cpu()
-            last_at = now
-            for batch in batches:
-                received += len(batch)
-                store.extend(batch)
-                numbers.see(batch.msgs)
-        if commands.report.is_set():
-            commands.report.clear()
-            status = source.status
-            say(
-                event="report",
-                received=received,
-                seconds=last_at - first_at,
-                cpu=cpu() - cpu_at_first - numbers.cpu,
-                lost_counted=status.lost,
-                problem=status.problem,
-                path=status.path,
-                missing=numbers.missing,
-                next=numbers.next,
-                repeated=numbers.repeated,
-            )
-        time.sleep(DRAIN_S)
-    source.stop()
-
-
-def run_rospy() -> None:
-    import rospy
-    from rosgraph_msgs.msg import Log
-
-    rospy.init_node("rospy_bench_subscriber", disable_signals=True)
-    counts = {"received": 0, "first": 0.0, "last": 0.0, "cpu": 0.0}
-
-    def callback(_message: Any) -> None:
-        now = time.monotonic()
-        if not counts["received"]:
-            counts["first"], counts["cpu"] = now, cpu_seconds()
-        counts["received"] += 1
-        counts["last"] = now
-
-    rospy.Subscriber(TOPIC, Log, callback)  # as rqt_console subscribes
-    commands = Commands()
-    say(event="ready")
-    while not commands.closed.wait(DRAIN_S):
-        if commands.report.is_set():
-            commands.report.clear()
-            say(
-                event="report",
-                received=counts["received"],
-                seconds=counts["last"] - counts["first"],
-                cpu=cpu_seconds() - counts["cpu"],
-                lost_counted=0,
-                problem="",
-            )
-    rospy.signal_shutdown("done")
 
 
 # -- the driver ----------------------------------------------------------------------------------
@@ -254,7 +112,7 @@ class Process:
 
 def subscriber_command(kind: str) -> list[str]:
     python = SYSTEM_PYTHON if kind == "rospy" else sys.executable
-    return [python, str(Path(__file__).resolve()), "--role", kind]
+    return [python, str(SUBSCRIBER), kind]
 
 
 def one_run(kind: str, rate: str, duration: float, binary: Path, env: dict[str, str]) -> dict[str, Any]:
@@ -416,20 +274,12 @@ def _lost(cell: dict[str, Any]) -> str:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--role", choices=KINDS, help=argparse.SUPPRESS)
     parser.add_argument("--rates", default=",".join(DEFAULT_RATES), help="comma-separated: max and/or messages/s")
     parser.add_argument("--kinds", default=",".join(KINDS), help="subscribers: console, process, rospy")
     parser.add_argument("--duration", type=float, default=5.0, help="seconds the publisher floods (default 5)")
     parser.add_argument("--repeat", type=int, default=1, help="runs per cell, the median shown (default 1)")
     parser.add_argument("--threads", action="store_true", help="where the CPU went, thread by thread, while sending")
-    args = parser.parse_args()
-    if args.role in ("console", "process"):
-        run_console(args.role)
-        return 0
-    if args.role == "rospy":
-        run_rospy()
-        return 0
-    return main_driver(args)
+    return main_driver(parser.parse_args())
 
 
 if __name__ == "__main__":
