@@ -5,8 +5,8 @@ repeated strings (node, file, function, source) as ids into string tables, messa
 ``str``; ROS 1's ``topics`` as ids too, in an array made only for chunks that have some
 (nothing for ROS 2), and so the ``robot`` a record came from (only when the console reads a
 fleet: several ROS 2 domains or ROS 1 masters, or files named for their robots). Ids and line numbers take 2 bytes while they fit (a chunk's column widens to 4
-when one does not); a full chunk keeps its messages joined in one string
-(``PackedTexts``), so a message costs its text and 4 bytes. Dropping the oldest chunk
+when one does not); a full chunk keeps its messages joined in one string, compressed
+(``PackedTexts``), so a message costs about a third of its text and 4 bytes. Dropping the oldest chunk
 when the bound is passed costs O(1). ``extend`` takes one shape, ``RecordColumns`` (a batch
 already in columns, as every source hands them over), and works column by column without a
 Python step per record.
@@ -99,7 +99,7 @@ class Chunk:
         return len(self.msgs)
 
     def seal(self) -> None:
-        """The chunk is full: keep its messages packed."""
+        """The chunk is full: keep its messages packed (compressed)."""
         if isinstance(self.msgs, list):
             self.msgs = pack(self.msgs)
 

@@ -2,7 +2,7 @@
 
 import pytest
 
-from console_tui.model.packed_texts import PackedTexts, pack
+from console_tui.model.packed_texts import PackedTexts
 from console_tui.model.record import LogRecord
 from console_tui.model.record_batch import BatchError, BatchPacker, BatchUnpacker, ColumnsBuilder, RecordColumns
 from console_tui.model.store import CHUNK_SIZE, LogStore
@@ -99,20 +99,6 @@ def test_full_chunks_keep_their_messages_packed_and_read_the_same():
     assert isinstance(chunk.msgs, PackedTexts)
     assert chunk.msgs[3:7] == texts[3:7] and chunk.msgs[5] == "ünïcødé" and chunk.msgs[-1] == texts[CHUNK_SIZE - 1]
     assert [store.get(seq).msg for seq in range(store.end_seq)] == texts
-
-
-@pytest.mark.parametrize(
-    "texts",
-    [["a", "", "bc"], [""], ["one\0two", "x"], ["☃"] + ["plain ascii text " * 12] * 50],
-    ids=["plain", "empty", "nul", "wide"],
-)
-def test_pack_reads_like_the_texts(texts):
-    packed = pack(texts)
-    assert list(packed) == texts and len(packed) == len(texts)
-    assert [packed[i] for i in range(len(texts))] == texts
-    assert list(packed[1:]) == texts[1:] and list(packed[::2]) == texts[::2] and list(packed[::-1]) == texts[::-1]
-    if "one\0two" in texts or texts[0].startswith("☃"):
-        assert isinstance(packed, list)  # NUL inside, or joining would widen every text
 
 
 def test_ros1_topics_travel_and_are_stored_only_where_there_are_some():
