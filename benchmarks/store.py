@@ -10,10 +10,13 @@ records, as the CDR decoder shares them; making them is not timed.
     python benchmarks/store.py --records 200000   # smaller
     python benchmarks/store.py --list-reference   # also: the same records as a plain list
     python benchmarks/store.py --bare             # without the app's Textual and rclpy loaded first
+    python benchmarks/store.py --app              # also: the app headless over the full store
 
 By default the process first loads what the app has loaded when records arrive (Textual,
 and an rclpy context with a node, on a loopback-only ROS domain of its own), so the RSS
-is the app's, not just the store's.
+is the app's, not just the store's. With ``--app`` the app itself then runs headless (160x48)
+over the full store, and its RSS is measured once its overview (storms, timeline) has counted
+every record: what the app process holds for a million records.
 """
 
 from __future__ import annotations
@@ -35,7 +38,7 @@ from console_tui.model.record import LogRecord
 from console_tui.model.store import LogStore
 
 BATCH = 1_000
-TARGET_MB = 200
+TARGET_MB = 150
 WORDS = [
     "goal",
     "received",
@@ -148,6 +151,24 @@ def list_reference(records: int) -> float:
     return rss_mb() - before
 
 
+def app_rss_mb(store: LogStore) -> float:
+    """The process's RSS with the app running headless over ``store``, its overview counted."""
+    import asyncio
+
+    from console_tui.ui.app import ConsoleApp
+
+    async def run() -> float:
+        app = ConsoleApp(store=store)
+        async with app.run_test(size=(160, 48)) as pilot:
+            await pilot.pause(0.5)
+            while app.storms.behind or app.timeline.behind:
+                await asyncio.sleep(0.05)
+            gc.collect()
+            return rss_mb()
+
+    return asyncio.run(run())
+
+
 def load_the_apps_libraries() -> tuple[str, Any]:
     """Import Textual and start an rclpy context with a node, as the app does.
 
@@ -175,6 +196,7 @@ def main() -> None:
     parser.add_argument("--beyond", type=int, default=300_000, help="records added with the store full")
     parser.add_argument("--list-reference", action="store_true", help="also measure a plain list of records")
     parser.add_argument("--bare", action="store_true", help="measure the store alone (Python and the model only)")
+    parser.add_argument("--app", action="store_true", help="also run the app headless over the full store")
     parser.add_argument("--reference-only", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.reference_only:
@@ -226,6 +248,8 @@ def main() -> None:
         ],
         ["get(seq) of a stored record", f"{get_us:.2f} us", ""],
     ]
+    if args.app:
+        rows.append(["process RSS with the app running over them", f"{app_rss_mb(store):.0f} MB", "the app's own"])
     if args.list_reference:
         reference = subprocess.run(
             [sys.executable, __file__, "--reference-only", str(args.records)],
