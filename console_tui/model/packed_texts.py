@@ -26,8 +26,6 @@ from itertools import accumulate, repeat
 from operator import add
 from typing import overload
 
-from lz4.block import compress, decompress
-
 _SEPARATOR = "\0"
 #: The most UTF-8 bytes packed: LZ4's block limit (a character offset is at most its byte offset).
 _SIZE_LIMIT = 0x7E000000
@@ -59,7 +57,7 @@ class PackedTexts(Sequence[str]):
         """Every text, joined by NUL."""
         text = self._text
         if text is None:
-            text = decompress(self._packed).decode("utf-8", "surrogatepass")
+            text = _decompressed(self._packed).decode("utf-8", "surrogatepass")
             if self._texts is None:
                 _remember(self)
             self._text = text
@@ -116,8 +114,23 @@ class PackedTexts(Sequence[str]):
 
 
 def _compressed(text: str) -> bytes:
-    packed: bytes = compress(text.encode("utf-8", "surrogatepass"), store_size=True)
+    return _compress(text.encode("utf-8", "surrogatepass"))
+
+
+# lz4 is imported when first used: the headless commands (``console-tui loggers`` on a robot's
+# Python) import the model without ever packing a chunk.
+def _compress(data: bytes) -> bytes:
+    from lz4.block import compress
+
+    packed: bytes = compress(data, store_size=True)
     return packed
+
+
+def _decompressed(packed: bytes) -> bytes:
+    from lz4.block import decompress
+
+    data: bytes = decompress(packed)
+    return data
 
 
 def _remember(texts: PackedTexts) -> None:
@@ -139,4 +152,4 @@ def pack(texts: list[str]) -> list[str] | PackedTexts:
     if len(encoded) > _SIZE_LIMIT:
         return texts
     starts = array("I", accumulate(map(add, map(len, texts), repeat(1)), initial=0))
-    return PackedTexts(joined, starts, compress(encoded, store_size=True))
+    return PackedTexts(joined, starts, _compress(encoded))
