@@ -3,7 +3,7 @@
 A ``str`` object costs 49 bytes before its text and a list 8 more for pointing at it:
 for a log message of 90 characters that is 40% of its memory. ``PackedTexts`` keeps a
 full chunk's messages joined by NUL, as UTF-8 compressed with LZ4 (a log's messages
-repeat themselves: 3-4 times smaller), with where each one starts (4 bytes a message), and
+repeat themselves: 2.5-4 times smaller), with where each one starts (4 bytes a message), and
 is read like a tuple of strings: an index gives one message, a slice a list of them (one
 C-level ``split``). Being no container of objects, it also costs Python's cyclic garbage
 collector nothing, where a million strings in lists cost it a visit each
@@ -68,10 +68,7 @@ class PackedTexts(Sequence[str]):
         texts = self._texts
         if texts is None:
             text = self.text
-            texts = text.split(_SEPARATOR) if len(self.starts) > 1 else []
-            if self._text is None:  # dropped from the recent ones meanwhile (another thread)
-                _remember(self)
-            self._texts = texts
+            texts = self._texts = text.split(_SEPARATOR) if len(self.starts) > 1 else []
         return texts
 
     @property
