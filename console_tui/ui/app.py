@@ -41,12 +41,13 @@ from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from . import textual_fixes
+from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
+from .controllers.jumps import JumpsController
 from .exit_signals import ExitSignals, terminal_gone
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
-from .jump_actions import JumpActions
 from .keys import binding_ids, keymap_path, load_keymap
 from .overview_actions import OverviewActions
 from .palette import PaletteProvider
@@ -91,7 +92,6 @@ class ConsoleApp(
     FileActions,
     PaneActions,
     SearchActions,
-    JumpActions,
     ToggleActions,
     OverviewActions,
 ):
@@ -113,7 +113,7 @@ class ConsoleApp(
         Binding("escape", "clear_search", "Clear the search", show=False, id="console.clear_search"),
         Binding("exclamation_mark", "problems", "Problems", show=False, id="console.problems"),
         Binding("slash", "query", "Query", id="console.query"),
-        *SearchActions.KEYS,
+        *SEARCH_KEYS,
         Binding("r", "toggle_rules", "Rules", id="console.rules"),
         Binding("H", "toggle_highlighted_only", "Highlighted only", show=False, id="console.highlighted_only"),
         Binding("minus", "quick_rule('exclude')", "Hide like the selected rows", show=False, id="console.hide_like"),
@@ -136,8 +136,8 @@ class ConsoleApp(
         Binding("question_mark,f1", "help", "Help", id="console.help"),
         Binding("q", "quit", "Quit", id="console.quit"),
         Binding("ctrl+c", "quit", "Quit", show=False),
-        *JumpActions.KEYS,
-        *ToggleActions.KEYS,
+        *JUMP_KEYS,
+        *TOGGLE_KEYS,
     ]
 
     def __init__(
@@ -209,6 +209,16 @@ class ConsoleApp(
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
+        self.jumps = JumpsController(
+            self,
+            self.store,
+            self.view,
+            self.table,
+            self.marks,
+            opened_paths=self.opened_paths,
+            show_marks=self._show_search_marks,
+            update_status=self.update_status,
+        )
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -369,6 +379,35 @@ class ConsoleApp(
             return self.search is not None and not self.view.refiltering
         return True
 
+    # -- jumps (``controllers.jumps``) ---------------------------------------------------------
+
+    def action_next_level(self, level: int) -> None:
+        self.jumps.next_level(level)
+
+    def action_previous_level(self, level: int) -> None:
+        self.jumps.previous_level(level)
+
+    def action_first_row(self) -> None:
+        self.table.action_first_row()
+
+    def action_last_row(self) -> None:
+        self.table.follow()
+
+    def action_toggle_mark(self) -> None:
+        self.jumps.toggle_mark()
+
+    def action_next_mark(self) -> None:
+        self.jumps.to_mark(forward=True)
+
+    def action_previous_mark(self) -> None:
+        self.jumps.to_mark(forward=False)
+
+    def action_marks(self) -> None:
+        self.jumps.list_marks()
+
+    def action_open_source(self) -> None:
+        self.jumps.open_source()
+
     # -- help and the command palette -------------------------------------------------------------
 
     def action_help(self) -> None:
@@ -397,7 +436,7 @@ class ConsoleApp(
 
     def nav_bindings(self) -> list[Binding]:
         """The keys that find your way: search, jumps, marks, levels, nodes, time."""
-        return _bindings([*SearchActions.KEYS, *JumpActions.KEYS, *ToggleActions.KEYS])
+        return _bindings(NAV_KEYS)
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # Textual's "Keys" opens its key panel; "Help: every key" (ours) says more.

@@ -10,7 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from textual import work
-from textual.binding import Binding
 
 from ..model.marks import Marks
 from ..model.rules.time_limit import MatchTimeout, time_limit
@@ -52,13 +51,6 @@ class _Jump:
 
 class SearchActions(AppPart):
     """Search without filtering: every match marked, n / N across the whole history."""
-
-    #: Its keys (``ConsoleApp.BINDINGS`` places them, for the footer's order).
-    KEYS = [
-        Binding("f,ctrl+f", "search", "Find", id="nav.find"),
-        Binding("n", "next_match", "Next match", show=False, id="nav.next_match"),
-        Binding("N", "previous_match", "Previous match", show=False, id="nav.previous_match"),
-    ]
 
     # What else it uses of the app (``ConsoleApp`` sets them).
     search_bar: SearchBar

@@ -10,10 +10,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from textual.binding import Binding
-
 from ..model import toggles
-from ..model.levels import MESSAGE_SEVERITIES
 from ..model.logger_levels import robot_qualified
 from ..model.rules.ruleset import RuleSet
 from ..model.time_column import TimeFormat, format_info, next_format, sim_time_note
@@ -24,33 +21,6 @@ from .widgets.node_pane import NodePane
 
 class ToggleActions(AppPart):
     """Levels, nodes and time formats in one key each."""
-
-    #: Its keys (``ConsoleApp.BINDINGS`` places them, for the footer's order).
-    KEYS = [
-        *(
-            Binding(
-                str(number),
-                f"toggle_level({int(severity)})",
-                f"Show / hide {severity.name} messages",
-                show=False,
-                id=f"levels.{severity.name.lower()}",
-            )
-            for number, severity in enumerate(MESSAGE_SEVERITIES, start=1)
-        ),
-        Binding(
-            "greater_than_sign", "raise_minimum", "Minimum level up (hide the lowest shown)", show=False, id="levels.up"
-        ),
-        Binding("less_than_sign", "lower_minimum", "Minimum level down (show one more)", show=False, id="levels.down"),
-        Binding("0", "all_levels", "Every level shown again", show=False, id="levels.all"),
-        Binding(
-            "t",
-            "next_time_format",
-            "Time format: clock, date, stamp, since first, since row, Δ",
-            show=False,
-            id="time.format",
-        ),
-        Binding("ctrl+u", "toggle_utc", "Time in UTC / local time", show=False, id="time.utc"),
-    ]
 
     # What it uses of the app (``ConsoleApp`` sets them).
     node_pane: NodePane
