@@ -45,7 +45,7 @@ from _report import machine_line, table, verdict
 from console_tui.model.store import LogStore
 from console_tui.sources.intake_process.synthetic import synthetic_record
 from console_tui.ui.app import ConsoleApp
-from console_tui.ui.search_actions import SEARCH_BUDGET_S
+from console_tui.ui.controllers.search import SEARCH_BUDGET_S
 
 NEXT_TARGET_MS = 300.0
 STALL_OVER_FLOOR_MS = 10.0
@@ -147,13 +147,13 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
         cpu = time.process_time() - cpu
 
         def counted() -> bool:
-            search = app.search
+            search = app.searching.search
             return search is not None and search.complete
 
         while not counted() and time.perf_counter() - typed < 60:
             await asyncio.sleep(0.001)
         every = time.perf_counter() - typed
-        status = app.search_status()
+        status = app.searching.search_status()
         await asyncio.sleep(0.2)
         measured = await stalls.stop()
     return {

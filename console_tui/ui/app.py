@@ -43,6 +43,7 @@ from ..sources.fleet import Robot
 from . import textual_fixes
 from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
 from .controllers.jumps import JumpsController
+from .controllers.search import SearchController
 from .exit_signals import ExitSignals, terminal_gone
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
@@ -57,7 +58,6 @@ from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
 from .screens.mark_list import MarksScreen
 from .screens.summary import SummaryScreen
-from .search_actions import SearchActions
 from .table_actions import TableActions
 from .toggle_actions import ToggleActions
 from .widgets.key_footer import KeyFooter
@@ -91,7 +91,6 @@ class ConsoleApp(
     RuleActions,
     FileActions,
     PaneActions,
-    SearchActions,
     ToggleActions,
     OverviewActions,
 ):
@@ -209,6 +208,17 @@ class ConsoleApp(
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
+        self.searching = SearchController(
+            self,
+            self.store,
+            self.view,
+            self.table,
+            self.search_bar,
+            self.marks,
+            self.storms,
+            clock=clock,
+            update_status=self.update_status,
+        )
         self.jumps = JumpsController(
             self,
             self.store,
@@ -216,7 +226,7 @@ class ConsoleApp(
             self.table,
             self.marks,
             opened_paths=self.opened_paths,
-            show_marks=self._show_search_marks,
+            show_marks=self.searching.show_marks,
             update_status=self.update_status,
         )
 
@@ -341,7 +351,7 @@ class ConsoleApp(
             new_while_paused=table.new_while_paused,
             sources=statuses,
             note=", ".join(note for note in (self.rules_note(), self.storms_note()) if note),
-            search=self.search_status(),
+            search=self.searching.search_status(),
             toggles=self.toggles_status(),
             time=self.time_status(),
         )
@@ -376,8 +386,29 @@ class ConsoleApp(
         if action == "stop_filtering":
             return self.view.refiltering
         if action == "clear_search":
-            return self.search is not None and not self.view.refiltering
+            return self.searching.search is not None and not self.view.refiltering
         return True
+
+    # -- search (``controllers.search``) --------------------------------------------------------
+
+    def action_search(self) -> None:
+        self.searching.open_search_line()
+
+    def on_search_bar_changed(self, message: SearchBar.Changed) -> None:
+        self.searching.search_line_changed(message)
+
+    def on_search_bar_done(self, message: SearchBar.Done) -> None:
+        self.searching.search_line_done(message)
+
+    def action_clear_search(self) -> None:
+        if self.searching.search is not None:
+            self.searching.clear_search()
+
+    def action_next_match(self) -> None:
+        self.searching.jump_to_match(forward=True)
+
+    def action_previous_match(self) -> None:
+        self.searching.jump_to_match(forward=False)
 
     # -- jumps (``controllers.jumps``) ---------------------------------------------------------
 

@@ -24,6 +24,7 @@ from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from ..sources.status import SourceStatus
 from .app_part import AppPart
+from .controllers.search import SearchController
 from .gc_policy import CollectionPolicy
 from .widgets.rules_pane import RulesPane
 
@@ -79,7 +80,7 @@ class IntakeActions(AppPart):
     show_overview: Callable[..., None]
     follow_overview: Callable[[], None]
     rules_changed: Callable[[], None]
-    search_after_records: Callable[..., None]
+    searching: SearchController
     clock: Callable[[], float]
     _rate = 0.0
     _rate_at = 0.0
@@ -224,7 +225,7 @@ class IntakeActions(AppPart):
         if rewritten:
             table.restyle()  # rows drawn before show other records now
         self.node_stats.update()
-        self.search_after_records(rewritten=rewritten)
+        self.searching.after_records(rewritten=rewritten)
         return added
 
     def receive_rate(self) -> float:

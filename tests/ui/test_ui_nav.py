@@ -73,7 +73,9 @@ async def search_for(pilot, app: ConsoleApp, text: str) -> None:
     steady_cursors(app)
     await type_text(pilot, text)
     await pilot.press("enter")
-    await until(pilot, lambda: "match" in app.search_status() and "searching" not in app.search_status())
+    await until(
+        pilot, lambda: "match" in app.searching.search_status() and "searching" not in app.searching.search_status()
+    )
 
 
 # -- search -------------------------------------------------------------------------------------

@@ -1,27 +1,30 @@
-"""The app's search: the search line, next / previous match, the marks on matching rows.
+"""Search without filtering: the search line, next / previous match, the marks on matching rows.
 
-A part of ``ConsoleApp`` (``app_part.AppPart``). The search itself is the model's ``Search``:
-it walks the history in slices on the event loop (the screen never waits), newer or older
-first as the jump asked for needs, and the status line says "match 3 of 17".
+The search itself is the model's ``Search``: it walks the history in slices on the event loop
+(the screen never waits), newer or older first as the jump asked for needs, and the status
+line says "match 3 of 17".
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
-from textual import work
+from textual.worker import Worker
 
-from ..model.marks import Marks
-from ..model.rules.time_limit import MatchTimeout, time_limit
-from ..model.search import PENDING, Search, describe_search, display_pattern, parse_search
-from ..model.search_rows import MatchRows
-from ..model.storms import StormRows
-from ..model.text import plural
-from .app_part import AppPart
-from .focus import focus_now
-from .slicing import pause_between_slices
-from .widgets.log_table import Spans
-from .widgets.search_bar import SearchBar
+from ...model.marks import Marks
+from ...model.rules.time_limit import MatchTimeout, time_limit
+from ...model.search import PENDING, Search, describe_search, display_pattern, parse_search
+from ...model.search_rows import MatchRows
+from ...model.store import LogStore
+from ...model.storms import StormRows
+from ...model.text import plural
+from ...model.view import LogView
+from ..focus import focus_now
+from ..slicing import pause_between_slices
+from ..widgets.log_table import LogTable, Spans
+from ..widgets.search_bar import SearchBar
+from .host import Host
 
 #: Slices of the search on the event loop, and the pause between them. A slice adds to the
 #: frame drawn in the same turn of the loop, so it is short enough to keep the longest stall
@@ -49,49 +52,68 @@ class _Jump:
     either_way: bool = False
 
 
-class SearchActions(AppPart):
+class SearchController:
     """Search without filtering: every match marked, n / N across the whole history."""
 
-    # What else it uses of the app (``ConsoleApp`` sets them).
-    search_bar: SearchBar
-    marks: Marks
-    storms: StormRows
-
-    search: Search | None = None
-    _search_rules: object = None
-    _search_origin: tuple[int | None, bool] | None = None
-    _jump: _Jump | None = None
-    _search_text = ""
-    _match_rows: tuple[tuple, MatchRows] | None = None
+    def __init__(
+        self,
+        host: Host,
+        store: LogStore,
+        view: LogView,
+        table: LogTable,
+        search_bar: SearchBar,
+        marks: Marks,
+        storms: StormRows,
+        *,
+        clock: Callable[[], float],
+        update_status: Callable[[], None],
+    ) -> None:
+        self._host = host
+        self._store = store
+        self._view = view
+        self._table = table
+        self._search_bar = search_bar
+        self._marks = marks
+        self._storms = storms
+        self._clock = clock
+        self._update_status = update_status
+        #: The search in force, or None.
+        self.search: Search | None = None
+        self._search_rules: object = None
+        self._search_origin: tuple[int | None, bool] | None = None
+        self._jump: _Jump | None = None
+        self._search_text = ""
+        self._match_rows: tuple[tuple, MatchRows] | None = None
+        self._worker: Worker[None] | None = None
 
     # -- the search line ----------------------------------------------------------------------
 
-    def action_search(self) -> None:
-        table = self.table
+    def open_search_line(self) -> None:
+        table = self._table
         self._search_origin = (table.cursor_seq, table.following)
-        self.search_bar.open(self._search_text)
+        self._search_bar.open(self._search_text)
 
-    def on_search_bar_changed(self, message: SearchBar.Changed) -> None:
-        origin, following = self._search_origin or (self.table.cursor_seq, self.table.following)
+    def search_line_changed(self, message: SearchBar.Changed) -> None:
+        origin, following = self._search_origin or (self._table.cursor_seq, self._table.following)
         if not message.text.strip():
             self.clear_search()
             self._go_back(origin, following)
             return
         self.start_search(message.text, origin, first_jump=True, newest_first=following)
 
-    def on_search_bar_done(self, message: SearchBar.Done) -> None:
+    def search_line_done(self, message: SearchBar.Done) -> None:
         if not message.keep:
             origin, following = self._search_origin or (None, False)
             self.clear_search()
             self._go_back(origin, following)
-        focus_now(self.table)
+        focus_now(self._table)
         self._search_origin = None
 
     def _go_back(self, seq: int | None, following: bool) -> None:
         if following:
-            self.table.follow()
-        elif seq is not None and seq in self.store:
-            self.table.jump_to_seq(seq)
+            self._table.follow()
+        elif seq is not None and seq in self._store:
+            self._table.jump_to_seq(seq)
 
     # -- searching ----------------------------------------------------------------------------
 
@@ -100,39 +122,30 @@ class SearchActions(AppPart):
         match nearest it (the newest when ``newest_first``, else the next one down)."""
         match = parse_search(text)
         if anchor is None:
-            anchor = self.table.cursor_seq
-        start = anchor if anchor is not None else self.store.end_seq
+            anchor = self._table.cursor_seq
+        start = anchor if anchor is not None else self._store.end_seq
         self._search_text = text.strip()
-        self.search = Search(self.view, match, start)
-        self._search_rules = self.view.rules
+        self.search = Search(self._view, match, start)
+        self._search_rules = self._view.rules
         self._jump = _Jump(start, forward=not newest_first, inclusive=True, either_way=True) if first_jump else None
-        self._show_search_marks()
+        self.show_marks()
         self._search_on()
 
     def clear_search(self) -> None:
         self.search = None
         self._jump = None
         self._search_text = ""
-        self.workers.cancel_group(self, "search")
-        self._show_search_marks()
-        self.update_status()
+        if self._worker is not None:
+            self._worker.cancel()
+        self.show_marks()
+        self._update_status()
 
-    def action_clear_search(self) -> None:
-        if self.search is not None:
-            self.clear_search()
-
-    def action_next_match(self) -> None:
-        self._jump_to_match(forward=True)
-
-    def action_previous_match(self) -> None:
-        self._jump_to_match(forward=False)
-
-    def _jump_to_match(self, forward: bool) -> None:
+    def jump_to_match(self, *, forward: bool) -> None:
         search = self._fresh_search()
         if search is None:
-            self.notify("No search yet: f finds a text or a /regex/.", timeout=4)
+            self._host.notify("No search yet: f finds a text or a /regex/.", timeout=4)
             return
-        seq = self.table.cursor_seq
+        seq = self._table.cursor_seq
         if seq is None:
             return
         self._jump = _Jump(seq, forward)
@@ -143,8 +156,8 @@ class SearchActions(AppPart):
         """The search, started again from the selected row when the rules changed (which
         rows are shown changed with them)."""
         search = self.search
-        if search is not None and self.view.rules is not self._search_rules:
-            anchor = self.table.cursor_seq
+        if search is not None and self._view.rules is not self._search_rules:
+            anchor = self._table.cursor_seq
             jump = self._jump
             self.start_search(self._search_text, anchor, first_jump=False, newest_first=False)
             self._jump = jump
@@ -157,12 +170,12 @@ class SearchActions(AppPart):
         jump, search = self._jump, self.search
         if jump is None or search is None:
             return True
-        limit = self.table.paused_end
+        limit = self._table.paused_end
         found = search.nearest(jump.seq, forward=jump.forward, inclusive=jump.inclusive, limit=limit)
         if jump.forward and not jump.inclusive:
             # Row to row: past the matches the cursor's row shows (a collapsed storm's repeats).
-            row = self.table.cursor_row
-            while found is not None and found != PENDING and self.storms.row_showing(found) <= row:
+            row = self._table.cursor_row
+            while found is not None and found != PENDING and self._storms.row_showing(found) <= row:
                 found = search.nearest(found, forward=True, limit=limit)
         if found == PENDING:
             return False
@@ -173,46 +186,49 @@ class SearchActions(AppPart):
             found = other
         self._jump = None
         if found is not None:
-            self.table.jump_to_seq(found)
+            self._table.jump_to_seq(found)
         elif not jump.either_way:
             where = "below" if jump.forward else "above"
-            self.notify(f"No match {where} for {describe_search(search.match)}", timeout=3)
-        self.update_status()
+            self._host.notify(f"No match {where} for {describe_search(search.match)}", timeout=3)
+        self._update_status()
         return True
 
     def _search_on(self) -> None:
         """Keep the search walking in the background (when it has something to do)."""
         search = self.search
         busy = search is not None and (not search.complete or self._jump is not None)
-        if busy and not any(w.group == "search" and w.is_running for w in self.workers):
-            self._search_in_background()
+        if busy and not (self._worker is not None and self._worker.is_running):
+            self._worker = self._host.run_worker(
+                self._search_in_background(), name="_search_in_background", group="search", exclusive=True
+            )
 
-    @work(exclusive=True, group="search")
     async def _search_in_background(self) -> None:
-        shown_at = self.clock()
+        shown_at = self._clock()
         marked = -1
         while True:
             search = self._fresh_search()
             if search is None:
                 return
-            if not self.view.refiltering:  # the rows shown are known
+            if not self._view.refiltering:  # the rows shown are known
                 jump = self._jump
                 prefer = 0 if jump is None else (1 if jump.forward else -1)
                 complete = search.step(SEARCH_BUDGET_S, prefer)
                 if search.failed:
-                    self.notify(f"Search stopped, {search.failed}: {describe_search(search.match)}", severity="error")
+                    self._host.notify(
+                        f"Search stopped, {search.failed}: {describe_search(search.match)}", severity="error"
+                    )
                     self._jump = None
                 waiting = self._jump is not None
                 jumped = self._try_jump()
                 redrawn = waiting and jumped  # the table moved to a match
-                if self.clock() - shown_at >= SEARCH_PROGRESS_PERIOD_S or complete:
-                    shown_at = self.clock()
+                if self._clock() - shown_at >= SEARCH_PROGRESS_PERIOD_S or complete:
+                    shown_at = self._clock()
                     found = search.count()
                     if found != marked:  # new matches may be on screen: draw their marks
                         marked = found
-                        self._show_search_marks()
+                        self.show_marks()
                         redrawn = True
-                    self.update_status()
+                    self._update_status()
                 if complete and jumped:
                     return
                 if redrawn:  # the frame that draws it goes first, in a turn of its own
@@ -220,7 +236,7 @@ class SearchActions(AppPart):
                     continue
             await pause_between_slices(SEARCH_PAUSE_S)
 
-    def search_after_records(self, *, rewritten: bool = False) -> None:
+    def after_records(self, *, rewritten: bool = False) -> None:
         """New records arrived: they are searched too (all again when the newest ones were
         written in another order: a late history placed by its stamp)."""
         if rewritten and self.search is not None:
@@ -231,8 +247,8 @@ class SearchActions(AppPart):
 
     # -- what the table and the status line show ------------------------------------------------
 
-    def _show_search_marks(self) -> None:
-        table = self.table
+    def show_marks(self) -> None:
+        table = self._table
         search = self.search
         if search is not None:
             pattern = display_pattern(search.match)
@@ -252,11 +268,11 @@ class SearchActions(AppPart):
             table.match_spans = spans
         else:
             table.match_spans = None
-        table.set_gutter(self._gutter if search is not None or len(self.marks) else None)
+        table.set_gutter(self._gutter if search is not None or len(self._marks) else None)
         table.restyle()
 
     def _gutter(self, seq: int) -> str:
-        if seq in self.marks:
+        if seq in self._marks:
             return MARK_GLYPH
         search = self.search
         return MATCH_GLYPH if search is not None and search.is_match(seq) else ""
@@ -270,13 +286,13 @@ class SearchActions(AppPart):
         what = describe_search(search.match)
         if search.failed:
             return f"search stopped: {what}"
-        limit = self.table.paused_end
+        limit = self._table.paused_end
         found = search.count(limit)
         if not search.complete:
             return f"searching {what}: {found:,} found"
         if not found:
             return f"no match {what}"
-        seq = self.table.cursor_seq
+        seq = self._table.cursor_seq
         if limit is None:  # counted as rows: a collapsed storm's matches are one
             rows = self._rows_of(search)
             index = rows.index(seq) if seq is not None else None
@@ -293,7 +309,7 @@ class SearchActions(AppPart):
 
     def _rows_of(self, search: Search) -> MatchRows:
         """The rows holding matches (counted again when the matches or the storms changed)."""
-        storms = self.storms
+        storms = self._storms
         key = (
             search,
             search.count(),
