@@ -112,7 +112,7 @@ async def run(
     gc.collect()
     async with app.run_test(size=size):
         if not overview:
-            app.set_overview(False)
+            app.overview.set_enabled(False)
         frames = count_frames(app.table)
         stalls = StallProbe()
         keys = KeyProbe(app, app.table, frames)

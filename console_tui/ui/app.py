@@ -36,13 +36,16 @@ from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
 from ..model.store import LogStore
+from ..model.storms import StormRows
 from ..model.text import multi_line, one_line
+from ..model.timeline import Timeline
 from ..model.view import LogView
 from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from . import textual_fixes
 from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
 from .controllers.jumps import JumpsController
+from .controllers.overview import OverviewController
 from .controllers.search import SearchController
 from .exit_signals import ExitSignals, terminal_gone
 from .file_actions import FileActions
@@ -50,7 +53,6 @@ from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
 from .keys import binding_ids, keymap_path, load_keymap
-from .overview_actions import OverviewActions
 from .palette import PaletteProvider
 from .pane_actions import PaneActions
 from .rule_actions import RuleActions
@@ -92,7 +94,6 @@ class ConsoleApp(
     FileActions,
     PaneActions,
     ToggleActions,
-    OverviewActions,
 ):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
@@ -167,8 +168,11 @@ class ConsoleApp(
         self.drain_interval = drain_interval
         self.clock = clock
         self.collection_policy = CollectionPolicy(delay=drain_interval / 2)
-        rows = self.make_overview(self.store, self.view, utc)
-        self.table = LogTable(self.store, rows, utc=self.utc, id="log-table")
+        #: The overview's model (storms collapsed in the table, the rate over time) and strip.
+        self.timeline = Timeline(self.store, self.view)
+        self.storms = StormRows(self.store, self.view)
+        self.timeline_strip = TimelineStrip(self.timeline, utc=utc, id="timeline")
+        self.table = LogTable(self.store, self.storms, utc=self.utc, id="log-table")
         #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self.robots = list(robots)
         self.table.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
@@ -208,6 +212,20 @@ class ConsoleApp(
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
+        self.overview = OverviewController(
+            self,
+            self.store,
+            self.view,
+            self.table,
+            self.timeline,
+            self.storms,
+            self.timeline_strip,
+            self.node_stats,
+            sources=lambda: [source.status for source in self.sources],
+            utc=utc,
+            clock=clock,
+            update_status=self.update_status,
+        )
         self.searching = SearchController(
             self,
             self.store,
@@ -289,7 +307,7 @@ class ConsoleApp(
             listed = "\n".join(self._keymap_problems[:5])
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
         focus_now(self.table)
-        self.start_overview()
+        self.overview.start()
         self.set_interval(self.drain_interval, self.drain_intake)
         self.apply_initial_rules(self._initial_rules, self._initial_query)
         self.update_status()
@@ -350,7 +368,7 @@ class ConsoleApp(
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
-            note=", ".join(note for note in (self.rules_note(), self.storms_note()) if note),
+            note=", ".join(note for note in (self.rules_note(), self.overview.note()) if note),
             search=self.searching.search_status(),
             toggles=self.toggles_status(),
             time=self.time_status(),
@@ -388,6 +406,33 @@ class ConsoleApp(
         if action == "clear_search":
             return self.searching.search is not None and not self.view.refiltering
         return True
+
+    # -- the overview (``controllers.overview``) -------------------------------------------------
+
+    def action_toggle_timeline(self) -> None:
+        self.overview.toggle_timeline()
+
+    def action_timeline(self) -> None:
+        self.overview.pick_time()
+
+    def on_timeline_strip_jump(self, message: TimelineStrip.Jump) -> None:
+        self.overview.show_seq(message.seq)
+
+    def on_timeline_strip_leave(self, _message: TimelineStrip.Leave) -> None:
+        focus_now(self.table)
+
+    def action_toggle_storm(self) -> None:
+        self.overview.toggle_storm()
+
+    def action_toggle_storms(self) -> None:
+        self.overview.toggle_storms()
+
+    def action_toggle_mask_digits(self) -> None:
+        self.overview.toggle_mask_digits()
+
+    def action_summary(self) -> None:
+        if not isinstance(self.screen, SummaryScreen):
+            self.overview.summary()
 
     # -- search (``controllers.search``) --------------------------------------------------------
 

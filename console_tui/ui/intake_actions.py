@@ -24,6 +24,7 @@ from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from ..sources.status import SourceStatus
 from .app_part import AppPart
+from .controllers.overview import OverviewController
 from .controllers.search import SearchController
 from .gc_policy import CollectionPolicy
 from .widgets.rules_pane import RulesPane
@@ -61,6 +62,8 @@ def _stop_quietly(source: Source) -> None:
 class IntakeActions(AppPart):
     """Sources in, records into the store each tick, sources out when the app ends."""
 
+    overview: OverviewController
+
     # What it uses of the app (``ConsoleApp`` sets them).
     sources: list[Source]
     #: A fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
@@ -77,8 +80,6 @@ class IntakeActions(AppPart):
     collection_policy: CollectionPolicy
     check_loads: Callable[[], None]
     show_rules: Callable[..., None]
-    show_overview: Callable[..., None]
-    follow_overview: Callable[[], None]
     rules_changed: Callable[[], None]
     searching: SearchController
     clock: Callable[[], float]
@@ -173,7 +174,7 @@ class IntakeActions(AppPart):
             self.show_rules(at_most_every=0.5)
         self.update_status()
         self.tell_slow_intake()
-        self.show_overview()
+        self.overview.show()
         self.collection_policy.tick()
 
     def tell_slow_intake(self) -> None:
@@ -215,7 +216,7 @@ class IntakeActions(AppPart):
                 else:
                     added += len(self.store.extend(batch))
             self.view.update()
-            self.follow_overview()
+            self.overview.follow()
         if self.view.switched_off:
             self.rules_changed()
         if not self._robots_shown and len(self.store.robots) > 2:  # "" and two robots or more

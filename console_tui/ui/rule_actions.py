@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import asyncio
 import os
-from collections.abc import Callable
 
 from textual import work
 
@@ -19,6 +18,7 @@ from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
 from ..model.text import plural
 from .app_part import AppPart
+from .controllers.overview import OverviewController
 from .focus import focus_now
 from .screens.files import PathScreen
 from .screens.quick_rule import QuickRuleScreen
@@ -40,12 +40,12 @@ QUICK_RULE_ROWS = 10_000
 class RuleActions(AppPart):
     """Rules in force, and every way to change them."""
 
+    overview: OverviewController
+
     # What it uses of the app (``ConsoleApp`` sets them).
     query_bar: QueryBar
     rules_pane: RulesPane
     query_history: QueryHistory
-    follow_overview: Callable[[], None]
-    show_overview: Callable[..., None]
 
     #: The rules in force; a new set replaces it whole (rule sets are values).
     rules: RuleSet = RuleSet()
@@ -69,8 +69,8 @@ class RuleActions(AppPart):
         table.decoration_of = self.view.decoration_of if rules.highlighting else None
         table.restyle()
         with table.keeping_position(cursor_line=True):
-            self.follow_overview()  # the storms and the timeline count again under these rules
-        self.show_overview(now=True)  # counting again, or (the same rows shown) counted already
+            self.overview.follow()  # the storms and the timeline count again under these rules
+        self.overview.show(now=True)  # counting again, or (the same rows shown) counted already
         for rule, why in self.view.take_switched_off():
             self.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
         if self.view.refiltering:

@@ -6,13 +6,13 @@ A part of ``ConsoleApp`` (it mixes this in): the table's keys that need more tha
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import replace
 
 from ..model.marks import Marks
 from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
 from .app_part import AppPart
+from .controllers.overview import OverviewController
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
 from .widgets.log_table import LogTable
@@ -22,13 +22,13 @@ from .widgets.table_columns import COLUMNS
 class TableActions(AppPart):
     """Pause, follow, clear, columns and details."""
 
+    overview: OverviewController
+
     # What it uses of the app (``ConsoleApp`` sets them).
     marks: Marks
     node_stats: NodeStats
     #: How loaded files were read, by source: the detail view says it.
     source_notes: dict[str, list[str]]
-    show_overview: Callable[..., None]
-    clear_overview: Callable[[], None]
     #: Whether the footer names the pause key Resume.
     _shown_paused = False
 
@@ -41,7 +41,7 @@ class TableActions(AppPart):
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()
-        self.show_overview(force=True)
+        self.overview.show(force=True)
         paused = self.table.paused_end is not None
         if paused != self._shown_paused:
             self._shown_paused = paused
@@ -61,7 +61,7 @@ class TableActions(AppPart):
         self.store.clear()
         self.node_stats.clear()
         self.view.rebuild()
-        self.clear_overview()
+        self.overview.restart()
         self.table.reset()
         self.update_status()
 

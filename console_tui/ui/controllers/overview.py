@@ -1,33 +1,29 @@
-"""The app's overview: the timeline strip, storms collapsed in the table, the summary.
+"""The overview: the timeline strip, storms collapsed in the table, the summary.
 
-A part of ``ConsoleApp`` (it mixes this in). The model does the counting (``Timeline``,
-``StormRows``; the summary reads the app's ``NodeStats``, which the node panel shares), kept
-up to date as records arrive (``follow_overview``,
-inside the table's ``keeping_position``) and, after a rule change, caught up in the
-background in slices with the event loop free between them, as the rules are.
+The model does the counting (``Timeline``, ``StormRows``; the summary reads the app's
+``NodeStats``, which the node panel shares), kept up to date as records arrive (``follow``,
+inside the table's ``keeping_position``) and, after a rule change, caught up in the background
+in slices with the event loop free between them, as the rules are.
 """
 
 from __future__ import annotations
 
 import asyncio
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Sequence
 
-from textual import work
-
-from ..model.node_stats import NodeStats
-from ..model.shown_follower import sync_together
-from ..model.store import LogStore
-from ..model.storms import StormRows
-from ..model.timeline import Timeline
-from ..model.view import LogView
-from .app_part import AppPart
-from .focus import focus_now
-from .screens.summary import SummaryScreen
-from .slicing import pause_between_slices
-from .widgets.timeline_strip import TimelineStrip
-
-if TYPE_CHECKING:
-    from .intake_actions import Source
+from ...model.node_stats import NodeStats
+from ...model.shown_follower import sync_together
+from ...model.store import LogStore
+from ...model.storms import StormRows
+from ...model.timeline import Timeline
+from ...model.view import LogView
+from ...sources.status import SourceStatus
+from ..focus import focus_now
+from ..screens.summary import SummaryScreen
+from ..slicing import pause_between_slices
+from ..widgets.log_table import LogTable
+from ..widgets.timeline_strip import TimelineStrip
+from .host import Host
 
 #: Taking in what arrived, each tick: at most this long (the rest in the background).
 FOLLOW_BUDGET_S = 0.010
@@ -42,41 +38,57 @@ REFILTER_POLL_S = 0.01
 STRIP_PERIOD_S = 0.25
 
 
-class OverviewActions(AppPart):
-    """The timeline, the storms and the summary, and their keys."""
+class OverviewController:
+    """The timeline, the storms and the summary."""
 
-    timeline: Timeline
-    storms: StormRows
-    node_stats: NodeStats
-    timeline_strip: TimelineStrip
-    #: The live sources (``IntakeActions``): the summary says what each reads and lost.
-    sources: list[Source]
-    _catching_up = False
-    _strip_at = 0.0
-    #: The table followed the tail when the strip was last updated.
-    _strip_following = False
-    #: The store's end when the strip was last updated.
-    _strip_end = -1
+    def __init__(
+        self,
+        host: Host,
+        store: LogStore,
+        view: LogView,
+        table: LogTable,
+        timeline: Timeline,
+        storms: StormRows,
+        strip: TimelineStrip,
+        node_stats: NodeStats,
+        *,
+        sources: Callable[[], Sequence[SourceStatus]],
+        utc: bool,
+        clock: Callable[[], float],
+        update_status: Callable[[], None],
+    ) -> None:
+        self._host = host
+        self._store = store
+        self._view = view
+        self._table = table
+        self._timeline = timeline
+        self._storms = storms
+        self._strip = strip
+        self._node_stats = node_stats
+        #: The live sources' states: the summary says what each reads and lost.
+        self._sources = sources
+        self._utc = utc
+        self._clock = clock
+        self._update_status = update_status
+        self._catching_up = False
+        self._strip_at = 0.0
+        #: The table followed the tail when the strip was last updated.
+        self._strip_following = False
+        #: The store's end when the strip was last updated.
+        self._strip_end = -1
 
-    def make_overview(self, store: LogStore, view: LogView, utc: bool) -> StormRows:
-        """The overview's model and strip; returns the rows the table shows."""
-        self.timeline = Timeline(store, view)
-        self.storms = StormRows(store, view)
-        self.timeline_strip = TimelineStrip(self.timeline, utc=utc, id="timeline")
-        return self.storms
-
-    def start_overview(self) -> None:
+    def start(self) -> None:
         """Once the table is there: storm rows get their marks, and what is in the store is taken in."""
-        self.table.badge_of = self.storms.badge
-        self.follow_overview()
+        self._table.badge_of = self._storms.badge
+        self.follow()
 
     # -- keeping up ---------------------------------------------------------------------------------
 
-    def follow_overview(self) -> None:
+    def follow(self) -> None:
         """Take in what arrived (call inside the table's ``keeping_position``); what is left
         (after a rule change: everything) is caught up in the background."""
         caught_up = True
-        for follower in (self.storms, self.timeline):
+        for follower in (self._storms, self._timeline):
             if follower.rebuilding or not follower.sync(FOLLOW_BUDGET_S):
                 caught_up = False
         if not caught_up:
@@ -85,36 +97,37 @@ class OverviewActions(AppPart):
     def _catch_up(self) -> None:
         if not self._catching_up:
             self._catching_up = True
-            self._catch_up_in_background()
+            self._host.run_worker(
+                self._catch_up_in_background(), name="_catch_up_in_background", group="overview", exclusive=True
+            )
 
-    @work(exclusive=True, group="overview")
     async def _catch_up_in_background(self) -> None:
         try:
-            while self.storms.behind or self.timeline.behind:
-                if self.view.filtered and self.view.refiltering:
+            while self._storms.behind or self._timeline.behind:
+                if self._view.filtered and self._view.refiltering:
                     await asyncio.sleep(REFILTER_POLL_S)  # the view decides the oldest rows first
                     continue
-                with self.table.keeping_position(cursor_line=True):
-                    sync_together((self.storms, self.timeline), CATCH_UP_BUDGET_S)  # one pass for both
-                if not (self.storms.behind or self.timeline.behind):
+                with self._table.keeping_position(cursor_line=True):
+                    sync_together((self._storms, self._timeline), CATCH_UP_BUDGET_S)  # one pass for both
+                if not (self._storms.behind or self._timeline.behind):
                     break  # the strip and the status line say so in this same turn of the loop
                 await pause_between_slices(CATCH_UP_PAUSE_S)
-            self.timeline.sync()  # done: the counts from before the change go
+            self._timeline.sync()  # done: the counts from before the change go
         finally:
             self._catching_up = False
-        self.show_overview(now=True)
-        self.update_status()  # the storms counted
+        self.show(now=True)
+        self._update_status()  # the storms counted
 
-    def show_overview(self, *, force: bool = False, now: bool = False) -> None:
+    def show(self, *, force: bool = False, now: bool = False) -> None:
         """The strip follows the counts and the table's place a few times a second, or now
         with ``force`` -- except while the table follows the tail and records arrive: then
         the table says it changed every tick, and the strip waits for its time. With ``now``
         (the rules changed, or the counts after a change are done), now in any case."""
-        strip = self.timeline_strip
+        strip = self._strip
         if not strip.shown:
             return
-        clock = self.clock()
-        table, end = self.table, self.store.end_seq
+        clock = self._clock()
+        table, end = self._table, self._store.end_seq
         following = table.following and table.paused_end is None
         due = now or clock - self._strip_at >= STRIP_PERIOD_S or strip.has_focus
         if not due:
@@ -122,135 +135,129 @@ class OverviewActions(AppPart):
             if not force or at_the_tail:
                 return
         self._strip_at, self._strip_following, self._strip_end = clock, following, end
-        strip.update_from_model(self._table_span(), self.view.filtered)
+        strip.update_from_model(self._table_span(), self._view.filtered)
 
     def _table_span(self) -> tuple[int, int] | None:
         """Stamps of the first and last rows on the table's screen."""
-        table = self.table
+        table = self._table
         rows = table.row_count
         if not rows:
             return None
         top = min(int(table.scroll_y), rows - 1)
         bottom = min(top + max(table.size.height - 2, 0), rows - 1)
-        store, seq_at = self.store, table.view.seq_at
+        store, seq_at = self._store, table.view.seq_at
         first, last = seq_at(top), seq_at(bottom)
         if first not in store or last not in store:
             return None
         return store.stamp_of(first), store.stamp_of(last)
 
-    def set_overview(self, enabled: bool) -> None:
+    def set_enabled(self, enabled: bool) -> None:
         """The timeline and the storms on, or off altogether (nothing counted: the screen
         benchmark's run without them)."""
-        self.timeline.set_enabled(enabled)
-        self.storms.set_enabled(enabled)
-        self.table.badge_of = self.storms.badge if enabled else None
-        self.timeline_strip.set_class(not enabled, "-hidden")
-        self.table.restyle()
+        self._timeline.set_enabled(enabled)
+        self._storms.set_enabled(enabled)
+        self._table.badge_of = self._storms.badge if enabled else None
+        self._strip.set_class(not enabled, "-hidden")
+        self._table.restyle()
         if enabled:
             self._catch_up()
 
-    def clear_overview(self) -> None:
+    def restart(self) -> None:
         """After the store was cleared."""
-        self.storms.restart()
-        self.timeline.restart()
-        self.show_overview(force=True)
+        self._storms.restart()
+        self._timeline.restart()
+        self.show(force=True)
 
     # -- the timeline -------------------------------------------------------------------------------
 
-    def action_toggle_timeline(self) -> None:
-        strip = self.timeline_strip
+    def toggle_timeline(self) -> None:
+        strip = self._strip
         if strip.shown:
             if strip.has_focus:
-                focus_now(self.table)
+                focus_now(self._table)
             strip.add_class("-hidden")
         else:
             strip.remove_class("-hidden")
-            self.show_overview(force=True)
+            self.show(force=True)
 
-    def action_timeline(self) -> None:
+    def pick_time(self) -> None:
         """Pick a column of the timeline with the keys (showing it if hidden)."""
-        strip = self.timeline_strip
+        strip = self._strip
         if strip.has_focus:
-            focus_now(self.table)
+            focus_now(self._table)
             return
         if not strip.shown:
             strip.remove_class("-hidden")
-        self.show_overview(force=True)
+        self.show(force=True)
         focus_now(strip)
-
-    def on_timeline_strip_jump(self, message: TimelineStrip.Jump) -> None:
-        self.show_seq(message.seq)
-
-    def on_timeline_strip_leave(self, _message: TimelineStrip.Leave) -> None:
-        focus_now(self.table)
 
     def show_seq(self, seq: int) -> bool:
         """Put the table's cursor on the row showing ``seq`` (its storm's row when it is a
         collapsed repeat; the next row when the rules hide it), a third down the screen."""
-        table = self.table
+        table = self._table
         rows = table.row_count
         if not rows:
             return False
-        row = min(self.storms.row_showing(seq), rows - 1)
+        row = min(self._storms.row_showing(seq), rows - 1)
         height = max(table.size.height - 1, 1)
         table.following = False
         table.set_scroll(None, max(min(row - height // 3, rows - height), 0))
         table.move_cursor(row)
-        self.show_overview(force=True)
+        self.show(force=True)
         return True
 
     # -- storms -------------------------------------------------------------------------------------
 
-    def action_toggle_storm(self) -> None:
+    def toggle_storm(self) -> None:
         """Expand the selected row's storm, or collapse it again."""
-        seq = self.table.cursor_seq
-        storm = self.storms.storm_of(seq) if seq is not None else None
+        seq = self._table.cursor_seq
+        storm = self._storms.storm_of(seq) if seq is not None else None
         if storm is None:
-            self.notify("This row is no storm: no repeats of its message follow it.", timeout=3)
+            self._host.notify("This row is no storm: no repeats of its message follow it.", timeout=3)
             return
-        with self.table.keeping_position():
+        with self._table.keeping_position():
             if storm.expanded:
-                self.storms.collapse(storm)
+                self._storms.collapse(storm)
             else:
-                self.storms.expand(storm)
-        if self.table.cursor_seq != storm.head:
+                self._storms.expand(storm)
+        if self._table.cursor_seq != storm.head:
             self.show_seq(storm.head)
-        self.table.restyle()
+        self._table.restyle()
 
-    def action_toggle_storms(self) -> None:
+    def toggle_storms(self) -> None:
         """Storms collapsed, or every message a row."""
-        storms = self.storms
-        with self.table.keeping_position():
+        storms = self._storms
+        with self._table.keeping_position():
             storms.set_enabled(not storms.enabled)
             if storms.enabled:
                 storms.sync(FOLLOW_BUDGET_S)
-        self.table.badge_of = storms.badge if storms.enabled else None
-        self.table.restyle()
+        self._table.badge_of = storms.badge if storms.enabled else None
+        self._table.restyle()
         if storms.behind:
             self._catch_up()
-        self.notify(
+        self._host.notify(
             "Storms collapsed: repeats show as one row (×N)"
             if storms.enabled
             else "Storms not collapsed: every message is a row",
             timeout=3,
         )
-        self.update_status()
+        self._update_status()
 
-    def action_toggle_mask_digits(self) -> None:
-        storms = self.storms
-        with self.table.keeping_position():
+    def toggle_mask_digits(self) -> None:
+        storms = self._storms
+        with self._table.keeping_position():
             storms.set_mask_digits(not storms.mask_digits)
             storms.sync(FOLLOW_BUDGET_S)
-        self.table.restyle()
+        self._table.restyle()
         if storms.behind:
             self._catch_up()
-        self.notify(
+        self._host.notify(
             "Storms: digits count as the same" if storms.mask_digits else "Storms: digits must match too", timeout=3
         )
 
-    def storms_note(self) -> str:
+    def note(self) -> str:
         """What the status line says of the storms: ``12 storms`` (or that they are off)."""
-        storms = self.storms
+        storms = self._storms
         if not storms.enabled:
             return "storms off"
         number = storms.storm_count
@@ -258,28 +265,27 @@ class OverviewActions(AppPart):
 
     # -- the summary --------------------------------------------------------------------------------
 
-    def action_summary(self) -> None:
-        if isinstance(self.screen, SummaryScreen):
-            return
-        self.node_stats.update()
+    def summary(self) -> None:
+        """The summary of the run; the message chosen there is shown in the table."""
+        self._node_stats.update()
 
         def chosen(seq: int | None) -> None:
             if seq is None:
                 return
-            if seq not in self.store:
-                self.notify("That message is no longer kept.", timeout=4)
+            if seq not in self._store:
+                self._host.notify("That message is no longer kept.", timeout=4)
             elif not self._view_shows(seq):
-                self.notify("The rules hide that message (r shows them).", timeout=5)
+                self._host.notify("The rules hide that message (r shows them).", timeout=5)
             else:
                 self.show_seq(seq)
 
-        sources = [source.status for source in self.sources]
-        self.push_screen(
-            SummaryScreen(self.store, self.node_stats, len(self.view), utc=self.utc, sources=sources), chosen
+        sources = list(self._sources())
+        self._host.push_screen(
+            SummaryScreen(self._store, self._node_stats, len(self._view), utc=self._utc, sources=sources), chosen
         )
 
     def _view_shows(self, seq: int) -> bool:
-        view = self.view
+        view = self._view
         if not view.filtered:
             return True
         row = view.row_of(seq)
