@@ -46,7 +46,9 @@ from . import textual_fixes
 from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
 from .controllers.jumps import JumpsController
 from .controllers.overview import OverviewController
+from .controllers.panes import PanesController
 from .controllers.search import SearchController
+from .controllers.toggles import TogglesController
 from .exit_signals import ExitSignals, terminal_gone
 from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
@@ -54,14 +56,12 @@ from .gc_policy import CollectionPolicy
 from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
 from .keys import binding_ids, keymap_path, load_keymap
 from .palette import PaletteProvider
-from .pane_actions import PaneActions
 from .rule_actions import RuleActions
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
 from .screens.mark_list import MarksScreen
 from .screens.summary import SummaryScreen
 from .table_actions import TableActions
-from .toggle_actions import ToggleActions
 from .widgets.key_footer import KeyFooter
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
@@ -70,6 +70,7 @@ from .widgets.node_pane import NodePane
 from .widgets.query_bar import QueryBar
 from .widgets.rules_pane import RulesPane
 from .widgets.search_bar import SearchBar
+from .widgets.side_pane import SidePane
 from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
 from .widgets.timeline_strip import TimelineStrip
 
@@ -92,8 +93,6 @@ class ConsoleApp(
     TableActions,
     RuleActions,
     FileActions,
-    PaneActions,
-    ToggleActions,
 ):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
@@ -206,7 +205,7 @@ class ConsoleApp(
         #: Messages per node and severity, and rates: the node panel shows them.
         self.node_stats = NodeStats(self.store)
         self.node_stats.update()
-        self.node_pane = NodePane(self.node_stats, self.node_toggles)
+        self.node_pane = NodePane(self.node_stats, lambda: self.toggles.node_toggles())
         self.exit_signals = ExitSignals(self._exit_on_signal)
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
@@ -226,6 +225,16 @@ class ConsoleApp(
             clock=clock,
             update_status=self.update_status,
         )
+        self.toggles = TogglesController(
+            self.store,
+            self.table,
+            self.node_pane,
+            rules=lambda: self.rules,
+            apply_rules=self.apply_rules,
+            live=lambda: bool(self.sources),
+            update_status=self.update_status,
+        )
+        self.panes = PanesController(self, self.store, self.table, self.logger_pane, self.node_pane)
         self.searching = SearchController(
             self,
             self.store,
@@ -370,8 +379,8 @@ class ConsoleApp(
             sources=statuses,
             note=", ".join(note for note in (self.rules_note(), self.overview.note()) if note),
             search=self.searching.search_status(),
-            toggles=self.toggles_status(),
-            time=self.time_status(),
+            toggles=self.toggles.status(),
+            time=self.toggles.time_status(),
         )
         self.status_bar.show_facts(facts)
         table.show_hint(empty_hint(facts, self.view.refiltering))
@@ -406,6 +415,59 @@ class ConsoleApp(
         if action == "clear_search":
             return self.searching.search is not None and not self.view.refiltering
         return True
+
+    # -- toggles (``controllers.toggles``) and the side panes (``controllers.panes``) ---------------
+
+    def action_toggle_level(self, level: int) -> None:
+        self.toggles.toggle_level(level)
+
+    def action_raise_minimum(self) -> None:
+        self.toggles.raise_minimum()
+
+    def action_lower_minimum(self) -> None:
+        self.toggles.lower_minimum()
+
+    def action_all_levels(self) -> None:
+        self.toggles.all_levels()
+
+    def action_minimum_level(self, level: int) -> None:
+        self.toggles.minimum_level(level)
+
+    def on_node_pane_toggle(self, message: NodePane.Toggle) -> None:
+        self.toggles.node_panel_toggle(message)
+
+    def action_solo_row_node(self) -> None:
+        self.toggles.solo_row_node()
+
+    def action_mute_row_node(self) -> None:
+        self.toggles.mute_row_node()
+
+    def action_clear_node_toggles(self) -> None:
+        self.toggles.clear_node_toggles()
+
+    def action_next_time_format(self) -> None:
+        self.toggles.next_time_format()
+
+    def action_time_format(self, name: str) -> None:
+        self.toggles.time_format(name)
+
+    def action_toggle_utc(self) -> None:
+        self.toggles.toggle_utc()
+
+    def action_toggle_loggers(self) -> None:
+        self.panes.toggle_loggers()
+
+    def action_toggle_nodes(self) -> None:
+        self.panes.toggle_nodes()
+
+    def action_loggers_for_row(self) -> None:
+        self.panes.loggers_for_row()
+
+    def on_logger_pane_temporary_requested(self, message: LoggerPane.TemporaryRequested) -> None:
+        self.panes.ask_temporary_level(message)
+
+    def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
+        focus_now(self.table)
 
     # -- the overview (``controllers.overview``) -------------------------------------------------
 

@@ -1,0 +1,58 @@
+"""The side panes beside the table: the logger levels pane and the node panel (they share the
+right side), and the logger pane's temporary levels. (The rules pane is the rules controller's.)"""
+
+from __future__ import annotations
+
+from ...model.logger_view import shown_logger
+from ...model.store import LogStore
+from ..screens.temporary_level import TemporaryLevelScreen
+from ..widgets.log_table import LogTable
+from ..widgets.logger_pane import LoggerPane
+from ..widgets.node_pane import NodePane
+from .host import Host
+
+#: How long ``t`` sets a temporary level for unless told otherwise.
+DEFAULT_TEMPORARY_S = 30.0
+
+
+class PanesController:
+    """Opening the logger levels pane and the node panel, and a temporary level's dialog."""
+
+    def __init__(
+        self, host: Host, store: LogStore, table: LogTable, logger_pane: LoggerPane, node_pane: NodePane
+    ) -> None:
+        self._host = host
+        self._store = store
+        self._table = table
+        self._logger_pane = logger_pane
+        self._node_pane = node_pane
+
+    def toggle_loggers(self) -> None:
+        if not self._logger_pane.is_open:
+            self._node_pane.close()  # the two share the right side
+        self._logger_pane.toggle()
+
+    def toggle_nodes(self) -> None:
+        if not self._node_pane.is_open:
+            self._logger_pane.close()
+        self._node_pane.toggle()
+
+    def loggers_for_row(self) -> None:
+        """Open the logger levels pane on the node of the table's selected row."""
+        self._node_pane.close()
+        seq = self._table.cursor_seq
+        if seq is None or seq not in self._store:
+            self._logger_pane.open()
+        else:
+            record = self._store.get(seq)
+            self._logger_pane.open_for_logger(record.node, record.robot)
+
+    def ask_temporary_level(self, message: LoggerPane.TemporaryRequested) -> None:
+        """Ask which level and for how long, then have the pane set it."""
+        pane, fqn, logger = message.pane, message.fqn, message.logger
+
+        def chosen(choice: tuple[int, float] | None) -> None:
+            if choice is not None:
+                pane.set_temporary(fqn, logger, *choice)
+
+        self._host.push_screen(TemporaryLevelScreen(fqn, shown_logger(logger), DEFAULT_TEMPORARY_S), chosen)
