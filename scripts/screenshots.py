@@ -125,7 +125,7 @@ async def capture_folder(out: Path) -> list[Path]:
         os.utime(run / "rosout-1-stdout.log", ns=(1624512195_200_000_000,) * 2)
         app = ConsoleApp(files=[str(run)], utc=True)
         async with app.run_test(size=(160, 30)) as pilot:
-            while app.loading or len(app.store) < 20:
+            while app.files.loading or len(app.store) < 20:
                 await pilot.pause(0.1)
             await pilot.press("home")
             await pilot.pause(0.5)

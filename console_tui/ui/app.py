@@ -40,17 +40,16 @@ from ..model.storms import StormRows
 from ..model.text import multi_line, one_line
 from ..model.timeline import Timeline
 from ..model.view import LogView
-from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from . import textual_fixes
 from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
+from .controllers.files import FilesController
 from .controllers.jumps import JumpsController
 from .controllers.overview import OverviewController
 from .controllers.panes import PanesController
 from .controllers.search import SearchController
 from .controllers.toggles import TogglesController
 from .exit_signals import ExitSignals, terminal_gone
-from .file_actions import FileActions
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
@@ -92,7 +91,6 @@ class ConsoleApp(
     IntakeActions,
     TableActions,
     RuleActions,
-    FileActions,
 ):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
@@ -189,16 +187,14 @@ class ConsoleApp(
         self.marks = Marks()
         self.rules_pane = RulesPane(id="rules-pane")
         self.load_bar = LoadBar(id="load-bar")
+        #: File loads' records: taken in ahead of the live ones.
         self.file_queue = IntakeQueue()
-        self.loads: list[FileLoad] = []
-        #: Every file and folder opened: the run's folders, where ``v`` looks for a bare file name.
-        self.opened_paths: list[str] = []
-        self.problems: list[str] = []
-        self.source_notes: dict[str, list[str]] = {}
+        self.files = FilesController(
+            self, self.store, self.view, self.table, self.load_bar, self.file_queue, log_format=log_format
+        )
         self._initial_files = list(files)
         #: The robot of each file given after ``--robot NAME`` (by the path as given).
         self._file_robots = dict(file_robots or {})
-        self.log_format = log_format
         #: Started after the first frame with the sources; whoever made it closes it.
         self.logger_control = logger_control
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
@@ -252,7 +248,7 @@ class ConsoleApp(
             self.view,
             self.table,
             self.marks,
-            opened_paths=self.opened_paths,
+            opened_paths=self.files.opened_paths,
             show_marks=self.searching.show_marks,
             update_status=self.update_status,
         )
@@ -325,7 +321,7 @@ class ConsoleApp(
         self.call_after_refresh(self.start_sources)
         self.call_after_refresh(self.collection_policy.start)  # a collection of all start-up made
         if self._initial_files:
-            self.open_files(self._initial_files, log_format=self.log_format, robots=self._file_robots)
+            self.files.open_files(self._initial_files, robots=self._file_robots)
 
     def _load_keymap(self, keymap_file: str | None) -> tuple[str, ...]:
         """The user's keymap, in force before the widgets compose (their hints name its keys)."""
@@ -341,7 +337,7 @@ class ConsoleApp(
         self.stop_sources()
         if self.remember_rules_at_exit:
             self.remember_rules()
-        self.cancel_loads()
+        self.files.cancel_loads()
 
     def _watch_terminal(self) -> None:
         """A hung-up terminal whose SIGHUP never came: end as on SIGHUP (``exit_signals``)."""
@@ -409,12 +405,26 @@ class ConsoleApp(
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
         if action == "cancel_load":
-            return self.loading
+            return self.files.loading
         if action == "stop_filtering":
             return self.view.refiltering
         if action == "clear_search":
             return self.searching.search is not None and not self.view.refiltering
         return True
+
+    # -- files (``controllers.files``) -----------------------------------------------------------
+
+    def action_open(self) -> None:
+        self.files.ask_open()
+
+    def action_cancel_load(self) -> None:
+        self.files.cancel_loads()
+
+    def action_problems(self) -> None:
+        self.files.show_problems()
+
+    def action_save(self) -> None:
+        self.files.ask_save()
 
     # -- toggles (``controllers.toggles``) and the side panes (``controllers.panes``) ---------------
 

@@ -20,10 +20,10 @@ from ..model.marks import Marks
 from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
 from ..model.record_batch import RecordColumns
-from ..sources.files import FileLoad
 from ..sources.fleet import Robot
 from ..sources.status import SourceStatus
 from .app_part import AppPart
+from .controllers.files import FilesController
 from .controllers.overview import OverviewController
 from .controllers.search import SearchController
 from .gc_policy import CollectionPolicy
@@ -63,6 +63,7 @@ class IntakeActions(AppPart):
     """Sources in, records into the store each tick, sources out when the app ends."""
 
     overview: OverviewController
+    files: FilesController
 
     # What it uses of the app (``ConsoleApp`` sets them).
     sources: list[Source]
@@ -71,14 +72,11 @@ class IntakeActions(AppPart):
     #: The live sources' records; file loads have a queue of their own (``file_queue``).
     queue: IntakeQueue
     file_queue: IntakeQueue
-    loads: list[FileLoad]
-    loading: bool
     logger_control: LoggerControl | None
     node_stats: NodeStats
     marks: Marks
     rules_pane: RulesPane
     collection_policy: CollectionPolicy
-    check_loads: Callable[[], None]
     show_rules: Callable[..., None]
     rules_changed: Callable[[], None]
     searching: SearchController
@@ -159,7 +157,7 @@ class IntakeActions(AppPart):
         for source in self.sources:
             status = source.status
             self.histories.note(id(source), status.publishers, status.topic)
-        if not self.loading:
+        if not self.files.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
             live: list[RecordColumns] = self.queue.drain_batches(room)
             if len(live) > 1 and len(self.robots) > 1:  # a fleet: what its robots sent meanwhile, by time
@@ -168,8 +166,8 @@ class IntakeActions(AppPart):
             live = []
         if batches or live:
             self.add_batches(batches + live, live_from=len(batches))
-        if self.loads:
-            self.check_loads()
+        if self.files.loads:
+            self.files.check_loads()
         if self.rules_pane.is_open:
             self.show_rules(at_most_every=0.5)
         self.update_status()

@@ -12,6 +12,7 @@ from ..model.marks import Marks
 from ..model.node_stats import NodeStats
 from ..model.record import LogRecord
 from .app_part import AppPart
+from .controllers.files import FilesController
 from .controllers.overview import OverviewController
 from .screens.columns_dialog import ColumnsScreen
 from .screens.detail import DetailScreen
@@ -23,12 +24,11 @@ class TableActions(AppPart):
     """Pause, follow, clear, columns and details."""
 
     overview: OverviewController
+    files: FilesController
 
     # What it uses of the app (``ConsoleApp`` sets them).
     marks: Marks
     node_stats: NodeStats
-    #: How loaded files were read, by source: the detail view says it.
-    source_notes: dict[str, list[str]]
     #: Whether the footer names the pause key Resume.
     _shown_paused = False
 
@@ -91,7 +91,9 @@ class TableActions(AppPart):
         if seq not in self.store:
             return
         self.push_screen(
-            DetailScreen(self.store.get(seq), utc=self.utc, step=self._step_record, source_notes=self.source_notes)
+            DetailScreen(
+                self.store.get(seq), utc=self.utc, step=self._step_record, source_notes=self.files.source_notes
+            )
         )
 
     def _step_record(self, seq: int, delta: int) -> LogRecord | None:

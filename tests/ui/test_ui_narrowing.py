@@ -29,7 +29,7 @@ def strip_lines(app) -> list[str]:
 
 def settled(app) -> bool:
     """Every count caught up with the rules (the view, the storms, the timeline)."""
-    return not (app.loading or app.view.refiltering or app.storms.behind or app.timeline.behind)
+    return not (app.files.loading or app.view.refiltering or app.storms.behind or app.timeline.behind)
 
 
 async def loaded(pilot, app) -> None:

@@ -456,7 +456,7 @@ async def test_a_bare_file_name_opens_under_the_run_folder(tmp_path, monkeypatch
     (elsewhere / "r1node.py").write_text("# another file of the same name\n")
     monkeypatch.chdir(elsewhere)
     app = ConsoleApp(store=bare_name_store(), utc=True)
-    app.opened_paths.append(str(run / "r1.log"))
+    app.files.opened_paths.append(str(run / "r1.log"))
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
         await pilot.press("v")
         await until(pilot, fake_editor.exists, what="the editor")
