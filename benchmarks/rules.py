@@ -197,7 +197,7 @@ async def measure_in_app(store: LogStore, middle: bool = False) -> list[tuple[st
             probe.start()
             await asyncio.sleep(0.05)
             began, cpu_began = time.perf_counter(), time.process_time()
-            app.apply_rules(rules)  # as the query line, the pane or a quick rule does
+            app.filtering.apply_rules(rules)  # as the query line, the pane or a quick rule does
             shown_first = _screen_rows(app)
             while not frames or frames[-1] < began:
                 await asyncio.sleep(0.001)

@@ -47,6 +47,7 @@ from .controllers.files import FilesController
 from .controllers.jumps import JumpsController
 from .controllers.overview import OverviewController
 from .controllers.panes import PanesController
+from .controllers.rules import RulesController
 from .controllers.search import SearchController
 from .controllers.toggles import TogglesController
 from .exit_signals import ExitSignals, terminal_gone
@@ -55,7 +56,6 @@ from .gc_policy import CollectionPolicy
 from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
 from .keys import binding_ids, keymap_path, load_keymap
 from .palette import PaletteProvider
-from .rule_actions import RuleActions
 from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
 from .screens.mark_list import MarksScreen
@@ -90,7 +90,6 @@ class TerminalGuard(Protocol):
 class ConsoleApp(
     IntakeActions,
     TableActions,
-    RuleActions,
 ):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
@@ -221,12 +220,25 @@ class ConsoleApp(
             clock=clock,
             update_status=self.update_status,
         )
+        self.filtering = RulesController(
+            self,
+            self.store,
+            self.view,
+            self.table,
+            self.query_bar,
+            self.rules_pane,
+            self.query_history,
+            self.overview,
+            utc=utc,
+            clock=clock,
+            update_status=self.update_status,
+        )
         self.toggles = TogglesController(
             self.store,
             self.table,
             self.node_pane,
-            rules=lambda: self.rules,
-            apply_rules=self.apply_rules,
+            rules=lambda: self.filtering.rules,
+            apply_rules=self.filtering.apply_rules,
             live=lambda: bool(self.sources),
             update_status=self.update_status,
         )
@@ -314,7 +326,7 @@ class ConsoleApp(
         focus_now(self.table)
         self.overview.start()
         self.set_interval(self.drain_interval, self.drain_intake)
-        self.apply_initial_rules(self._initial_rules, self._initial_query)
+        self.filtering.apply_initial(self._initial_rules, self._initial_query)
         self.update_status()
         # After the first frame: starting sources (threads, child processes) costs CPU
         # the first frame should not wait for.
@@ -336,7 +348,7 @@ class ConsoleApp(
         self.exit_signals.remove()
         self.stop_sources()
         if self.remember_rules_at_exit:
-            self.remember_rules()
+            self.filtering.remember()
         self.files.cancel_loads()
 
     def _watch_terminal(self) -> None:
@@ -373,7 +385,7 @@ class ConsoleApp(
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,
             sources=statuses,
-            note=", ".join(note for note in (self.rules_note(), self.overview.note()) if note),
+            note=", ".join(note for note in (self.filtering.note(), self.overview.note()) if note),
             search=self.searching.search_status(),
             toggles=self.toggles.status(),
             time=self.toggles.time_status(),
@@ -411,6 +423,56 @@ class ConsoleApp(
         if action == "clear_search":
             return self.searching.search is not None and not self.view.refiltering
         return True
+
+    # -- rules (``controllers.rules``) -----------------------------------------------------------
+
+    def action_query(self) -> None:
+        self.query_bar.open()
+
+    def on_query_bar_applied(self, message: QueryBar.Applied) -> None:
+        self.filtering.query_applied(message)
+
+    def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
+        focus_now(self.table)
+
+    def action_toggle_rules(self) -> None:
+        self.filtering.toggle_pane()
+
+    def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
+        self.filtering.apply_rules(message.rules)
+
+    def on_rules_pane_edit_requested(self, message: RulesPane.EditRequested) -> None:
+        self.filtering.edit_rule(message.index)
+
+    def on_rules_pane_file_requested(self, message: RulesPane.FileRequested) -> None:
+        if message.save:
+            self.filtering.ask_save()
+        else:
+            self.filtering.open_rules()
+
+    def action_stop_filtering(self) -> None:
+        self.filtering.stop_filtering()
+
+    def action_toggle_highlighted_only(self) -> None:
+        self.filtering.toggle_highlighted_only()
+
+    def action_add_rule(self) -> None:
+        self.filtering.edit_rule(None)
+
+    def action_quick_rule(self, role: str) -> None:
+        self.filtering.quick_rule(role)
+
+    def action_clear_rules(self) -> None:
+        self.filtering.clear_rules()
+
+    def action_save_rules(self) -> None:
+        self.filtering.ask_save()
+
+    def action_load_rules(self, path: str | None = None) -> None:
+        self.filtering.open_rules(path)
+
+    def action_restore_rules(self) -> None:
+        self.filtering.restore_rules()
 
     # -- files (``controllers.files``) -----------------------------------------------------------
 

@@ -25,6 +25,7 @@ from ..sources.status import SourceStatus
 from .app_part import AppPart
 from .controllers.files import FilesController
 from .controllers.overview import OverviewController
+from .controllers.rules import RulesController
 from .controllers.search import SearchController
 from .gc_policy import CollectionPolicy
 from .widgets.rules_pane import RulesPane
@@ -77,8 +78,7 @@ class IntakeActions(AppPart):
     marks: Marks
     rules_pane: RulesPane
     collection_policy: CollectionPolicy
-    show_rules: Callable[..., None]
-    rules_changed: Callable[[], None]
+    filtering: RulesController
     searching: SearchController
     clock: Callable[[], float]
     _rate = 0.0
@@ -169,7 +169,7 @@ class IntakeActions(AppPart):
         if self.files.loads:
             self.files.check_loads()
         if self.rules_pane.is_open:
-            self.show_rules(at_most_every=0.5)
+            self.filtering.show_counts(at_most_every=0.5)
         self.update_status()
         self.tell_slow_intake()
         self.overview.show()
@@ -216,7 +216,7 @@ class IntakeActions(AppPart):
             self.view.update()
             self.overview.follow()
         if self.view.switched_off:
-            self.rules_changed()
+            self.filtering.rules_changed()
         if not self._robots_shown and len(self.store.robots) > 2:  # "" and two robots or more
             self._robots_shown = True
             table.set_column_shown("robot", True)

@@ -14,8 +14,8 @@ from console_tui.model.rules import MessageRule, RuleSet, exclude
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.rulesfile import load_rules
 from console_tui.model.store import LogStore
-from console_tui.ui import rule_actions
 from console_tui.ui.app import ConsoleApp
+from console_tui.ui.controllers import rules as rule_control
 from console_tui.ui.screens.help import HelpScreen
 
 from support.clock import TickingClock
@@ -60,7 +60,7 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
         assert time.process_time() - began < 3.0
         await until(pilot, lambda: "Rule switched off" in screen_text(app), timeout=5, what="the notification")
         assert "too slow" in screen_text(app)
-        assert not app.rules.entries[0].enabled
+        assert not app.filtering.rules.entries[0].enabled
         assert not app.view.refiltering and len(app.view) == 100_000
         await pilot.press("question_mark")  # and the app goes on answering
         await until(pilot, lambda: isinstance(app.screen, HelpScreen), timeout=10, what="the help screen")
@@ -69,20 +69,20 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
 async def test_esc_stops_a_long_filtering(monkeypatch):
     # A slice walks one piece (the view's clock moves 1 ms a reading, past the budget) and the
     # slices are 0.2 s apart: filtering 200,000 records takes many seconds on any machine.
-    monkeypatch.setattr(rule_actions, "REFILTER_BUDGET_S", 0.0005)
-    monkeypatch.setattr(rule_actions, "REFILTER_PAUSE_S", 0.2)
+    monkeypatch.setattr(rule_control, "REFILTER_BUDGET_S", 0.0005)
+    monkeypatch.setattr(rule_control, "REFILTER_PAUSE_S", 0.2)
     store = LogStore()
     store.extend_records(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
     app = ConsoleApp(store=store, utc=True)
     app.view.clock = TickingClock(0.001)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
         await pilot.pause()
-        app.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
+        app.filtering.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
         await until(pilot, lambda: "filtering" in screen_text(app), timeout=30, what="the filtering shown")
         assert app.view.refiltering
         await pilot.press("escape")
         await until(pilot, lambda: not app.view.refiltering, timeout=5, what="filtering to stop")
-        assert not app.rules.entries[0].enabled
+        assert not app.filtering.rules.entries[0].enabled
         await until(pilot, lambda: "Filtering stopped" in screen_text(app), timeout=5, what="the notification")
         assert len(app.view) == 200_000
 

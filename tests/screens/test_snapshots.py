@@ -83,7 +83,7 @@ def test_rules_pane(snap_compare):
         )
 
         app = pilot.app
-        app.apply_rules(
+        app.filtering.apply_rules(
             RuleSet(
                 (
                     exclude(NodeRule(("sensors.*",))),

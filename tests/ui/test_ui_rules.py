@@ -67,7 +67,7 @@ async def test_query_line_applies_and_replaces_its_rules():
         assert all(line.split()[2] in ("WARN", "ERROR", "FATAL") for line in painted)
         await type_query(pilot, app, "-level:debug")
         await pilot.press("enter")
-        assert len(app.rules.entries) == 1  # the previous query's rule was replaced
+        assert len(app.filtering.rules.entries) == 1  # the previous query's rule was replaced
         assert all(r.level != 10 for r in shown(app)) and len(shown(app)) == 270
         await pilot.pause()
         assert "270/300 shown" in screen_text(app)
@@ -184,12 +184,12 @@ async def test_every_kind_of_rule_through_the_editor(kind, fill, check):
     app = make_app()
     async with app.run_test(size=(160, 45)) as pilot:
         await add_rule(pilot, app, kind, fill)
-        assert len(app.rules.entries) == 1 and app.rules.entries[0].rule.kind == kind
+        assert len(app.filtering.rules.entries) == 1 and app.filtering.rules.entries[0].rule.kind == kind
         rows = shown(app)
         assert 0 < len(rows) < 300 and all(check(r) for r in rows)
         await pilot.pause()
         assert f"{len(rows)}/300 shown" in screen_text(app)
-        listed = app.rules.entries[0].describe()[:20]
+        listed = app.filtering.rules.entries[0].describe()[:20]
         assert listed in screen_text(app), f"the rules pane lists {listed!r}"
 
 
@@ -200,7 +200,7 @@ async def test_an_invalid_regex_is_refused_in_the_editor_and_nothing_changes():
         assert isinstance(app.screen, RuleEditor)
         error_row = line_with(app, "invalid regular expression 'time(out'")[1]
         assert "missing )" in error_row
-        assert not app.rules.entries and len(app.view) == 300
+        assert not app.filtering.rules.entries and len(app.view) == 300
         await pilot.press("escape")
         assert not isinstance(app.screen, RuleEditor)
         assert "300/300 shown" in screen_text(app) and "invalid regular expression" not in screen_text(app)
@@ -254,7 +254,7 @@ async def test_quick_rules_from_a_row():
         await until(pilot, lambda: "240/300 shown" in screen_text(app), what="the rule in force")
         assert all(r.node != row.node for r in shown(app)) and len(app.view) == 240
         await pilot.press("plus", "down", "enter")  # highlight this severity
-        assert app.rules.entries[-1].role is Role.HIGHLIGHT
+        assert app.filtering.rules.entries[-1].role is Role.HIGHLIGHT
         seq = app.view.seq_at(len(app.view) - 1)
         expected = "highlight" if app.store.get(seq).level == app.store.get(app.table.cursor_seq).level else "dim"
         assert app.view.decoration_of(seq) == expected
@@ -270,7 +270,7 @@ async def test_quick_rules_from_selected_rows():
         await pilot.press("minus")
         assert isinstance(app.screen, QuickRuleScreen)
         await pilot.press("enter")  # the first choice: these nodes
-        assert app.rules.entries[-1].rule.names == tuple(dict.fromkeys(row.node for row in rows))
+        assert app.filtering.rules.entries[-1].rule.names == tuple(dict.fromkeys(row.node for row in rows))
         assert all(r.node not in nodes for r in shown(app))
         await pilot.press("up", "shift+up", "escape")  # a plain move and Esc end a selection
         assert len(app.table.selected_rows()) == 1
@@ -282,7 +282,7 @@ async def test_highlighted_only_switch():
         await pilot.pause()
         assert len(app.view) == 300
         await pilot.press("H")
-        assert app.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
+        assert app.filtering.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
         await pilot.pause()
         assert "60/300 shown" in screen_text(app)
         assert {line.split()[2] for _, line in table_rows(app).values()} == {"ERROR", "FATAL"}
@@ -297,7 +297,7 @@ async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
     target = tmp_path / "rules.toml"
     async with app.run_test(size=(160, 45)) as pilot:
         await pilot.pause()
-        saved = app.rules
+        saved = app.filtering.rules
         await pilot.press("r")
         await pilot.press("S")
         assert isinstance(app.screen, PathScreen)
@@ -306,18 +306,18 @@ async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
         assert target.exists()
         app.action_clear_rules()
         await pilot.pause()
-        assert not app.rules.entries and len(app.view) == 300
+        assert not app.filtering.rules.entries and len(app.view) == 300
         await pilot.press("O")
         app.screen.query_one("#path").value = str(target)
         await pilot.press("enter")
         await pilot.pause()
-        assert [e.describe() for e in app.rules.entries] == [e.describe() for e in saved.entries]
+        assert [e.describe() for e in app.filtering.rules.entries] == [e.describe() for e in saved.entries]
         bad = tmp_path / "bad.toml"
         bad.write_text('[[rules]]\nkind = "severity"\nlevels = ["warm"]\n')
-        before = app.rules
+        before = app.filtering.rules
         app.action_load_rules(str(bad))
         await pilot.pause()
-        assert app.rules == before
+        assert app.filtering.rules == before
         assert any("warm" in str(n.message) for n in app._notifications)
 
 
@@ -325,7 +325,7 @@ async def test_rule_changes_over_a_large_store_refilter_in_the_background():
     app = make_app(count=200_000)
     async with app.run_test(size=(160, 45)) as pilot:
         await pilot.pause()
-        app.apply_rules(app.rules.with_query(parse_query("-level:info")))
+        app.filtering.apply_rules(app.filtering.rules.with_query(parse_query("-level:info")))
         # Straight after the change: the newest screen is right, the rest is still to do.
         assert app.view.refiltering
         bottom = [app.store.get(app.view.seq_at(row)) for row in range(len(app.view) - 40, len(app.view))]
