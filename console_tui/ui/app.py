@@ -49,6 +49,7 @@ from .controllers.overview import OverviewController
 from .controllers.panes import PanesController
 from .controllers.rules import RulesController
 from .controllers.search import SearchController
+from .controllers.table import TableController
 from .controllers.toggles import TogglesController
 from .exit_signals import ExitSignals, terminal_gone
 from .focus import KeyGate, focus_now, run_bindings_now
@@ -60,7 +61,6 @@ from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
 from .screens.mark_list import MarksScreen
 from .screens.summary import SummaryScreen
-from .table_actions import TableActions
 from .widgets.key_footer import KeyFooter
 from .widgets.load_bar import LoadBar
 from .widgets.log_table import LogTable
@@ -89,7 +89,6 @@ class TerminalGuard(Protocol):
 
 class ConsoleApp(
     IntakeActions,
-    TableActions,
 ):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
@@ -99,8 +98,10 @@ class ConsoleApp(
     COMMANDS = App.COMMANDS | {PaletteProvider}
 
     BINDINGS = [
-        # Named for what it does now: the footer says Resume while paused (name_pause_key).
-        Binding("space", "toggle_pause", "Pause", id="console.pause"),
+        # One key, two bindings: check_action shows the one that applies (Resume while paused);
+        # one id, so that a keymap moves both.
+        Binding("space", "pause", "Pause", id="console.pause"),
+        Binding("space", "resume", "Resume", id="console.pause"),
         Binding("c", "clear", "Clear", id="console.clear"),
         Binding("o", "open", "Open", id="console.open"),
         Binding("s", "save", "Save", id="console.save"),
@@ -231,6 +232,18 @@ class ConsoleApp(
             self.overview,
             utc=utc,
             clock=clock,
+            update_status=self.update_status,
+        )
+        self.table_control = TableController(
+            self,
+            self.store,
+            self.view,
+            self.table,
+            self.marks,
+            self.node_stats,
+            self.overview,
+            source_notes=self.files.source_notes,
+            utc=utc,
             update_status=self.update_status,
         )
         self.toggles = TogglesController(
@@ -399,7 +412,8 @@ class ConsoleApp(
     def _refresh_footer(self) -> None:
         """The footer's keys that come and go (``check_action``) follow the app's state when
         it changes (a load ends, filtering is done), not only when the focus moves."""
-        state = tuple(self.check_action(action, ()) for action in ("cancel_load", "stop_filtering", "clear_search"))
+        actions = ("pause", "cancel_load", "stop_filtering", "clear_search")
+        state = tuple(self.check_action(action, ()) for action in actions)
         if state != self._footer_state:
             self._footer_state = state
             self.refresh_bindings()
@@ -416,6 +430,10 @@ class ConsoleApp(
         await super().on_event(event)
 
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
+        if action == "pause":
+            return self.table.paused_end is None
+        if action == "resume":
+            return self.table.paused_end is not None
         if action == "cancel_load":
             return self.files.loading
         if action == "stop_filtering":
@@ -423,6 +441,39 @@ class ConsoleApp(
         if action == "clear_search":
             return self.searching.search is not None and not self.view.refiltering
         return True
+
+    # -- the table (``controllers.table``) -------------------------------------------------------
+
+    def action_pause(self) -> None:
+        self.table.set_paused(True)
+
+    def action_resume(self) -> None:
+        self.table.set_paused(False)
+
+    def action_toggle_pause(self) -> None:
+        self.table.set_paused(self.table.paused_end is None)
+
+    def action_follow(self) -> None:
+        self.table.follow()
+
+    def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
+        self.update_status()  # the footer's Pause or Resume too
+        self.overview.show(force=True)
+
+    def action_clear(self) -> None:
+        self.table_control.clear()
+
+    def action_columns(self) -> None:
+        self.table_control.ask_columns()
+
+    def action_toggle_column(self, key: str) -> None:
+        self.table_control.toggle_column(key)
+
+    def action_details(self) -> None:
+        self.table.action_activate()
+
+    def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
+        self.table_control.open_detail(message.seq)
 
     # -- rules (``controllers.rules``) -----------------------------------------------------------
 
@@ -630,7 +681,8 @@ class ConsoleApp(
         nav = self.nav_bindings()
         return [
             ("Table", _bindings(LogTable.BINDINGS)),
-            ("Console", [binding for binding in _bindings(ConsoleApp.BINDINGS) if binding not in nav]),
+            # Space's Resume is its Pause while paused: one row.
+            ("Console", [b for b in _bindings(ConsoleApp.BINDINGS) if b not in nav and b.action != "resume"]),
             ("Find your way", nav),
             ("Search line", _bindings(SearchBar.BINDINGS)),
             ("Node panel", _bindings(NodePane.BINDINGS)),

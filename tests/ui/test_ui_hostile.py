@@ -64,7 +64,7 @@ async def test_detail_view_shows_every_message_intact(name):
     index = list(HOSTILE).index(name)
     async with app.run_test(size=(120, 40)) as pilot:
         await pilot.pause()
-        app.open_detail(index)
+        app.table_control.open_detail(index)
         await pilot.pause()
         screen = app.screen
         assert isinstance(screen, DetailScreen)
