@@ -44,6 +44,7 @@ from ..sources.fleet import Robot
 from . import textual_fixes
 from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
 from .controllers.files import FilesController
+from .controllers.intake import DRAIN_INTERVAL, IntakeController, Source
 from .controllers.jumps import JumpsController
 from .controllers.overview import OverviewController
 from .controllers.panes import PanesController
@@ -54,7 +55,6 @@ from .controllers.toggles import TogglesController
 from .exit_signals import ExitSignals, terminal_gone
 from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
-from .intake_actions import DRAIN_INTERVAL, IntakeActions, Source
 from .keys import binding_ids, keymap_path, load_keymap
 from .palette import PaletteProvider
 from .screens.detail import DetailScreen
@@ -87,9 +87,7 @@ class TerminalGuard(Protocol):
     def resume(self) -> None: ...
 
 
-class ConsoleApp(
-    IntakeActions,
-):
+class ConsoleApp(App[None]):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
@@ -175,7 +173,6 @@ class ConsoleApp(
         self.table.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
         if len(self.robots) > 1:
             self.table.shown_columns |= {"robot"}
-            self._robots_shown = True
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
         self._initial_query = query
@@ -267,6 +264,26 @@ class ConsoleApp(
             clock=clock,
             update_status=self.update_status,
         )
+        self.intake = IntakeController(
+            self,
+            self.store,
+            self.view,
+            self.table,
+            self.marks,
+            self.node_stats,
+            sources=self.sources,
+            queue=self.queue,
+            file_queue=self.file_queue,
+            robots=self.robots,
+            logger_control=logger_control,
+            collection_policy=self.collection_policy,
+            files=self.files,
+            filtering=self.filtering,
+            overview=self.overview,
+            searching=self.searching,
+            clock=clock,
+            update_status=self.update_status,
+        )
         self.jumps = JumpsController(
             self,
             self.store,
@@ -338,12 +355,12 @@ class ConsoleApp(
             self.notify(f"Some keys were not remapped:\n{listed}", severity="warning", timeout=15, markup=False)
         focus_now(self.table)
         self.overview.start()
-        self.set_interval(self.drain_interval, self.drain_intake)
+        self.set_interval(self.drain_interval, self.intake.drain_intake)
         self.filtering.apply_initial(self._initial_rules, self._initial_query)
         self.update_status()
         # After the first frame: starting sources (threads, child processes) costs CPU
         # the first frame should not wait for.
-        self.call_after_refresh(self.start_sources)
+        self.call_after_refresh(self.intake.start_sources)
         self.call_after_refresh(self.collection_policy.start)  # a collection of all start-up made
         if self._initial_files:
             self.files.open_files(self._initial_files, robots=self._file_robots)
@@ -359,7 +376,7 @@ class ConsoleApp(
 
     def on_unmount(self) -> None:
         self.exit_signals.remove()
-        self.stop_sources()
+        self.intake.stop_sources()
         if self.remember_rules_at_exit:
             self.filtering.remember()
         self.files.cancel_loads()
@@ -377,11 +394,11 @@ class ConsoleApp(
                 self.logger_control.close()
             except Exception:
                 pass
-        self.begin_stopping_sources()
+        self.intake.begin_stopping_sources()
         self.exit(return_code=128 + signum)
 
     async def action_quit(self) -> None:
-        self.begin_stopping_sources()
+        self.intake.begin_stopping_sources()
         self.exit()
 
     def update_status(self) -> None:
@@ -393,7 +410,7 @@ class ConsoleApp(
             shown=len(self.view) if paused_end is None else self.view.count_before(paused_end),
             total=len(self.store),
             counts=dict(self.store.counts),
-            rate=self.receive_rate(),
+            rate=self.intake.receive_rate(),
             following=table.following,
             paused=table.paused_end is not None,
             new_while_paused=table.new_while_paused,

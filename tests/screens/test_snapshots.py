@@ -26,7 +26,7 @@ def test_table(snap_compare, size):
 def test_scrolled_and_paused(snap_compare, size):
     async def scroll_pause_and_receive(pilot):
         await pilot.press("up", "up", "up", "space")
-        pilot.app.add_records(records(25, start=200))
+        pilot.app.intake.add_records(records(25, start=200))
         pilot.app.update_status()
         await pilot.pause()
 

@@ -67,7 +67,7 @@ async def test_l_toggles_the_pane_escape_gives_the_table_the_keys_and_the_table_
         assert "Logger levels" not in screen_text(app)
         await pilot.press("l")
         await until(pilot, lambda: pane_says(app, "Logger levels · nodes"), what="the pane")
-        app.add_records(records(20, start=100))
+        app.intake.add_records(records(20, start=100))
         await until(pilot, lambda: max(table_rows(app)) == 120, what="the table following with the pane open")
         await pilot.press("escape", "space")  # the table's keys work with the pane open
         await until(pilot, lambda: "PAUSED" in screen_text(app).splitlines()[-2], what="the table paused")

@@ -26,7 +26,7 @@ async def test_follows_the_tail_as_records_arrive():
     async with app.run_test(size=(100, 24)) as pilot:
         await until(pilot, lambda: cursor_number(app) == 100, what="the cursor on the last row")
         assert bottom_number(app) == 100 and "FOLLOW" in status_line(app)
-        app.add_records(records(50, start=100))
+        app.intake.add_records(records(50, start=100))
         await until(pilot, lambda: "150/150 shown" in status_line(app), what="the new records counted")
         await until(pilot, lambda: cursor_number(app) == 150, what="the cursor following the tail")
         assert bottom_number(app) == 150 and "FOLLOW" in status_line(app)
@@ -38,7 +38,7 @@ async def test_moving_up_stops_following_and_keeps_the_rows_in_place():
         await pilot.press("up", "up", "up")
         await until(pilot, lambda: cursor_number(app) == 97 and "SCROLL" in status_line(app), what="SCROLL")
         rows = {number: y for number, (y, _) in table_rows(app).items()}
-        app.add_records(records(50, start=100))
+        app.intake.add_records(records(50, start=100))
         await until(pilot, lambda: "150/150 shown" in status_line(app), what="the new records counted")
         assert {number: y for number, (y, _) in table_rows(app).items()} == rows, "the same rows in the same places"
         assert cursor_number(app) == 97 and "SCROLL" in status_line(app)
@@ -58,7 +58,7 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
         table.render_line = lambda y: drawn.append(y) or draw(y)
         rows_before = {number: line[:-2] for number, (_, line) in table_rows(app).items()}  # less the scrollbar
         drawn.clear()
-        app.add_records(records(500, start=100))
+        app.intake.add_records(records(500, start=100))
         await until(pilot, lambda: "600/600 shown" in status_line(app), what="the new records counted")
         await pilot.pause(0.3)  # the scrollbar follows within a tenth of a second
         assert drawn == []  # no row drawn again: the same rows, the same strips
@@ -85,7 +85,7 @@ async def test_the_scrollbar_stays_at_the_bottom_while_following_and_is_not_redr
         paint = bar.render
         bar.render = lambda: painted.append(1) or paint()
         for start in range(1000, 20_000, 1000):
-            app.add_records(records(1000, start=start))
+            app.intake.add_records(records(1000, start=start))
             await pilot.pause()
         await until(pilot, lambda: "20,000/20,000 shown" in status_line(app), what="the new records shown")
         await pilot.pause(0.3)
@@ -105,7 +105,7 @@ async def test_position_survives_eviction_at_the_bound():
         await until(pilot, lambda: (cursor_number(app) or 100) < 80, what="the cursor two pages up")
         cursor = cursor_number(app)
         assert cursor is not None and cursor > 10
-        app.add_records(records(30, start=100))
+        app.intake.add_records(records(30, start=100))
         await until(pilot, lambda: "120/120 shown" in status_line(app), what="the oldest 10 evicted")
         assert cursor_number(app) == cursor, "the cursor stays on its record"
         assert cursor + 1 in table_rows(app) and min(table_rows(app)) > 10
@@ -116,7 +116,7 @@ async def test_pause_freezes_the_view_counts_new_and_resume_catches_up():
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.press("space")
         await until(pilot, lambda: "PAUSED" in status_line(app), what="PAUSED")
-        app.add_records(records(50, start=100))
+        app.intake.add_records(records(50, start=100))
         await until(pilot, lambda: "+50 new" in status_line(app), what="+50 new")
         assert bottom_number(app) == 100 and cursor_number(app) == 100, "the view frozen"
         assert "space Resume" in screen_text(app).splitlines()[-1]
@@ -131,7 +131,7 @@ async def test_clear_empties_the_view_and_numbering_goes_on():
         await pilot.press("c")
         await until(pilot, lambda: "0/0 shown" in status_line(app), what="the cleared view")
         assert table_rows(app) == {}, "no row left on the screen"
-        app.add_records(records(3, start=500))
+        app.intake.add_records(records(3, start=500))
         await until(pilot, lambda: "3/3 shown" in status_line(app), what="three new rows")
         assert list(table_rows(app)) == [101, 102, 103], "numbering goes on after a clear"
         assert cursor_number(app) == 103

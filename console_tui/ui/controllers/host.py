@@ -1,5 +1,6 @@
 """What a controller asks of the app: to tell the person something, to show a screen, to run
-work in the background (``ConsoleApp`` is one; a test may pass anything that does the same)."""
+work in the background or after the next frame (``ConsoleApp`` is one; a test may pass
+anything that does the same)."""
 
 from __future__ import annotations
 
@@ -36,6 +37,8 @@ class Host(Protocol):
         exclusive: bool = False,
         thread: bool = False,
     ) -> Worker[Any]: ...
+
+    def call_after_refresh(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> bool: ...
 
 
 class TerminalHost(Host, Protocol):

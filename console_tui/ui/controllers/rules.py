@@ -158,6 +158,11 @@ class RulesController:
         progress = f"filtering {self._refilter_percent()}%" if self._view.refiltering else ""
         self._rules_pane.show(self.rules, self._view.match_counts(), progress)
 
+    def follow_counts(self) -> None:
+        """While the rules pane is open, its counts follow the records (twice a second)."""
+        if self._rules_pane.is_open:
+            self.show_counts(at_most_every=0.5)
+
     def apply_initial(self, rules: RuleSet | None, query: str) -> None:
         """The rules and ``--query`` given on the command line."""
         rules = rules or RuleSet()

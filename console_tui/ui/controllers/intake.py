@@ -1,9 +1,9 @@
-"""The app's intake: the sources started and stopped, and what they queued taken into the store.
+"""The intake: the sources started and stopped, and what they queued taken into the store.
 
-A part of ``ConsoleApp`` (it mixes this in). Sources (the live stream, file loads) run in
-threads or processes of their own and put records on an ``IntakeQueue``; each tick
-(``DRAIN_INTERVAL``) moves what is there into the store, the view and every part that follows
-them, at most ``MAX_RECORDS_PER_TICK`` at a time.
+Sources (the live stream, file loads) run in threads or processes of their own and put records
+on an ``IntakeQueue``; each tick (``DRAIN_INTERVAL``) moves what is there into the store, the
+view and everything that follows them (the overview, the search, the rules' counts), at most
+``MAX_RECORDS_PER_TICK`` at a time.
 """
 
 from __future__ import annotations
@@ -14,24 +14,26 @@ from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any, Protocol
 
-from ..model.intake_queue import IntakeQueue
-from ..model.late_records import WINDOW, HistoryWindow, add_in_time_order
-from ..model.marks import Marks
-from ..model.node_stats import NodeStats
-from ..model.record import LogRecord
-from ..model.record_batch import RecordColumns
-from ..sources.fleet import Robot
-from ..sources.status import SourceStatus
-from .app_part import AppPart
-from .controllers.files import FilesController
-from .controllers.overview import OverviewController
-from .controllers.rules import RulesController
-from .controllers.search import SearchController
-from .gc_policy import CollectionPolicy
-from .widgets.rules_pane import RulesPane
+from ...model.intake_queue import IntakeQueue
+from ...model.late_records import WINDOW, HistoryWindow, add_in_time_order
+from ...model.marks import Marks
+from ...model.node_stats import NodeStats
+from ...model.record import LogRecord
+from ...model.record_batch import RecordColumns
+from ...model.store import LogStore
+from ...model.view import LogView
+from ...sources.fleet import Robot
+from ...sources.status import SourceStatus
+from ..gc_policy import CollectionPolicy
+from ..widgets.log_table import LogTable
+from .files import FilesController
+from .host import Host
+from .overview import OverviewController
+from .rules import RulesController
+from .search import SearchController
 
 if TYPE_CHECKING:
-    from ..sources.loggers.control import LoggerControl
+    from ...sources.loggers.control import LoggerControl
 
 DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -60,36 +62,60 @@ def _stop_quietly(source: Source) -> None:
         pass
 
 
-class IntakeActions(AppPart):
+class IntakeController:
     """Sources in, records into the store each tick, sources out when the app ends."""
 
-    overview: OverviewController
-    files: FilesController
-
-    # What it uses of the app (``ConsoleApp`` sets them).
-    sources: list[Source]
-    #: A fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
-    robots: list[Robot]
-    #: The live sources' records; file loads have a queue of their own (``file_queue``).
-    queue: IntakeQueue
-    file_queue: IntakeQueue
-    logger_control: LoggerControl | None
-    node_stats: NodeStats
-    marks: Marks
-    rules_pane: RulesPane
-    collection_policy: CollectionPolicy
-    filtering: RulesController
-    searching: SearchController
-    clock: Callable[[], float]
-    _rate = 0.0
-    _rate_at = 0.0
-    _loggers_started = False
-    _loggers_from = float("inf")
-    #: The Robot column was shown once records of two robots came (the user may hide it again).
-    _robots_shown = False
-
-    def __init__(self) -> None:
-        super().__init__()
+    def __init__(
+        self,
+        host: Host,
+        store: LogStore,
+        view: LogView,
+        table: LogTable,
+        marks: Marks,
+        node_stats: NodeStats,
+        *,
+        sources: list[Source],
+        queue: IntakeQueue,
+        file_queue: IntakeQueue,
+        robots: Sequence[Robot],
+        logger_control: LoggerControl | None,
+        collection_policy: CollectionPolicy,
+        files: FilesController,
+        filtering: RulesController,
+        overview: OverviewController,
+        searching: SearchController,
+        clock: Callable[[], float],
+        update_status: Callable[[], None],
+    ) -> None:
+        self._host = host
+        self._store = store
+        self._view = view
+        self._table = table
+        self._marks = marks
+        self._node_stats = node_stats
+        #: The sources running (emptied when they are stopped).
+        self.sources = sources
+        #: The live sources' records; file loads have a queue of their own, taken in first.
+        self._queue = queue
+        self._file_queue = file_queue
+        #: A fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
+        self._robots = robots
+        self._logger_control = logger_control
+        self._collection_policy = collection_policy
+        # What follows the records in: the loads' progress, the rules' counts, the storms and
+        # the timeline, the search.
+        self._files = files
+        self._filtering = filtering
+        self._overview = overview
+        self._searching = searching
+        self._clock = clock
+        self._update_status = update_status
+        self._rate = 0.0
+        self._rate_at = 0.0
+        self._loggers_started = False
+        self._loggers_from = float("inf")
+        #: The Robot column was shown once records of two robots came (the person may hide it again).
+        self._robots_shown = len(robots) > 1
         #: When records arrived, and how many: the receive rate.
         self._arrivals: deque[tuple[float, int]] = deque()
         #: The threads stopping the sources, once quitting began.
@@ -97,7 +123,7 @@ class IntakeActions(AppPart):
         #: The slower intake path was said (``tell_slow_intake``).
         self._slow_intake_told = False
         #: When live histories are due, to be placed by their stamps (on the app's clock).
-        self.histories = HistoryWindow(lambda: self.clock())
+        self.histories = HistoryWindow(clock)
 
     # -- the sources ------------------------------------------------------------------------------
 
@@ -106,28 +132,29 @@ class IntakeActions(AppPart):
         (``start_logger_control``), or when the logger levels pane opens."""
         for source in self.sources:
             self._start(source)
-        self._loggers_from = self.clock() + (LOGGERS_AFTER_S if self.sources else 0.0)
+        self._loggers_from = self._clock() + (LOGGERS_AFTER_S if self.sources else 0.0)
 
     def start_logger_control(self) -> None:
         """Start the logger control (started here, but closed by whoever made it). Its ROS 2
         context is a second DDS participant in a session; discovered beside the intake
         process's, it held up the first live rows by seconds, so it starts after them (and
         imports rclpy then: ``RosRuntime(deferred=True)``)."""
-        if self.logger_control is not None and not self._loggers_started:
+        if self._logger_control is not None and not self._loggers_started:
             self._loggers_started = True
-            self._start(self.logger_control)
+            self._start(self._logger_control)
 
     def _start(self, source: Any) -> None:
         try:
             source.start()
         except Exception as error:
-            self.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
+            self._host.notify(f"Could not start {type(source).__name__}: {error}", severity="error", timeout=10)
 
     def begin_stopping_sources(self) -> None:
         """Start stopping every source, all at once, each in a thread of its own: each may
         wait a moment for a process of its own (the intake process, demo nodes) to end, and
         that runs while Textual takes the screens down, not after."""
-        sources, self.sources = self.sources, []
+        sources = list(self.sources)
+        self.sources.clear()
         for source in sources:
             thread = threading.Thread(target=_stop_quietly, args=(source,), name="console-tui-stop", daemon=True)
             thread.start()
@@ -151,29 +178,28 @@ class IntakeActions(AppPart):
         one tick are merged by stamp (each robot's intake process sends its own batches);
         a late history among them (``late_records``) is placed by its stamp while the table
         follows the tail, in the moments histories are due (``HistoryWindow``)."""
-        batches = self.file_queue.drain_batches(MAX_RECORDS_PER_TICK)
-        if not self._loggers_started and (self.queue.received or self.clock() >= self._loggers_from):
-            self.call_after_refresh(self.start_logger_control)  # once these rows are on the screen
+        batches = self._file_queue.drain_batches(MAX_RECORDS_PER_TICK)
+        if not self._loggers_started and (self._queue.received or self._clock() >= self._loggers_from):
+            self._host.call_after_refresh(self.start_logger_control)  # once these rows are on the screen
         for source in self.sources:
             status = source.status
             self.histories.note(id(source), status.publishers, status.topic)
-        if not self.files.loading:
+        if not self._files.loading:
             room = MAX_RECORDS_PER_TICK - sum(map(len, batches))
-            live: list[RecordColumns] = self.queue.drain_batches(room)
-            if len(live) > 1 and len(self.robots) > 1:  # a fleet: what its robots sent meanwhile, by time
+            live: list[RecordColumns] = self._queue.drain_batches(room)
+            if len(live) > 1 and len(self._robots) > 1:  # a fleet: what its robots sent meanwhile, by time
                 live = [RecordColumns.in_time_order(live)]
         else:
             live = []
         if batches or live:
             self.add_batches(batches + live, live_from=len(batches))
-        if self.files.loads:
-            self.files.check_loads()
-        if self.rules_pane.is_open:
-            self.filtering.show_counts(at_most_every=0.5)
-        self.update_status()
+        if self._files.loads:
+            self._files.check_loads()
+        self._filtering.follow_counts()
+        self._update_status()
         self.tell_slow_intake()
-        self.overview.show()
-        self.collection_policy.tick()
+        self._overview.show()
+        self._collection_policy.tick()
 
     def tell_slow_intake(self) -> None:
         """The first time a live source takes the slower path (no take loop in C), say so
@@ -184,7 +210,7 @@ class IntakeActions(AppPart):
             text = source.status.slow_path_text()
             if text:
                 self._slow_intake_told = True
-                self.notify(text[0].upper() + text[1:], severity="warning", timeout=15, markup=False)
+                self._host.notify(text[0].upper() + text[1:], severity="warning", timeout=15, markup=False)
                 return
 
     def add_records(self, records: Iterable[LogRecord]) -> None:
@@ -196,7 +222,7 @@ class IntakeActions(AppPart):
         Batches from ``live_from`` on are live: one that is late is sorted, and while the table
         follows the tail (nobody reads rows that would move) placed among the newest rows by its
         stamps."""
-        table = self.table
+        table = self._table
         first_live = len(batches) if live_from is None else live_from
         # Rows on the screen stay put; and only histories are placed, not clocks that differ.
         following = table.following and table.paused_end is None
@@ -206,31 +232,31 @@ class IntakeActions(AppPart):
         with table.keeping_position():
             for index, batch in enumerate(batches):
                 if index >= first_live:
-                    placed = add_in_time_order(self.store, batch, window=window)
+                    placed = add_in_time_order(self._store, batch, window=window)
                     added += len(batch)
                     if placed is not None:
-                        self.marks.move(placed.moved)
+                        self._marks.move(placed.moved)
                         rewritten = True
                 else:
-                    added += len(self.store.extend(batch))
-            self.view.update()
-            self.overview.follow()
-        if self.view.switched_off:
-            self.filtering.rules_changed()
-        if not self._robots_shown and len(self.store.robots) > 2:  # "" and two robots or more
+                    added += len(self._store.extend(batch))
+            self._view.update()
+            self._overview.follow()
+        if self._view.switched_off:
+            self._filtering.rules_changed()
+        if not self._robots_shown and len(self._store.robots) > 2:  # "" and two robots or more
             self._robots_shown = True
             table.set_column_shown("robot", True)
-        self._arrivals.append((self.clock(), added))
+        self._arrivals.append((self._clock(), added))
         if rewritten:
             table.restyle()  # rows drawn before show other records now
-        self.node_stats.update()
-        self.searching.after_records(rewritten=rewritten)
+        self._node_stats.update()
+        self._searching.after_records(rewritten=rewritten)
         return added
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second
         (so the status line is not redrawn every tick for a changing digit)."""
-        now = self.clock()
+        now = self._clock()
         if now - self._rate_at < 1.0:
             return self._rate
         arrivals = self._arrivals
