@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Protocol
 from rich.style import Style
 from textual import events
 from textual.app import App, ComposeResult, SystemCommand
-from textual.binding import Binding, BindingType
+from textual.binding import Binding
 from textual.containers import Horizontal
 from textual.notifications import SeverityLevel
 from textual.screen import Screen
@@ -42,7 +42,7 @@ from ..model.timeline import Timeline
 from ..model.view import LogView
 from ..sources.fleet import Robot
 from . import textual_fixes
-from .app_bindings import JUMP_KEYS, NAV_KEYS, SEARCH_KEYS, TOGGLE_KEYS
+from .app_bindings import APP_BINDINGS, NAV_KEYS, bindings_of, key_groups
 from .controllers.files import FilesController
 from .controllers.intake import DRAIN_INTERVAL, IntakeController, Source
 from .controllers.jumps import JumpsController
@@ -57,9 +57,7 @@ from .focus import KeyGate, focus_now, run_bindings_now
 from .gc_policy import CollectionPolicy
 from .keys import binding_ids, keymap_path, load_keymap
 from .palette import PaletteProvider
-from .screens.detail import DetailScreen
 from .screens.help import HelpScreen
-from .screens.mark_list import MarksScreen
 from .screens.summary import SummaryScreen
 from .widgets.key_footer import KeyFooter
 from .widgets.load_bar import LoadBar
@@ -95,45 +93,8 @@ class ConsoleApp(App[None]):
     #: Textual's own palette entries (theme, quit, screenshot...) and ours.
     COMMANDS = App.COMMANDS | {PaletteProvider}
 
-    BINDINGS = [
-        # One key, two bindings: check_action shows the one that applies (Resume while paused);
-        # one id, so that a keymap moves both.
-        Binding("space", "pause", "Pause", id="console.pause"),
-        Binding("space", "resume", "Resume", id="console.pause"),
-        Binding("c", "clear", "Clear", id="console.clear"),
-        Binding("o", "open", "Open", id="console.open"),
-        Binding("s", "save", "Save", id="console.save"),
-        Binding("x", "cancel_load", "Cancel load", id="console.cancel_load"),
-        Binding("escape", "stop_filtering", "Stop a long filtering", show=False, id="console.stop_filtering"),
-        Binding("escape", "clear_search", "Clear the search", show=False, id="console.clear_search"),
-        Binding("exclamation_mark", "problems", "Problems", show=False, id="console.problems"),
-        Binding("slash", "query", "Query", id="console.query"),
-        *SEARCH_KEYS,
-        Binding("r", "toggle_rules", "Rules", id="console.rules"),
-        Binding("H", "toggle_highlighted_only", "Highlighted only", show=False, id="console.highlighted_only"),
-        Binding("minus", "quick_rule('exclude')", "Hide like the selected rows", show=False, id="console.hide_like"),
-        Binding(
-            "plus",
-            "quick_rule('highlight')",
-            "Highlight like the selected rows",
-            show=False,
-            id="console.highlight_like",
-        ),
-        Binding("C", "columns", "Columns", id="console.columns"),
-        Binding("l", "toggle_loggers", "Loggers", id="console.loggers"),
-        Binding("ctrl+n", "toggle_nodes", "Nodes", id="console.nodes"),
-        Binding("L", "loggers_for_row", "Logger levels of the row's node", show=False, id="console.loggers_for_row"),
-        Binding("T", "timeline", "Timeline: pick a time to show", show=False, id="overview.timeline"),
-        Binding("ctrl+t", "toggle_timeline", "Show / hide the timeline", show=False, id="overview.toggle_timeline"),
-        Binding("z", "toggle_storm", "Expand / collapse the row's storm", show=False, id="overview.storm"),
-        Binding("Z", "toggle_storms", "Storms collapsed on / off", show=False, id="overview.storms"),
-        Binding("S", "summary", "Summary of the run", show=False, id="overview.summary"),
-        Binding("question_mark,f1", "help", "Help", id="console.help"),
-        Binding("q", "quit", "Quit", id="console.quit"),
-        Binding("ctrl+c", "quit", "Quit", show=False),
-        *JUMP_KEYS,
-        *TOGGLE_KEYS,
-    ]
+    #: Every key of the console (``app_bindings``; the help screen groups them).
+    BINDINGS = APP_BINDINGS
 
     def __init__(
         self,
@@ -204,96 +165,43 @@ class ConsoleApp(App[None]):
         self.keymap: dict[str, str] = {}
         self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
+        self._make_controllers(utc, clock)
+
+    def _make_controllers(self, utc: bool, clock: Callable[[], float]) -> None:
+        """Each controller with what it works on (the store, the view, the table, widgets, the
+        controllers it hands on to), the app as its ``Host``, and the status line to update."""
+        store, view, table, status = self.store, self.view, self.table, self.update_status
         self.overview = OverviewController(
-            self,
-            self.store,
-            self.view,
-            self.table,
-            self.timeline,
-            self.storms,
-            self.timeline_strip,
-            self.node_stats,
-            sources=lambda: [source.status for source in self.sources],
-            utc=utc,
-            clock=clock,
-            update_status=self.update_status,
-        )
+            self, store, view, table, self.timeline, self.storms, self.timeline_strip, self.node_stats,
+            sources=lambda: [source.status for source in self.sources], utc=utc, clock=clock, update_status=status
+        )  # fmt: skip
         self.filtering = RulesController(
-            self,
-            self.store,
-            self.view,
-            self.table,
-            self.query_bar,
-            self.rules_pane,
-            self.query_history,
-            self.overview,
-            utc=utc,
-            clock=clock,
-            update_status=self.update_status,
-        )
+            self, store, view, table, self.query_bar, self.rules_pane, self.query_history, self.overview,
+            utc=utc, clock=clock, update_status=status
+        )  # fmt: skip
         self.table_control = TableController(
-            self,
-            self.store,
-            self.view,
-            self.table,
-            self.marks,
-            self.node_stats,
-            self.overview,
-            source_notes=self.files.source_notes,
-            utc=utc,
-            update_status=self.update_status,
-        )
+            self, store, view, table, self.marks, self.node_stats, self.overview,
+            source_notes=self.files.source_notes, utc=utc, update_status=status
+        )  # fmt: skip
         self.toggles = TogglesController(
-            self.store,
-            self.table,
-            self.node_pane,
-            rules=lambda: self.filtering.rules,
-            apply_rules=self.filtering.apply_rules,
-            live=lambda: bool(self.sources),
-            update_status=self.update_status,
-        )
-        self.panes = PanesController(self, self.store, self.table, self.logger_pane, self.node_pane)
+            store, table, self.node_pane, rules=lambda: self.filtering.rules, apply_rules=self.filtering.apply_rules,
+            live=lambda: bool(self.sources), update_status=status
+        )  # fmt: skip
+        self.panes = PanesController(self, store, table, self.logger_pane, self.node_pane)
         self.searching = SearchController(
-            self,
-            self.store,
-            self.view,
-            self.table,
-            self.search_bar,
-            self.marks,
-            self.storms,
-            clock=clock,
-            update_status=self.update_status,
+            self, store, view, table, self.search_bar, self.marks, self.storms, clock=clock, update_status=status
         )
         self.intake = IntakeController(
-            self,
-            self.store,
-            self.view,
-            self.table,
-            self.marks,
-            self.node_stats,
-            sources=self.sources,
-            queue=self.queue,
-            file_queue=self.file_queue,
-            robots=self.robots,
-            logger_control=logger_control,
-            collection_policy=self.collection_policy,
-            files=self.files,
-            filtering=self.filtering,
-            overview=self.overview,
-            searching=self.searching,
-            clock=clock,
-            update_status=self.update_status,
-        )
+            self, store, view, table, self.marks, self.node_stats,
+            sources=self.sources, queue=self.queue, file_queue=self.file_queue, robots=self.robots,
+            logger_control=self.logger_control, collection_policy=self.collection_policy,
+            files=self.files, filtering=self.filtering, overview=self.overview, searching=self.searching,
+            clock=clock, update_status=status
+        )  # fmt: skip
         self.jumps = JumpsController(
-            self,
-            self.store,
-            self.view,
-            self.table,
-            self.marks,
-            opened_paths=self.files.opened_paths,
-            show_marks=self.searching.show_marks,
-            update_status=self.update_status,
-        )
+            self, store, view, table, self.marks, opened_paths=self.files.opened_paths,
+            show_marks=self.searching.show_marks, update_status=status
+        )  # fmt: skip
 
     # -- text from outside: never markup, never raw ----------------------------------------------
 
@@ -695,32 +603,13 @@ class ConsoleApp(App[None]):
 
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         """Every key, by where it works: the help screen, the keymap and the palette read these."""
-        nav = self.nav_bindings()
-        return [
-            ("Table", _bindings(LogTable.BINDINGS)),
-            # Space's Resume is its Pause while paused: one row.
-            ("Console", [b for b in _bindings(ConsoleApp.BINDINGS) if b not in nav and b.action != "resume"]),
-            ("Find your way", nav),
-            ("Search line", _bindings(SearchBar.BINDINGS)),
-            ("Node panel", _bindings(NodePane.BINDINGS)),
-            ("Marks", _bindings(MarksScreen.BINDINGS)),
-            ("Rules pane", _bindings(RulesPane.BINDINGS)),
-            ("Query line", _bindings(QueryBar.BINDINGS)),
-            ("Logger levels pane", _bindings(LoggerPane.BINDINGS)),
-            ("Timeline", _bindings(TimelineStrip.BINDINGS)),
-            ("Summary", _bindings(SummaryScreen.BINDINGS)),
-            ("Details", _bindings(DetailScreen.BINDINGS)),
-            ("Anywhere", [Binding("ctrl+p", "command_palette", "Command palette: every action by name")]),
-        ]
+        return key_groups()
 
     def nav_bindings(self) -> list[Binding]:
-        """The keys that find your way: search, jumps, marks, levels, nodes, time."""
-        return _bindings(NAV_KEYS)
+        """The keys that find your way: search, jumps, marks, levels, nodes, time (the search
+        line's hint names them)."""
+        return bindings_of(NAV_KEYS)
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # Textual's "Keys" opens its key panel; "Help: every key" (ours) says more.
         yield from (command for command in super().get_system_commands(screen) if command.title != "Keys")
-
-
-def _bindings(bindings: Iterable[BindingType]) -> list[Binding]:
-    return [binding for binding in bindings if isinstance(binding, Binding)]
