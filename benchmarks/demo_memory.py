@@ -54,7 +54,7 @@ async def run(minutes: float, every: float) -> list[list[object]]:
                 me, intake = os.getpid(), live.source.pid
                 row = [
                     f"{(time.monotonic() - began) / 60:.1f}",
-                    f"{len(app.store):,}",
+                    f"{len(app.main.store):,}",
                     f"{process_rss_mb(me):.0f}",
                     f"{process_rss_mb(intake):.0f}",
                     f"{pss_mb(me):.0f}",

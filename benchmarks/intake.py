@@ -378,7 +378,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
         control = Ros2LoggerControl(runtime)
         app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
     # Rows for the keys to move over before anything arrives (not counted as received).
-    app.store.extend_records([synthetic_record(number) for number in range(APP_PREFILL)])
+    app.main.store.extend_records([synthetic_record(number) for number in range(APP_PREFILL)])
     quit_event = threading.Event()
     state: dict[str, Any] = {}
 
@@ -388,7 +388,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
         return {
             "lost_reported": source.status.lost,
             "path": source.status.path + (" (process)" if pids else " (thread)"),
-            "stored": app.store.end_seq,
+            "stored": app.main.store.end_seq,
             "cpu": cpu_seconds(source),
             "cpu_intake": intake_cpu_seconds(source),
             "intake_pids": pids,
@@ -410,9 +410,9 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
 
     async def main() -> None:
         async with app.run_test(size=(160, 48)):
-            frames = count_frames(app.table)
+            frames = count_frames(app.main.table)
             state["stalls"] = StallProbe()
-            state["keys"] = KeyProbe(app, app.table, frames)
+            state["keys"] = KeyProbe(app, app.main.table, frames)
             state["stalls"].start()
             state["keys"].start()
             say(event="ready")

@@ -166,10 +166,10 @@ def measure(view: LogView, rules: RuleSet, step_s: float) -> tuple[float, float,
 
 def _screen_rows(app) -> list[int]:
     """The seqs of the rows around the table's cursor (the newest rows while it follows)."""
-    view = app.table.view
-    if app.table.following:
+    view = app.main.table.view
+    if app.main.table.following:
         return [view.seq_at(r) for r in range(max(len(view) - SCREEN_ROWS, 0), len(view))]
-    row = app.table.cursor_row
+    row = app.main.table.cursor_row
     return [view.seq_at(r) for r in range(max(row - SCREEN_ROWS // 2, 0), min(row + SCREEN_ROWS // 2, len(view)))]
 
 
@@ -187,22 +187,22 @@ async def measure_in_app(store: LogStore, middle: bool = False) -> list[tuple[st
     results = []
     async with app.run_test(size=(160, 48)) as pilot:
         await pilot.pause(0.5)
-        while app.storms.behind or app.timeline.behind:
+        while app.main.storms.behind or app.main.timeline.behind:
             await asyncio.sleep(0.05)  # the storms and the timeline counted at start
         if middle:
-            app.table.jump_to_seq(store.first_seq + len(store) // 2)
-        frames = count_frames(app.table)
+            app.main.table.jump_to_seq(store.first_seq + len(store) // 2)
+        frames = count_frames(app.main.table)
         for name, rules in scenarios():
             probe = StallProbe()
             probe.start()
             await asyncio.sleep(0.05)
             began, cpu_began = time.perf_counter(), time.process_time()
-            app.filtering.apply_rules(rules)  # as the query line, the pane or a quick rule does
+            app.main.filtering.apply_rules(rules)  # as the query line, the pane or a quick rule does
             shown_first = _screen_rows(app)
             while not frames or frames[-1] < began:
                 await asyncio.sleep(0.001)
             first_frame = frames[-1] - began
-            while app.view.refiltering or app.storms.behind or app.timeline.behind:
+            while app.main.view.refiltering or app.main.storms.behind or app.main.timeline.behind:
                 await asyncio.sleep(0.005)
             complete = time.perf_counter() - began
             cpu = time.process_time() - cpu_began
@@ -210,7 +210,7 @@ async def measure_in_app(store: LogStore, middle: bool = False) -> list[tuple[st
             final = _screen_rows(app)
             # Nothing arrives meanwhile, so a first screen that was already final stays so.
             first = first_frame if shown_first == final else complete
-            results.append((name, first * 1000, complete * 1000, max(stalls) * 1000, len(app.view), cpu * 1000))
+            results.append((name, first * 1000, complete * 1000, max(stalls) * 1000, len(app.main.view), cpu * 1000))
     return results
 
 

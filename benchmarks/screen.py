@@ -108,19 +108,19 @@ async def run(
         else ThreadFeed(queue, rate, repeats)
     )
     app = ConsoleApp(queue=queue, sources=[source] if rate else [])
-    app.store.extend_records([synthetic_record(number) for number in range(PREFILL)])
+    app.main.store.extend_records([synthetic_record(number) for number in range(PREFILL)])
     gc.collect()
     async with app.run_test(size=size):
         if not overview:
-            app.overview.set_enabled(False)
-        frames = count_frames(app.table)
+            app.main.overview.set_enabled(False)
+        frames = count_frames(app.main.table)
         stalls = StallProbe()
-        keys = KeyProbe(app, app.table, frames)
+        keys = KeyProbe(app, app.main.table, frames)
         stalls.start()
         await asyncio.sleep(WARM_UP_S)  # the intake process starts, the tail is followed
         stalls.stalls.clear()
         app.collection_policy.longest = 0.0
-        stored_before = app.store.end_seq
+        stored_before = app.main.store.end_seq
         pid = getattr(source, "pid", None)
         cpu_before = (time.process_time(), process_cpu(pid) if pid else 0.0)
         loop_before = time.thread_time()  # this thread runs the event loop
@@ -136,8 +136,8 @@ async def run(
         cpu_intake = ((process_cpu(pid) if pid else 0.0) - cpu_before[1]) / elapsed * 100
         measured = await stalls.stop()
         result = {
-            "rate": (app.store.end_seq - stored_before) / elapsed,
-            "stored": len(app.store),
+            "rate": (app.main.store.end_seq - stored_before) / elapsed,
+            "stored": len(app.main.store),
             "stall_max": max(measured, default=0.0) * 1000,
             "stall_p99": percentile(measured, 0.99) * 1000,
             "key_median": percentile(keys.latencies, 0.5) * 1000,
@@ -149,8 +149,8 @@ async def run(
             "cpu_intake": cpu_intake,
             "rss_app": process_rss_mb(os.getpid()),
             "rss_intake": process_rss_mb(pid) if pid else 0.0,
-            "storms": app.storms.storm_count if overview else 0,
-            "rows": app.table.row_count,
+            "storms": app.main.storms.storm_count if overview else 0,
+            "rows": app.main.table.row_count,
         }
     return result
 

@@ -112,7 +112,7 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
     gc.collect()
     app = ConsoleApp(store=store, utc=True)
     async with app.run_test(size=(160, 48)) as pilot:
-        frames = count_frames(app.table)
+        frames = count_frames(app.main.table)
         await pilot.press("home")
         await pilot.pause()
         stalls = CpuStallProbe()
@@ -137,23 +137,23 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
             await press(app, key_of(character), character)
             await asyncio.sleep(0.05)
         typed = await press(app, key_of(text[-1]), text[-1])
-        first = await wait_for(lambda: app.table.cursor_seq == near, frames, typed)
+        first = await wait_for(lambda: app.main.table.cursor_seq == near, frames, typed)
         await press(app, "enter")
-        while app.focused is not app.table:  # the search line closes: keys go to the table again
+        while app.focused is not app.main.table:  # the search line closes: keys go to the table again
             await asyncio.sleep(0.001)
         cpu = time.process_time()
         pressed = await press(app, "n")
-        following = await wait_for(lambda: app.table.cursor_seq == far, frames, pressed)
+        following = await wait_for(lambda: app.main.table.cursor_seq == far, frames, pressed)
         cpu = time.process_time() - cpu
 
         def counted() -> bool:
-            search = app.searching.search
+            search = app.main.searching.search
             return search is not None and search.complete
 
         while not counted() and time.perf_counter() - typed < 60:
             await asyncio.sleep(0.001)
         every = time.perf_counter() - typed
-        status = app.searching.search_status()
+        status = app.main.searching.search_status()
         await asyncio.sleep(0.2)
         measured = await stalls.stop()
     return {

@@ -76,7 +76,7 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
     try:
         app.run()
     finally:
-        app.intake.stop_sources()
+        app.main.intake.stop_sources()
         for cleanup in reversed(cleanups):
             try:
                 cleanup()

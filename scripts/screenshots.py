@@ -69,7 +69,7 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await pilot.pause(3.0)
             await shot(pilot, "logger-pane")
             await pilot.press("escape", "l", "slash")
-            pilot.app.query_bar.input.value = '-node:sensors.* +level>=warn +"failed"'
+            pilot.app.main.query_bar.input.value = '-node:sensors.* +level>=warn +"failed"'
             await shot(pilot, "query-line")
             await pilot.press("enter", "r")
             await pilot.pause(1.0)
@@ -79,7 +79,7 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await pilot.pause(1.0)
             await shot(pilot, "node-panel")
             await pilot.press("escape", "ctrl+n", "end", "f")
-            pilot.app.search_bar.input.value = "failed"
+            pilot.app.main.search_bar.input.value = "failed"
             await pilot.pause(0.5)
             await pilot.press("enter", "N", "N")  # two matches up: the marks around it
             await shot(pilot, "search")
@@ -90,7 +90,7 @@ async def capture(out: Path, seconds: float) -> list[Path]:
         origin = f"ROS 2 domain {os.environ['ROS_DOMAIN_ID']}"  # as the intake process says it
         frozen = [Frozen(replace(live.status, origin=origin)), Frozen(demo.status)]
         for width, height in ((80, 24), (100, 30)):
-            narrow = ConsoleApp(store=app.store, sources=frozen)
+            narrow = ConsoleApp(store=app.main.store, sources=frozen)
             size = f"{width}x{height}"
             async with narrow.run_test(size=(width, height)) as pilot:
                 await pilot.pause(1.0)
@@ -125,7 +125,7 @@ async def capture_folder(out: Path) -> list[Path]:
         os.utime(run / "rosout-1-stdout.log", ns=(1624512195_200_000_000,) * 2)
         app = ConsoleApp(files=[str(run)], utc=True)
         async with app.run_test(size=(160, 30)) as pilot:
-            while app.files.loading or len(app.store) < 20:
+            while app.main.files.loading or len(app.main.store) < 20:
                 await pilot.pause(0.1)
             await pilot.press("home")
             await pilot.pause(0.5)
@@ -221,16 +221,16 @@ async def capture_overview(out: Path) -> list[Path]:
         saved.append(path)
 
     async with app.run_test(size=(160, 36)) as pilot:
-        while app.storms.behind or app.timeline.behind or not app.storms.storm_count:
+        while app.main.storms.behind or app.main.timeline.behind or not app.main.storms.storm_count:
             await pilot.pause(0.1)
         # A click on the column where the rate jumps: the table there, the storm one row.
-        columns = app.timeline.columns(app.timeline_strip.size.width)
+        columns = app.main.timeline.columns(app.main.timeline_strip.size.width)
         storm = next(column for column, counts in enumerate(columns.counts) if counts[2] > 100)
         await pilot.click("#timeline", offset=(storm, 2))
         await shot(pilot, "overview")
         await pilot.press("escape", "T", "home")  # back to the table, then a column picked by key
-        strip = app.timeline_strip
-        columns = app.timeline.columns(strip.size.width)
+        strip = app.main.timeline_strip
+        columns = app.main.timeline.columns(strip.size.width)
         burst = next(column for column, counts in enumerate(columns.counts) if counts[3])
         await pilot.press(*["right"] * burst)
         await pilot.press("enter")  # the strip keeps the focus: the picked column shows
@@ -298,7 +298,7 @@ async def capture_fleet(out: Path) -> list[Path]:
     store.extend(RecordColumns.from_records(fleet_records()))
     app = ConsoleApp(store=store, sources=sources, utc=True, robots=robots)
     for column in ("file", "function", "line"):
-        app.table.set_column_shown(column, False)
+        app.main.table.set_column_shown(column, False)
     async with app.run_test(size=(120, 26)) as pilot:
         await pilot.pause(0.5)
         await pilot.press("end")

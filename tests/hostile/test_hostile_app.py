@@ -53,10 +53,10 @@ async def test_escapes_in_a_file_name_never_reach_the_terminal(tmp_path):
         text = assert_inert(app)
         assert "␛]0;PWNED␇" in text  # shown, as visible stand-ins
         # The load bar names the file being read.
-        app.load_bar.show_progress([LoadProgress((FileProgress(hostile.name, "", 0.5, 0),), 10, False, False)])
+        app.main.load_bar.show_progress([LoadProgress((FileProgress(hostile.name, "", 0.5, 0),), 10, False, False)])
         await pilot.pause()
         assert "Loading 1 file: run␛]0;PWNED␇" in assert_inert(app)
-        app.load_bar.show_progress([])
+        app.main.load_bar.show_progress([])
         await pilot.press("exclamation_mark")
         await until(pilot, lambda: isinstance(app.screen, ProblemsScreen), what="the problems screen")
         await pilot.pause()

@@ -40,7 +40,7 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
     app = hostile_app(100_000)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
         await pilot.pause()
-        row = app.table.cursor_row
+        row = app.main.table.cursor_row
         # The work the app does from the rule change to answering a key, in CPU seconds: on
         # this shared machine wall time depends on the neighbours, CPU time on the app.
         began = time.process_time()
@@ -54,14 +54,14 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
             path.write_text('[[rules]]\nkind = "message"\ntext = "(a+)+$"\nregex = true\n')
             app.action_load_rules(str(path))
             await pilot.press("up")
-        await until(pilot, lambda: app.table.cursor_row == row - 1, timeout=10, what="the key's effect")
+        await until(pilot, lambda: app.main.table.cursor_row == row - 1, timeout=10, what="the key's effect")
         # Under 1 s of CPU run alone; the suite's coverage tracing doubles that. Before the fix:
         # minutes (the timeout above ended it).
         assert time.process_time() - began < 3.0
         await until(pilot, lambda: "Rule switched off" in screen_text(app), timeout=5, what="the notification")
         assert "too slow" in screen_text(app)
-        assert not app.filtering.rules.entries[0].enabled
-        assert not app.view.refiltering and len(app.view) == 100_000
+        assert not app.main.filtering.rules.entries[0].enabled
+        assert not app.main.view.refiltering and len(app.main.view) == 100_000
         await pilot.press("question_mark")  # and the app goes on answering
         await until(pilot, lambda: isinstance(app.screen, HelpScreen), timeout=10, what="the help screen")
 
@@ -74,17 +74,17 @@ async def test_esc_stops_a_long_filtering(monkeypatch):
     store = LogStore()
     store.extend_records(LogRecord(stamp_ns=i, level=20, node="n", msg=f"message {i}") for i in range(200_000))
     app = ConsoleApp(store=store, utc=True)
-    app.view.clock = TickingClock(0.001)
+    app.main.view.clock = TickingClock(0.001)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
         await pilot.pause()
-        app.filtering.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
+        app.main.filtering.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
         await until(pilot, lambda: "filtering" in screen_text(app), timeout=30, what="the filtering shown")
-        assert app.view.refiltering
+        assert app.main.view.refiltering
         await pilot.press("escape")
-        await until(pilot, lambda: not app.view.refiltering, timeout=5, what="filtering to stop")
-        assert not app.filtering.rules.entries[0].enabled
+        await until(pilot, lambda: not app.main.view.refiltering, timeout=5, what="filtering to stop")
+        assert not app.main.filtering.rules.entries[0].enabled
         await until(pilot, lambda: "Filtering stopped" in screen_text(app), timeout=5, what="the notification")
-        assert len(app.view) == 200_000
+        assert len(app.main.view) == 200_000
 
 
 def test_a_rules_file_nested_100k_deep_is_refused(tmp_path):

@@ -38,18 +38,18 @@ async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
                 "sensors.lidar_driver",
                 "power.battery_monitor",
             }
-            await until(pilot, lambda: expected <= {r.node for r in app.store}, timeout=30)
-            assert {r.node for r in app.store} == expected
+            await until(pilot, lambda: expected <= {r.node for r in app.main.store}, timeout=30)
+            assert {r.node for r in app.main.store} == expected
 
             # The counter: INFO on 3, WARN on 5, ERROR on 10, FATAL on 20; its DEBUG lines stay
             # in the node, whose logger is at INFO.
             def counter_levels() -> set[int]:
-                return {r.level for r in app.store if r.node == "count_and_log"}
+                return {r.level for r in app.main.store if r.node == "count_and_log"}
 
             await until(pilot, lambda: counter_levels() == {20, 30, 40, 50}, timeout=30, what="a FATAL count")
-            fatal = next(r for r in app.store if r.node == "count_and_log" and r.level == 50)
+            fatal = next(r for r in app.main.store if r.node == "count_and_log" and r.level == 50)
             assert fatal.msg.endswith("is divisible by 20") and fatal.source in ("/rosout", "/rosout_agg")
-            assert all(r.file.endswith("behaviours.py") and r.line > 0 for r in app.store)
+            assert all(r.file.endswith("behaviours.py") and r.line > 0 for r in app.main.store)
 
             await pilot.press("G")
             await pilot.pause(0.3)

@@ -35,7 +35,7 @@ def fields(record) -> dict:
 
 
 def records_of(app: ConsoleApp, node: str) -> list:
-    return [record for record in app.store if record.node == node]
+    return [record for record in app.main.store if record.node == node]
 
 
 async def test_every_severity_with_every_field_in_order_late_join_and_volatile(nodes):
@@ -74,13 +74,13 @@ async def test_every_severity_with_every_field_in_order_late_join_and_volatile(n
             await until(pilot, lambda: len(records_of(app, "e2e.early")) >= 10)
             assert [fields(r) for r in records_of(app, "e2e.early")[5:]] == logged_live
             await pilot.pause(0.2)
-            table = app.table
+            table = app.main.table
             shown = [table.render_line(y).text for y in range(1, table.size.height)]
             for message in logged_live:
                 line = next(text for text in shown if message["msg"] in text)
                 assert "e2e.early" in line and "talker.py" in line and str(message["line"]) in line
                 assert {10: "DEBUG", 20: "INFO", 30: "WARN", 40: "ERROR", 50: "FATAL"}[message["level"]] in line
-            status = app.sources[0].status
+            status = app.main.sources[0].status
             assert status.topic == "/rosout" and status.publishers >= 2
     finally:
         live.close()
@@ -96,10 +96,10 @@ async def test_reads_rosout_agg_when_something_publishes_it(nodes):
     try:
         async with app.run_test(size=(160, 30)) as pilot:
             # Chosen at start when discovery is quick, else switched to within a second.
-            await until(pilot, lambda: app.sources[0].status.topic == "/rosout_agg")
+            await until(pilot, lambda: app.main.sources[0].status.topic == "/rosout_agg")
             talker.send({"cmd": "log", "level": "warn", "msg": "through the aggregator"})
-            await until(pilot, lambda: any(r.msg == "through the aggregator" for r in app.store))
-            record = next(r for r in app.store if r.msg == "through the aggregator")
+            await until(pilot, lambda: any(r.msg == "through the aggregator" for r in app.main.store))
+            record = next(r for r in app.main.store if r.msg == "through the aggregator")
             assert record.source == "/rosout_agg" and record.level == 30
     finally:
         live.close()
@@ -117,7 +117,7 @@ async def test_topic_flag_picks_the_topic(nodes):
     app, live = live_app(topic="/rosout")
     try:
         async with app.run_test(size=(160, 30)) as pilot:
-            await until(pilot, lambda: app.sources[0].status.running)
+            await until(pilot, lambda: app.main.sources[0].status.running)
             probe = live.runtime.create_node("probe")
             await until(pilot, lambda: probe.count_publishers("/rosout_agg") == 1, what="the aggregator in the graph")
             talkers = [nodes.start("talker.py", "--name", f"flag_talker_{n}") for n in range(2)]
@@ -133,7 +133,7 @@ async def test_topic_flag_picks_the_topic(nodes):
             talkers[0].send({"cmd": "log", "level": "warn", "msg": "straight on /rosout"})
             await until(pilot, lambda: "straight on /rosout" in screen_text(app), what="the message on the screen")
             assert " WARN " in line_with(app, "straight on /rosout")[1]
-            assert [r.source for r in app.store if r.msg == "straight on /rosout"] == ["/rosout"]
+            assert [r.source for r in app.main.store if r.msg == "straight on /rosout"] == ["/rosout"]
             assert " /rosout 2 pubs" in screen_text(app).splitlines()[-2]
     finally:
         live.close()

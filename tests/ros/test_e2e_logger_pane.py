@@ -52,7 +52,7 @@ def notice(pane) -> str:
 
 
 def messages(app, node: str) -> list:
-    return [record for record in app.store if record.node == node]
+    return [record for record in app.main.store if record.node == node]
 
 
 async def log_marker(app, pilot, talker, tag: str) -> tuple[list, object]:
@@ -60,8 +60,8 @@ async def log_marker(app, pilot, talker, tag: str) -> tuple[list, object]:
     talker.send({"cmd": "log_all", "tag": tag})
     await asyncio.to_thread(talker.expect_next, "logged")
     info = f"{tag} info message"
-    await until(pilot, lambda: any(r.msg == info for r in app.store), what=info)
-    marker = next(r for r in app.store if r.msg == info)
+    await until(pilot, lambda: any(r.msg == info for r in app.main.store), what=info)
+    marker = next(r for r in app.main.store if r.msg == info)
     return [r for r in messages(app, "ns.talker") if r.seq < marker.seq], marker
 
 
@@ -75,7 +75,7 @@ async def start_talkers(nodes, *extra: list[str]):
 
 async def open_logger_pane(app, pilot, ready, what: str):
     """Opens the logger pane (``l``) and lets the app run until ``ready(pane)``; returns the pane."""
-    pane = app.logger_pane
+    pane = app.main.logger_pane
     await pilot.press("l")
     await until(pilot, lambda: ready(pane), what=what)
     return pane
@@ -86,8 +86,8 @@ async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off
     talker.send({"cmd": "periodic", "period": 0.1})
     app = live
     async with app.run_test(size=(160, 40)) as pilot:
-        pane = app.logger_pane
-        await until(pilot, lambda: any(r.msg.startswith("tick") for r in app.store), what="the talker's ticks")
+        pane = app.main.logger_pane
+        await until(pilot, lambda: any(r.msg.startswith("tick") for r in app.main.store), what="the talker's ticks")
         assert not any(r.level == 10 for r in messages(app, "ns.talker")), "DEBUG is off by default"
 
         # The key on a table row opens the pane on that row's node, its logger highlighted.
@@ -118,7 +118,7 @@ async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off
         assert any(r.msg == "debug-on debug message" and r.level == 10 for r in before)
         await until(
             pilot,
-            lambda: any(r.level == 10 and r.msg.startswith("tick") and r.seq > marker.seq for r in app.store),
+            lambda: any(r.level == 10 and r.msg.startswith("tick") and r.seq > marker.seq for r in app.main.store),
             what="DEBUG ticks",
         )
 
@@ -135,11 +135,11 @@ async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off
         )
         after = [r for r in messages(app, "ns.talker") if r.seq >= marker.seq]
         assert not any(r.level == 10 for r in after), [r.msg for r in after if r.level == 10]
-        assert not any(r.msg == "debug-off debug message" for r in app.store)
+        assert not any(r.msg == "debug-off debug message" for r in app.main.store)
 
         # Escape gives the table the keys back; the table still follows while the pane is open.
         await pilot.press("escape")
-        assert app.table.has_focus and pane.is_open and app.table.following
+        assert app.main.table.has_focus and pane.is_open and app.main.table.following
         await pilot.press("l")
         assert not pane.is_open
 
@@ -169,7 +169,7 @@ async def test_temporary_debug_counts_down_and_reverts(nodes, live):
         await until(pilot, lambda: "DEBUG for" in row(), what="the countdown")
         await until(
             pilot,
-            lambda: row() and any(r.level == 10 and r.msg.startswith("tick") for r in app.store),
+            lambda: row() and any(r.level == 10 and r.msg.startswith("tick") for r in app.main.store),
             what="DEBUG ticks",
         )
         await until(pilot, lambda: "DEBUG for" not in row(), timeout=15, what="the end of the temporary level")
@@ -216,5 +216,5 @@ async def test_node_killed_during_a_call_gives_a_clear_message_and_the_app_carri
         await until(pilot, lambda: row_of(pane, "other").endswith("WARN"), what="WARN set")
         assert "other set to WARN" in notice(pane)
         other.send({"cmd": "log", "level": "warn", "msg": "still here"})  # and the table still follows
-        await until(pilot, lambda: any(r.msg == "still here" for r in app.store), what="the other node's message")
-        assert app.table.following and app.table.cursor_row == app.table.row_count - 1
+        await until(pilot, lambda: any(r.msg == "still here" for r in app.main.store), what="the other node's message")
+        assert app.main.table.following and app.main.table.cursor_row == app.main.table.row_count - 1

@@ -50,7 +50,7 @@ def lines(option_list) -> list[str]:
 
 
 def debug_ticks(app: ConsoleApp, robot: str, after: int) -> list:
-    return [r for r in app.store if r.robot == robot and r.level == 10 and r.seq > after]
+    return [r for r in app.main.store if r.robot == robot and r.level == 10 and r.seq > after]
 
 
 async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_domains):
@@ -68,12 +68,12 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
         async with app.run_test(size=(160, 40)) as pilot:
             await until(
                 pilot,
-                lambda: {r.robot for r in app.store if r.msg.startswith("tick")} == {"left", "right"},
+                lambda: {r.robot for r in app.main.store if r.msg.startswith("tick")} == {"left", "right"},
                 timeout=DEADLINE_S,
                 what="both robots' ticks",
             )
-            assert not any(r.level == 10 for r in app.store), "DEBUG is off by default"
-            pane = app.logger_pane
+            assert not any(r.level == 10 for r in app.main.store), "DEBUG is off by default"
+            pane = app.main.logger_pane
             await pilot.press("l")
             await until(
                 pilot,
@@ -91,7 +91,7 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
                 timeout=DEADLINE_S,
                 what="the left talker's levels read",
             )
-            marker = app.store.end_seq
+            marker = app.main.store.end_seq
             await pilot.press("d")
             await until(
                 pilot,
@@ -105,10 +105,10 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
                 pilot, lambda: len(debug_ticks(app, "left", marker)) >= 3, timeout=DEADLINE_S, what="DEBUG ticks"
             )
             # The other robot's talker of the same name went on at INFO: later ticks, none DEBUG.
-            after = app.store.end_seq
+            after = app.main.store.end_seq
             await until(
                 pilot,
-                lambda: len([r for r in app.store if r.robot == "right" and r.seq > after]) >= 3,
+                lambda: len([r for r in app.main.store if r.robot == "right" and r.seq > after]) >= 3,
                 timeout=DEADLINE_S,
                 what="more ticks from the right",
             )
@@ -118,8 +118,8 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
             await asyncio.to_thread(right.expect_next, "logged", 60)
             await asyncio.to_thread(right.send, {"cmd": "log", "level": "info", "msg": "right marker"})
             await asyncio.to_thread(right.expect_next, "logged", 60)
-            await until(pilot, lambda: any(r.msg == "right marker" for r in app.store), timeout=DEADLINE_S)
-            assert not any(r.msg == "right debug" for r in app.store)  # logged before the marker, in order
+            await until(pilot, lambda: any(r.msg == "right marker" for r in app.main.store), timeout=DEADLINE_S)
+            assert not any(r.msg == "right debug" for r in app.main.store)  # logged before the marker, in order
     finally:
         for live in lives:
             live.close()

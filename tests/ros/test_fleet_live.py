@@ -61,7 +61,7 @@ def fleet(tmp_path, monkeypatch):
 
 
 def robots_of(app: ConsoleApp, text: str) -> set[str]:
-    return {record.robot for record in app.store if record.msg == text}
+    return {record.robot for record in app.main.store if record.msg == text}
 
 
 async def logged_and_seen(pilot, app: ConsoleApp, robot: FleetRobot, text: str) -> None:
@@ -76,7 +76,7 @@ async def logged_and_seen(pilot, app: ConsoleApp, robot: FleetRobot, text: str) 
         except AssertionError:
             continue
     else:
-        raise AssertionError(f"{name} never delivered {text!r}: {app.sources[0].status}")
+        raise AssertionError(f"{name} never delivered {text!r}: {app.main.sources[0].status}")
     assert robots_of(app, text) == {name}
 
 
@@ -95,11 +95,11 @@ async def test_five_robots_in_one_console(fleet):
                 name = member.robot.name
                 row = next(line for line in rows if f"hello from {name}" in line)
                 assert row.split()[3] == name, row  # # Time Sev Robot Node Message
-            statuses = {source.status.robot: source.status for source in app.sources}
+            statuses = {source.status.robot: source.status for source in app.main.sources}
             assert set(statuses) == {"r2a", "r2b", "r2c", "r1a", "r1b"}
             assert all(status.problem == "" for status in statuses.values()), statuses
             # Two nodes of one name on two robots: the node panel counts them apart.
-            assert len({entry.label for entry in app.node_stats.nodes()}) >= 5
+            assert len({entry.label for entry in app.main.node_stats.nodes()}) >= 5
 
             # robot: filters.
             await pilot.press("slash")
@@ -124,7 +124,7 @@ async def test_five_robots_in_one_console(fleet):
                 timeout=DEADLINE_S,
                 what="the survivors' rows",
             )
-            status_line = screen_text(app).splitlines()[app.status_bar.region.y]
+            status_line = screen_text(app).splitlines()[app.main.status_bar.region.y]
             for name in ("r2b", "r2c", "r1b"):
                 assert name in status_line
     finally:

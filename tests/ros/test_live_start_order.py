@@ -52,13 +52,13 @@ async def test_histories_of_two_nodes_come_in_time_order(nodes):
     try:
         async with app.run_test(size=(160, 40)) as pilot:
             # A history keeps 10 s: on a slow start the oldest may have gone; the newest come.
-            await until(pilot, lambda: newest <= {r.msg for r in app.store}, what="both nodes' histories")
-            received = [msg for msg in logged if msg in {r.msg for r in app.store}]
+            await until(pilot, lambda: newest <= {r.msg for r in app.main.store}, what="both nodes' histories")
+            received = [msg for msg in logged if msg in {r.msg for r in app.main.store}]
             await until(pilot, lambda: len(table_rows(app)) >= len(received), what="the rows on the screen")
             rows = [line for _, line in sorted(table_rows(app).values())]
             order = [next((msg for msg in logged if msg in line), None) for line in rows]
             assert [msg for msg in order if msg is not None] == received, "\n".join(rows)
-            stamps = [record.stamp_ns for record in app.store]
+            stamps = [record.stamp_ns for record in app.main.store]
             assert stamps == sorted(stamps)
     finally:
         live.close()

@@ -223,8 +223,8 @@ async def test_files_and_live_ros1_in_one_timeline(roscore, ros1_nodes, tmp_path
     queue = IntakeQueue()
     app = ConsoleApp(queue=queue, sources=[Ros1LiveSource(queue)], files=[str(bag)], utc=True)
     async with app.run_test(size=(140, 30)) as pilot:
-        await until(pilot, lambda: len([r for r in app.store if r.node == "/now"]) >= 10, what="live rows")
-        rows = list(app.store)
+        await until(pilot, lambda: len([r for r in app.main.store if r.node == "/now"]) >= 10, what="live rows")
+        rows = list(app.main.store)
         sources = [r.source for r in rows]
         assert sources[:300] == ["earlier.bag"] * 300 and set(sources[300:]) == {ROSOUT_AGG}
         assert rows[0].topics == "/chatter"  # a ROS 1 bag's topics are kept too

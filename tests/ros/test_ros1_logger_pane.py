@@ -28,7 +28,7 @@ def live(roscore):
 
 
 def debug_rows(app, node: str) -> list:
-    return [r for r in app.store if r.node == node and r.level == 10]
+    return [r for r in app.main.store if r.node == node and r.level == 10]
 
 
 def pane_line(app, text: str) -> str:
@@ -43,8 +43,8 @@ async def test_pane_lists_ros1_nodes_reads_on_enter_and_sets_debug(live, ros1_no
     cpp_pid = cpp.expect("ready")["pid"]
     app = live
     async with app.run_test(size=(160, 40)) as pilot:
-        pane = app.logger_pane
-        await until(pilot, lambda: {"/py_talker", "/cpp_talker"} <= {r.node for r in app.store}, what="rows")
+        pane = app.main.logger_pane
+        await until(pilot, lambda: {"/py_talker", "/cpp_talker"} <= {r.node for r in app.main.store}, what="rows")
         assert "ROS 1 http://127.0.0.1:" in screen_text(app)  # the status line says which ROS and where
         await pilot.press("l")
         await until(
@@ -91,8 +91,8 @@ async def test_pane_lists_ros1_nodes_reads_on_enter_and_sets_debug(live, ros1_no
 
         # L on a table row opens the pane on that row's node (ROS 1 rows name their node).
         await pilot.press("escape")
-        assert app.table.has_focus
+        assert app.main.table.has_focus
         await pilot.press("up")  # the cursor stays on this row while rows arrive
-        record = app.store.get(app.table.cursor_seq)
+        record = app.main.store.get(app.main.table.cursor_seq)
         await pilot.press("L")
         assert pane.selected == record.node

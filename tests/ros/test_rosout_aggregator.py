@@ -109,15 +109,15 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
             async with app.run_test(size=(160, 40)) as pilot:
                 await until(
                     pilot,
-                    lambda: any(r.msg == "3 is divisible by 3" for r in app.store),
+                    lambda: any(r.msg == "3 is divisible by 3" for r in app.main.store),
                     timeout=30,
-                    what=lambda: f"the first message (status {live.source.status}, {len(app.store)} records)",
+                    what=lambda: f"the first message (status {live.source.status}, {len(app.main.store)} records)",
                 )
                 await until(pilot, lambda: live.source.status.topic == "/rosout_agg", what="the switch")
                 await pilot.pause(1.0)
                 # The console shows /rosout at once: when discovery finds the aggregator after
                 # the first rows, its older history is placed among them by its stamps.
-                shown = [r for r in app.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
+                shown = [r for r in app.main.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
                 assert_in_time_order_on_screen(app)
         finally:
             live.close()
@@ -152,9 +152,9 @@ def assert_in_time_order_on_screen(app) -> None:
     """The store, and the table's rows on the screen, are in the order of their stamps."""
     from support.ui import table_rows
 
-    assert in_time_order([record.stamp_ns for record in app.store])
+    assert in_time_order([record.stamp_ns for record in app.main.store])
     rows = table_rows(app)  # by the number in the # column: a record's seq + 1
-    shown = [app.store.get(number - 1).stamp_ns for _, number in sorted((y, n) for n, (y, _) in rows.items())]
+    shown = [app.main.store.get(number - 1).stamp_ns for _, number in sorted((y, n) for n, (y, _) in rows.items())]
     assert len(shown) > 10 and in_time_order(shown), "\n".join(line for _, line in sorted(rows.values()))
 
 
@@ -176,7 +176,7 @@ async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_n
     app = ConsoleApp(queue=queue, sources=[live.source], utc=True)
 
     def ticks() -> list[int]:
-        return [int(r.msg.split()[1]) for r in app.store if r.node == "switching"]
+        return [int(r.msg.split()[1]) for r in app.main.store if r.node == "switching"]
 
     try:
         async with app.run_test(size=(160, 40)) as pilot:
@@ -187,10 +187,10 @@ async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_n
             switched = ticks()[-1]
             await until(pilot, lambda: ticks()[-1] >= switched + 20, timeout=60, what="ticks after the switch")
             await asyncio.to_thread(aggregator.wait_running)  # its own first message on screen too
-            await until(pilot, lambda: any(r.msg.startswith("republishing /rosout") for r in app.store))
+            await until(pilot, lambda: any(r.msg.startswith("republishing /rosout") for r in app.main.store))
             got = ticks()
             assert got == list(range(1, got[-1] + 1))
-            assert len({(r.node, r.stamp_ns, r.msg) for r in app.store}) == len(app.store)
+            assert len({(r.node, r.stamp_ns, r.msg) for r in app.main.store}) == len(app.main.store)
             await pilot.pause(0.3)
             assert_in_time_order_on_screen(app)
     finally:
@@ -212,8 +212,8 @@ async def test_the_rosout_log_opens_in_the_app(aggregators, nodes):
     assert aggregator.stop(signal.SIGTERM) == 0
     app = ConsoleApp(files=[str(aggregator.path)], utc=True)
     async with app.run_test(size=(160, 30)) as pilot:
-        await until(pilot, lambda: sum(r.node == "filed" for r in app.store) == 5)
-        got = [r for r in app.store if r.node == "filed"]
+        await until(pilot, lambda: sum(r.node == "filed" for r in app.main.store) == 5)
+        got = [r for r in app.main.store if r.node == "filed"]
         assert [(r.level, r.msg, r.file, r.function, r.line) for r in got] == [
             (m["level"], m["msg"], m["file"], m["function"], m["line"]) for m in logged
         ]

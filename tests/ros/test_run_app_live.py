@@ -59,7 +59,7 @@ def test_demo_starts_its_nodes_and_they_end_with_the_app(ros_env, monkeypatch):
         app = pilot.app
         await until(pilot, lambda: "demo: 4 nodes" in screen_text(app), timeout=30, what="the demo nodes")
         await until(pilot, lambda: "count_and_log" in screen_text(app), timeout=30, what="a demo message")
-        pids.extend(p.pid for source in app.sources for p in getattr(source, "processes", []))
+        pids.extend(p.pid for source in app.main.sources for p in getattr(source, "processes", []))
         await asyncio.sleep(0)
         await pilot.press("q")
 

@@ -26,7 +26,7 @@ async def test_the_empty_table_says_what_it_waits_for_until_the_first_message(no
             waiting = f"waiting for /rosout or /rosout_agg publishers on ROS 2 domain {domain}…"
             await until(pilot, lambda: waiting in screen_text(app), what="the waiting hint")
             y, _ = line_with(app, waiting)
-            assert app.table.region.y < y < app.table.region.bottom, "the hint is in the table"
+            assert app.main.table.region.y < y < app.main.table.region.bottom, "the hint is in the table"
             talker = nodes.start("talker.py", "--name", "hint_talker")
             await asyncio.to_thread(talker.expect, "ready")
             talker.send({"cmd": "log", "level": "info", "msg": "hello from hint_talker"})

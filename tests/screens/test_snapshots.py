@@ -26,8 +26,8 @@ def test_table(snap_compare, size):
 def test_scrolled_and_paused(snap_compare, size):
     async def scroll_pause_and_receive(pilot):
         await pilot.press("up", "up", "up", "space")
-        pilot.app.intake.add_records(records(25, start=200))
-        pilot.app.update_status()
+        pilot.app.main.intake.add_records(records(25, start=200))
+        pilot.app.main.update_status()
         await pilot.pause()
 
     assert snap_compare(feed_app(), terminal_size=size, run_before=scroll_pause_and_receive)
@@ -48,7 +48,7 @@ def test_logger_pane_beside_the_table(snap_compare, size):
     """The pane in a fixed state, fed as its LoggerControl would feed it (no live graph)."""
 
     async def open_pane_on_the_planner(pilot):
-        pane = pilot.app.logger_pane
+        pane = pilot.app.main.logger_pane
         await pilot.press("l")
         feed_logger_pane(pane)
         pane.show_temporaries([TemporaryLevel(PLANNER, "navigation.planner.costmap", 10, 0, deadline=25.0)])
@@ -66,7 +66,7 @@ def test_empty_table_shows_its_header(snap_compare):
 def test_highlighted_and_dimmed_rows(snap_compare, size):
     """Highlight rules on: matching rows marked, the others dimmed; an exclude rule hides some."""
     app = feed_app()
-    app._initial_query = "+level:error,fatal +node:navigation.planner -msg:scan"
+    app.main._initial_query = "+level:error,fatal +node:navigation.planner -msg:scan"
     assert snap_compare(app, terminal_size=size)
 
 
@@ -83,7 +83,7 @@ def test_rules_pane(snap_compare):
         )
 
         app = pilot.app
-        app.filtering.apply_rules(
+        app.main.filtering.apply_rules(
             RuleSet(
                 (
                     exclude(NodeRule(("sensors.*",))),

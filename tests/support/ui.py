@@ -133,7 +133,7 @@ def type_ahead(app, text: str = "", keys: tuple[str, ...] = ()) -> None:
 
 def table_rows(app) -> dict[int, tuple[int, str]]:
     """The table's rows on the screen: ``{number in the # column: (terminal row, its text)}``."""
-    region = app.table.region
+    region = app.main.table.region
     rows = {}
     for y, line in enumerate(screen_text(app).splitlines()):
         words = line[region.x : region.right].split()
@@ -145,8 +145,8 @@ def table_rows(app) -> dict[int, tuple[int, str]]:
 def cursor_number(app) -> int | None:
     """The number of the table row drawn in the cursor's colours, or None when none is.
     While the table has the focus only: a blurred cursor's colour is blended on the screen."""
-    cursor = app.table.get_component_rich_style("log-table--cursor").bgcolor
-    x = app.table.region.x + 1
+    cursor = app.main.table.get_component_rich_style("log-table--cursor").bgcolor
+    x = app.main.table.region.x + 1
     drawn = [number for number, (y, _) in table_rows(app).items() if style_at(app, x, y).bgcolor == cursor]
     assert len(drawn) <= 1, f"more than one row drawn as the cursor: {drawn}"
     return drawn[0] if drawn else None

@@ -13,7 +13,7 @@ def own_config(tmp_path, monkeypatch):
 
 
 def header(app) -> str:
-    return screen_text(app).splitlines()[app.table.region.y]
+    return screen_text(app).splitlines()[app.main.table.region.y]
 
 
 @pytest.mark.parametrize("size", [(100, 30), (80, 24)])
@@ -43,7 +43,7 @@ async def test_columns_dialog_takes_keys_typed_all_at_once():
         type_ahead(app, keys=("C", "down", "down", "down", "down", "space", "enter"))
         await until(pilot, lambda: "Node" not in header(app), what="the Node column to go")
         assert "Columns shown" not in screen_text(app)
-        assert not app.table.paused_end, "space reached the dialog, not the table"
+        assert not app.main.table.paused_end, "space reached the dialog, not the table"
 
 
 async def test_columns_dialog_escape_changes_nothing():

@@ -14,7 +14,7 @@ from support.ui import line_with, make_app, screen_text, type_text, until
 
 def in_table(app, text: str) -> bool:
     """Whether ``text`` shows inside the table's region."""
-    region = app.table.region
+    region = app.main.table.region
     lines = screen_text(app).splitlines()[region.y : region.bottom]
     return any(text in line[region.x : region.right] for line in lines)
 
@@ -28,7 +28,7 @@ async def test_rules_hiding_everything_say_nothing_matches_and_how_many_are_hidd
         hint = "nothing matches: 100 messages hidden by rules"
         await until(pilot, lambda: in_table(app, hint), what="the nothing-matches hint")
         await pilot.press("slash")
-        await until(pilot, lambda: app.query_bar.is_open, what="the query line")
+        await until(pilot, lambda: app.main.query_bar.is_open, what="the query line")
         for _ in "node:nobody":
             await pilot.press("backspace")
         await pilot.press("enter")

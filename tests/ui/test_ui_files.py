@@ -44,10 +44,12 @@ async def test_files_given_at_start_load_merged_with_their_source(tmp_path):
     save_records(second_rows, tmp_path / "b.csv", "rqt")
     app = ConsoleApp(files=[str(tmp_path / "a.jsonl"), str(tmp_path / "b.csv")], utc=True)
     async with app.run_test(size=(160, 40)) as pilot:  # the newest rows reach back to the first file's
-        await until(pilot, lambda: "100/100 shown" in screen_text(app) and not app.files.loading, what="both files")
+        await until(
+            pilot, lambda: "100/100 shown" in screen_text(app) and not app.main.files.loading, what="both files"
+        )
         await pilot.press("home")  # the oldest rows: the first file's alone, then both files' overlap
         await until(pilot, lambda: 1 in table_rows(app), what="the first rows")
-        header = screen_text(app).splitlines()[app.table.region.y]
+        header = screen_text(app).splitlines()[app.main.table.region.y]
         assert "Source" in header, "files of different sources: the Source column is shown"
         rows = [line for _, (_, line) in sorted(table_rows(app).items())]
         times = [line.split()[1] for line in rows]
@@ -74,8 +76,8 @@ async def test_open_dialog_loads_and_reports_problems(tmp_path):
         assert isinstance(app.screen, OpenScreen)
         await type_text(pilot, f"{good} {bad}")
         await pilot.press("enter")
-        await until(pilot, lambda: "10/10 shown" in screen_text(app) and not app.files.loading)
-        await until(pilot, lambda: bool(app.files.problems))
+        await until(pilot, lambda: "10/10 shown" in screen_text(app) and not app.main.files.loading)
+        await until(pilot, lambda: bool(app.main.files.problems))
         await pilot.press("exclamation_mark")
         assert isinstance(app.screen, ProblemsScreen)
         await pilot.pause()
@@ -136,14 +138,14 @@ async def test_a_large_load_shows_progress_answers_keys_and_cancels(tmp_path, mo
             )
     app = ConsoleApp(files=[str(big)])
     async with app.run_test(size=(160, 30)) as pilot:
-        await until(pilot, lambda: len(app.store) > 0)
-        assert app.load_bar.has_class("-loading")
+        await until(pilot, lambda: len(app.main.store) > 0)
+        assert app.main.load_bar.has_class("-loading")
         await pilot.press("up")  # keys work while loading
         await pilot.press("x")
-        await until(pilot, lambda: not app.files.loading)
-        assert 0 < len(app.store) < 300_000
+        await until(pilot, lambda: not app.main.files.loading)
+        assert 0 < len(app.main.store) < 300_000
         # The bar hides on the tick after the load ends.
-        await until(pilot, lambda: not app.load_bar.has_class("-loading"), timeout=2, what="the load bar to hide")
+        await until(pilot, lambda: not app.main.load_bar.has_class("-loading"), timeout=2, what="the load bar to hide")
 
 
 async def test_save_what_is_shown_then_load_it_back(tmp_path):
@@ -161,9 +163,9 @@ async def test_save_what_is_shown_then_load_it_back(tmp_path):
         await until(pilot, lambda: target.exists())
     again = ConsoleApp(files=[str(target)])
     async with again.run_test(size=(120, 30)) as pilot:
-        await until(pilot, lambda: len(again.store) == 40 and not again.files.loading)
+        await until(pilot, lambda: len(again.main.store) == 40 and not again.main.files.loading)
         original = [(r.stamp_ns, r.level, r.node, r.msg, r.file, r.function, r.line) for r in store]
-        loaded = [(r.stamp_ns, r.level, r.node, r.msg, r.file, r.function, r.line) for r in again.store]
+        loaded = [(r.stamp_ns, r.level, r.node, r.msg, r.file, r.function, r.line) for r in again.main.store]
         assert loaded == original
 
 
@@ -202,7 +204,7 @@ async def test_with_live_records_waiting_the_files_come_first(tmp_path):
     app = ConsoleApp(queue=live, files=[str(tmp_path / "old.jsonl")])
     async with app.run_test(size=(120, 30)) as pilot:
         await until(pilot, lambda: "505/505 shown" in screen_text(app), what="the file and the live records")
-        stamps = [r.stamp_ns for r in app.store]
+        stamps = [r.stamp_ns for r in app.main.store]
         assert stamps == sorted(stamps)
         rows = [line for _, (_, line) in sorted(table_rows(app).items())]
         times = [line.split()[1] for line in rows]
@@ -223,8 +225,8 @@ async def test_the_detail_view_says_when_a_file_gave_local_times(monkeypatch):
     app = ConsoleApp(files=[str(master)], utc=True)
     try:
         async with app.run_test(size=(160, 40)) as pilot:
-            await until(pilot, lambda: len(app.store) == 3 and not app.files.loading)
-            await until(pilot, lambda: "master.log" in app.files.source_notes)
+            await until(pilot, lambda: len(app.main.store) == 3 and not app.main.files.loading)
+            await until(pilot, lambda: "master.log" in app.main.files.source_notes)
             await pilot.press("enter")
             await pilot.pause()
             text = screen_text(app)
@@ -253,7 +255,7 @@ async def test_a_run_folder_opens_merged_with_each_file_a_source(tmp_path, monke
     app = ConsoleApp(files=[str(run)], utc=True)
     try:
         async with app.run_test(size=(200, 40)) as pilot:
-            await until(pilot, lambda: len(app.store) == 20 and not app.files.loading)
+            await until(pilot, lambda: len(app.main.store) == 20 and not app.main.files.loading)
             await pilot.pause(0.2)
             text = screen_text(app)
             lines = text.splitlines()

@@ -53,7 +53,7 @@ async def node_panel_over(pilot, app, queue: IntakeQueue, *, picker: int, forkli
 
 
 def header(app) -> str:
-    return screen_text(app).splitlines()[app.table.region.y]
+    return screen_text(app).splitlines()[app.main.table.region.y]
 
 
 @pytest.mark.parametrize("size", [(100, 30), (80, 24)])
@@ -84,9 +84,9 @@ async def test_a_robots_colour_paints_its_name():
         put(queue, "picker", 1)
         put(queue, "forklift", 1, start=5)
         await until(pilot, lambda: "forklift says 0" in screen_text(app), what="the rows")
-        picker = app.table.robot_styles["picker"]
+        picker = app.main.table.robot_styles["picker"]
         assert picker.color is not None and picker.color.name == "cyan"
-        assert "forklift" not in app.table.robot_styles
+        assert "forklift" not in app.main.table.robot_styles
 
 
 async def test_the_node_panel_and_the_summary_count_per_robot():
@@ -131,7 +131,7 @@ async def test_solo_and_mute_act_on_one_robots_node():
     async with app.run_test(size=(120, 34)) as pilot:
         await node_panel_over(pilot, app, queue, picker=4, forklift=4)
         for _ in range(2):
-            if app.node_pane.highlighted_option_id == "picker: /talker":
+            if app.main.node_pane.highlighted_option_id == "picker: /talker":
                 break
             await pilot.press("down")
         await pilot.press("s")
@@ -142,7 +142,9 @@ async def test_solo_and_mute_act_on_one_robots_node():
         assert re.search(r"▏ +forklift: /talker", screen_text(app))
         await pilot.press("x", "escape")
         await until(pilot, lambda: "forklift says 3" in screen_text(app), what="every node again")
-        app.table.jump_to_seq(next(s for s in range(app.store.end_seq) if app.store.get(s).robot == "forklift"))
+        app.main.table.jump_to_seq(
+            next(s for s in range(app.main.store.end_seq) if app.main.store.get(s).robot == "forklift")
+        )
         app.action_mute_row_node()
         await until(pilot, lambda: "forklift says" not in screen_text(app), what="the mute")
         assert "picker says 3" in screen_text(app)

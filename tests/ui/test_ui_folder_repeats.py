@@ -17,7 +17,7 @@ NODE_LINES = 19_800
 
 
 def status(app) -> str:
-    return screen_text(app).splitlines()[app.status_bar.region.y]
+    return screen_text(app).splitlines()[app.main.status_bar.region.y]
 
 
 def toast(app) -> str:

@@ -38,7 +38,7 @@ async def test_drawing_the_table_leaves_no_strip_for_the_collector():
         gc.set_debug(gc.DEBUG_SAVEALL)
         try:
             for start in range(200, 1200, 100):
-                app.intake.add_records(records(100, start=start))
+                app.main.intake.add_records(records(100, start=start))
                 await pilot.press("up", "end")
                 await pilot.pause()
             await until(pilot, lambda: "1,200/1,200 shown" in screen_text(app), what="the new records shown")

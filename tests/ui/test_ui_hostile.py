@@ -46,7 +46,7 @@ async def test_table_rows_render_inert():
     app = hostile_app()
     async with app.run_test(size=(160, 30)) as pilot:
         await pilot.pause()
-        table = app.table
+        table = app.main.table
         for y in range(table.size.height):
             for segment in table.render_line(y):
                 assert not CONTROL.search(segment.text), f"line {y} leaks {segment.text!r}"
@@ -64,7 +64,7 @@ async def test_detail_view_shows_every_message_intact(name):
     index = list(HOSTILE).index(name)
     async with app.run_test(size=(120, 40)) as pilot:
         await pilot.pause()
-        app.table_control.open_detail(index)
+        app.main.table_control.open_detail(index)
         await pilot.pause()
         screen = app.screen
         assert isinstance(screen, DetailScreen)

@@ -141,10 +141,10 @@ async def test_logger_pane_add_logger_box_shows_the_typed_name():
     app = make_app(clock=lambda: 100.0)
     async with app.run_test(size=(140, 30)) as pilot:
         await pilot.press("l")
-        feed_logger_pane(app.logger_pane)
+        feed_logger_pane(app.main.logger_pane)
         await pilot.pause()
         await pilot.press("a")
-        await until(pilot, lambda: app.logger_pane.name_input.has_focus, what="the logger name box")
+        await until(pilot, lambda: app.main.logger_pane.name_input.has_focus, what="the logger name box")
         await type_into(pilot, "navigation.planner.extra")
         line_with(app, "navigation.planner.extra")
         assert cursor_after(app, "navigation.planner.extra")
@@ -173,7 +173,7 @@ async def test_typing_in_the_search_line_shows_the_text_without_laying_out_the_s
     app = make_app()
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.press("f")
-        await until(pilot, lambda: app.search_bar.is_open, what="the search line")
+        await until(pilot, lambda: app.main.search_bar.is_open, what="the search line")
         await pilot.pause(0.2)
         screen = app.screen
         layouts = []

@@ -39,14 +39,14 @@ async def test_a_remapped_key_works_and_the_screen_names_it(own_config_folder):
     app = make_app(5)
     async with app.run_test(size=(140, 30)) as pilot:
         await pilot.press("space")
-        assert app.table.paused_end is None, "space no longer pauses"
+        assert app.main.table.paused_end is None, "space no longer pauses"
         await pilot.press("p")
-        assert app.table.paused_end is not None
+        assert app.main.table.paused_end is not None
         assert " p Resume " in screen_text(app).splitlines()[-1], "the footer names the new key (and what it does now)"
         await pilot.press("ctrl+l")
-        feed_logger_pane(app.logger_pane)
+        feed_logger_pane(app.main.logger_pane)
         await pilot.pause()
-        assert app.logger_pane.is_open
+        assert app.main.logger_pane.is_open
         assert "D/i/w/e/f level" in screen_text(app), "the pane's hint line follows the keymap"
         await pilot.press("escape", "question_mark")
         await pilot.pause()
@@ -95,10 +95,10 @@ async def test_the_footer_draws_its_keys_again_only_when_they_change_and_asks_no
         footer.refresh = lambda *a, layout=False, **k: layouts.append(layout) or refresh(*a, layout=layout, **k)
         before = footer.changes
         await pilot.press("f")
-        await until(pilot, lambda: app.search_bar.is_open, what="the search line")
+        await until(pilot, lambda: app.main.search_bar.is_open, what="the search line")
         await until(pilot, lambda: "f1 Help" in screen_text(app).splitlines()[-1], what="the search line's keys")
         await pilot.press("escape")
-        await until(pilot, lambda: app.focused is app.table, what="the table focused again")
+        await until(pilot, lambda: app.focused is app.main.table, what="the table focused again")
         await pilot.pause(0.2)
         assert footer.changes - before <= 2, f"{footer.changes - before} changes for open and close"
         assert True not in layouts, "the footer asked for a layout"

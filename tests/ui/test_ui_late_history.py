@@ -120,7 +120,7 @@ async def test_robots_whose_clocks_differ_are_shown_as_they_come_once_their_hist
         put(queue, "/planner", 4, 7.0, 0.5, robot="forklift")
         await until(pilot, lambda: "8/8 shown" in status_line(app), what=lambda: status_line(app))
         assert shown_stamps(app) == [10.0, 10.5, 11.0, 11.5, 7.0, 7.5, 8.0, 8.5], screen_text(app)
-        app.sources[1].status.publishers += 1  # a node joins forklift's graph with its history
+        app.main.sources[1].status.publishers += 1  # a node joins forklift's graph with its history
         put(queue, "/joined", 2, 6.0, 0.1, robot="forklift")
         await until(pilot, lambda: "10/10 shown" in status_line(app), what=lambda: status_line(app))
         assert shown_stamps(app) == sorted(shown_stamps(app)), screen_text(app)  # placed: a history

@@ -33,7 +33,7 @@ async def fed_pane() -> AsyncIterator[tuple[Pilot, LoggerPane]]:
     ``feed_logger_pane``: the pilot and the pane."""
     app = make_app()
     async with app.run_test(size=(140, 30)) as pilot:
-        pane = app.logger_pane
+        pane = app.main.logger_pane
         await pilot.press("l")
         feed_logger_pane(pane)
         await pilot.pause()
@@ -50,7 +50,7 @@ def notice(pane: LoggerPane) -> str:
 
 def pane_text(app) -> list[str]:
     """The logger pane's part of each terminal row, as the screen shows it."""
-    region = app.logger_pane.region
+    region = app.main.logger_pane.region
     lines = screen_text(app).splitlines()[region.y : region.bottom]  # below the timeline
     return [line[region.x :].lstrip("▏").strip() for line in lines]
 
@@ -67,7 +67,7 @@ async def test_l_toggles_the_pane_escape_gives_the_table_the_keys_and_the_table_
         assert "Logger levels" not in screen_text(app)
         await pilot.press("l")
         await until(pilot, lambda: pane_says(app, "Logger levels · nodes"), what="the pane")
-        app.intake.add_records(records(20, start=100))
+        app.main.intake.add_records(records(20, start=100))
         await until(pilot, lambda: max(table_rows(app)) == 120, what="the table following with the pane open")
         await pilot.press("escape", "space")  # the table's keys work with the pane open
         await until(pilot, lambda: "PAUSED" in screen_text(app).splitlines()[-2], what="the table paused")
@@ -87,7 +87,7 @@ async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
         await pilot.press("L")
         await until(pilot, lambda: pane_says(app, "No node in the ROS graph logs as"), what="the pane's answer to L")
         assert "Temporary level for" not in screen_text(app), "t opened no dialog"
-        assert app.logger_pane.view.notice_is_error
+        assert app.main.logger_pane.view.notice_is_error
 
 
 async def test_nodes_marks_loggers_and_levels_as_shown():
@@ -160,10 +160,10 @@ async def test_temporary_level_shows_its_countdown():
 async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
     app = make_app(10)
     async with app.run_test(size=(140, 30)) as pilot:
-        pane = app.logger_pane
+        pane = app.main.logger_pane
         pane.show_nodes(GRAPH)
-        row = next(i for i in range(10) if app.store.get(i).node == "navigation.planner.costmap")
-        app.table.move_cursor(row)
+        row = next(i for i in range(10) if app.main.store.get(i).node == "navigation.planner.costmap")
+        app.main.table.move_cursor(row)
         await pilot.press("L")
         await until(pilot, lambda: pane_says(app, f"Loggers of {PLANNER}"), what="the pane on the row's node")
         assert pane.highlighted_logger == "navigation.planner.costmap" and pane.logger_list.has_focus
@@ -238,10 +238,10 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
     try:
         async with app.run_test(size=(140, 30)) as pilot:
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
-            assert not control.graph_watched and not app.logger_pane.view.nodes
+            assert not control.graph_watched and not app.main.logger_pane.view.nodes
             await pilot.press("L")
             await until(
-                pilot, lambda: app.logger_pane.selected == "/power/battery_monitor", what="the row's node selected"
+                pilot, lambda: app.main.logger_pane.selected == "/power/battery_monitor", what="the row's node selected"
             )
             assert pane_says(app, "battery_monitor")
     finally:
@@ -263,14 +263,14 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
             await pilot.press("l")
             await until(pilot, lambda: pane_says(app, "cart:/cart_driver"), what="both robots' nodes")
-            app.logger_pane.select_node("arm:/arm_driver")
+            app.main.logger_pane.select_node("arm:/arm_driver")
             default_is = partial(re.search, r'^"" \(default\) +(\S+)$', flags=re.M)
             await until(
                 pilot,
                 lambda: (found := default_is("\n".join(pane_text(app)))) and found[1] == "INFO",
                 what="the ROS 2 robot's levels, read at once",
             )
-            app.logger_pane.select_node("cart:/cart_driver")
+            app.main.logger_pane.select_node("cart:/cart_driver")
             await until(pilot, lambda: pane_says(app, "Loggers of cart:/cart_driver"), what="the ROS 1 robot's node")
             assert pane_says(app, "read its loggers")
             assert default_is("\n".join(pane_text(app)))[1] == "?", "not read until asked"

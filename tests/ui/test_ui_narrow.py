@@ -14,7 +14,7 @@ SEVERITIES = {"DEBUG", "INFO", "WARN", "ERROR", "FATAL"}
 
 def table_lines(app) -> list[str]:
     """The table's lines on the screen (its header first), cut to the table's own columns."""
-    region = app.table.region
+    region = app.main.table.region
     return [line[region.x : region.right] for line in screen_text(app).splitlines()[region.y : region.bottom]]
 
 
@@ -49,7 +49,7 @@ async def test_80x24_with_a_side_pane_keeps_severity_node_and_message(pane):
     app = make_app(200)
     async with app.run_test(size=(80, 24)) as pilot:
         await pilot.press(pane)
-        table = app.table
+        table = app.main.table
         await until(pilot, lambda: table.size.width < 60, what="the pane to open")
         await until(pilot, lambda: len(rows_with_severity_at(app, 0)) >= 10, what="the rows beside the pane")
         assert table_lines(app)[0].split()[:3] == ["Sev", "Node", "Message"]

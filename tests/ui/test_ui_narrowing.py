@@ -19,17 +19,19 @@ LINES = 20_213
 
 
 def status(app) -> str:
-    return screen_text(app).splitlines()[app.status_bar.region.y]
+    return screen_text(app).splitlines()[app.main.status_bar.region.y]
 
 
 def strip_lines(app) -> list[str]:
-    y = app.timeline_strip.region.y
-    return screen_text(app).splitlines()[y : y + app.timeline_strip.region.height]
+    y = app.main.timeline_strip.region.y
+    return screen_text(app).splitlines()[y : y + app.main.timeline_strip.region.height]
 
 
 def settled(app) -> bool:
     """Every count caught up with the rules (the view, the storms, the timeline)."""
-    return not (app.files.loading or app.view.refiltering or app.storms.behind or app.timeline.behind)
+    return not (
+        app.main.files.loading or app.main.view.refiltering or app.main.storms.behind or app.main.timeline.behind
+    )
 
 
 async def loaded(pilot, app) -> None:
@@ -117,7 +119,7 @@ async def test_the_minimum_level_never_shows_a_level_hidden_on_its_own(tmp_path)
 def on_row(app, text: str) -> bool:
     """Whether the cursor is on the row showing ``text`` (the # column names its record)."""
     number = next(word for word in line_with(app, text)[1].split() if word.isdigit())
-    return app.table.cursor_seq == int(number) - 1
+    return app.main.table.cursor_seq == int(number) - 1
 
 
 async def test_the_search_counts_rows_and_goes_row_to_row(tmp_path):
@@ -153,17 +155,17 @@ async def test_random_rule_changes_keep_the_selected_record_selected(tmp_path):
         chosen = random.Random(28)
         for _ in range(14):
             key = chosen.choice(keys)
-            selected, line = app.table.cursor_seq, app.table.cursor_row - int(app.table.scroll_y)
+            selected, line = app.main.table.cursor_seq, app.main.table.cursor_row - int(app.main.table.scroll_y)
             if "_" in key:  # the palette's actions on the row's node
                 await app.run_action(key)
             else:
                 await pilot.press(key)
             await until(pilot, lambda: settled(app), what=f"the rules after {key}")
             await pilot.pause()
-            if selected is not None and app.view.row_shown(selected) is not None:
+            if selected is not None and app.main.view.row_shown(selected) is not None:
                 number = f"{selected + 1} "
-                assert app.table.cursor_seq == selected, f"{key}: the selected record lost"
-                assert number in screen_text(app).splitlines()[app.table.region.y + 1 + line], f"{key}: moved"
+                assert app.main.table.cursor_seq == selected, f"{key}: the selected record lost"
+                assert number in screen_text(app).splitlines()[app.main.table.region.y + 1 + line], f"{key}: moved"
 
 
 async def test_the_palette_finds_what_a_person_types(tmp_path):

@@ -43,7 +43,7 @@ def number_of(line: str) -> str:
 
 def cursor_line(app: ConsoleApp) -> str:
     """The table row the screen paints as the cursor's (found by its colour)."""
-    table = app.table
+    table = app.main.table
     cursor = table.get_component_rich_style("log-table--cursor", partial=True).bgcolor
     lines = screen_text(app).splitlines()
     region = table.region
@@ -75,7 +75,8 @@ async def search_for(pilot, app: ConsoleApp, text: str) -> None:
     await type_text(pilot, text)
     await pilot.press("enter")
     await until(
-        pilot, lambda: "match" in app.searching.search_status() and "searching" not in app.searching.search_status()
+        pilot,
+        lambda: "match" in app.main.searching.search_status() and "searching" not in app.main.searching.search_status(),
     )
 
 
@@ -233,7 +234,7 @@ async def test_level_keys_hide_levels_and_say_so_in_the_status_line():
         await pilot.press("greater_than_sign")
         await pilot.pause()
         assert "level≥WARN" in status_line(app)
-        rows = screen_text(app).splitlines()[app.table.region.y + 1 : -3]  # below the timeline and the header
+        rows = screen_text(app).splitlines()[app.main.table.region.y + 1 : -3]  # below the timeline and the header
         severities = {line.split()[2] for line in rows if line.split()[:1] != []}
         assert severities <= {"WARN", "ERROR", "FATAL"}, severities
         await pilot.press("4")  # hide ERROR too
@@ -457,7 +458,7 @@ async def test_a_bare_file_name_opens_under_the_run_folder(tmp_path, monkeypatch
     (elsewhere / "r1node.py").write_text("# another file of the same name\n")
     monkeypatch.chdir(elsewhere)
     app = ConsoleApp(store=bare_name_store(), utc=True)
-    app.files.opened_paths.append(str(run / "r1.log"))
+    app.main.files.opened_paths.append(str(run / "r1.log"))
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
         await pilot.press("v")
         await until(pilot, fake_editor.exists, what="the editor")

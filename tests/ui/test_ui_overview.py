@@ -32,7 +32,7 @@ def burst_store() -> LogStore:
 
 
 def strip_lines(app) -> list[str]:
-    y = app.timeline_strip.region.y
+    y = app.main.timeline_strip.region.y
     return screen_text(app).splitlines()[y : y + 4]
 
 
@@ -72,7 +72,7 @@ async def test_a_key_or_a_click_on_a_column_shows_that_time_in_the_table():
         _y, row = line_with(app, "lookup failed 0")
         assert "ERROR" in row and "11:07:30.000" in row
         assert "SCROLL" in screen_text(app).splitlines()[-2]
-        assert app.table.cursor_seq is not None and app.store.get(app.table.cursor_seq).msg == "tick 500"
+        assert app.main.table.cursor_seq is not None and app.main.store.get(app.main.table.cursor_seq).msg == "tick 500"
         # The table's place shows on the axis around the burst, no longer at the end.
         marks = strip_lines(app)[3]
         assert "━" in marks[column - 3 : column + 4] and not marks.rstrip().endswith("━")
@@ -81,7 +81,7 @@ async def test_a_key_or_a_click_on_a_column_shows_that_time_in_the_table():
         # A click on the first column shows the first messages.
         await pilot.click("#timeline", offset=(0, 2))
         await until(pilot, lambda: "tick 0 " in screen_text(app), what="the click's jump")
-        assert app.table.cursor_seq == 0
+        assert app.main.table.cursor_seq == 0
 
 
 def storm_app(**options) -> ConsoleApp:
@@ -105,17 +105,17 @@ async def test_ten_thousand_identical_messages_are_one_row_that_expands():
         assert "×10000 +10 ms" in row and "Lookup" in row  # to the last message, and the text
         assert screen_text(app).count("Lookup") == 1
         assert "1 storm" in screen_text(app).splitlines()[-2]
-        assert app.table.row_count == 6
+        assert app.main.table.row_count == 6
         # z on the storm's row expands it: every message a row, marked as the storm's.
         await pilot.press("z")
         await until(pilot, lambda: "▾×10000" in screen_text(app), what="the storm expanded")
         text = screen_text(app)
         assert text.count("┆ Lookup would require") >= 15
-        assert app.table.row_count == 10_005
+        assert app.main.table.row_count == 10_005
         await pilot.press("down", "down", "z")  # on one of its rows: collapsed again
         await until(pilot, lambda: "┆" not in screen_text(app), what="the storm collapsed")
         assert "×10000 +10 ms" in screen_text(app)
-        assert app.table.row_count == 6
+        assert app.main.table.row_count == 6
 
 
 async def test_collapsing_off_shows_every_message():
@@ -127,19 +127,19 @@ async def test_collapsing_off_shows_every_message():
         text = screen_text(app)
         assert text.count("Lookup would require") >= 20
         assert "storms off" in text.splitlines()[-2]
-        assert app.table.row_count == 10_005
+        assert app.main.table.row_count == 10_005
         await pilot.press("Z")
         await until(pilot, lambda: "×10000" in screen_text(app), what="collapsing on again")
 
 
 async def test_jumps_land_on_a_storms_row_and_go_on_past_it():
     app = storm_app()
-    app.store.extend_records([LogRecord(stamp_ns=BASE + 30 * S, level=30, node="planner", msg="after the storm")])
+    app.main.store.extend_records([LogRecord(stamp_ns=BASE + 30 * S, level=30, node="planner", msg="after the storm")])
     async with app.run_test(size=(100, 30)) as pilot:
         await until(pilot, lambda: "×10000" in screen_text(app), what="the storm's row")
 
         def selected() -> str:
-            return app.store.get(app.table.cursor_seq).msg
+            return app.main.store.get(app.main.table.cursor_seq).msg
 
         await pilot.press("home", "w")  # the next WARN: the storm's first message
         await until(pilot, lambda: selected() == "Lookup would require extrapolation", what="the storm's row")
@@ -147,7 +147,7 @@ async def test_jumps_land_on_a_storms_row_and_go_on_past_it():
         await until(pilot, lambda: selected() == "after the storm", what="the WARN after the storm")
         await pilot.press("W")  # up again: the storm's last repeat shows in its row
         await until(pilot, lambda: selected() == "Lookup would require extrapolation", what="back to the storm")
-        assert app.table.cursor_seq == 5
+        assert app.main.table.cursor_seq == 5
         line_with(app, "×10000")
 
 
@@ -156,7 +156,7 @@ async def test_storms_count_repeats_as_they_arrive():
     async with app.run_test(size=(100, 30)) as pilot:
         await until(pilot, lambda: "×10000" in screen_text(app), what="the storm's row")
         for batch in range(5):
-            app.queue.put(
+            app.main.queue.put(
                 RecordColumns.from_records(
                     [
                         LogRecord(
@@ -170,7 +170,7 @@ async def test_storms_count_repeats_as_they_arrive():
                 )
             )
         await until(pilot, lambda: "×15000" in screen_text(app), what="the count to grow")
-        assert app.table.row_count == 6
+        assert app.main.table.row_count == 6
 
 
 async def test_the_timeline_hides_and_the_summary_jumps():
@@ -193,5 +193,5 @@ async def test_the_timeline_hides_and_the_summary_jumps():
         assert ["planner", "0", "334", "0", "0", "0", "334"] in [words[:7] for words in planner]
         await pilot.press("down", "enter")  # from INFO (the first with messages) to ERROR
         await until(pilot, lambda: "Summary:" not in screen_text(app), what="the summary to close")
-        assert app.store.get(app.table.cursor_seq).msg == "lookup failed 0"
+        assert app.main.store.get(app.main.table.cursor_seq).msg == "lookup failed 0"
         line_with(app, "lookup failed 0")

@@ -30,7 +30,7 @@ def own_config(tmp_path, monkeypatch):
 
 
 def shown(app: ConsoleApp) -> list:
-    return [app.store.get(app.view.seq_at(row)) for row in range(len(app.view))]
+    return [app.main.store.get(app.main.view.seq_at(row)) for row in range(len(app.main.view))]
 
 
 async def type_query(pilot, app: ConsoleApp, text: str) -> None:
@@ -57,7 +57,7 @@ async def test_query_line_applies_and_replaces_its_rules():
     async with app.run_test(size=(160, 40)) as pilot:
         await type_query(pilot, app, "level>=warn node:nav*")
         await pilot.press("enter")
-        assert not app.query_bar.is_open and app.table.has_focus
+        assert not app.main.query_bar.is_open and app.main.table.has_focus
         rows = shown(app)
         assert rows and all(r.level >= 30 and r.node.startswith("nav") for r in rows)
         await pilot.pause()
@@ -67,7 +67,7 @@ async def test_query_line_applies_and_replaces_its_rules():
         assert all(line.split()[2] in ("WARN", "ERROR", "FATAL") for line in painted)
         await type_query(pilot, app, "-level:debug")
         await pilot.press("enter")
-        assert len(app.filtering.rules.entries) == 1  # the previous query's rule was replaced
+        assert len(app.main.filtering.rules.entries) == 1  # the previous query's rule was replaced
         assert all(r.level != 10 for r in shown(app)) and len(shown(app)) == 270
         await pilot.pause()
         assert "270/300 shown" in screen_text(app)
@@ -79,7 +79,7 @@ async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
     async with app.run_test(size=(160, 40)) as pilot:
         await type_query(pilot, app, "level>=warn")
         await pilot.press("enter")
-        before = len(app.view)
+        before = len(app.main.view)
         await type_query(pilot, app, "level>=loud /time(out/")
         y, line = line_with(app, "level>=loud /time(out/")
         caret_row = next(row for row in screen_text(app).splitlines()[y + 1 :] if "^ " in row)
@@ -87,10 +87,10 @@ async def test_invalid_query_shows_where_and_keeps_the_rules_in_force():
         assert line[column : column + 4] == "loud", "the caret under the unknown level"
         assert "loud" in caret_row and "the rules in force stay" in screen_text(app)
         await pilot.press("enter")
-        assert app.query_bar.is_open  # not applied
-        assert len(app.view) == before and app.query_bar.applied_text == "level>=warn"
+        assert app.main.query_bar.is_open  # not applied
+        assert len(app.main.view) == before and app.main.query_bar.applied_text == "level>=warn"
         await pilot.press("escape")
-        assert not app.query_bar.is_open and len(app.view) == before
+        assert not app.main.query_bar.is_open and len(app.main.view) == before
 
 
 async def test_query_history_walks_back_and_is_kept_between_runs(tmp_path):
@@ -145,7 +145,7 @@ async def test_query_given_at_start():
 
 async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], role: str = "exclude") -> None:
     """Through the rules pane: a, choose the kind, fill the fields, Enter."""
-    if not app.rules_pane.is_open:
+    if not app.main.rules_pane.is_open:
         await pilot.press("r")
     await pilot.press("a")
     await until(pilot, lambda: isinstance(app.screen, RuleEditor), what="the rule editor")
@@ -184,12 +184,12 @@ async def test_every_kind_of_rule_through_the_editor(kind, fill, check):
     app = make_app()
     async with app.run_test(size=(160, 45)) as pilot:
         await add_rule(pilot, app, kind, fill)
-        assert len(app.filtering.rules.entries) == 1 and app.filtering.rules.entries[0].rule.kind == kind
+        assert len(app.main.filtering.rules.entries) == 1 and app.main.filtering.rules.entries[0].rule.kind == kind
         rows = shown(app)
         assert 0 < len(rows) < 300 and all(check(r) for r in rows)
         await pilot.pause()
         assert f"{len(rows)}/300 shown" in screen_text(app)
-        listed = app.filtering.rules.entries[0].describe()[:20]
+        listed = app.main.filtering.rules.entries[0].describe()[:20]
         assert listed in screen_text(app), f"the rules pane lists {listed!r}"
 
 
@@ -200,7 +200,7 @@ async def test_an_invalid_regex_is_refused_in_the_editor_and_nothing_changes():
         assert isinstance(app.screen, RuleEditor)
         error_row = line_with(app, "invalid regular expression 'time(out'")[1]
         assert "missing )" in error_row
-        assert not app.filtering.rules.entries and len(app.view) == 300
+        assert not app.main.filtering.rules.entries and len(app.main.view) == 300
         await pilot.press("escape")
         assert not isinstance(app.screen, RuleEditor)
         assert "300/300 shown" in screen_text(app) and "invalid regular expression" not in screen_text(app)
@@ -247,47 +247,51 @@ async def test_rules_pane_switches_inverts_changes_role_edits_and_deletes():
 async def test_quick_rules_from_a_row():
     app = make_app()
     async with app.run_test(size=(160, 45)) as pilot:
-        row = app.store.get(app.table.cursor_seq)
+        row = app.main.store.get(app.main.table.cursor_seq)
         await pilot.press("minus")
         assert isinstance(app.screen, QuickRuleScreen)
         await pilot.press("enter")  # the first choice: this node
         await until(pilot, lambda: "240/300 shown" in screen_text(app), what="the rule in force")
-        assert all(r.node != row.node for r in shown(app)) and len(app.view) == 240
+        assert all(r.node != row.node for r in shown(app)) and len(app.main.view) == 240
         await pilot.press("plus", "down", "enter")  # highlight this severity
-        assert app.filtering.rules.entries[-1].role is Role.HIGHLIGHT
-        seq = app.view.seq_at(len(app.view) - 1)
-        expected = "highlight" if app.store.get(seq).level == app.store.get(app.table.cursor_seq).level else "dim"
-        assert app.view.decoration_of(seq) == expected
+        assert app.main.filtering.rules.entries[-1].role is Role.HIGHLIGHT
+        seq = app.main.view.seq_at(len(app.main.view) - 1)
+        expected = (
+            "highlight"
+            if app.main.store.get(seq).level == app.main.store.get(app.main.table.cursor_seq).level
+            else "dim"
+        )
+        assert app.main.view.decoration_of(seq) == expected
 
 
 async def test_quick_rules_from_selected_rows():
     app = make_app()
     async with app.run_test(size=(160, 45)) as pilot:
         await pilot.press("shift+up", "shift+up", "shift+up")
-        assert len(app.table.selected_rows()) == 4
-        rows = [app.store.get(seq) for seq in app.table.selected_seqs(10)]
+        assert len(app.main.table.selected_rows()) == 4
+        rows = [app.main.store.get(seq) for seq in app.main.table.selected_seqs(10)]
         nodes = {row.node for row in rows}
         await pilot.press("minus")
         assert isinstance(app.screen, QuickRuleScreen)
         await pilot.press("enter")  # the first choice: these nodes
-        assert app.filtering.rules.entries[-1].rule.names == tuple(dict.fromkeys(row.node for row in rows))
+        assert app.main.filtering.rules.entries[-1].rule.names == tuple(dict.fromkeys(row.node for row in rows))
         assert all(r.node not in nodes for r in shown(app))
         await pilot.press("up", "shift+up", "escape")  # a plain move and Esc end a selection
-        assert len(app.table.selected_rows()) == 1
+        assert len(app.main.table.selected_rows()) == 1
 
 
 async def test_highlighted_only_switch():
     app = make_app(query="+level:error,fatal")
     async with app.run_test(size=(160, 45)) as pilot:
         await pilot.pause()
-        assert len(app.view) == 300
+        assert len(app.main.view) == 300
         await pilot.press("H")
-        assert app.filtering.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
+        assert app.main.filtering.rules.highlighted_only and {r.level for r in shown(app)} == {40, 50}
         await pilot.pause()
         assert "60/300 shown" in screen_text(app)
         assert {line.split()[2] for _, line in table_rows(app).values()} == {"ERROR", "FATAL"}
         await pilot.press("H")
-        assert len(app.view) == 300
+        assert len(app.main.view) == 300
         await pilot.pause()
         assert "300/300 shown" in screen_text(app)
 
@@ -297,7 +301,7 @@ async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
     target = tmp_path / "rules.toml"
     async with app.run_test(size=(160, 45)) as pilot:
         await pilot.pause()
-        saved = app.filtering.rules
+        saved = app.main.filtering.rules
         await pilot.press("r")
         await pilot.press("S")
         assert isinstance(app.screen, PathScreen)
@@ -306,18 +310,18 @@ async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
         assert target.exists()
         app.action_clear_rules()
         await pilot.pause()
-        assert not app.filtering.rules.entries and len(app.view) == 300
+        assert not app.main.filtering.rules.entries and len(app.main.view) == 300
         await pilot.press("O")
         app.screen.query_one("#path").value = str(target)
         await pilot.press("enter")
         await pilot.pause()
-        assert [e.describe() for e in app.filtering.rules.entries] == [e.describe() for e in saved.entries]
+        assert [e.describe() for e in app.main.filtering.rules.entries] == [e.describe() for e in saved.entries]
         bad = tmp_path / "bad.toml"
         bad.write_text('[[rules]]\nkind = "severity"\nlevels = ["warm"]\n')
-        before = app.filtering.rules
+        before = app.main.filtering.rules
         app.action_load_rules(str(bad))
         await pilot.pause()
-        assert app.filtering.rules == before
+        assert app.main.filtering.rules == before
         assert any("warm" in str(n.message) for n in app._notifications)
 
 
@@ -325,17 +329,19 @@ async def test_rule_changes_over_a_large_store_refilter_in_the_background():
     app = make_app(count=200_000)
     async with app.run_test(size=(160, 45)) as pilot:
         await pilot.pause()
-        app.filtering.apply_rules(app.filtering.rules.with_query(parse_query("-level:info")))
+        app.main.filtering.apply_rules(app.main.filtering.rules.with_query(parse_query("-level:info")))
         # Straight after the change: the newest screen is right, the rest is still to do.
-        assert app.view.refiltering
-        bottom = [app.store.get(app.view.seq_at(row)) for row in range(len(app.view) - 40, len(app.view))]
+        assert app.main.view.refiltering
+        bottom = [
+            app.main.store.get(app.main.view.seq_at(row)) for row in range(len(app.main.view) - 40, len(app.main.view))
+        ]
         assert len(bottom) == 40 and all(r.level != 20 for r in bottom)
-        cursor = app.table.cursor_row
+        cursor = app.main.table.cursor_row
         await pilot.press("up")  # keys are answered meanwhile
-        assert app.table.cursor_row != cursor
-        await until(pilot, lambda: not app.view.refiltering)
+        assert app.main.table.cursor_row != cursor
+        await until(pilot, lambda: not app.main.view.refiltering)
         info_per_ten = sum(1 for r in records(10) if r.level == 20)
-        assert len(app.view) == 200_000 - info_per_ten * 20_000
+        assert len(app.main.view) == 200_000 - info_per_ten * 20_000
 
 
 def test_rules_last_at_start_restores_the_saved_set(tmp_path):

@@ -18,7 +18,7 @@ def own_config(tmp_path, monkeypatch):
 
 def pane_lines(app) -> list[str]:
     """The rules pane's column of the screen (left of its border)."""
-    width = app.rules_pane.size.width
+    width = app.main.rules_pane.size.width
     return [line[:width] for line in screen_text(app).splitlines()]
 
 
@@ -40,7 +40,7 @@ async def test_each_rule_has_its_count_on_its_first_line(size):
         await pilot.press("enter")
         await pilot.press("r")
         await until(pilot, lambda: "● mark" in screen_text(app), what="the rules in the pane")
-        await until(pilot, lambda: not app.view.refiltering, what="the counts")
+        await until(pilot, lambda: not app.main.view.refiltering, what="the counts")
         await pilot.pause(0.6)
         firsts = [line for line in pane_lines(app) if re.search(r"● (hide|mark) ", line)]
         assert len(firsts) == 3, pane_lines(app)

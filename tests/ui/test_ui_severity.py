@@ -20,7 +20,7 @@ WORDS = [level.name for level in SEVERITY_TABLE]
 
 def severity_cells(app) -> dict[str, Segment]:
     """The segment of each severity word as the table draws it, on rows away from the cursor."""
-    table = app.table
+    table = app.main.table
     found: dict[str, Segment] = {}
     for y in range(1, table.size.height):
         if int(table.scroll_y) + y - 1 == table.cursor_row:
@@ -64,11 +64,11 @@ async def test_without_colour_error_is_never_darker_than_info_and_weights_tell_t
     async with app.run_test(size=(80, 24)) as pilot:
         await until(pilot, lambda: len(severity_cells(app)) == len(WORDS), what="every severity in the table")
         cells = severity_cells(app)
-        foreground = app.table.rich_style.color.triplet.hex
+        foreground = app.main.table.rich_style.color.triplet.hex
         assert brightness(cells["ERROR"], foreground) >= brightness(cells["INFO"], foreground)
         error, fatal, warn = cells["ERROR"].style, cells["FATAL"].style, cells["WARN"].style
         assert warn.bold and error.bold and error.underline and fatal.bold and fatal.reverse
-        status = app.status_bar.content
+        status = app.main.status_bar.content
         error_count = next(span for span in status.spans if status.plain[span.start : span.end].startswith("E"))
         style = error_count.style
         assert style.bold and style.color is not None and Color.parse(style.color.triplet.hex).brightness > 0.6, (

@@ -26,7 +26,7 @@ async def test_follows_the_tail_as_records_arrive():
     async with app.run_test(size=(100, 24)) as pilot:
         await until(pilot, lambda: cursor_number(app) == 100, what="the cursor on the last row")
         assert bottom_number(app) == 100 and "FOLLOW" in status_line(app)
-        app.intake.add_records(records(50, start=100))
+        app.main.intake.add_records(records(50, start=100))
         await until(pilot, lambda: "150/150 shown" in status_line(app), what="the new records counted")
         await until(pilot, lambda: cursor_number(app) == 150, what="the cursor following the tail")
         assert bottom_number(app) == 150 and "FOLLOW" in status_line(app)
@@ -38,7 +38,7 @@ async def test_moving_up_stops_following_and_keeps_the_rows_in_place():
         await pilot.press("up", "up", "up")
         await until(pilot, lambda: cursor_number(app) == 97 and "SCROLL" in status_line(app), what="SCROLL")
         rows = {number: y for number, (y, _) in table_rows(app).items()}
-        app.intake.add_records(records(50, start=100))
+        app.main.intake.add_records(records(50, start=100))
         await until(pilot, lambda: "150/150 shown" in status_line(app), what="the new records counted")
         assert {number: y for number, (y, _) in table_rows(app).items()} == rows, "the same rows in the same places"
         assert cursor_number(app) == 97 and "SCROLL" in status_line(app)
@@ -50,7 +50,7 @@ async def test_moving_up_stops_following_and_keeps_the_rows_in_place():
 async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
     app = make_app(100)
     async with app.run_test(size=(100, 24)) as pilot:
-        table = app.table
+        table = app.main.table
         await pilot.press("pageup")
         await until(pilot, lambda: "SCROLL" in status_line(app), what="SCROLL")
         drawn = []
@@ -58,7 +58,7 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
         table.render_line = lambda y: drawn.append(y) or draw(y)
         rows_before = {number: line[:-2] for number, (_, line) in table_rows(app).items()}  # less the scrollbar
         drawn.clear()
-        app.intake.add_records(records(500, start=100))
+        app.main.intake.add_records(records(500, start=100))
         await until(pilot, lambda: "600/600 shown" in status_line(app), what="the new records counted")
         await pilot.pause(0.3)  # the scrollbar follows within a tenth of a second
         assert drawn == []  # no row drawn again: the same rows, the same strips
@@ -70,7 +70,7 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
 
 def thumb_rows(app) -> list[int]:
     """The screen rows where the table's scrollbar shows its thumb (drawn in reverse)."""
-    region = app.table.region
+    region = app.main.table.region
     return [y for y in range(region.y, region.bottom) if style_at(app, region.right - 1, y).reverse]
 
 
@@ -78,14 +78,14 @@ async def test_the_scrollbar_stays_at_the_bottom_while_following_and_is_not_redr
     app = make_app(1000)
     async with app.run_test(size=(100, 24)) as pilot:
         await until(pilot, lambda: "1,000/1,000 shown" in status_line(app), what="the records shown")
-        bottom = app.table.region.bottom - 1
+        bottom = app.main.table.region.bottom - 1
         assert thumb_rows(app) == [bottom]
-        bar = app.table.vertical_scrollbar
+        bar = app.main.table.vertical_scrollbar
         painted = []
         paint = bar.render
         bar.render = lambda: painted.append(1) or paint()
         for start in range(1000, 20_000, 1000):
-            app.intake.add_records(records(1000, start=start))
+            app.main.intake.add_records(records(1000, start=start))
             await pilot.pause()
         await until(pilot, lambda: "20,000/20,000 shown" in status_line(app), what="the new records shown")
         await pilot.pause(0.3)
@@ -94,7 +94,7 @@ async def test_the_scrollbar_stays_at_the_bottom_while_following_and_is_not_redr
         await pilot.press("home")
         await until(pilot, lambda: cursor_number(app) == 1, what="the first row")
         await pilot.pause(0.3)
-        assert thumb_rows(app) == [app.table.region.y + 1] or thumb_rows(app) == [app.table.region.y]
+        assert thumb_rows(app) == [app.main.table.region.y + 1] or thumb_rows(app) == [app.main.table.region.y]
 
 
 async def test_position_survives_eviction_at_the_bound():
@@ -105,7 +105,7 @@ async def test_position_survives_eviction_at_the_bound():
         await until(pilot, lambda: (cursor_number(app) or 100) < 80, what="the cursor two pages up")
         cursor = cursor_number(app)
         assert cursor is not None and cursor > 10
-        app.intake.add_records(records(30, start=100))
+        app.main.intake.add_records(records(30, start=100))
         await until(pilot, lambda: "120/120 shown" in status_line(app), what="the oldest 10 evicted")
         assert cursor_number(app) == cursor, "the cursor stays on its record"
         assert cursor + 1 in table_rows(app) and min(table_rows(app)) > 10
@@ -116,7 +116,7 @@ async def test_pause_freezes_the_view_counts_new_and_resume_catches_up():
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.press("space")
         await until(pilot, lambda: "PAUSED" in status_line(app), what="PAUSED")
-        app.intake.add_records(records(50, start=100))
+        app.main.intake.add_records(records(50, start=100))
         await until(pilot, lambda: "+50 new" in status_line(app), what="+50 new")
         assert bottom_number(app) == 100 and cursor_number(app) == 100, "the view frozen"
         assert "space Resume" in screen_text(app).splitlines()[-1]
@@ -131,7 +131,7 @@ async def test_clear_empties_the_view_and_numbering_goes_on():
         await pilot.press("c")
         await until(pilot, lambda: "0/0 shown" in status_line(app), what="the cleared view")
         assert table_rows(app) == {}, "no row left on the screen"
-        app.intake.add_records(records(3, start=500))
+        app.main.intake.add_records(records(3, start=500))
         await until(pilot, lambda: "3/3 shown" in status_line(app), what="three new rows")
         assert list(table_rows(app)) == [101, 102, 103], "numbering goes on after a clear"
         assert cursor_number(app) == 103
@@ -215,7 +215,7 @@ async def test_help_lists_keys_and_closes():
 
 def header(app) -> str:
     """The table's header row on the screen."""
-    return screen_text(app).splitlines()[app.table.region.y]
+    return screen_text(app).splitlines()[app.main.table.region.y]
 
 
 async def test_columns_can_be_hidden_and_shown():
@@ -244,7 +244,7 @@ async def test_narrow_terminals_keep_severity_node_and_message(width):
         await until(pilot, lambda: "5/5 shown" in status_line(app), what="the rows")
         for title in ("Sev", "Node", "Message"):
             assert title in header(app)
-        row = screen_text(app).splitlines()[app.table.region.y + 3]
+        row = screen_text(app).splitlines()[app.main.table.region.y + 3]
         # navigation.planner.costmap: its end, which tells it from navigation.planner, is kept
         assert "WARN" in row and (".planner.costmap " in row or " n.p.costmap " in row) and "planner failed" in row
 
@@ -268,14 +268,14 @@ async def test_a_change_of_focus_redraws_only_the_cursor_row():
     app = make_app(100)
     async with app.run_test(size=(100, 24)) as pilot:
         await until(pilot, lambda: cursor_number(app) == 100, what="the cursor on the last row")
-        table = app.table
+        table = app.main.table
         other_y = table_rows(app)[99][0]
         other = style_at(app, 10, other_y)
         drawn = []
         draw = table._render_row
         table._render_row = lambda record, *args: drawn.append(record.seq + 1) or draw(record, *args)
         await pilot.press("f")
-        await until(pilot, lambda: app.search_bar.is_open, what="the search line")
+        await until(pilot, lambda: app.main.search_bar.is_open, what="the search line")
         await pilot.pause(0.2)
         assert style_at(app, 10, table_rows(app)[99][0]) == other
         assert set(drawn) <= {100}, f"rows drawn again: {sorted(set(drawn))}"

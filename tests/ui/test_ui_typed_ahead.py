@@ -19,12 +19,12 @@ async def test_text_typed_right_after_slash_lands_in_the_query_line():
     app = make_app(30)
     async with app.run_test(size=(100, 30)) as pilot:
         type_ahead(app, "/error")
-        await until(pilot, lambda: app.query_bar.input.value == "error", what="the typed text")
+        await until(pilot, lambda: app.main.query_bar.input.value == "error", what="the typed text")
         steady_cursors(app)
         await pilot.pause()
         _y, line = line_with(app, "error")
         assert line.strip().startswith("error")
-        assert not app.rules_pane.is_open  # the r's did not reach the table
+        assert not app.main.rules_pane.is_open  # the r's did not reach the table
         assert "Open log files" not in screen_text(app)  # nor the o
 
 
@@ -40,10 +40,10 @@ class StartingApp(ConsoleApp):
 
 async def test_keys_pressed_while_the_app_starts_are_all_kept():
     app = StartingApp(utc=True)
-    app.store.extend_records(records(50))
+    app.main.store.extend_records(records(50))
     async with app.run_test(size=(100, 30)) as pilot:
-        await until(pilot, lambda: app.query_bar.input.value == "warn", what="the typed text")
+        await until(pilot, lambda: app.main.query_bar.input.value == "warn", what="the typed text")
         await pilot.pause()
-        assert app.table.cursor_seq == 47 and not app.table.following  # the two ups moved the table
+        assert app.main.table.cursor_seq == 47 and not app.main.table.following  # the two ups moved the table
         assert line_with(app, "warn")[1].strip().startswith("warn")
         assert "rule" in screen_text(app)  # the query line's verdict under it

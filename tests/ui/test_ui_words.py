@@ -45,7 +45,7 @@ async def test_a_remapped_pause_key_resumes_too(tmp_path, monkeypatch):
 
 async def test_the_detail_view_counts_one_line_as_one_line():
     app = make_app(0)
-    app.intake.add_records([LogRecord(1_700_000_000_000_000_000, 20, "talker", "one")])
+    app.main.intake.add_records([LogRecord(1_700_000_000_000_000_000, 20, "talker", "one")])
     async with app.run_test(size=(120, 40)) as pilot:
         await pilot.press("enter")
         await until(pilot, lambda: "Length" in screen_text(app), what="the details")

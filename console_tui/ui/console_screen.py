@@ -1,0 +1,334 @@
+"""The console: the screen of the log table, its panes and lines, and the controllers behind them.
+
+``ConsoleScreen`` composes the widgets (the timeline strip, the rules pane, the table, the
+logger levels pane and the node panel, the query and search lines, the load bar, the status
+line, the footer), owns one controller a concern (``controllers``: intake, table, rules, files,
+panes, search, jumps, toggles, overview), each made with the few things it works on, and hands
+the widgets' messages to them. The keys are the app's (``ConsoleApp.BINDINGS``): its actions
+hand over to the controllers here, and ask ``key_applies`` which keys apply now.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING
+
+from rich.style import Style
+from textual.app import ComposeResult
+from textual.containers import Horizontal
+from textual.screen import Screen
+
+from ..model.intake_queue import IntakeQueue
+from ..model.marks import Marks
+from ..model.node_stats import NodeStats
+from ..model.rules.history import QueryHistory
+from ..model.rules.ruleset import RuleSet
+from ..model.store import LogStore
+from ..model.storms import StormRows
+from ..model.timeline import Timeline
+from ..model.view import LogView
+from ..sources.fleet import Robot
+from .controllers.files import FilesController
+from .controllers.host import TerminalHost
+from .controllers.intake import IntakeController, Source
+from .controllers.jumps import JumpsController
+from .controllers.overview import OverviewController
+from .controllers.panes import PanesController
+from .controllers.rules import RulesController
+from .controllers.search import SearchController
+from .controllers.table import TableController
+from .controllers.toggles import TogglesController
+from .focus import focus_now
+from .gc_policy import CollectionPolicy
+from .widgets.key_footer import KeyFooter
+from .widgets.load_bar import LoadBar
+from .widgets.log_table import LogTable
+from .widgets.logger_pane import LoggerPane
+from .widgets.node_pane import NodePane
+from .widgets.query_bar import QueryBar
+from .widgets.rules_pane import RulesPane
+from .widgets.search_bar import SearchBar
+from .widgets.side_pane import SidePane
+from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
+from .widgets.timeline_strip import TimelineStrip
+
+if TYPE_CHECKING:
+    from ..sources.loggers.control import LoggerControl
+
+
+class ConsoleScreen(Screen[None]):
+    """Every log message in one table, fed by sources through an ``IntakeQueue``."""
+
+    def __init__(
+        self,
+        host: TerminalHost,
+        *,
+        store: LogStore,
+        queue: IntakeQueue,
+        sources: Sequence[Source],
+        utc: bool,
+        clock: Callable[[], float],
+        drain_interval: float,
+        collection_policy: CollectionPolicy,
+        query_history: QueryHistory,
+        files: Sequence[str] = (),
+        log_format: str | None = None,
+        logger_control: LoggerControl | None = None,
+        rules: RuleSet | None = None,
+        query: str = "",
+        robots: Sequence[Robot] = (),
+        file_robots: Mapping[str, str] | None = None,
+    ) -> None:
+        super().__init__()
+        self.store = store
+        self.queue = queue
+        self.view = LogView(self.store)
+        self.sources = list(sources)
+        self.logger_control = logger_control
+        self.collection_policy = collection_policy
+        self._drain_interval = drain_interval
+        #: The overview's model (storms collapsed in the table, the rate over time) and strip.
+        self.timeline = Timeline(self.store, self.view)
+        self.storms = StormRows(self.store, self.view)
+        self.timeline_strip = TimelineStrip(self.timeline, utc=utc, id="timeline")
+        self.table = LogTable(self.store, self.storms, utc=utc, id="log-table")
+        #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
+        self.robots = list(robots)
+        self.table.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
+        if len(self.robots) > 1:
+            self.table.shown_columns |= {"robot"}
+        self.status_bar = StatusBar(id="status")
+        self._initial_rules = rules
+        self._initial_query = query
+        self.query_history = query_history
+        self.query_bar = QueryBar(query_history, utc=utc, id="query-bar")
+        self.search_bar = SearchBar(id="search-bar")
+        self.marks = Marks()
+        self.rules_pane = RulesPane(id="rules-pane")
+        self.load_bar = LoadBar(id="load-bar")
+        #: File loads' records: taken in ahead of the live ones.
+        self.file_queue = IntakeQueue()
+        self._initial_files = list(files)
+        #: The robot of each file given after ``--robot NAME`` (by the path as given).
+        self._file_robots = dict(file_robots or {})
+        self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
+        #: Messages per node and severity, and rates: the node panel shows them.
+        self.node_stats = NodeStats(self.store)
+        self.node_stats.update()
+        self.node_pane = NodePane(self.node_stats, lambda: self.toggles.node_toggles())
+        self.files = FilesController(
+            host, self.store, self.view, self.table, self.load_bar, self.file_queue, log_format=log_format
+        )
+        self._make_controllers(host, utc, clock)
+
+    def _make_controllers(self, host: TerminalHost, utc: bool, clock: Callable[[], float]) -> None:
+        """Each controller with what it works on (the store, the view, the table, widgets, the
+        controllers it hands on to), the app as its ``Host``, and the status line to update."""
+        store, view, table, status = self.store, self.view, self.table, self.update_status
+        self.overview = OverviewController(
+            host,
+            store,
+            view,
+            table,
+            self.timeline,
+            self.storms,
+            self.timeline_strip,
+            self.node_stats,
+            sources=lambda: [source.status for source in self.sources],
+            utc=utc,
+            clock=clock,
+            update_status=status,
+        )
+        self.filtering = RulesController(
+            host,
+            store,
+            view,
+            table,
+            self.query_bar,
+            self.rules_pane,
+            self.query_history,
+            self.overview,
+            utc=utc,
+            clock=clock,
+            update_status=status,
+        )
+        self.table_control = TableController(
+            host,
+            store,
+            view,
+            table,
+            self.marks,
+            self.node_stats,
+            self.overview,
+            source_notes=self.files.source_notes,
+            utc=utc,
+            update_status=status,
+        )
+        self.toggles = TogglesController(
+            store,
+            table,
+            self.node_pane,
+            rules=lambda: self.filtering.rules,
+            apply_rules=self.filtering.apply_rules,
+            live=lambda: bool(self.sources),
+            update_status=status,
+        )
+        self.panes = PanesController(host, store, table, self.logger_pane, self.node_pane)
+        self.searching = SearchController(
+            host, store, view, table, self.search_bar, self.marks, self.storms, clock=clock, update_status=status
+        )
+        self.intake = IntakeController(
+            host,
+            store,
+            view,
+            table,
+            self.marks,
+            self.node_stats,
+            sources=self.sources,
+            queue=self.queue,
+            file_queue=self.file_queue,
+            robots=self.robots,
+            logger_control=self.logger_control,
+            collection_policy=self.collection_policy,
+            files=self.files,
+            filtering=self.filtering,
+            overview=self.overview,
+            searching=self.searching,
+            clock=clock,
+            update_status=status,
+        )
+        self.jumps = JumpsController(
+            host,
+            store,
+            view,
+            table,
+            self.marks,
+            opened_paths=self.files.opened_paths,
+            show_marks=self.searching.show_marks,
+            update_status=status,
+        )
+
+    def compose(self) -> ComposeResult:
+        yield self.timeline_strip
+        with Horizontal(id="main"):
+            yield self.rules_pane
+            yield self.table
+            yield self.logger_pane
+            yield self.node_pane
+        yield self.query_bar
+        yield self.search_bar
+        yield self.load_bar
+        yield self.status_bar
+        yield KeyFooter()
+
+    def on_mount(self) -> None:
+        """The table focused, the overview and the rules given on the command line in force,
+        records taken in every ``drain_interval``; after the first frame (their
+        threads and child processes cost CPU the first frame should not wait for) the sources
+        and the collector started; the files given opened."""
+        app = self.app
+        focus_now(self.table)
+        self.overview.start()
+        app.set_interval(self._drain_interval, self.intake.drain_intake)
+        self.filtering.apply_initial(self._initial_rules, self._initial_query)
+        self.update_status()
+        app.call_after_refresh(self.intake.start_sources)
+        app.call_after_refresh(self.collection_policy.start)  # a collection of all start-up made
+        if self._initial_files:
+            self.files.open_files(self._initial_files, robots=self._file_robots)
+
+    def update_status(self) -> None:
+        table = self.table
+        statuses = [source.status for source in self.sources]
+        paused_end = table.paused_end
+        facts = StatusFacts(
+            # Messages, not rows: a storm's row shows many.
+            shown=len(self.view) if paused_end is None else self.view.count_before(paused_end),
+            total=len(self.store),
+            counts=dict(self.store.counts),
+            rate=self.intake.receive_rate(),
+            following=table.following,
+            paused=table.paused_end is not None,
+            new_while_paused=table.new_while_paused,
+            sources=statuses,
+            note=", ".join(note for note in (self.filtering.note(), self.overview.note()) if note),
+            search=self.searching.search_status(),
+            toggles=self.toggles.status(),
+            time=self.toggles.time_status(),
+        )
+        self.status_bar.show_facts(facts)
+        table.show_hint(empty_hint(facts, self.view.refiltering))
+        self._refresh_footer()
+
+    _footer_state: tuple[bool | None, ...] = ()
+
+    def _refresh_footer(self) -> None:
+        """The footer's keys that come and go (``key_applies``) follow the console's state when
+        it changes (paused, a load ends, filtering is done), not only when the focus moves."""
+        state = tuple(self.key_applies(action) for action in ("pause", "cancel_load", "stop_filtering", "clear_search"))
+        if state != self._footer_state:
+            self._footer_state = state
+            self.refresh_bindings()
+
+    def key_applies(self, action: str) -> bool | None:
+        """Whether the app's key for ``action`` applies now (``ConsoleApp.check_action``): space
+        is Pause or Resume, the keys that end a load, a filtering, a search only while there is one."""
+        if action == "pause":
+            return self.table.paused_end is None
+        if action == "resume":
+            return self.table.paused_end is not None
+        if action == "cancel_load":
+            return self.files.loading
+        if action == "stop_filtering":
+            return self.view.refiltering
+        if action == "clear_search":
+            return self.searching.search is not None and not self.view.refiltering
+        return True
+
+    # -- what the widgets say -----------------------------------------------------------------------
+
+    def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
+        self.update_status()  # the footer's Pause or Resume too
+        self.overview.show(force=True)
+
+    def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
+        self.table_control.open_detail(message.seq)
+
+    def on_query_bar_applied(self, message: QueryBar.Applied) -> None:
+        self.filtering.query_applied(message)
+
+    def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
+        focus_now(self.table)
+
+    def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
+        self.filtering.apply_rules(message.rules)
+
+    def on_rules_pane_edit_requested(self, message: RulesPane.EditRequested) -> None:
+        self.filtering.edit_rule(message.index)
+
+    def on_rules_pane_file_requested(self, message: RulesPane.FileRequested) -> None:
+        if message.save:
+            self.filtering.ask_save()
+        else:
+            self.filtering.open_rules()
+
+    def on_node_pane_toggle(self, message: NodePane.Toggle) -> None:
+        self.toggles.node_panel_toggle(message)
+
+    def on_logger_pane_temporary_requested(self, message: LoggerPane.TemporaryRequested) -> None:
+        self.panes.ask_temporary_level(message)
+
+    def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
+        focus_now(self.table)
+
+    def on_timeline_strip_jump(self, message: TimelineStrip.Jump) -> None:
+        self.overview.show_seq(message.seq)
+
+    def on_timeline_strip_leave(self, _message: TimelineStrip.Leave) -> None:
+        focus_now(self.table)
+
+    def on_search_bar_changed(self, message: SearchBar.Changed) -> None:
+        self.searching.search_line_changed(message)
+
+    def on_search_bar_done(self, message: SearchBar.Done) -> None:
+        self.searching.search_line_done(message)
