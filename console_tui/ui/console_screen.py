@@ -14,6 +14,7 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING
 
 from rich.style import Style
+from textual import on
 from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.screen import Screen
@@ -287,6 +288,13 @@ class ConsoleScreen(Screen[None]):
 
     # -- what the widgets say -----------------------------------------------------------------------
 
+    @on(QueryBar.Closed)
+    @on(SidePane.Leave)
+    @on(TimelineStrip.Leave)
+    def _table_again(self) -> None:
+        """A line, a pane or the timeline let go of the keys: the table takes them again."""
+        focus_now(self.table)
+
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()  # the footer's Pause or Resume too
         self.overview.show(force=True)
@@ -296,9 +304,6 @@ class ConsoleScreen(Screen[None]):
 
     def on_query_bar_applied(self, message: QueryBar.Applied) -> None:
         self.filtering.query_applied(message)
-
-    def on_query_bar_closed(self, _message: QueryBar.Closed) -> None:
-        focus_now(self.table)
 
     def on_rules_pane_changed(self, message: RulesPane.Changed) -> None:
         self.filtering.apply_rules(message.rules)
@@ -318,14 +323,8 @@ class ConsoleScreen(Screen[None]):
     def on_logger_pane_temporary_requested(self, message: LoggerPane.TemporaryRequested) -> None:
         self.panes.ask_temporary_level(message)
 
-    def on_side_pane_leave(self, _message: SidePane.Leave) -> None:
-        focus_now(self.table)
-
     def on_timeline_strip_jump(self, message: TimelineStrip.Jump) -> None:
         self.overview.show_seq(message.seq)
-
-    def on_timeline_strip_leave(self, _message: TimelineStrip.Leave) -> None:
-        focus_now(self.table)
 
     def on_search_bar_changed(self, message: SearchBar.Changed) -> None:
         self.searching.search_line_changed(message)
