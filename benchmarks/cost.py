@@ -129,7 +129,7 @@ def frame_cost(size: tuple[int, int], seconds: float) -> float:
 
     app = ConsoleApp(queue=IntakeQueue(), sources=[])
     records = RecordMaker().batch(200_000)
-    app.store.extend(RecordColumns.from_records(records[:100_000]))
+    app.main.store.extend(RecordColumns.from_records(records[:100_000]))
     costs: list[float] = []
 
     async def run() -> None:
@@ -138,12 +138,12 @@ def frame_cost(size: tuple[int, int], seconds: float) -> float:
             at, step = 100_000, 200
             deadline = time.monotonic() + seconds
             while time.monotonic() < deadline and at + step <= len(records):
-                app.queue.put(RecordColumns.from_records(records[at : at + step]))
+                app.main.queue.put(RecordColumns.from_records(records[at : at + step]))
                 at += step
                 await pilot.pause()  # the tick drains them
                 await pilot.pause()
                 began = time.thread_time()
-                for widget in (app.table, app.status_bar, app.timeline_strip):
+                for widget in (app.main.table, app.main.status_bar, app.main.timeline_strip):
                     widget.refresh()
                 await pilot.pause()
                 costs.append(time.thread_time() - began)
