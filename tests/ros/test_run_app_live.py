@@ -49,7 +49,7 @@ def test_live_topic_shows_a_nodes_messages_and_exit_stops_everything(nodes, monk
     assert "ROS 2 domain" in str(seen["status"]), seen["status"]
     assert len(seen["threads"]) > len(before), "the intake (and logger) threads ran"
     assert wait_until(lambda: console_threads() == before), console_threads()
-    assert apps[0].sources == []
+    assert apps[0].main.sources == []
 
 
 def test_demo_starts_its_nodes_and_they_end_with_the_app(ros_env, monkeypatch):
