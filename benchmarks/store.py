@@ -161,7 +161,7 @@ def app_rss_mb(store: LogStore) -> float:
         app = ConsoleApp(store=store)
         async with app.run_test(size=(160, 48)) as pilot:
             await pilot.pause(0.5)
-            while app.storms.behind or app.timeline.behind:
+            while app.main.storms.behind or app.main.timeline.behind:
                 await asyncio.sleep(0.05)
             gc.collect()
             return rss_mb()
