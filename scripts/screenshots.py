@@ -210,7 +210,7 @@ async def capture_overview(out: Path) -> list[Path]:
     from console_tui.ui.app import ConsoleApp
 
     store = LogStore()
-    store.extend(overview_records())
+    store.extend_records(overview_records())
     app = ConsoleApp(store=store, utc=True)
     saved: list[Path] = []
 
