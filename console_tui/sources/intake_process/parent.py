@@ -29,6 +29,7 @@ from ...model.intake_queue import IntakeQueue
 from ...model.record_batch import BatchError, BatchUnpacker
 from ...model.text import one_line
 from ..status import SourceStatus
+from ..thread_names import os_named
 from .frames import BATCH, STATUS, FrameError, read_frames, status_from
 
 STOP_TIMEOUT_S = 0.8
@@ -75,7 +76,7 @@ class ProcessSource:
         """Start the intake process, from a thread of its own: starting a process stalls the
         caller until the new process runs (a second and more on a busy machine), and the
         caller is the app's event loop."""
-        self._reader = threading.Thread(target=self._run, name="console-tui-intake-pipe", daemon=True)
+        self._reader = threading.Thread(target=os_named(self._run), name="console-tui-intake-pipe", daemon=True)
         self._reader.start()
 
     def stop(self, timeout: float = STOP_TIMEOUT_S) -> None:

@@ -52,6 +52,7 @@ from concurrent.futures import Future
 from typing import Any
 
 from ...model.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
+from ..thread_names import os_named
 from .calls import Call
 from .errors import (
     CallTimedOut,
@@ -136,7 +137,7 @@ class LoggerControl(ABC):
         with self._lock:
             if self._thread is not None or self._stop.is_set():
                 return
-            self._thread = threading.Thread(target=self._run, name="console-tui-loggers", daemon=True)
+            self._thread = threading.Thread(target=os_named(self._run), name="console-tui-loggers", daemon=True)
         self._thread.start()
 
     def close(self, timeout: float | None = None) -> None:

@@ -27,6 +27,7 @@ from ...model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError
 from ...model.intake_queue import IntakeQueue
 from ...model.record_batch import ColumnsBuilder, RecordColumns
 from ..coalesce import Coalescer
+from ..thread_names import os_named
 from . import compiled_frames
 from .dedupe import Deduplicator
 
@@ -88,7 +89,7 @@ class Ros1Intake:
 
     def start(self) -> None:
         compiled_frames.start_loading()
-        self._thread = threading.Thread(target=self._run, name="console-tui-ros1-intake", daemon=True)
+        self._thread = threading.Thread(target=os_named(self._run), name="console-tui-ros1-intake", daemon=True)
         self._thread.start()
 
     def stop(self, timeout: float = 2.0) -> None:

@@ -34,6 +34,7 @@ from ...model.formats.ros1_log_msg import MD5SUM, TYPE
 from ...model.intake_queue import IntakeQueue
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
+from ..thread_names import os_named
 from .environment import Ros1Environment, new_node_name
 from .intake import CLOSED, Connection, Ros1Intake
 from .master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
@@ -108,7 +109,7 @@ class Ros1LiveSource:
 
     def start(self) -> None:
         self._set_status(running=True, problem=self._waiting(""))
-        self._thread = threading.Thread(target=self._run_guarded, name="console-tui-ros1-graph", daemon=True)
+        self._thread = threading.Thread(target=os_named(self._run_guarded), name="console-tui-ros1-graph", daemon=True)
         self._thread.start()
 
     def stop(self, timeout: float = 4.0) -> None:

@@ -32,6 +32,7 @@ from ...model.text import plural
 from ..coalesce import Coalescer
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
+from ..thread_names import os_named
 from .loss_counts import LossCounts
 from .runtime import RosRuntime
 from .topic_choice import START_GRAPH_PERIOD_S, TopicChoice
@@ -64,7 +65,7 @@ class LiveLogSource:
     # -- control, from the thread that owns the source ---------------------------------------
 
     def start(self) -> None:
-        self._thread = threading.Thread(target=self._run_guarded, name="console-tui-intake", daemon=True)
+        self._thread = threading.Thread(target=os_named(self._run_guarded), name="console-tui-intake", daemon=True)
         self._thread.start()
 
     def stop(self, timeout: float = 3.0) -> None:
