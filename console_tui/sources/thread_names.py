@@ -11,7 +11,6 @@ Elsewhere, or when the call fails, the name stays as it was.
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import sys
 import threading
 from collections.abc import Callable
@@ -34,9 +33,8 @@ def name_this_thread() -> None:
     """Give the running thread its ``os_name`` (Linux only; nothing happens elsewhere)."""
     if not sys.platform.startswith("linux"):
         return
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
-        libc.prctl(_PR_SET_NAME, ctypes.c_char_p(os_name(threading.current_thread().name)), 0, 0, 0)
+    try:  # the process's own symbols hold libc's prctl: no library to look for
+        ctypes.CDLL(None).prctl(_PR_SET_NAME, ctypes.c_char_p(os_name(threading.current_thread().name)), 0, 0, 0)
     except (OSError, AttributeError):
         pass
 

@@ -113,6 +113,8 @@ class IntakeController:
         self._rate = 0.0
         self._rate_at = 0.0
         self._loggers_started = False
+        #: The logger control's start is asked for (after a refresh): once, not every tick.
+        self._loggers_asked = logger_control is None
         self._loggers_from = float("inf")
         #: The Robot column was shown once records of two robots came (the person may hide it again).
         self._robots_shown = len(robots) > 1
@@ -179,7 +181,8 @@ class IntakeController:
         a late history among them (``late_records``) is placed by its stamp while the table
         follows the tail, in the moments histories are due (``HistoryWindow``)."""
         batches = self._file_queue.drain_batches(MAX_RECORDS_PER_TICK)
-        if not self._loggers_started and (self._queue.received or self._clock() >= self._loggers_from):
+        if not self._loggers_asked and (self._queue.received or self._clock() >= self._loggers_from):
+            self._loggers_asked = True
             self._host.call_after_refresh(self.start_logger_control)  # once these rows are on the screen
         for source in self.sources:
             status = source.status
