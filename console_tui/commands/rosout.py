@@ -10,7 +10,6 @@ import argparse
 import os
 import signal
 import sys
-import threading
 import time
 from collections.abc import Sequence
 from pathlib import Path
@@ -20,6 +19,7 @@ from ..model.formats.rotating_file import RotatingFile
 from ..model.text import plural
 from ..sources.live import RosUnavailable, start_ros2
 from ..sources.log_dir import ros_log_dir
+from ..sources.signal_stop import SignalStop
 from .arguments import DOCS_URL, EXIT_NO_ROS, command_parser, domain_id, parse_size, positive_int, size_text
 
 EXIT_OK = 0
@@ -126,8 +126,8 @@ def main(argv: Sequence[str]) -> int:
             return EXIT_ERROR
     from .rosout_aggregator import RosoutAggregator
 
-    stop = threading.Event()
-    previous = {sig: signal.signal(sig, lambda *_: stop.set()) for sig in (signal.SIGINT, signal.SIGTERM)}
+    stop = SignalStop()
+    previous = {sig: signal.signal(sig, stop.on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         aggregator = RosoutAggregator(
             runtime, depth=args.depth, log=log, node_name=args.name, report_s=args.report_every

@@ -16,7 +16,6 @@ import argparse
 import os
 import signal
 import sys
-import threading
 import time
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -33,6 +32,7 @@ from ..model.text import one_line
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_live
+from ..sources.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
     add_fleet_arguments,
@@ -200,7 +200,7 @@ def main(argv: Sequence[str]) -> int:
             parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
     stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))
     run = _Run(Printer(stream, line), StreamFilter(rules))
-    previous = {sig: signal.signal(sig, run.interrupt) for sig in (signal.SIGINT, signal.SIGTERM)}
+    previous = {sig: signal.signal(sig, run.stop.on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         return run.main(args)
     except PipeClosed:
@@ -215,14 +215,11 @@ class _Run:
     def __init__(self, printer: Printer, stream_filter: StreamFilter) -> None:
         self.printer = printer
         self.filter = stream_filter
-        self.stop = threading.Event()
+        self.stop = SignalStop()
         self.status = EXIT_OK
         self.queue = IntakeQueue()
         #: Problems already printed, per file (by id).
         self._told: dict[int, int] = {}
-
-    def interrupt(self, *_: object) -> None:
-        self.stop.set()
 
     def print(self, batch: list[LogRecord]) -> None:
         self.printer.write(self.filter.filter(batch))

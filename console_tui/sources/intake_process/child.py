@@ -35,6 +35,7 @@ from typing import Any
 
 from ...model.intake_queue import IntakeQueue
 from ...model.record_batch import BatchPacker
+from ..signal_stop import SignalStop
 from ..status import SourceStatus
 from .frames import BATCH, STATUS, status_payload, write_frame
 
@@ -163,9 +164,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     fd = os.dup(1)
     os.dup2(2, 1)  # stray prints go to stderr, never between the frames
-    stop = threading.Event()
+    stop = SignalStop()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    signal.signal(signal.SIGTERM, stop.on_signal)
     if args.parent is not None:
         die_with_parent(args.parent)
     threading.Thread(target=_stop_at_end_of_input, args=(stop,), name="console-tui-stdin", daemon=True).start()
