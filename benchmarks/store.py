@@ -9,12 +9,14 @@ records, as the CDR decoder shares them; making them is not timed.
     python benchmarks/store.py                    # 1,000,000 records, then 300,000 more at the bound
     python benchmarks/store.py --records 200000   # smaller
     python benchmarks/store.py --list-reference   # also: the same records as a plain list
-    python benchmarks/store.py --bare             # without the app's Textual and rclpy loaded first
+    python benchmarks/store.py --bare             # without the app's Textual loaded first
     python benchmarks/store.py --app              # also: the app headless over the full store
+    python benchmarks/store.py --app --loggers    # ... as it is once the logger levels pane opened
 
-By default the process first loads what the app has loaded when records arrive (Textual,
-and an rclpy context with a node, on a loopback-only ROS domain of its own), so the RSS
-is the app's, not just the store's. With ``--app`` the app itself then runs headless (160x48)
+By default the process first loads what the app has loaded when records arrive (Textual),
+so the RSS is the app's, not just the store's. With ``--loggers`` also an rclpy context with
+a node (on a loopback-only ROS domain of its own), as the app has once its logger levels pane
+was opened. With ``--app`` the app itself then runs headless (160x48)
 over the full store, and its RSS is measured once its overview (storms, timeline) has counted
 every record: what the app process holds for a million records.
 """
@@ -169,8 +171,9 @@ def app_rss_mb(store: LogStore) -> float:
     return asyncio.run(run())
 
 
-def load_the_apps_libraries() -> tuple[str, Any]:
-    """Import Textual and start an rclpy context with a node, as the app does.
+def load_the_apps_libraries(loggers: bool) -> tuple[str, Any]:
+    """Import Textual and, with ``loggers``, start an rclpy context with a node, as the app
+    does when its logger levels pane first opens.
 
     Returns what was loaded, and the ROS runtime (or ``None``) to shut down at the end.
     """
@@ -178,6 +181,8 @@ def load_the_apps_libraries() -> tuple[str, Any]:
     import textual.widgets  # noqa: F401
 
     loaded, runtime = "Textual", None
+    if not loggers:
+        return loaded, runtime
     os.environ.update(ROS_AUTOMATIC_DISCOVERY_RANGE="LOCALHOST", ROS_DOMAIN_ID=str(150 + os.getpid() % 80))
     try:
         from console_tui.sources.ros2.runtime import RosRuntime
@@ -196,6 +201,7 @@ def main() -> None:
     parser.add_argument("--beyond", type=int, default=300_000, help="records added with the store full")
     parser.add_argument("--list-reference", action="store_true", help="also measure a plain list of records")
     parser.add_argument("--bare", action="store_true", help="measure the store alone (Python and the model only)")
+    parser.add_argument("--loggers", action="store_true", help="with rclpy and a node, as after the logger pane opened")
     parser.add_argument("--app", action="store_true", help="also run the app headless over the full store")
     parser.add_argument("--reference-only", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -203,7 +209,7 @@ def main() -> None:
         print(f"{list_reference(args.reference_only):.1f}")
         return
 
-    loaded, runtime = ("the model only", None) if args.bare else load_the_apps_libraries()
+    loaded, runtime = ("the model only", None) if args.bare else load_the_apps_libraries(args.loggers)
     gc.collect()
     baseline = rss_mb()
     store = LogStore(max_messages=args.records)

@@ -85,7 +85,6 @@ class ConsoleScreen(Screen[None]):
         self.queue = queue
         self.view = LogView(self.store)
         self.sources = list(sources)
-        self.logger_control = logger_control
         self.collection_policy = collection_policy
         self._drain_interval = drain_interval
         #: The overview's model (storms collapsed in the table, the rate over time) and strip.
@@ -189,7 +188,6 @@ class ConsoleScreen(Screen[None]):
             queue=self.queue,
             file_queue=self.file_queue,
             robots=self.robots,
-            logger_control=self.logger_control,
             collection_policy=self.collection_policy,
             files=self.files,
             filtering=self.filtering,

@@ -90,10 +90,13 @@ async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off
         await until(pilot, lambda: any(r.msg.startswith("tick") for r in app.main.store), what="the talker's ticks")
         assert not any(r.level == 10 for r in messages(app, "ns.talker")), "DEBUG is off by default"
 
-        # The key on a table row opens the pane on that row's node, its logger highlighted.
-        await until(pilot, lambda: pane.nodes and {n.fqn for n in pane.nodes} >= {TALKER, "/plain"}, what="the nodes")
+        # The key on a table row opens the pane on that row's node, its logger highlighted: the
+        # app joins the graph then, and selects the node once the graph shows it.
         await pilot.press("L")
-        assert pane.is_open and pane.selected == TALKER and pane.highlighted_logger == "ns.talker"
+        assert pane.is_open
+        await until(pilot, lambda: pane.selected == TALKER, what="the row's node selected")
+        await until(pilot, lambda: {n.fqn for n in pane.nodes} >= {TALKER, "/plain"}, what="the nodes")
+        assert pane.highlighted_logger == "ns.talker"
         assert pane.logger_list.has_focus
         await until(pilot, lambda: "inherited (INFO)" in row_of(pane, "ns.talker"), what="levels read")
         assert '"" (default)' in " ".join(lines(pane.logger_list))

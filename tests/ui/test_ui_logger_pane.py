@@ -11,7 +11,6 @@ from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from functools import partial
 
-import pytest
 from textual.pilot import Pilot
 
 from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
@@ -280,10 +279,9 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
         control.close()
 
 
-@pytest.mark.parametrize("opens_pane", [False, True])
-async def test_the_logger_control_starts_after_the_first_live_records_or_when_the_pane_opens(opens_pane):
-    """Its DDS participant beside the intake process's held up the first live rows: it starts
-    once they came (or a while after the start, or when the pane opens)."""
+async def test_the_logger_control_starts_when_the_pane_first_opens():
+    """The app joins the ROS graph for logger levels (rclpy, a DDS participant: 44 MB) only
+    once they are wanted: live records and time passing do not start it, opening the pane does."""
     from console_tui.model.intake_queue import IntakeQueue
     from console_tui.model.record_batch import RecordColumns
     from console_tui.sources.status import SourceStatus
@@ -294,18 +292,18 @@ async def test_the_logger_control_starts_after_the_first_live_records_or_when_th
     control = MemoryControl([MemoryNode("/talker")])
     queue = IntakeQueue()
     source = StaticSource(SourceStatus(topic="/rosout", publishers=1, running=True))
-    app = make_app(logger_control=control, queue=queue, sources=[source])  # its clock stands still
+    now = [0.0]
+    app = make_app(logger_control=control, queue=queue, sources=[source], clock=lambda: now[0])
     try:
         async with app.run_test(size=(120, 30)) as pilot:
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
+            queue.put(RecordColumns.from_records(records(1, start=500)))
+            await until(pilot, lambda: cursor_number(app) == 101, what="the live record")
+            now[0] += 3600.0
             await pilot.pause(0.2)
-            assert control._thread is None, "started before any live record"
-            if opens_pane:
-                await pilot.press("l")
-                await until(pilot, lambda: pane_says(app, "talker"), what="the node listed")
-            else:
-                queue.put(RecordColumns.from_records(records(1, start=500)))
-                await until(pilot, lambda: control._thread is not None, what="the control started")
+            assert control._thread is None, "started before the pane opened"
+            await pilot.press("l")
+            await until(pilot, lambda: pane_says(app, "talker"), what="the node listed")
             assert control._thread is not None
     finally:
         control.close()

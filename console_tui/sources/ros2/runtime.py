@@ -93,9 +93,9 @@ class RosRuntime:
         """``domain_id``: the DDS domain of this context (a fleet's robot), else ``ROS_DOMAIN_ID``'s.
         ``deferred``: rclpy is imported and the context made at the first use (``create_node``,
         ``context``), from whichever thread; now only what needs no rclpy is checked (the domain,
-        that there is an rclpy to import). The app's own context is used only once the first
-        live rows have come, and importing rclpy costs 0.1-0.2 s of CPU, which would come
-        before the app's first frame."""
+        that there is an rclpy to import). The app's own context is used only once the logger
+        levels pane opens, and importing rclpy costs 0.1-0.2 s of CPU, which would come before
+        the app's first frame."""
         check_domain_id(os.environ)
         # Before the first participant of the process: Fast DDS reads its profiles once. (And
         # before the intake process is started: it inherits them.)

@@ -12,7 +12,7 @@ import threading
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import Any, Protocol
 
 from ...model.intake_queue import IntakeQueue
 from ...model.late_records import WINDOW, HistoryWindow, add_in_time_order
@@ -32,15 +32,10 @@ from .overview import OverviewController
 from .rules import RulesController
 from .search import SearchController
 
-if TYPE_CHECKING:
-    from ...sources.loggers.control import LoggerControl
-
 DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
 MAX_RECORDS_PER_TICK = 20_000
 RATE_WINDOW_S = 2.0
-#: The logger control starts with the first live records, or this long after the sources.
-LOGGERS_AFTER_S = 5.0
 #: How long quitting waits for the sources to stop, at most.
 SOURCE_STOP_TIMEOUT_S = 2.0
 
@@ -78,7 +73,6 @@ class IntakeController:
         queue: IntakeQueue,
         file_queue: IntakeQueue,
         robots: Sequence[Robot],
-        logger_control: LoggerControl | None,
         collection_policy: CollectionPolicy,
         files: FilesController,
         filtering: RulesController,
@@ -100,7 +94,6 @@ class IntakeController:
         self._file_queue = file_queue
         #: A fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self._robots = robots
-        self._logger_control = logger_control
         self._collection_policy = collection_policy
         # What follows the records in: the loads' progress, the rules' counts, the storms and
         # the timeline, the search.
@@ -112,10 +105,6 @@ class IntakeController:
         self._update_status = update_status
         self._rate = 0.0
         self._rate_at = 0.0
-        self._loggers_started = False
-        #: The logger control's start is asked for (after a refresh): once, not every tick.
-        self._loggers_asked = logger_control is None
-        self._loggers_from = float("inf")
         #: The Robot column was shown once records of two robots came (the person may hide it again).
         self._robots_shown = len(robots) > 1
         #: When records arrived, and how many: the receive rate.
@@ -130,20 +119,10 @@ class IntakeController:
     # -- the sources ------------------------------------------------------------------------------
 
     def start_sources(self) -> None:
-        """Start the sources; the logger control once the first live records came
-        (``start_logger_control``), or when the logger levels pane opens."""
+        """Start the sources. (The logger control starts when the logger levels pane first
+        opens: ``LoggerPane.when_opened``.)"""
         for source in self.sources:
             self._start(source)
-        self._loggers_from = self._clock() + (LOGGERS_AFTER_S if self.sources else 0.0)
-
-    def start_logger_control(self) -> None:
-        """Start the logger control (started here, but closed by whoever made it). Its ROS 2
-        context is a second DDS participant in a session; discovered beside the intake
-        process's, it held up the first live rows by seconds, so it starts after them (and
-        imports rclpy then: ``RosRuntime(deferred=True)``)."""
-        if self._logger_control is not None and not self._loggers_started:
-            self._loggers_started = True
-            self._start(self._logger_control)
 
     def _start(self, source: Any) -> None:
         try:
@@ -181,9 +160,6 @@ class IntakeController:
         a late history among them (``late_records``) is placed by its stamp while the table
         follows the tail, in the moments histories are due (``HistoryWindow``)."""
         batches = self._file_queue.drain_batches(MAX_RECORDS_PER_TICK)
-        if not self._loggers_asked and (self._queue.received or self._clock() >= self._loggers_from):
-            self._loggers_asked = True
-            self._host.call_after_refresh(self.start_logger_control)  # once these rows are on the screen
         for source in self.sources:
             status = source.status
             self.histories.note(id(source), status.publishers, status.topic)

@@ -162,7 +162,7 @@ class LoggerPane(RightPane):
 
     def when_opened(self) -> None:
         if self.requests.control is not None:
-            self.requests.control.start()  # if the app has not yet (it starts it once it may)
+            self.requests.control.start()  # the first opening starts it (the app joins the graph then)
             self.requests.control.watch_graph(True)
         if self.requests.opened():
             self._render_checking()
