@@ -63,7 +63,12 @@ async def capture(out: Path, seconds: float) -> list[Path]:
             await shot(pilot, "detail")
             await pilot.press("escape", "question_mark")
             await shot(pilot, "help")
-            await pilot.press("escape", "end", "l", "down")  # the logger levels of the second node
+            await pilot.press("escape", "end", "l")  # the app joins the graph: wait for the nodes
+            for _ in range(300):
+                if len(pilot.app.main.logger_pane.nodes) >= 4:
+                    break
+                await pilot.pause(0.1)
+            await pilot.press("down")  # the logger levels of the second node
             await pilot.pause(1.0)
             await pilot.press("right", "t", "enter")  # DEBUG for 30 s
             await pilot.pause(3.0)
