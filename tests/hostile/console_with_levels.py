@@ -33,10 +33,11 @@ class Console(ConsoleApp):
     CSS_PATH = str(Path(app_module.__file__).with_name("app.tcss"))
 
     def on_ready(self) -> None:
+        self.action_toggle_loggers()  # the logger levels pane: its first opening starts the control
         self.set_timer(0.3, self.set_level)
 
     def set_level(self) -> None:
-        if control._thread is None:  # the app starts it after its first frame
+        if control._thread is None:
             self.set_timer(0.2, self.set_level)
             return
         control.set_temporary("/n", "n", 10, 600).result(timeout=20)

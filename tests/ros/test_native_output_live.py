@@ -1,6 +1,7 @@
 """``console-tui`` in a terminal of its own, with Fast DDS printing an error straight to the
-process's stderr as it starts (a profile file that does not exist): the text is a row in the
-table, never raw on the screen, and is written on stderr again after the app has ended."""
+process's stderr as the app's own participant starts, when the logger levels pane opens (a
+profile file that does not exist): the text is a row in the table, never raw on the screen,
+and is written on stderr again after the app has ended."""
 
 from __future__ import annotations
 
@@ -65,7 +66,10 @@ def test_what_fast_dds_prints_is_a_row_and_never_raw(ros_env, tmp_path):
         "FASTRTPS_DEFAULT_PROFILES_FILE": str(tmp_path / "missing.xml"),  # Jazzy's Fast DDS 2.14 reads this one
     }
     console = Terminal([sys.executable, "-m", "console_tui.cli", "--topic", "/rosout"], env)
+    assert console.read_until(b"FOLLOW"), console.output[-2000:]
+    os.write(console.fd, b"l")  # the logger levels pane: the app joins the graph
     assert console.read_until(b"XMLPARSER Error"), console.output[-2000:]
+    os.write(console.fd, b"l")  # closed again: the table's message cells as wide as they were
     assert console.read_until(b"realpath failed"), console.output[-2000:]  # in the table's message cell
     os.write(console.fd, b"q")
     assert console.wait() == 0
