@@ -16,6 +16,8 @@ from .logger_levels import DEFAULT_LOGGER, GraphNode, LoggerRow, NodeLoggers, Te
 
 #: What the pane says when this run has no live ROS (files only).
 NO_ROS_TEXT = "No live ROS in this console (files only): logger levels cannot be read or set."
+#: While the graph is still being discovered and no node has been found.
+LOOKING_TEXT = "Looking for the ROS graph's nodes…"
 
 
 def shown_logger(logger: str) -> str:
@@ -214,16 +216,19 @@ class LoggerView:
         busy = " …" if self.pending.get(self.selected) else ""
         return f"Loggers of {self.selected}{busy}"
 
-    def notice_text(self, problem: str = "", read_hint: str = "") -> tuple[str, bool]:
+    def notice_text(self, problem: str = "", read_hint: str = "", *, looking: bool = False) -> tuple[str, bool]:
         """The notice line and whether it is an error: the control's ``problem`` first, then
         what was last said, then what the selection calls for (``read_hint`` says how to read
-        a node's loggers where they are read only when asked)."""
+        a node's loggers where they are read only when asked; ``looking``: the graph is still
+        being discovered)."""
         if problem:
             return problem, True
         if self.notice:
             return self.notice, self.notice_is_error
         if not self.nodes:
-            return (NO_ROS_TEXT if not self.has_ros else "No nodes in the ROS graph yet."), False
+            if not self.has_ros:
+                return NO_ROS_TEXT, False
+            return (LOOKING_TEXT if looking else "No nodes in the ROS graph yet."), False
         node = self.selected_node
         if node is None:
             return "Select a node.", False

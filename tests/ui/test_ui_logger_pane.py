@@ -307,3 +307,23 @@ async def test_the_logger_control_starts_when_the_pane_first_opens():
             assert control._thread is not None
     finally:
         control.close()
+
+
+async def test_while_the_graph_is_discovered_the_pane_says_it_is_looking():
+    """The first opening starts the control: until the graph was watched long enough, an empty
+    node list says it is being looked for, then that there is none yet."""
+    from support.memory_control import MemoryControl, StepClock
+
+    clock = StepClock()
+    control = MemoryControl([], clock=clock)
+    control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
+    app = make_app(logger_control=control)
+    try:
+        async with app.run_test(size=(120, 30)) as pilot:
+            await pilot.press("l")
+            await pilot.pause()
+            assert pane_says(app, "Looking for the ROS graph's nodes…"), "said as the pane opens, not a tick later"
+            clock.now = 10.0
+            await until(pilot, lambda: pane_says(app, "No nodes in the ROS graph yet."), what="none yet")
+    finally:
+        control.close()

@@ -70,3 +70,25 @@ def test_a_rows_node_is_found_on_the_rows_robot():
     assert node_of_logger("talker", nodes, "b") == nodes[1]
     assert node_of_logger("/talker", nodes, "a") == nodes[0]
     assert node_of_logger("talker", nodes, "c") is None
+
+
+def test_a_fleet_is_looking_while_any_robots_graph_is():
+    from support.memory_control import StepClock
+
+    clock = StepClock()
+    quick = MemoryControl([MemoryNode("/a")], clock=clock)
+    slow = MemoryControl([], clock=clock)
+    for control in (quick, slow):
+        control.graph_min_s, control.graph_quiet_s = 1.0, 1.0
+    slow.graph_min_s = 5.0
+    fleet = FleetLoggerControl({"quick": quick, "slow": slow})
+    assert not fleet.looking()
+    fleet.start()
+    try:
+        assert wait_until(lambda: quick._graph.refreshes and slow._graph.refreshes)
+        clock.now = 2.0
+        assert not quick.looking() and fleet.looking()
+        clock.now = 5.0
+        assert not fleet.looking()
+    finally:
+        fleet.close()

@@ -87,6 +87,29 @@ def test_a_graph_that_came_at_once_is_watched_for_the_minimum_time():
         control.close()
 
 
+def test_looking_lasts_from_the_start_until_the_graph_was_watched_and_quiet():
+    """What the pane says while it has no node: looking, then (an empty graph) none yet."""
+    clock = StepClock()
+    control = MemoryControl([], clock=clock)
+    control.graph_min_s, control.graph_quiet_s = 5.0, 2.0
+    assert not control.looking(), "not started: nothing is looked for"
+    control.start()
+    try:
+        assert control.looking()
+        assert wait_until(lambda: control._graph.refreshes > 0)
+        clock.now = 4.9
+        assert control.looking(), "watched for less than the minimum"
+        control.graph["/late"] = MemoryNode("/late")  # a node discovery found late
+        assert wait_until(lambda: control.node("/late") is not None)
+        clock.now = 5.5
+        assert control.looking(), "a node came 0.6 s ago"
+        clock.now = 7.0
+        assert not control.looking()
+    finally:
+        control.close()
+    assert not control.looking()
+
+
 def test_waiting_for_an_empty_graph_ends_at_the_deadline_unsettled():
     clock = StepClock()
     control = MemoryControl([], clock=clock)

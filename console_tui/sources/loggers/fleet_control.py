@@ -105,6 +105,9 @@ class FleetLoggerControl(LoggerControl):
         for control in self.controls.values():
             control.start()
 
+    def looking(self) -> bool:
+        return any(control.looking() for control in self.controls.values())
+
     def close(self, timeout: float | None = None) -> None:
         """Close every robot's control at once (each restores its temporary levels)."""
         threads = [

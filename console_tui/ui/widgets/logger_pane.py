@@ -166,6 +166,8 @@ class LoggerPane(RightPane):
             self.requests.control.watch_graph(True)
         if self.requests.opened():
             self._render_checking()
+        else:
+            self._render_notice()  # the graph is looked for now
         if self.selected is None and self.node_list.option_count:
             self.node_list.highlighted = 0
         elif self.selected is not None:
@@ -393,7 +395,9 @@ class LoggerPane(RightPane):
 
     def _render_notice(self) -> None:
         text, error = self.view.notice_text(
-            self.requests.problem, hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS)
+            self.requests.problem,
+            hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS),
+            looking=self.requests.looking,
         )
         self.notice_line.update(plain(text, lines=True))
         self.notice_line.set_class(error, "-error")
@@ -405,7 +409,8 @@ class LoggerPane(RightPane):
     # -- keeping up -----------------------------------------------------------------------------
 
     def _update_ticker(self) -> None:
-        """A 1 s tick while the pane is open: countdowns, "checking" marks, new child loggers."""
+        """A 1 s tick while the pane is open: countdowns, "checking" marks, new child loggers,
+        the notice while no node is known."""
         if self.is_open and self.is_mounted and self._ticker is None:
             self._ticker = self.set_interval(TICK_S, self._tick)
         elif not self.is_open and self._ticker is not None:
@@ -414,8 +419,8 @@ class LoggerPane(RightPane):
 
     def _tick(self) -> None:
         requests = self.requests
-        if requests.problem and requests.problem not in str(self.notice_line.content):
-            self._render_notice()
+        if (requests.problem and requests.problem not in str(self.notice_line.content)) or not self.view.nodes:
+            self._render_notice()  # a new problem, or still looking for the graph's nodes
         if requests.take_temporaries():
             self._render_loggers()
         if self.view.checking and requests.refresh_checking():

@@ -73,6 +73,11 @@ class LoggerRequests:
         """The control's one-line problem, or ""."""
         return self.control.problem if self.control is not None else ""
 
+    @property
+    def looking(self) -> bool:
+        """Whether the control is still discovering the graph (``LoggerControl.looking``)."""
+        return self.control is not None and self.control.looking()
+
     # -- the graph and the selection -------------------------------------------------------------
 
     def set_nodes(self, nodes: Sequence[GraphNode], checking: Collection[str] | None = None) -> None:
