@@ -96,7 +96,7 @@ async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off
         assert pane.is_open
         await until(pilot, lambda: pane.selected == TALKER, what="the row's node selected")
         await until(pilot, lambda: {n.fqn for n in pane.nodes} >= {TALKER, "/plain"}, what="the nodes")
-        assert pane.highlighted_logger == "ns.talker"
+        await until(pilot, lambda: pane.highlighted_logger == "ns.talker", what="the row's logger highlighted")
         assert pane.logger_list.has_focus
         await until(pilot, lambda: "inherited (INFO)" in row_of(pane, "ns.talker"), what="levels read")
         assert '"" (default)' in " ".join(lines(pane.logger_list))
