@@ -124,7 +124,7 @@ class LoggerControl(ABC):
         self._closed = False
         self._thread: threading.Thread | None = None
         #: When ``start()`` was called (on ``clock``), or None before.
-        self.started_at: float | None = None
+        self._started_at: float | None = None
         #: A one-line problem for the status bar, or "".
         self.problem = ""
 
@@ -139,20 +139,18 @@ class LoggerControl(ABC):
         with self._lock:
             if self._thread is not None or self._stop.is_set():
                 return
-            self.started_at = self.clock()
+            self._started_at = self.clock()
             self._thread = threading.Thread(target=os_named(self._run), name="console-tui-loggers", daemon=True)
         self._thread.start()
 
     def looking(self) -> bool:
         """Whether the graph is still being discovered: from ``start()`` until it has been
         watched for ``graph_min_s`` and no node came or went for ``graph_quiet_s``."""
-        started = self.started_at
+        started = self._started_at
         if started is None or self._stop.is_set():
             return False
         graph = self._graph.snapshot
-        if not graph.refreshes:
-            return True
-        return self.clock() < max(started + self.graph_min_s, graph.changed_at + self.graph_quiet_s)
+        return not graph.refreshes or self.clock() < graph.quiet_until(started, self.graph_min_s, self.graph_quiet_s)
 
     def close(self, timeout: float | None = None) -> None:
         """Restore running temporary levels, fail calls still waiting, stop the thread."""

@@ -51,6 +51,11 @@ class GraphSnapshot:
     #: When the nodes last changed (the first look counts as a change).
     changed_at: float = 0.0
 
+    def quiet_until(self, watched_from: float, min_s: float, quiet_s: float) -> float:
+        """When this graph counts as complete if nothing changes: watched for ``min_s`` since
+        ``watched_from``, and ``quiet_s`` after its nodes last changed."""
+        return max(self.changed_at + quiet_s, watched_from + min_s)
+
     def settled(self, node: GraphNode, now: float) -> bool:
         """Whether what the graph says of the node's logger services can be believed."""
         if node.has_logger_services:
@@ -134,7 +139,7 @@ class GraphWatch:
             while True:
                 graph, now = self.snapshot, self.clock()
                 looked = graph.refreshes > 0
-                quiet_until = max(graph.changed_at + quiet_s, started + min_s)
+                quiet_until = graph.quiet_until(started, min_s, quiet_s)
                 settled = (
                     looked
                     and bool(graph.nodes)

@@ -165,9 +165,8 @@ class LoggerPane(RightPane):
             self.requests.control.start()  # the first opening starts it (the app joins the graph then)
             self.requests.control.watch_graph(True)
         if self.requests.opened():
-            self._render_checking()
-        else:
-            self._render_notice()  # the graph is looked for now
+            self._render_nodes()
+        self._render_notice()  # the control may have just started looking for the graph
         if self.selected is None and self.node_list.option_count:
             self.node_list.highlighted = 0
         elif self.selected is not None:
