@@ -55,6 +55,7 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
         )
         app.native_output = native
     except BaseException as error:
+        _clean_up(cleanups)  # what was started already: the live intake's process, ROS
         if native is not None:
             native.stop()
         if isinstance(error, RosUnavailable):
@@ -77,12 +78,17 @@ def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:
         app.run()
     finally:
         app.main.intake.stop_sources()
-        for cleanup in reversed(cleanups):
-            try:
-                cleanup()
-            except Exception:
-                pass
+        _clean_up(cleanups)
     return app.return_code or 0
+
+
+def _clean_up(cleanups: list[Callable[[], object]]) -> None:
+    """Each cleanup, last first; one that fails does not keep the others from running."""
+    for cleanup in reversed(cleanups):
+        try:
+            cleanup()
+        except Exception:
+            pass
 
 
 def end_now(code: int) -> None:
@@ -135,6 +141,13 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
     live = open_live(queue, topic=args.topic, ros=ros)
     cleanups.append(live.close)
     sources.append(live.source)
+    if not (args.demo and ros == ROS1):  # (the ROS 1 demo's roscore starts after the first frame)
+        # Started now, before the app's UI is imported: the intake process's own start-up
+        # (Python, rclpy, discovery) runs beside the app's instead of after its first frame,
+        # and the first live row shows about a third of a second sooner (docs/performance.md,
+        # "Start-up"). The app's ``start_sources`` does not start it again.
+        live.source.start()
+        cleanups.append(live.source.stop)
     if live.runtime is None:  # ROS 1
         from .sources.ros1.logger_control import Ros1LoggerControl
 

@@ -224,7 +224,8 @@ class ConsoleScreen(Screen[None]):
         """The table focused, the overview and the rules given on the command line in force,
         records taken in every ``drain_interval``; after the first frame (their
         threads and child processes cost CPU the first frame should not wait for) the sources
-        and the collector started; the files given opened."""
+        and the collector started (the one live intake's process was started before the app
+        was made: ``run_app``); the files given opened."""
         app = self.app
         focus_now(self.table)
         self.overview.start()

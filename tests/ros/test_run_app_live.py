@@ -52,6 +52,28 @@ def test_live_topic_shows_a_nodes_messages_and_exit_stops_everything(nodes, monk
     assert apps[0].main.sources == []
 
 
+def test_the_live_intake_starts_before_the_app_is_made_and_stops_if_it_cannot_be(ros_env, monkeypatch):
+    """The intake process starts before the app's UI is imported, so that its start-up runs
+    beside the app's (the first live row comes sooner); when the app then cannot be made,
+    that process is stopped, not left behind."""
+    from console_tui.cli import main
+    from console_tui.ui.app import ConsoleApp
+
+    before = console_threads()
+    started: list[list[bool]] = []
+
+    def cannot_be_made(self, *args, **kwargs) -> None:
+        started.append([source.started for source in kwargs["sources"]])
+        assert wait_until(lambda: all(source.pid is not None for source in kwargs["sources"]))
+        raise RuntimeError("the app could not be made")
+
+    monkeypatch.setattr(ConsoleApp, "__init__", cannot_be_made)
+    with pytest.raises(RuntimeError, match="could not be made"):
+        main(["--topic", "/rosout"])
+    assert started == [[True]]
+    assert wait_until(lambda: console_threads() == before), console_threads()
+
+
 def test_demo_starts_its_nodes_and_they_end_with_the_app(ros_env, monkeypatch):
     pids: list[int] = []
 

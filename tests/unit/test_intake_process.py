@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 
 import pytest
 
@@ -107,6 +108,23 @@ def test_a_process_that_dies_says_so_and_is_not_waited_for():
         os.kill(source.pid, signal.SIGKILL)
         assert wait_until(lambda: not source.status.running)
         assert "the intake process ended (exit status -9)" in source.status.problem
+    finally:
+        source.stop()
+
+
+def test_a_source_started_twice_starts_one_process():
+    """``run_app`` starts the live intake before the app is made; the app's ``start_sources``
+    after its first frame must not start a second process reading the same topic."""
+    queue = IntakeQueue()
+    source = ProcessSource(queue, "synthetic", args=["--rate", "100"])
+    assert not source.started
+    source.start()
+    try:
+        assert wait_until(lambda: source.pid is not None)
+        first = source.pid
+        source.start()
+        assert source.started and source.pid == first
+        assert [t.name for t in threading.enumerate()].count("console-tui-intake-pipe") == 1
     finally:
         source.stop()
 

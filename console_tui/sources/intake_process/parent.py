@@ -72,10 +72,18 @@ class ProcessSource:
     def pid(self) -> int | None:
         return self.process.pid if self.process is not None else None
 
+    @property
+    def started(self) -> bool:
+        return self._reader is not None
+
     def start(self) -> None:
         """Start the intake process, from a thread of its own: starting a process stalls the
         caller until the new process runs (a second and more on a busy machine), and the
-        caller is the app's event loop."""
+        caller is the app's event loop. A source started once is not started again: the app
+        starts its sources after its first frame, and the one live intake may have been started
+        already, before the app was made (``run_app``)."""
+        if self.started:
+            return
         self._reader = threading.Thread(target=os_named(self._run), name="console-tui-intake-pipe", daemon=True)
         self._reader.start()
 
