@@ -52,8 +52,10 @@ import random
 import selectors
 import subprocess
 import sys
+import tempfile
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -162,7 +164,8 @@ def subscriber_qos():
     )
 
 
-def run_publisher(index: int, topic: str = TOPIC) -> None:
+def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
+    """A publisher process; ``loop`` "c" publishes from ``c_flood.c`` (see there), else from Python."""
     import rclpy
     from rcl_interfaces.msg import Log
     from rclpy.node import Node
@@ -174,6 +177,7 @@ def run_publisher(index: int, topic: str = TOPIC) -> None:
     pool = message_pool(index)
     mask = len(pool) - 1
     publish = publisher.publish
+    flood = load_c_flood() if loop == "c" else None
     say(event="ready")
     for raw in sys.stdin:
         command = json.loads(raw)
@@ -182,6 +186,11 @@ def run_publisher(index: int, topic: str = TOPIC) -> None:
             while publisher.get_subscription_count() != command["count"] and time.monotonic() < deadline:
                 time.sleep(0.02)
             say(event="matched", count=publisher.get_subscription_count())
+        elif command["cmd"] == "go" and flood is not None:
+            sent, failed, elapsed = flood(
+                publisher.handle.pointer, pool, float(command["rate"]), float(command["duration"])
+            )
+            say(event="done", sent=sent, failed=failed, elapsed=elapsed)
         elif command["cmd"] == "go":
             rate, duration = float(command["rate"]), float(command["duration"])
             sent = failed = 0
@@ -202,6 +211,22 @@ def run_publisher(index: int, topic: str = TOPIC) -> None:
             say(event="done", sent=sent, failed=failed, elapsed=time.perf_counter() - start)
     node.destroy_node()
     rclpy.try_shutdown()
+
+
+def load_c_flood() -> Callable[..., tuple[int, int, float]]:
+    """``c_flood.c``'s ``flood``, built against the rcl rclpy loaded, into a fresh directory."""
+    from console_tui.sources import c_build
+    from console_tui.sources.ros2.compiled_take import loaded_rcl, rcl_flags
+
+    library = loaded_rcl()
+    flags = rcl_flags(library) if library is not None else "rclpy's librcl.so is not loaded"
+    if isinstance(flags, str):
+        raise SystemExit(f"--publisher c: {flags}")
+    target = Path(tempfile.mkdtemp(prefix="c-flood-")) / f"c_flood{c_build.suffix()}"
+    problem = c_build.compile_module(Path(__file__).with_name("c_flood.c"), target, 120.0, flags)
+    if problem:
+        raise SystemExit(f"--publisher c: {problem}")
+    return c_build.import_built("c_flood", target).flood
 
 
 # -- the subscriber processes ------------------------------------------------------------------
@@ -659,7 +684,10 @@ def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
     rows: list[Row] = []
     for count in args.publishers:
         publishers = [
-            Child(["--role", "publisher", "--index", str(domain * count + i)], domain_environment(env, domain))
+            Child(
+                ["--role", "publisher", "--index", str(domain * count + i), "--publisher", args.publisher],
+                domain_environment(env, domain),
+            )
             for domain in range(args.domains)
             for i in range(count)
         ]
@@ -930,6 +958,13 @@ def main() -> None:
         help="a fleet: publishers in N domains (--domain and the next ones), read as console-tui --domain ... "
         "reads them (kinds intake and app; rates are totals)",
     )
+    parser.add_argument(
+        "--publisher",
+        choices=["python", "c"],
+        default="python",
+        help="the publishers' loop: rclpy's publish from Python (default), or rcl's from C (c_flood.c), "
+        "as cheap a publisher as a node in C++",
+    )
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
@@ -937,7 +972,7 @@ def main() -> None:
     args = parser.parse_args()
 
     if args.role == "publisher":
-        return run_publisher(args.index, args.topic)
+        return run_publisher(args.index, args.topic, args.publisher)
     if args.role == "subscriber":
         if args.kind in APP_KINDS:
             return run_app_subscriber(args.kind, args.domains, args.domain)

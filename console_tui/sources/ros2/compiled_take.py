@@ -137,10 +137,18 @@ def build_key(library: Path) -> str:
 
 def build(library: Path, target: Path) -> str:
     """Compile ``take_loop.c`` into ``target``; ``""``, or what went wrong."""
+    flags = rcl_flags(library)
+    if isinstance(flags, str):
+        return flags
+    return c_build.compile_module(SOURCE, target, BUILD_TIMEOUT_S, flags)
+
+
+def rcl_flags(library: Path) -> list[str] | str:
+    """The compiler's flags to build a module against the rcl at ``library`` (its headers
+    and libraries), or why there are none."""
     lib_dir = library.parent
     include = lib_dir.parent / "include"
     if not (include / "rcl" / "rcl" / "subscription.h").exists() and not (include / "rcl" / "subscription.h").exists():
         return f"no rcl headers in {include}"
     includes = [f"-I{path}" for path in sorted(include.iterdir()) if path.is_dir()] + [f"-I{include}"]
-    flags = [*includes, f"-L{lib_dir}", *(f"-l{name}" for name in _LIBRARIES), f"-Wl,-rpath,{lib_dir}"]
-    return c_build.compile_module(SOURCE, target, BUILD_TIMEOUT_S, flags)
+    return [*includes, f"-L{lib_dir}", *(f"-l{name}" for name in _LIBRARIES), f"-Wl,-rpath,{lib_dir}"]
