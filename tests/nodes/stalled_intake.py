@@ -5,6 +5,13 @@ reads its profiles once per process). The intake's first batch blocks in ``put``
 line arrives on stdin, as if the UI had stopped taking records; then everything the
 middleware held is taken. Prints ``ready`` once a publisher is matched, then ``received``
 with the count, the loss the source saw and which ``burst N`` messages are missing.
+
+    stalled_intake.py EXPECTED [--then-one-more]
+
+``--then-one-more``: once what the middleware held is taken, prints ``drained`` and waits for
+a line on stdin, after which the publisher logs one more message (``one more``); ``received``
+comes once that message is here. A message lost at the very end of a burst shows only as a
+gap before a later one, so with it every loss is counted, not only the ones Fast DDS reported.
 """
 
 import json
@@ -18,6 +25,8 @@ from console_tui.sources.ros2.runtime import RosRuntime
 
 #: Nothing more arrived or was counted lost for this long: the middleware holds no more.
 QUIET_S = 5.0
+#: The message the publisher logs after the burst with ``--then-one-more``.
+ONE_MORE = "one more"
 
 
 class StalledQueue(IntakeQueue):
@@ -73,6 +82,13 @@ def main() -> None:
         elif time.monotonic() - progress_at > QUIET_S:
             break
         time.sleep(0.05)
+    if "--then-one-more" in sys.argv:
+        print(json.dumps({"event": "drained", "count": len(records), "lost": source.status.lost}), flush=True)
+        sys.stdin.readline()  # the publisher has logged one more
+        deadline = time.monotonic() + 60
+        while not any(r.msg == ONE_MORE for r in records) and time.monotonic() < deadline:
+            records += queue.drain()
+            time.sleep(0.05)
     time.sleep(0.5)  # anything beyond what was sent would show
     records += queue.drain()
     received = len(records)

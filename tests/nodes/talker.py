@@ -20,7 +20,9 @@ through the child logger ``<node logger>.NAME``; ``{"cmd": "periodic", "period":
 DEBUG and INFO ``tick N`` every S seconds; ``{"cmd": "block", "seconds": S}`` keeps the
 node's executor busy for S seconds (services go unanswered), printing ``{"event":
 "blocking"}`` as it starts; ``{"cmd": "burst", "count": N}`` logs INFO ``burst 0`` to ``burst N-1``
-at once and prints ``{"event": "burst", "count": N, "acked": ...}``. EOF on stdin ends it.
+at once and prints ``{"event": "burst", "count": N, "acked": ...}``; through the logger (no
+``--own-rosout``), ``BURST_LOGGED`` on stderr follows whatever rcl said there of messages it
+could not publish on /rosout. EOF on stdin ends it.
 """
 
 from __future__ import annotations
@@ -41,6 +43,10 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 
 FILE = os.path.abspath(__file__)
 _print_lock = threading.Lock()
+
+
+#: Said on stderr once a burst through the logger is done.
+BURST_LOGGED = "talker: burst logged"
 
 
 def say(**fields) -> None:
@@ -179,6 +185,8 @@ def main() -> None:
                 else:
                     for number in range(count):
                         logger.info(f"burst {number}")
+                    # After rcl's complaints of messages it could not publish on /rosout.
+                    print(BURST_LOGGED, file=sys.stderr, flush=True)
                 acked = OWN_ROSOUT[1].wait_for_all_acked(Duration(seconds=60)) if OWN_ROSOUT else None
                 say(event="burst", count=count, acked=acked)
             elif kind == "periodic":

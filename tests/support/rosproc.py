@@ -52,6 +52,8 @@ class NodeProcess:
         )
         self.lines: list[dict[str, Any]] = []
         self.stderr_tail: deque[str] = deque(maxlen=50)
+        #: ``{text: lines of stderr that held it}`` for each text given to ``count_stderr``.
+        self.stderr_counts: dict[str, int] = {}
         # Both streams are read by threads: selecting on a buffered pipe misses lines
         # already in the buffer, and an unread stderr pipe fills up and blocks the node.
         self._incoming: queue.Queue[dict[str, Any] | None] = queue.Queue()
@@ -94,6 +96,15 @@ class NodeProcess:
         assert self.process.stderr is not None
         for line in self.process.stderr:
             self.stderr_tail.append(line)
+            for text in list(self.stderr_counts):
+                if text in line:
+                    self.stderr_counts[text] += 1
+
+    def count_stderr(self, *texts: str) -> None:
+        """From now on, count the lines of stderr that hold each text (``stderr_counts``):
+        the tail keeps only the last lines."""
+        for text in texts:
+            self.stderr_counts.setdefault(text, 0)
 
     def expect_next(self, key: str, timeout: float = PATIENCE_S) -> dict[str, Any]:
         """Like ``expect``, but only an object that was not read before."""
