@@ -221,7 +221,8 @@ def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
 
 
 def load_c_flood() -> Callable[..., tuple[int, int, float]]:
-    """``c_flood.c``'s ``flood``, built against the rcl rclpy loaded, into a fresh directory."""
+    """``c_flood.c``'s ``flood``, built against the rcl rclpy loaded, in a temporary directory
+    that is gone once the built module is loaded."""
     from console_tui.sources import c_build
     from console_tui.sources.ros2.compiled_take import loaded_rcl, rcl_flags
 
@@ -229,11 +230,12 @@ def load_c_flood() -> Callable[..., tuple[int, int, float]]:
     flags = rcl_flags(library) if library is not None else "rclpy's librcl.so is not loaded"
     if isinstance(flags, str):
         raise SystemExit(f"--publisher c: {flags}")
-    target = Path(tempfile.mkdtemp(prefix="c-flood-")) / f"c_flood{c_build.suffix()}"
-    problem = c_build.compile_module(Path(__file__).with_name("c_flood.c"), target, 120.0, flags)
-    if problem:
-        raise SystemExit(f"--publisher c: {problem}")
-    return c_build.import_built("c_flood", target).flood
+    with tempfile.TemporaryDirectory(prefix="c-flood-") as folder:
+        target = Path(folder) / f"c_flood{c_build.suffix()}"
+        problem = c_build.compile_module(Path(__file__).with_name("c_flood.c"), target, 120.0, flags)
+        if problem:
+            raise SystemExit(f"--publisher c: {problem}")
+        return c_build.import_built("c_flood", target).flood
 
 
 # -- the subscriber processes ------------------------------------------------------------------

@@ -86,8 +86,11 @@ def main() -> None:
         print(json.dumps({"event": "drained", "count": len(records), "lost": source.status.lost}), flush=True)
         sys.stdin.readline()  # the publisher has logged one more
         deadline = time.monotonic() + 60
-        while not any(r.msg == ONE_MORE for r in records) and time.monotonic() < deadline:
-            records += queue.drain()
+        while time.monotonic() < deadline:
+            taken = queue.drain()
+            records += taken
+            if any(r.msg == ONE_MORE for r in taken):
+                break
             time.sleep(0.05)
     time.sleep(0.5)  # anything beyond what was sent would show
     records += queue.drain()
