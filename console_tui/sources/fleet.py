@@ -27,19 +27,14 @@ from __future__ import annotations
 
 import os
 import re
-import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
+from ..model.toml_text import TomlError, loads_toml
 from .ros_version import ROS1, ROS2
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 #: The highest DDS domain (as ``ros2.runtime.MAX_DOMAIN_ID``; this module imports no ROS).
 MAX_DOMAIN_ID = 232
@@ -173,8 +168,8 @@ def load_fleet(path: str | Path) -> list[Robot]:
     if len(data) > MAX_FLEET_BYTES:
         raise FleetError(f"{where}: larger than {MAX_FLEET_BYTES // 1024} kB: not a fleet file")
     try:
-        document = tomllib.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as error:
+        document = loads_toml(data.decode("utf-8"))
+    except (UnicodeDecodeError, TomlError) as error:
         raise FleetError(f"{where}: not a TOML file: {error}") from None
     unknown = sorted(set(document) - {"robot"})
     if unknown:

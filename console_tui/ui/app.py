@@ -45,7 +45,6 @@ from .gc_policy import CollectionPolicy
 from .keys import binding_ids, keymap_path, load_keymap
 from .palette import PaletteProvider
 from .screens.help import HelpScreen
-from .screens.summary import SummaryScreen
 
 if TYPE_CHECKING:
     from ..sources.loggers.control import LoggerControl
@@ -172,7 +171,7 @@ class ConsoleApp(App[None]):
     def _load_keymap(self, keymap_file: str | None) -> tuple[str, ...]:
         """The user's keymap, in force before the widgets compose (their hints name its keys)."""
         path = keymap_path() if keymap_file is None else Path(keymap_file)
-        loaded = load_keymap(path, binding_ids(self.binding_groups()))
+        loaded = load_keymap(path, lambda: binding_ids(self.binding_groups()))
         if loaded.keys:
             self.keymap = loaded.keys
             self.set_keymap(loaded.keys)
@@ -353,6 +352,8 @@ class ConsoleApp(App[None]):
         self.main.overview.toggle_mask_digits()
 
     def action_summary(self) -> None:
+        from .screens.summary import SummaryScreen  # loaded when first opened
+
         if not isinstance(self.screen, SummaryScreen):
             self.main.overview.summary()
 

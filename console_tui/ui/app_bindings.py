@@ -12,9 +12,6 @@ from collections.abc import Iterable
 from textual.binding import Binding, BindingType
 
 from ..model.levels import MESSAGE_SEVERITIES
-from .screens.detail import DetailScreen
-from .screens.mark_list import MarksScreen
-from .screens.summary import SummaryScreen
 from .widgets.log_table import LogTable
 from .widgets.logger_pane import LoggerPane
 from .widgets.node_pane import NodePane
@@ -117,6 +114,11 @@ def bindings_of(bindings: Iterable[BindingType]) -> list[Binding]:
 
 def key_groups() -> list[tuple[str, list[Binding]]]:
     """Every key, by where it works."""
+    # The dialogs' screens load when first needed, not with the first frame (keys.load_keymap).
+    from .screens.detail import DetailScreen
+    from .screens.mark_list import MarksScreen
+    from .screens.summary import SummaryScreen
+
     nav = bindings_of(NAV_KEYS)
     return [
         ("Table", bindings_of(LogTable.BINDINGS)),

@@ -16,8 +16,7 @@ written once, in its ``Binding``, and what the screen says follows a remapping.
 
 from __future__ import annotations
 
-import sys
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol
@@ -25,11 +24,7 @@ from typing import Any, Protocol
 from textual.binding import Binding, BindingType
 
 from ..model.rules.rulesfile import config_dir
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
+from ..model.toml_text import TomlError, loads_toml
 
 KEYMAP_FILE = "keys.toml"
 
@@ -46,9 +41,11 @@ class LoadedKeymap:
     problems: tuple[str, ...] = ()
 
 
-def load_keymap(path: Path, known_ids: Iterable[str]) -> LoadedKeymap:
+def load_keymap(path: Path, known_ids: Callable[[], Iterable[str]]) -> LoadedKeymap:
     """The keymap in ``path`` (nothing when it does not exist). Bad entries are left out and
-    named in ``problems``; a file that is not TOML gives no keys and one problem."""
+    named in ``problems``; a file that is not TOML gives no keys and one problem.
+    ``known_ids`` is called only when there is a file: listing every binding imports the
+    dialogs' screens, which the first frame does without."""
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -56,10 +53,10 @@ def load_keymap(path: Path, known_ids: Iterable[str]) -> LoadedKeymap:
     except OSError as error:
         return LoadedKeymap({}, (f"{path}: cannot be read ({error.strerror or error})",))
     try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
+        data = loads_toml(text)
+    except TomlError as error:
         return LoadedKeymap({}, (f"{path}: not TOML ({error})",))
-    known = set(known_ids)
+    known = set(known_ids())
     keys: dict[str, str] = {}
     problems: list[str] = []
     for binding_id, value in _flatten(data):

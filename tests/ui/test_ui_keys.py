@@ -22,15 +22,15 @@ def test_the_keymap_file_flattens_tables_and_names_what_is_wrong(tmp_path):
     path.write_text(
         'console.pause = "p"\n[loggers]\ndebug = ["D", "ctrl+d"]\ninfo = 3\n[nothing]\nhere = "z"\n',
     )
-    loaded = load_keymap(path, ["console.pause", "loggers.debug", "loggers.info"])
+    loaded = load_keymap(path, lambda: ["console.pause", "loggers.debug", "loggers.info"])
     assert loaded.keys == {"console.pause": "p", "loggers.debug": "D,ctrl+d"}
     assert loaded.problems == (
         "keys.toml: loggers.info must be a key or a list of keys, not 3",
         "keys.toml: no key is named 'nothing.here'",
     )
-    assert load_keymap(tmp_path / "absent.toml", []).keys == {}
+    assert load_keymap(tmp_path / "absent.toml", list).keys == {}
     path.write_text("console.pause = \n")
-    broken = load_keymap(path, ["console.pause"])
+    broken = load_keymap(path, lambda: ["console.pause"])
     assert broken.keys == {} and "not TOML" in broken.problems[0]
 
 

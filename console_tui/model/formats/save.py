@@ -7,8 +7,8 @@ from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 from typing import Protocol
 
+from ..atomic_file import atomic_output
 from ..record import LogRecord
-from .atomic import atomic_output
 from .jsonl import JsonLinesWriter
 from .rqt_csv import RqtCsvWriter
 from .text_format import TextFormatWriter

@@ -16,7 +16,7 @@
     kind = "node"
     names = ["nav*"]
 
-Reading uses ``tomllib``; writing is the small writer below (the values are only text,
+Reading uses ``tomllib`` (``toml_text``); writing is the small writer below (the values are only text,
 booleans, whole numbers, lists of text and nested rule tables).
 """
 
@@ -25,21 +25,16 @@ from __future__ import annotations
 import os
 import shutil
 import stat
-import sys
 from pathlib import Path
 from typing import Any
 
 import platformdirs
 
-from ..formats.atomic import atomic_output
+from ..atomic_file import atomic_output
 from ..timefmt import full_text
+from ..toml_text import TomlError, loads_toml
 from .rule import RuleError
 from .ruleset import RuleSet
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # Python 3.10
-    import tomli as tomllib
 
 APP_DIR = "console-tui"
 
@@ -95,8 +90,8 @@ def _state_file(name: str) -> Path:
 
 def loads_rules(text: str, name: str = "rules") -> RuleSet:
     try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
+        data = loads_toml(text)
+    except TomlError as error:
         raise RulesFileError(f"{name}: not valid TOML: {error}") from None
     except RecursionError:  # tomllib reads nested arrays and tables recursively
         raise RulesFileError(f"{name}: not a rules file: arrays or tables nested too deeply") from None

@@ -10,18 +10,21 @@ import asyncio
 import os
 import time
 from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
-from ...model.formats.save import save_records
 from ...model.intake_queue import IntakeQueue
 from ...model.store import LogStore
 from ...model.text import one_line, plural
 from ...model.view import LogView
-from ...sources.files import FileLoad
-from ..screens.files import OpenScreen, SaveRequest, SaveScreen
-from ..screens.load_problems import ProblemsScreen
 from ..widgets.load_bar import LoadBar
 from ..widgets.log_table import LogTable
 from .host import Host
+
+# Reading and writing files (the formats, the readers) and the dialogs load when first used,
+# not with the first frame.
+if TYPE_CHECKING:
+    from ...sources.files import FileLoad
+    from ..screens.files import SaveRequest
 
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
@@ -67,6 +70,8 @@ class FilesController:
         """Read files in the background into the table, merged by time, in the format given
         (``--format``) or found from each; ``robots``: the robot of each path (``--robot NAME``
         before it)."""
+        from ...sources.files import FileLoad
+
         load = FileLoad(paths, self._file_queue, log_format=self._log_format, robots=robots)
         self.opened_paths.extend(paths)  # where ``v`` looks for a source file's bare name
         self.loads.append(load)
@@ -111,9 +116,13 @@ class FilesController:
             if paths:
                 self.open_files(paths)
 
+        from ..screens.files import OpenScreen
+
         self._host.push_screen(OpenScreen(), opened)
 
     def show_problems(self) -> None:
+        from ..screens.load_problems import ProblemsScreen
+
         self._host.push_screen(ProblemsScreen(self.problems))
 
     def ask_save(self) -> None:
@@ -122,6 +131,8 @@ class FilesController:
         def chosen(request: SaveRequest | None) -> None:
             if request is not None:
                 self.save(request)
+
+        from ..screens.files import SaveScreen
 
         self._host.push_screen(SaveScreen(default, filtered=self._view.filtered), chosen)
 
@@ -144,6 +155,8 @@ class FilesController:
                     records.append(self._store.get(seq))
             await asyncio.sleep(0)
         lost = len(seqs) - len(records)
+        from ...model.formats.save import save_records
+
         try:
             written = await asyncio.to_thread(save_records, records, request.path, request.save_format)
         except (OSError, ValueError) as error:

@@ -18,7 +18,6 @@ from ...model.seek import Hits, Seeker, level_hits, view_shows
 from ...model.store import LogStore
 from ...model.text import one_line
 from ...model.view import LogView
-from ..screens.mark_list import MarksScreen
 from ..slicing import pause_between_slices
 from ..source_file import editor_command, find_source, run_editor, run_folders
 from ..widgets.log_table import LogTable
@@ -125,6 +124,8 @@ class JumpsController:
                 return
             if not self._table.jump_to_seq(seq):
                 self._host.notify("That row is hidden by the rules (r shows them).", timeout=4)
+
+        from ..screens.mark_list import MarksScreen  # loaded when first opened
 
         records = [self._store.get(seq) for seq in self._marks]
         shown = {record.seq for record in records if view_shows(self._view, record.seq)}

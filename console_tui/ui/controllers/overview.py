@@ -19,7 +19,6 @@ from ...model.timeline import Timeline
 from ...model.view import LogView
 from ...sources.status import SourceStatus
 from ..focus import focus_now
-from ..screens.summary import SummaryScreen
 from ..slicing import pause_between_slices
 from ..widgets.log_table import LogTable
 from ..widgets.timeline_strip import TimelineStrip
@@ -278,6 +277,8 @@ class OverviewController:
                 self._host.notify("The rules hide that message (r shows them).", timeout=5)
             else:
                 self.show_seq(seq)
+
+        from ..screens.summary import SummaryScreen  # loaded when first opened
 
         sources = list(self._sources())
         self._host.push_screen(

@@ -16,7 +16,6 @@ from ...model.rules.rulesfile import last_rules_path, load_rules, query_history_
 from ...model.store import LogStore
 from ...model.text import plural
 from ...model.view import LogView
-from ..screens.files import PathScreen
 from ..screens.quick_rule import QuickRuleScreen
 from ..screens.rule_editor import RuleEditor
 from ..slicing import pause_between_slices
@@ -238,6 +237,8 @@ class RulesController:
                 return
             self._host.notify(f"Saved {plural(len(self.rules.entries), 'rule')} to {path}", timeout=5)
 
+        from ..screens.files import PathScreen  # loaded when first opened
+
         default = os.path.join(os.getcwd(), "console-tui-rules.toml")
         self._host.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
 
@@ -258,6 +259,8 @@ class RulesController:
         if path is not None:
             chosen(path)
         else:
+            from ..screens.files import PathScreen  # loaded when first opened
+
             self._host.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
 
     def restore_rules(self) -> None:

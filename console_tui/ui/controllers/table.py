@@ -9,8 +9,6 @@ from ...model.node_stats import NodeStats
 from ...model.record import LogRecord
 from ...model.store import LogStore
 from ...model.view import LogView
-from ..screens.columns_dialog import ColumnsScreen
-from ..screens.detail import DetailScreen
 from ..widgets.log_table import LogTable
 from ..widgets.table_columns import COLUMNS
 from .host import Host
@@ -66,6 +64,8 @@ class TableController:
                 for column in COLUMNS:
                     table.set_column_shown(column.key, column.key in shown)
 
+        from ..screens.columns_dialog import ColumnsScreen  # loaded when first opened
+
         self._host.push_screen(ColumnsScreen(table.shown_columns), apply)
 
     def toggle_column(self, key: str) -> None:
@@ -76,6 +76,8 @@ class TableController:
     def open_detail(self, seq: int) -> None:
         if seq not in self._store:
             return
+        from ..screens.detail import DetailScreen  # loaded when first opened, with the file formats
+
         self._host.push_screen(
             DetailScreen(self._store.get(seq), utc=self._utc, step=self._step_record, source_notes=self._source_notes)
         )

@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
 from ...model.text import plural
-from ...sources.files import LoadProgress
 from ..keys import hint_line
 from ..plain import plain
+
+if TYPE_CHECKING:  # the file readers load when a file is first opened
+    from ...sources.files import LoadProgress
 
 
 class LoadBar(Horizontal):
