@@ -3,6 +3,7 @@ and node toggles, counts per severity, rate, the sources, the rules and storms, 
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
@@ -206,7 +207,7 @@ def _source_parts(status: SourceStatus, styled: Callable[..., Text]) -> list[Par
         parts.append(Part(styled((loss, "problem")), SOURCE, styled((f"{status.lost:,} lost", "problem"))))
     if status.problem:
         problem = one_line(status.problem, 300)
-        parts.append(Part(styled((problem, "problem")), STATE, styled((one_line(problem, 40), "problem"))))
+        parts.append(Part(styled((problem, "problem")), STATE, styled((short_problem(problem), "problem"))))
     if status.origin:
         origin = one_line(status.origin, 300)
         parts.append(Part(styled((origin, "where")), WHERE, styled((_short_origin(origin), "where"))))
@@ -220,6 +221,18 @@ def _source_parts(status: SourceStatus, styled: Callable[..., Text]) -> list[Par
         priority = DETAIL if status.take_path else DEMO if demo else WHERE
         parts.append(Part(styled((path, "where")), priority, styled(("demo", "where")) if demo else None))
     return parts
+
+
+#: An address in a problem's text (``http://host:11311``, up to a ``: `` or a space after it).
+_ADDRESS = re.compile(r" (?:at|from|to) [a-z][a-z0-9+.-]*://[^\s]*?(?=:\s|\s|$)")
+
+
+def short_problem(problem: str) -> str:
+    """A source's problem in 40 cells, for a narrow status line: without the addresses it
+    names (the line says where the source reads), so that what is wrong fits, not the address
+    ("waiting for master: connection refused…" instead of "waiting for master at http://1…")."""
+    brief = _ADDRESS.sub("", one_line(problem, 300))
+    return brief if len(brief) <= 40 else brief[:39] + "…"
 
 
 def _short_origin(origin: str) -> str:
