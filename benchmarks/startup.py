@@ -2,7 +2,7 @@
 terminal, to the first live row of a node that was publishing before it started, and from
 pressing ``q`` to the app and every process it started being gone.
 
-    .venv/bin/python benchmarks/startup.py [--runs 5] [-- ARGS...]
+    .venv/bin/python benchmarks/startup.py [--runs 5] [--against CHECKOUT] [-- ARGS...]
 
 Runs the real command in a pseudo-terminal (160x48), as a user's shell would, and reads
 its output until the table's header row has been drawn (the first frame); two seconds later
@@ -93,11 +93,13 @@ class Run:
         self.frame = self.frame_cpu = self.row = self.row_cpu = self.quit = nan
 
 
-def launch(argv: list[str], domain: int, *, marker: str = "", timeout: float = 20.0) -> Run:
+def launch(argv: list[str], domain: int, *, marker: str = "", timeout: float = 20.0, code: str = "") -> Run:
     """Launch ``argv`` in a pseudo-terminal: its first frame, the first time ``marker`` is on
-    the screen (when given), and from ``q`` until the command and its children are gone."""
+    the screen (when given), and from ``q`` until the command and its children are gone.
+    ``code``: a checkout whose ``console_tui`` runs instead of this one's (``PYTHONPATH``)."""
     env = {
         **os.environ,
+        **({"PYTHONPATH": code} if code else {}),
         "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
         "ROS_DOMAIN_ID": str(domain),
         "TERM": "xterm-256color",
@@ -148,7 +150,7 @@ def launch(argv: list[str], domain: int, *, marker: str = "", timeout: float = 2
     return run
 
 
-def with_publisher(argv: list[str], domain: int) -> Run:
+def with_publisher(argv: list[str], domain: int, code: str = "") -> Run:
     """``launch`` while a real node on ``domain`` publishes: it logged ``MARKER`` before the launch."""
     env = {**os.environ, "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST", "ROS_DOMAIN_ID": str(domain)}
     talker = subprocess.Popen(
@@ -167,7 +169,7 @@ def with_publisher(argv: list[str], domain: int) -> Run:
             talker.stdin.write(json.dumps(command) + "\n")
             talker.stdin.flush()
             talker.stdout.readline()
-        return launch(argv, domain, marker=MARKER)
+        return launch(argv, domain, marker=MARKER, code=code)
     finally:
         talker.stdin.close()
         try:
@@ -208,20 +210,49 @@ def _verdict(value: float, target: float) -> str:
     return "met" if value <= target else f"MISSED by {value - target:.2f} s"
 
 
-def write_bytecode() -> None:
-    """Compile console_tui's modules into their caches, as installing the package does."""
+def write_bytecode(against: Path | None = None) -> None:
+    """Compile console_tui's modules (and ``against``'s) into their caches, as installing the
+    package does."""
     import console_tui
 
     compileall.compile_dir(Path(console_tui.__file__).parent, quiet=1)
+    if against is not None:
+        compileall.compile_dir(against / "console_tui", quiet=1)
+
+
+def _frame_row(label: str, runs: list[Run]) -> str:
+    frames = [run.frame for run in runs]
+    worst_quit = max(run.quit for run in runs)
+    return (
+        f"| `{label}` | {len(runs)} | {_seconds(frames)} | {statistics.median(run.frame_cpu for run in runs):.2f} s "
+        f"| {TARGET_S} s | {_verdict(statistics.median(frames), TARGET_S)} | {worst_quit:.2f} s | {QUIT_TARGET_S} s "
+        f"| {'met' if worst_quit <= QUIT_TARGET_S else 'MISSED'} |"
+    )
+
+
+def _row_row(label: str, runs: list[Run]) -> str:
+    rows = [run.row for run in runs]
+    return (
+        f"| `{label}` | {len(rows)} | {_seconds(rows)} | {statistics.median(run.row_cpu for run in runs):.2f} s "
+        f"| {LIVE_ROW_TARGET_S} s | {_verdict(statistics.median(rows), LIVE_ROW_TARGET_S)} |"
+    )
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--domain", type=int, default=60, help="the first of the ten ROS domains the runs use")
+    parser.add_argument(
+        "--against",
+        type=Path,
+        help="another checkout of console-tui (the folder holding console_tui/): each run is followed by one "
+        "of that code (PYTHONPATH), in turns, and its rows are printed beside (marked 'against'); the "
+        "machine's speed drifts by a fifth within an hour here, so compare changes this way",
+    )
     parser.add_argument("args", nargs="*", help="arguments for console-tui (after --)")
     args = parser.parse_args()
-    write_bytecode()
+    against = str(args.against.resolve()) if args.against else ""
+    write_bytecode(args.against)
     command = str(Path(sys.executable).parent / "console-tui")
     cases = [([], False), (["--demo"], False), ([], True)]
     if args.args:  # these arguments, and with a node publishing unless the demo's domain is its own
@@ -231,31 +262,32 @@ def main() -> int:
         "| command | runs | first frame, median (min-max) | CPU by then | target | | quit after q, worst | target | |"
     )
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    live_rows: list[Run] = []
-    live_label = ""
+    live: list[tuple[str, list[Run]]] = []
     for n, (case, publisher) in enumerate(cases):
         measure = with_publisher if publisher else launch
-        runs = [measure([command, *case], args.domain + (n * args.runs + run) % 10) for run in range(args.runs)]
+        runs: list[Run] = []
+        others: list[Run] = []
+        for run in range(args.runs):
+            domain = args.domain + (n * args.runs + run) % 10
+            runs.append(measure([command, *case], domain))
+            if against:
+                others.append(measure([command, *case], domain, code=against))
+        label = " ".join(["console-tui", *case])
         if publisher:
-            live_rows, live_label = runs, " ".join(["console-tui", *case])
-        frames = [run.frame for run in runs]
-        worst_quit = max(run.quit for run in runs)
-        label = " ".join(["console-tui", *case]) + (" (a node publishing)" if publisher else "")
-        print(
-            f"| `{label}` | {len(runs)} | {_seconds(frames)} | {statistics.median(run.frame_cpu for run in runs):.2f} s "
-            f"| {TARGET_S} s | {_verdict(statistics.median(frames), TARGET_S)} | {worst_quit:.2f} s | {QUIT_TARGET_S} s "
-            f"| {'met' if worst_quit <= QUIT_TARGET_S else 'MISSED'} |"
-        )
-    if live_rows:
-        rows = [run.row for run in live_rows]
+            live += [(label, runs), *([(label + " (against)", others)] if others else [])]
+        label += " (a node publishing)" if publisher else ""
+        print(_frame_row(label, runs))
+        if others:
+            print(_frame_row(label + " (against)", others))
+    if live:
         print(
             "\n| first live row of a node already publishing | runs | median (min-max) | CPU by then, app and intake | target | |"
         )
         print("| --- | --- | --- | --- | --- | --- |")
-        print(
-            f"| `{live_label}` | {len(rows)} | {_seconds(rows)} | {statistics.median(run.row_cpu for run in live_rows):.2f} s "
-            f"| {LIVE_ROW_TARGET_S} s | {_verdict(statistics.median(rows), LIVE_ROW_TARGET_S)} |"
-        )
+        for label, runs in live:
+            print(_row_row(label, runs))
+    if against:
+        print(f"\n(against: {against})")
     return 0
 
 
