@@ -6,6 +6,7 @@ is not what it was written against. What each fixes is tested beside the behavio
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import subprocess
 import sys
 from pathlib import Path
@@ -19,7 +20,7 @@ from textual.strip import Strip
 from textual.widgets import OptionList
 
 from console_tui.ui import textual_fixes
-from console_tui.ui.textual_fixes import FIXES, check, fixes_text, install
+from console_tui.ui.textual_fixes import FIXES, check, fixes_text, install, source_of
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -46,6 +47,13 @@ def test_installed_on_the_textual_tested(fix):
     assert check(fix) is None, "Textual changed what this fix patches: check the fix again"
     assert install([fix]) == {}
     assert INSTALLED[fix.name]()
+
+
+@pytest.mark.parametrize("fix", FIXES, ids=lambda fix: fix.name)
+def test_the_source_checked_is_the_whole_function(fix):
+    # source_of reads the lines the code object spans instead of tokenizing the file: the
+    # same text as inspect.getsource, closing brackets on their own lines included.
+    assert source_of(fix.target) == inspect.getsource(fix.target)
 
 
 @pytest.mark.parametrize("fix", FIXES, ids=lambda fix: fix.name)
