@@ -143,6 +143,8 @@ class FilesController:
     async def write(self, request: SaveRequest) -> int:
         """Collect the rows on the UI thread a slice at a time (the store changes only
         here), then write them in a thread. Returns how many were written."""
+        from ...model.formats.save import save_records  # the file formats load when first used
+
         seqs: Sequence[int]
         if request.shown_only:
             seqs = [self._view.seq_at(row) for row in range(len(self._view))]
@@ -155,8 +157,6 @@ class FilesController:
                     records.append(self._store.get(seq))
             await asyncio.sleep(0)
         lost = len(seqs) - len(records)
-        from ...model.formats.save import save_records
-
         try:
             written = await asyncio.to_thread(save_records, records, request.path, request.save_format)
         except (OSError, ValueError) as error:
