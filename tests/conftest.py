@@ -65,6 +65,19 @@ def own_config_folder(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Path:
     return folder
 
 
+@pytest.fixture(autouse=True)
+def app_ready_for_the_test(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``ConsoleApp.run_test`` gives the test its pilot once the panes hidden at start are
+    mounted (right after the first frame): a person's keys wait for them (``focus.KeyGate``),
+    and a test that calls into a pane waits the same way. Tests marked ``first_frame`` get
+    the app as the first frame shows it, the panes not mounted yet."""
+    if "console_tui.ui.app" not in sys.modules or request.node.get_closest_marker("first_frame"):
+        return  # tests without the UI do not import Textual for it
+    from support.ui import run_test_when_ready
+
+    monkeypatch.setattr(sys.modules["console_tui.ui.app"].ConsoleApp, "run_test", run_test_when_ready)
+
+
 @pytest.fixture
 def ros_env(monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     """A ROS 2 environment of its own for one test: its own domain, loopback only.

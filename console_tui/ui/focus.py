@@ -51,15 +51,23 @@ def focus_now(widget: Widget) -> None:
     widget.focus()
 
 
-#: Keys wait for a screen to get ready at most this long, then go on as they are.
+#: Keys wait for a screen to take the focus at most this long, then go on as they are.
 HOLD_AT_MOST_S = 1.0
 _POLL_S = 0.01
 
 
 def screen_ready(app: App) -> bool:
-    """Whether the screen on top can take keys: mounted, and focused if anything in it can be."""
+    """Whether the screen on top can take keys: ``screen_mounted``, and focused if anything in
+    it can be."""
     screen = app.screen
-    return screen.is_mounted and (screen.focused is not None or not screen.focus_chain)
+    return screen_mounted(app) and (screen.focused is not None or not screen.focus_chain)
+
+
+def screen_mounted(app: App) -> bool:
+    """Whether the screen on top is mounted, with what it mounts after its first frame (a
+    ``ready_for_keys`` of its own, which keys wait for however long it takes)."""
+    screen = app.screen
+    return screen.is_mounted and getattr(screen, "ready_for_keys", True)
 
 
 class KeyGate:
@@ -83,7 +91,7 @@ class KeyGate:
         return True
 
     def _release(self) -> None:
-        if not screen_ready(self.app) and self.clock() - self._since < HOLD_AT_MOST_S:
+        if not screen_mounted(self.app) or (not screen_ready(self.app) and self.clock() - self._since < HOLD_AT_MOST_S):
             self.app.set_timer(_POLL_S, self._release)
             return
         keys, self.held = self.held, []

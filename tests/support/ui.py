@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import contextlib
 import io
 import re
 import time
-from collections.abc import Callable
+from collections.abc import AsyncIterator, Callable
 
 from rich.console import Console
 from textual.keys import _character_to_key
+from textual.pilot import Pilot
 
 from console_tui.model.store import DEFAULT_MAX_MESSAGES, LogStore
 from console_tui.ui.app import ConsoleApp
@@ -23,6 +25,18 @@ def make_app(count: int = 100, *, max_messages: int = DEFAULT_MAX_MESSAGES, **op
     store.extend_records(records(count))
     options.setdefault("utc", True)
     return ConsoleApp(store=store, **options)
+
+
+_RUN_TEST = ConsoleApp.run_test
+
+
+@contextlib.asynccontextmanager
+async def run_test_when_ready(app: ConsoleApp, *args, **kwargs) -> AsyncIterator[Pilot]:
+    """``App.run_test``, giving the pilot once the console's panes hidden at start are mounted
+    (``ConsoleScreen.hidden_mounted``; the app's ``run_test`` in every UI test, see conftest)."""
+    async with _RUN_TEST(app, *args, **kwargs) as pilot:
+        await until(pilot, lambda: app.main.hidden_mounted or not app.is_running, what="the hidden panes mounted")
+        yield pilot
 
 
 async def until(

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from console_tui.ui import app as app_module
 from console_tui.ui.app import ConsoleApp
 
@@ -28,6 +30,24 @@ async def test_text_typed_right_after_slash_lands_in_the_query_line():
         assert "Open log files" not in screen_text(app)  # nor the o
 
 
+@pytest.mark.first_frame
+async def test_keys_typed_at_the_first_frame_wait_for_the_panes_mounted_after_it():
+    """The first frame shows the table, the status line and the footer; the panes and lines
+    hidden at start are mounted right after it. Keys typed at once wait for them: the text
+    typed after ``/`` lands in the query line, and ``r`` typed after Escape opens the rules pane."""
+    app = make_app(30)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await pilot.press(*"/error")
+        await until(pilot, lambda: _starts_a_line(app, "error"), what="the typed text in the query line")
+        await pilot.press("escape", "r")
+        await until(pilot, lambda: _starts_a_line(app, "Rules"), what="the rules pane")
+        assert app.main.hidden_mounted
+
+
+def _starts_a_line(app: ConsoleApp, text: str) -> bool:
+    return any(line.lstrip(" │▏").startswith(text) for line in screen_text(app).splitlines())
+
+
 class StartingApp(ConsoleApp):
     """Keys that arrived while the app was starting: queued before it mounted."""
 
@@ -38,11 +58,14 @@ class StartingApp(ConsoleApp):
         super().on_mount()
 
 
+@pytest.mark.first_frame
 async def test_keys_pressed_while_the_app_starts_are_all_kept():
     app = StartingApp(utc=True)
     app.main.store.extend_records(records(50))
     async with app.run_test(size=(100, 30)) as pilot:
-        await until(pilot, lambda: app.main.query_bar.input.value == "warn", what="the typed text")
+        await until(
+            pilot, lambda: app.main.hidden_mounted and app.main.query_bar.input.value == "warn", what="the typed text"
+        )
         await pilot.pause()
         assert app.main.table.cursor_seq == 47 and not app.main.table.following  # the two ups moved the table
         assert line_with(app, "warn")[1].strip().startswith("warn")
