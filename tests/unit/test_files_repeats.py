@@ -1,5 +1,6 @@
-"""A message both a rosout log and its node's own log file hold is one record (issue 28); every
-other repeat stays as it is (no files needed: the merger reads records and each file's kind)."""
+"""A message both a rosout log (or a ROS 2 launch log) and its node's own log file hold is one
+record (issue 28); every other repeat stays as it is (no files needed: the merger reads records
+and each file's kind)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ FILES = [
     SimpleNamespace(source="other-2-stdout.log", kind="ros1-console"),
     SimpleNamespace(source="saved.csv", kind="rqt"),
 ]
+LAUNCH = SimpleNamespace(source="run/launch.log", kind="launch")
+NODE_FILE = SimpleNamespace(source="talker_4242_1700000000000.log", kind="rcutils")
 
 
 def rec(ms: float, source: str, msg: str = "hello", node: str = "/talker", **fields) -> LogRecord:
@@ -86,3 +89,42 @@ def test_other_severities_nodes_and_robots_are_other_messages():
 def test_without_both_kinds_of_file_the_batches_pass_as_they_are():
     batches = [[rec(0, "rosout.log"), rec(0, "rosout.log")]]
     assert RepeatMerger().merge(batches, FILES[:1]).__next__() is batches[0]  # type: ignore[arg-type]
+
+
+def test_a_launch_logs_copy_and_the_nodes_file_are_one_row_the_launch_copy_kept():
+    """ROS 2: launch.log holds each node's console line, stamp and all, and the node's own log
+    file the same message: one row, named for both (``--last`` opens both)."""
+    records = [
+        rec(0, "talker_4242_1700000000000.log"),
+        rec(0, "run/launch.log"),
+        rec(1, "run/launch.log", "printed\nand a line printed after it"),  # not the same text: both stay
+        rec(1, "talker_4242_1700000000000.log", "printed"),
+        rec(2, "run/launch.log", "only launch"),
+    ]
+    rows, count = merged(records, files=[LAUNCH, NODE_FILE])
+    assert count == 1
+    assert [(ms, source) for ms, source, _, _ in rows] == [
+        (0, "run/launch.log + talker_4242_1700000000000.log"),
+        (1, "run/launch.log"),
+        (1, "talker_4242_1700000000000.log"),
+        (2, "run/launch.log"),
+    ]
+
+
+def test_a_rosout_a_launch_and_a_node_copy_are_one_row_the_rosout_copy_kept():
+    records = [
+        rec(0, "talker_4242_1700000000000.log"),
+        rec(0, "run/launch.log"),
+        rec(0.7, "rosout.log", file="talker.py"),
+        rec(3, "run/launch.log", "twice"),
+        rec(3, "run/launch.log", "twice"),  # logged twice: two rows, each with its rosout copy
+        rec(3.4, "rosout.log", "twice", file="talker.py"),
+        rec(3.5, "rosout.log", "twice", file="talker.py"),
+    ]
+    rows, count = merged(records, files=[FILES[0], LAUNCH, NODE_FILE], batch=3)
+    assert count == 4
+    assert rows == [
+        (0.7, "rosout.log + run/launch.log + talker_4242_1700000000000.log", "hello", "talker.py"),
+        (3.4, "rosout.log + run/launch.log", "twice", "talker.py"),
+        (3.5, "rosout.log + run/launch.log", "twice", "talker.py"),
+    ]

@@ -1,20 +1,21 @@
-"""One row for a message that both a rosout log and its node's own log file hold.
+"""One row for a message that a rosout log, a ROS 2 launch log and its node's own log file hold.
 
 A run's log folder often holds the rosout log (ROS 1's ``rosout.log``, or what ``console-tui
-rosout`` wrote) beside the nodes' own log files (ROS 1's ``<node>-<N>-stdout.log`` and
-rospy's ``<node>-<N>.log``, ROS 2's rcutils log files): every message a node logged is in
-both, its stamps a millisecond or so apart (a node's file prints its clock to the
-millisecond or microsecond, and prints it a moment apart from the stamp it publishes).
-Opened whole, the folder would show each message twice.
+rosout`` wrote) or a ROS 2 launch's ``launch.log`` beside the nodes' own log files (ROS 1's
+``<node>-<N>-stdout.log`` and rospy's ``<node>-<N>.log``, ROS 2's rcutils log files):
+every message a node logged is in both, its stamps equal or a millisecond or so apart (a
+node's file prints its clock to the millisecond or microsecond, and prints it a moment apart
+from the stamp it publishes; launch copies the node's console line, stamp and all). Opened
+whole, the folder would show each message twice.
 
-``RepeatMerger`` pairs them as a merge by time goes by: a record of a rosout log and one of
-a node's own log file with the same node (``/talker`` and ``talker`` are one), robot,
-severity and text, stamps at most ``TOLERANCE_NS`` apart, are one record. The rosout copy is
-kept: it has the message as it was published (its stamp, the file, function and line the
-node's file lacks); its ``source`` names both files (``rosout.log + talker-2.log``), so the
-details say where it was read from. Each copy pairs with one copy at most, so a message
-really logged twice is still two rows; repeats within one file, or between two node files,
-or two rosout logs, are left as they are.
+``RepeatMerger`` pairs them as a merge by time goes by: records of two of these kinds of log
+with the same node (``/talker`` and ``talker`` are one), robot, severity and text, stamps at
+most ``TOLERANCE_NS`` apart, are one record, and a third kind's copy joins them. The best
+copy is kept: the rosout copy has the message as it was published (its stamp, the file,
+function and line the others lack), then the launch log's; its ``source`` names every file
+(``rosout.log + talker-2.log``), so the details say where it was read from. Each copy pairs
+with one copy of each other kind at most, so a message really logged twice is still two
+rows; repeats within one file, or between two files of one kind, are left as they are.
 """
 
 from __future__ import annotations
@@ -31,22 +32,27 @@ if TYPE_CHECKING:
 
 #: Formats of the rosout logs (``model.formats.rosout_log``: ROS 1's, console-tui rosout's).
 ROSOUT_KINDS = frozenset({"rosout", "rosout2"})
+#: Formats of the logs of a ROS 2 launch (``model.formats.launch_log``).
+LAUNCH_KINDS = frozenset({"launch"})
 #: Formats of a node's own log files: ROS 1's console output and rospy log, ROS 2's rcutils log.
 NODE_KINDS = frozenset({"ros1-console", "rospy-log", "rcutils"})
-#: The most a rosout copy's stamp and its node file's copy's may be apart.
+#: The most two copies' stamps may be apart.
 TOLERANCE_NS = 20_000_000
 
-_ROSOUT, _NODE = 0, 1
+#: The kinds of log, the copy kept first.
+_ROSOUT, _LAUNCH, _NODE = 0, 1, 2
+_SIDES = ((_ROSOUT, ROSOUT_KINDS), (_LAUNCH, LAUNCH_KINDS), (_NODE, NODE_KINDS))
 
 
 class _Held:
-    """A record waiting until no copy of it can come any more (``record`` None: dropped)."""
+    """A record waiting until no copy of it can come any more (``record`` None: dropped), with
+    the kinds of log its copies came from (``sides``)."""
 
-    __slots__ = ("key", "record", "side")
+    __slots__ = ("key", "record", "sides")
 
-    def __init__(self, record: LogRecord, side: int | None, key: tuple | None) -> None:
+    def __init__(self, record: LogRecord, sides: frozenset[int], key: tuple | None) -> None:
         self.record: LogRecord | None = record
-        self.side = side
+        self.sides = sides
         self.key = key
 
 
@@ -59,10 +65,9 @@ class RepeatMerger:
         self.merged = 0
 
     def merge(self, batches: Iterable[list[LogRecord]], files: Sequence[LogFile]) -> Iterator[list[LogRecord]]:
-        """``batches`` (merged by time) with each pair made one; as they are when ``files``
-        are not a rosout log and node log files both."""
-        sides = {file.source: _ROSOUT for file in files if file.kind in ROSOUT_KINDS}
-        sides.update({file.source: _NODE for file in files if file.kind in NODE_KINDS})
+        """``batches`` (merged by time) with the copies of each message made one; as they are
+        when ``files`` are not of two of the kinds (rosout, launch, node log files)."""
+        sides = {file.source: side for file in files for side, kinds in _SIDES if file.kind in kinds}
         if len(set(sides.values())) < 2:
             return iter(batches)
         return self._merged(batches, sides)
@@ -78,32 +83,32 @@ class RepeatMerger:
                 stamp = record.stamp_ns
                 newest = stamp if newest is None else max(newest, stamp)
                 if side is None:
-                    held.append(_Held(record, None, None))
+                    held.append(_Held(record, frozenset(), None))
                     continue
                 key = (record.node.lstrip("/"), record.robot, record.level, record.msg)
-                copies = waiting.get(key)
-                pair = None
-                if copies:
-                    pair = next(
-                        (h for h in copies if h.side != side and abs(h.record.stamp_ns - stamp) <= tolerance),  # type: ignore[union-attr]
-                        None,
-                    )
+                copies = waiting.setdefault(key, deque())
+                pair = next(
+                    (h for h in copies if side not in h.sides and abs(h.record.stamp_ns - stamp) <= tolerance),  # type: ignore[union-attr]
+                    None,
+                )
                 if pair is None:
-                    entry = _Held(record, side, key)
+                    entry = _Held(record, frozenset({side}), key)
                     held.append(entry)
-                    waiting.setdefault(key, deque()).append(entry)
+                    copies.append(entry)
                     continue
-                copies.remove(pair)  # type: ignore[union-attr]  # found in it
                 self.merged += 1
                 other = pair.record
                 assert other is not None
-                rosout, node = (other, record) if pair.side == _ROSOUT else (record, other)
-                kept = replace(rosout, source=f"{rosout.source} + {node.source}")
-                if pair.side == _ROSOUT:
-                    pair.record, pair.key = kept, None
-                else:
-                    pair.record = None  # the node's copy goes; the rosout copy comes in its own place
-                    held.append(_Held(kept, None, None))
+                sides_now = pair.sides | {side}
+                if min(pair.sides) < side:  # the held copy is kept, in its place
+                    pair.record = replace(other, source=f"{other.source} + {record.source}")
+                    pair.sides = sides_now
+                else:  # this copy is kept, in its own place
+                    copies.remove(pair)
+                    pair.record = None
+                    entry = _Held(replace(record, source=f"{record.source} + {other.source}"), sides_now, key)
+                    held.append(entry)
+                    copies.append(entry)
             out = self._due(held, waiting, None if newest is None else newest - tolerance)
             if out:
                 yield out
