@@ -9,6 +9,7 @@ import signal
 from pathlib import Path
 
 import pytest
+from conftest import next_domain_id
 
 from support.browser import Browser, ServeProcess, alive, browser_missing, children, descendants, wait_for
 
@@ -227,9 +228,12 @@ def test_a_console_that_quits_closes_its_tab(server, browser):
 
 @pytest.mark.ros2
 def test_closing_the_tab_of_a_demo_ends_its_console_and_its_demo_nodes(ros_env, tmp_path, browser):
-    """``serve --demo``: each tab starts its own demo nodes (real ROS 2 processes, in the
-    test's domain), and they end with the tab, with the console's intake process."""
-    server = ServeProcess("--demo", env={**ros_env, "XDG_CONFIG_HOME": str(tmp_path / "config")})
+    """``serve --demo``: each tab starts its own demo nodes (real ROS 2 processes, in a domain
+    of the tests' own: left to itself the demo takes any free one, which a test starting later
+    may be given), and they end with the tab, with the console's intake process."""
+    demo_domain = str(next_domain_id())
+    env = {**ros_env, "XDG_CONFIG_HOME": str(tmp_path / "config")}
+    server = ServeProcess("--demo", "--demo-domain", demo_domain, env=env)
     try:
         browser.open(server.url, new_tab=True)
         browser.wait_for_text("count_and_log", "navigation.planner", timeout=90)
