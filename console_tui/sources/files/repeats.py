@@ -57,11 +57,12 @@ class _Held:
 
 
 class RepeatMerger:
-    """Merges the rosout logs' copies with the node files' copies (``merge``); counts them."""
+    """Merges the copies of a message in the rosout logs, the launch logs and the node files
+    (``merge``); counts them."""
 
     def __init__(self, tolerance_ns: int = TOLERANCE_NS) -> None:
         self.tolerance_ns = tolerance_ns
-        #: Pairs made one record so far.
+        #: Copies merged into another so far.
         self.merged = 0
 
     def merge(self, batches: Iterable[list[LogRecord]], files: Sequence[LogFile]) -> Iterator[list[LogRecord]]:
