@@ -208,8 +208,8 @@ class ConsoleScreen(Screen[None]):
         )
 
     #: Whether the panes and lines hidden at start are mounted (``_mount_hidden``): until
-    #: then keys wait (``ready_for_keys``) and nothing is drained into the table.
-    hidden_mounted = False
+    #: then keys wait (``focus.KeyGate``) and nothing is drained into the table.
+    ready_for_keys = False
 
     def compose(self) -> ComposeResult:
         """What the first frame shows: the timeline strip, the table, the status line and the
@@ -220,11 +220,6 @@ class ConsoleScreen(Screen[None]):
             yield self.table
         yield self.status_bar
         yield KeyFooter()
-
-    @property
-    def ready_for_keys(self) -> bool:
-        """Keys wait (``focus.KeyGate``) until every pane a key opens is mounted."""
-        return self.hidden_mounted
 
     def on_mount(self) -> None:
         """The table focused and the status line shown for the first frame; after it (the
@@ -247,7 +242,7 @@ class ConsoleScreen(Screen[None]):
         await main.mount(self.rules_pane, before=self.table)
         await main.mount_all((self.logger_pane, self.node_pane), after=self.table)
         await self.mount_all((self.query_bar, self.search_bar, self.load_bar), before=self.status_bar)
-        self.hidden_mounted = True
+        self.ready_for_keys = True
         self.overview.start()
         self.app.set_interval(self._drain_interval, self.intake.drain_intake)
         self.filtering.apply_initial(self._initial_rules, self._initial_query)

@@ -33,9 +33,9 @@ _RUN_TEST = ConsoleApp.run_test
 @contextlib.asynccontextmanager
 async def run_test_when_ready(app: ConsoleApp, *args, **kwargs) -> AsyncIterator[Pilot]:
     """``App.run_test``, giving the pilot once the console's panes hidden at start are mounted
-    (``ConsoleScreen.hidden_mounted``; the app's ``run_test`` in every UI test, see conftest)."""
+    (``ConsoleScreen.ready_for_keys``; the app's ``run_test`` in every UI test, see conftest)."""
     async with _RUN_TEST(app, *args, **kwargs) as pilot:
-        await until(pilot, lambda: app.main.hidden_mounted or not app.is_running, what="the hidden panes mounted")
+        await until(pilot, lambda: app.main.ready_for_keys or not app.is_running, what="the hidden panes mounted")
         yield pilot
 
 

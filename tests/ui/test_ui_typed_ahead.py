@@ -41,7 +41,7 @@ async def test_keys_typed_at_the_first_frame_wait_for_the_panes_mounted_after_it
         await until(pilot, lambda: _starts_a_line(app, "error"), what="the typed text in the query line")
         await pilot.press("escape", "r")
         await until(pilot, lambda: _starts_a_line(app, "Rules"), what="the rules pane")
-        assert app.main.hidden_mounted
+        assert app.main.ready_for_keys
 
 
 def _starts_a_line(app: ConsoleApp, text: str) -> bool:
@@ -64,7 +64,7 @@ async def test_keys_pressed_while_the_app_starts_are_all_kept():
     app.main.store.extend_records(records(50))
     async with app.run_test(size=(100, 30)) as pilot:
         await until(
-            pilot, lambda: app.main.hidden_mounted and app.main.query_bar.input.value == "warn", what="the typed text"
+            pilot, lambda: app.main.ready_for_keys and app.main.query_bar.input.value == "warn", what="the typed text"
         )
         await pilot.pause()
         assert app.main.table.cursor_seq == 47 and not app.main.table.following  # the two ups moved the table

@@ -87,7 +87,9 @@ class RepeatMerger:
                     held.append(_Held(record, frozenset(), None))
                     continue
                 key = (record.node.lstrip("/"), record.robot, record.level, record.msg)
-                copies = waiting.setdefault(key, deque())
+                copies = waiting.get(key)
+                if copies is None:
+                    copies = waiting[key] = deque()
                 pair = next(
                     (h for h in copies if side not in h.sides and abs(h.record.stamp_ns - stamp) <= tolerance),  # type: ignore[union-attr]
                     None,
