@@ -13,10 +13,13 @@ from _report import table
 
 
 class StallProbe:
-    """A task that sleeps 1 ms at a time; how late it wakes is how long the loop was busy."""
+    """A task that sleeps 1 ms at a time; how late it wakes is how long the loop was busy.
+    ``loop_cpu`` holds, for each stall, the CPU the event loop's thread used in it: a stall
+    with little of it was the thread waiting (for a core, or for the GIL), not working."""
 
     def __init__(self) -> None:
         self.stalls: list[float] = []
+        self.loop_cpu: list[float] = []
         self._running = False
         self._task: asyncio.Task | None = None
 
@@ -26,9 +29,21 @@ class StallProbe:
 
     async def _run(self) -> None:
         while self._running:
-            before = time.perf_counter()
+            before, cpu = time.perf_counter(), time.thread_time()
             await asyncio.sleep(0.001)
             self.stalls.append(time.perf_counter() - before - 0.001)
+            self.loop_cpu.append(time.thread_time() - cpu)
+
+    def clear(self) -> None:
+        self.stalls.clear()
+        self.loop_cpu.clear()
+
+    def longest(self) -> tuple[float, float]:
+        """The longest stall and the loop's CPU in it (seconds)."""
+        if not self.stalls:
+            return 0.0, 0.0
+        at = max(range(len(self.stalls)), key=self.stalls.__getitem__)
+        return self.stalls[at], self.loop_cpu[at]
 
     async def stop(self) -> list[float]:
         self._running = False

@@ -14,7 +14,13 @@ costs, not how long the machine made it wait); the table shows medians of ``--ro
 - ``unpack``: the app's pipe thread turns the bytes into columns again (``BatchUnpacker``);
 - ``store``: ``LogStore.extend``, sealing and packing full chunks included;
 - ``view and overview``: the rows shown (``LogView.update``), the storms and the timeline
-  following them, the nodes' counts, as the app does on each tick (15 a second);
+  following them, as the app does on each tick (15 a second);
+- ``nodes' counts``: ``NodeStats`` kept up to date, once a second, as while the node panel is
+  open (closed, the app counts nothing);
+
+With ``--full`` the store is full, as in any long session: it keeps a third of the records
+(the first third fills it, untimed), so every batch after that makes it drop as many of the
+oldest, and each stage pays for what it kept about them.
 - ``frame``: drawing the table, the timeline strip and the status line again (160x48), as
   the app does once a tick while records arrive, divided among the tick's records (measured
   in the real app, headless: ``--frames`` seconds of frames, their median).
@@ -68,8 +74,9 @@ def timed(work: Callable[[], Any]) -> float:
     return time.thread_time() - began
 
 
-def stage_costs(batches: list[RecordColumns]) -> dict[str, float]:
-    """CPU seconds of each stage over all of ``batches``."""
+def stage_costs(batches: list[RecordColumns], kept: int | None = None) -> dict[str, float]:
+    """CPU seconds of each stage over ``batches``; with ``kept``, the store keeps that many
+    records and the stages after the store are timed only once it is full."""
     from console_tui.model.node_stats import NodeStats
     from console_tui.model.storms import StormRows
     from console_tui.model.timeline import Timeline
@@ -102,22 +109,39 @@ def stage_costs(batches: list[RecordColumns]) -> dict[str, float]:
     columns: list[RecordColumns] = []
     costs["unpack"] = timed(lambda: columns.extend(unpacker.unpack(payload) for payload in received))
 
-    store = LogStore()
+    store = LogStore() if kept is None else LogStore(max_messages=kept)
     view = LogView(store)
     storms, timeline, nodes = StormRows(store, view), Timeline(store, view), NodeStats(store)
-    store_s = overview_s = 0.0
+    store_s = overview_s = nodes_s = 0.0
+    # What the counts' eviction hook takes (inside the store's ``extend``) is theirs.
+    hooks = store.evict_listeners
+    uncounting = [0.0]
+
+    def timed_hook(first: int, new_first: int, hook: Callable[[int, int], None] = hooks[-1]) -> None:
+        uncounting[0] += timed(lambda: hook(first, new_first))
+
+    assert hooks[-1] == nodes._evicting  # NodeStats hooks in last
+    hooks[-1] = timed_hook
     per_tick = max(1, round(TICK_S / FLUSH_S))
-    for tick in range(0, len(columns), per_tick):
+    ticks_a_second = round(1 / TICK_S)
+    for number, tick in enumerate(range(0, len(columns), per_tick)):
+        warming = kept is not None and store.end_seq < kept
         for batch in columns[tick : tick + per_tick]:
-            store_s += timed(lambda batch=batch: store.extend(batch))
+            uncounting[0] = 0.0
+            spent = timed(lambda batch=batch: store.extend(batch))
+            store_s += 0.0 if warming else spent - uncounting[0]
+            nodes_s += 0.0 if warming else uncounting[0]
         began = time.thread_time()
         view.update()
         storms.sync()
         timeline.sync()
-        nodes.update()
-        overview_s += time.thread_time() - began
+        overview_s += 0.0 if warming else time.thread_time() - began
+        if number % ticks_a_second == 0:
+            spent = timed(nodes.update)
+            nodes_s += 0.0 if warming else spent
     costs["store"] = store_s
     costs["view and overview"] = overview_s
+    costs["nodes' counts"] = nodes_s
     return costs
 
 
@@ -159,15 +183,23 @@ def main() -> int:
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--frames", type=float, default=5.0, metavar="S", help="seconds of frames measured (0: none)")
     parser.add_argument("--size", default="160x48")
+    parser.add_argument("--full", action="store_true", help="the store full: it keeps a third of the records")
     args = parser.parse_args()
     width, height = (int(n) for n in args.size.split("x"))
     print(machine_line(), file=sys.stderr, flush=True)
-    stages = ["pack", "pipe", "unpack", "store", "view and overview"]
+    stages = ["pack", "pipe", "unpack", "store", "view and overview", "nodes' counts"]
+    kept = args.records // 3 if args.full else None
+    timed_records = {stage: args.records for stage in stages}
+    if kept is not None:  # only the records after the first third are timed there
+        for stage in ("store", "view and overview", "nodes' counts"):
+            timed_records[stage] = args.records - kept
     per_rate: dict[int, dict[str, float]] = {}
     for rate in args.rates:
         batches = realistic_batches(args.records, rate)
-        rounds = [stage_costs(batches) for _ in range(args.rounds)]
-        per_rate[rate] = {stage: statistics.median(r[stage] for r in rounds) / args.records * 1e6 for stage in stages}
+        rounds = [stage_costs(batches, kept) for _ in range(args.rounds)]
+        per_rate[rate] = {
+            stage: statistics.median(r[stage] for r in rounds) / timed_records[stage] * 1e6 for stage in stages
+        }
     frame_s = frame_cost((width, height), args.frames) if args.frames > 0 else 0.0
     ticks = 1 / TICK_S
     body = []
@@ -181,7 +213,8 @@ def main() -> int:
     print(machine_line())
     print(
         f"{args.records:,} realistic records in the batches the intake sends every {FLUSH_S * 1000:.0f} ms; "
-        f"CPU a message in microseconds, medians of {args.rounds}"
+        + (f"the store full (it keeps {kept:,}: the first {kept:,} untimed after packing); " if kept else "")
+        + f"CPU a message in microseconds, medians of {args.rounds}"
         + (f"; a frame ({args.size}) costs {frame_s * 1000:.1f} ms, {ticks:.0f} a second" if frame_s else "")
         + "\n"
     )

@@ -427,6 +427,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "cpu_intake": intake_cpu_seconds(source),
             "intake_pids": pids,
             "stall_max": max(stalls, default=0.0) * 1000,
+            "stall_max_cpu": state["stalls"].longest()[1] * 1000,
             "stall_p99": percentile(stalls, 0.99) * 1000,
             "key_median": percentile(keys, 0.5) * 1000,
             "key_max": max(keys, default=0.0) * 1000,
@@ -438,7 +439,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
         }
 
     def mark() -> None:
-        state["stalls"].stalls = []
+        state["stalls"].clear()
         state["keys"].latencies = []
         app.collection_policy.longest = 0.0
 
@@ -755,6 +756,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
             child.ask("matched", cmd="matched", count=0)
     app_keys = (
         "stall_max",
+        "stall_max_cpu",
         "stall_p99",
         "key_median",
         "key_max",
@@ -870,6 +872,7 @@ def app_table(rows: list[Row]) -> str:
                 row.rate,
                 row.kind,
                 both("stall_max"),
+                f"{app['stall_max_cpu']:.0f}",
                 both("stall_p99"),
                 both("key_median"),
                 both("key_max"),
@@ -879,7 +882,16 @@ def app_table(rows: list[Row]) -> str:
                 f"{row.stop_ms:.0f}" if row.stop_ms is not None else "",
             ]
         )
-    headers = ["pubs", "offered/s", "app", "longest stall ms", "stall p99 ms", "key median ms", "key worst ms"]
+    headers = [
+        "pubs",
+        "offered/s",
+        "app",
+        "longest stall ms",
+        "its loop CPU ms",
+        "stall p99 ms",
+        "key median ms",
+        "key worst ms",
+    ]
     headers += ["keys", "longest gc ms (its CPU)", "RSS MB app + intake", "quit ms"]
     return table(headers, body)
 

@@ -118,7 +118,7 @@ async def run(
         keys = KeyProbe(app, app.main.table, frames)
         stalls.start()
         await asyncio.sleep(WARM_UP_S)  # the intake process starts, the tail is followed
-        stalls.stalls.clear()
+        stalls.clear()
         app.collection_policy.longest = 0.0
         stored_before = app.main.store.end_seq
         pid = getattr(source, "pid", None)
