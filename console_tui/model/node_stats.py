@@ -1,8 +1,11 @@
 """Counts per node and severity, and each node's rate over the last minute.
 
-``NodeStats`` counts every kept record (whatever the rules hide: it describes the run),
-incrementally as records arrive (``update``) and as the store drops the oldest (its
-eviction hook), a chunk column at a time. The rate of a node is
+``NodeStats`` counts every kept record (whatever the rules hide: it describes the run), a
+chunk column at a time, only when asked: ``sync`` counts what arrived since the last call
+(for about a budget of time, so that counting a million records does not stall a frame),
+``update`` all of it, and the store's eviction hook takes off what the store drops (of what
+was counted). Nobody reads the counts while the node panel is closed, so then no record costs
+anything here (docs/architecture.md, "The nodes' counts are kept only while shown"). The rate of a node is
 its records in the last ``window_s`` seconds of stamps (the newest stamp's second and
 the ones before it) divided by that window, or by the seconds the history covers when
 it is shorter.
@@ -15,8 +18,9 @@ from __future__ import annotations
 
 from array import array
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from time import perf_counter
 
 from .find_level import find_level, find_node, severity_range
 from .levels import MESSAGE_SEVERITIES, severity_bucket
@@ -71,11 +75,15 @@ def robot_counts(nodes: Sequence[NodeCounts]) -> dict[str, tuple[int, ...]]:
 
 
 class NodeStats:
-    """Kept records per node and severity over ``store``; call ``update`` after records arrive."""
+    """Kept records per node and severity over ``store``; call ``sync`` (or ``update``) before
+    reading them."""
 
-    def __init__(self, store: LogStore, *, window_s: int = RATE_WINDOW_S) -> None:
+    def __init__(
+        self, store: LogStore, *, window_s: int = RATE_WINDOW_S, clock: Callable[[], float] = perf_counter
+    ) -> None:
         self.store = store
         self.window_s = window_s
+        self.clock = clock
         #: node key (the node id, and in a fleet the robot id: ``ROBOT_SHIFT``) -> five counts
         #: (DEBUG .. FATAL)
         self._counts: dict[int, list[int]] = {}
@@ -95,12 +103,28 @@ class NodeStats:
         self._seen_to = self.store.end_seq
 
     def update(self) -> None:
+        """Count every record not counted yet."""
+        self.sync()
+
+    def sync(self, budget_s: float | None = None) -> bool:
+        """Count the records not counted yet, a chunk's worth at a time, until about
+        ``budget_s`` has gone by (None: all of them); True when every kept record is counted."""
         store = self.store
         start = max(self._seen_to, store.first_seq)
+        deadline = None if budget_s is None else self.clock() + budget_s
         for span in store.spans(start, store.end_seq):
             chunk, lo, hi = span.chunk, span.lo, span.hi
             self._count(_keys(chunk, lo, hi), chunk.levels[lo:hi], chunk.stamps[lo:hi], +1)
-        self._seen_to = store.end_seq
+            self._seen_to = span.seq + hi - lo
+            if deadline is not None and self.clock() >= deadline:
+                break
+        self._seen_to = max(self._seen_to, store.first_seq)
+        return self.counted
+
+    @property
+    def counted(self) -> bool:
+        """Every kept record is counted."""
+        return self._seen_to >= self.store.end_seq
 
     def _evicting(self, first: int, new_first: int) -> None:
         for span in self.store.spans(first, min(new_first, self._seen_to)):

@@ -179,13 +179,20 @@ class _Histogram:
             bucket[slot[level]] -= number
             if not any(bucket[:SLOTS]):
                 del buckets[index]
-                if not buckets:
-                    self.low, self.high = 0, -1
-                elif index in (self.low, self.high):
-                    self.low, self.high = min(buckets), max(buckets)
             elif bucket[_FIRST] < new_first:
                 bucket[_FIRST] = new_first  # its first record goes; the next kept is at or after this
         self.total -= len(stamps)
+        # The edges move in to the buckets left: step by step, as the oldest go a few buckets
+        # a time (looking for the lowest of thousands for each bucket emptied cost 14 µs a record).
+        if not buckets:
+            self.low, self.high = 0, -1
+            return
+        low, high = self.low, self.high
+        while low not in buckets:
+            low += 1
+        while high not in buckets:
+            high -= 1
+        self.low, self.high = low, high
 
     def _widen(self, low: int, high: int) -> None:
         """Merge buckets into wider ones until ``low..high`` fits."""

@@ -114,7 +114,6 @@ class ConsoleScreen(Screen[None]):
         self.logger_pane = LoggerPane(logger_control, seen_loggers=self.store.nodes, clock=clock)
         #: Messages per node and severity, and rates: the node panel shows them.
         self.node_stats = NodeStats(self.store)
-        self.node_stats.update()
         self.node_pane = NodePane(self.node_stats, lambda: self.toggles.node_toggles())
         self.files = FilesController(
             host, self.store, self.view, self.table, self.load_bar, self.file_queue, log_format=log_format
@@ -183,7 +182,6 @@ class ConsoleScreen(Screen[None]):
             view,
             table,
             self.marks,
-            self.node_stats,
             sources=self.sources,
             queue=self.queue,
             file_queue=self.file_queue,

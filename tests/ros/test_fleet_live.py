@@ -99,6 +99,7 @@ async def test_five_robots_in_one_console(fleet):
             assert set(statuses) == {"r2a", "r2b", "r2c", "r1a", "r1b"}
             assert all(status.problem == "" for status in statuses.values()), statuses
             # Two nodes of one name on two robots: the node panel counts them apart.
+            app.main.node_stats.update()
             assert len({entry.label for entry in app.main.node_stats.nodes()}) >= 5
 
             # robot: filters.

@@ -314,6 +314,36 @@ async def test_node_panel_with_80_nodes_filters_and_sorts():
         line_with(app, "Nodes: 80 · 10 shown")
 
 
+async def test_node_panel_counts_what_came_while_closed_a_budget_at_a_time(monkeypatch):
+    """Nothing is counted while the panel is closed; opened, it counts a budget's worth at a
+    time and says so until done."""
+    from console_tui.model.store import CHUNK_SIZE
+    from console_tui.ui.widgets import node_pane
+
+    monkeypatch.setattr(node_pane, "COUNT_BUDGET_S", 0.0)  # one chunk a refresh
+    monkeypatch.setattr(node_pane, "CATCH_UP_S", 3600.0)  # the test calls the refreshes
+    store = LogStore()
+    store.extend_records(
+        LogRecord(stamp_ns=BASE_NS + i, level=20, node="robot.arm" if i < CHUNK_SIZE else "robot.base", msg="m")
+        for i in range(3 * CHUNK_SIZE)
+    )
+    app = ConsoleApp(store=store, utc=True)
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.pause()
+        assert not app.main.node_stats.counted  # nobody asked yet
+        await pilot.press("ctrl+n")
+        await pilot.pause()
+        line_with(app, "Nodes: 1 · counting…")
+        assert pane_lines(app, "robot.")[0].split()[:3] == ["robot.arm", "0", str(CHUNK_SIZE)]
+        pane = app.main.node_pane
+        pane.update_counts()
+        pane.update_counts()
+        await pilot.pause()
+        line_with(app, "Nodes: 2")
+        assert "counting" not in screen_text(app)
+        assert pane_lines(app, "robot.base")[0].split()[:3] == ["robot.base", "0", str(2 * CHUNK_SIZE)]
+
+
 def pane_lines(app: ConsoleApp, text: str) -> list[str]:
     """Lines of the side pane (right of its border) holding ``text``."""
     return [

@@ -195,3 +195,26 @@ async def test_the_timeline_hides_and_the_summary_jumps():
         await until(pilot, lambda: "Summary:" not in screen_text(app), what="the summary to close")
         assert app.main.store.get(app.main.table.cursor_seq).msg == "lookup failed 0"
         line_with(app, "lookup failed 0")
+
+
+async def test_the_summary_counts_the_nodes_first_in_slices(monkeypatch):
+    """Nobody counted the nodes while their panel was closed: S counts them a slice at a time
+    (the loop free between slices), then opens the summary with every message counted."""
+    from console_tui.model.store import CHUNK_SIZE
+    from console_tui.ui.controllers import overview
+
+    monkeypatch.setattr(overview, "CATCH_UP_BUDGET_S", 0.0)  # one chunk a slice
+    store = LogStore()
+    store.extend_records(
+        LogRecord(stamp_ns=BASE + i * 1_000_000, level=30, node="lidar" if i % 3 else "planner", msg=f"m {i}")
+        for i in range(3 * CHUNK_SIZE)
+    )
+    app = ConsoleApp(store=store, utc=True)
+    async with app.run_test(size=(100, 30)) as pilot:
+        assert not app.main.node_stats.counted
+        await pilot.press("S")
+        await until(pilot, lambda: "Summary: 12,288 messages kept" in screen_text(app), what="the summary")
+        planner = [
+            [w for w in line.split() if w not in "█▊▎"] for line in screen_text(app).splitlines() if " planner " in line
+        ]
+        assert ["planner", "0", "0", "4,096", "0", "0", "4,096"] in [words[:7] for words in planner]

@@ -113,7 +113,10 @@ def test_live_tail_and_eviction_against_brute_force():
             assert counts == list(columns.counts)
             if store.evicted == 0:
                 assert firsts == list(columns.first_seqs)
-        assert len(timeline._histogram.buckets) <= MAX_BUCKETS
+        histogram = timeline._histogram
+        assert len(histogram.buckets) <= MAX_BUCKETS
+        if histogram.buckets:  # the edges stepped in to the buckets left, no further
+            assert (histogram.low, histogram.high) == (min(histogram.buckets), max(histogram.buckets))
 
 
 def test_the_span_starts_again_when_every_record_counted_went():
@@ -173,6 +176,40 @@ def test_node_stats_against_brute_force():
         assert sum(e.total for e in stats.nodes()) == len(store)
         busiest = stats.busiest(2)
         assert [e.rate for e in busiest] == sorted((e.rate for e in busiest), reverse=True)
+
+
+def brute_node_counts(store):
+    counts = {}
+    for r in store:
+        slots = counts.setdefault(r.node, [0] * 5)
+        slots[SLOT[r.level - r.level % 10]] += 1
+    return counts
+
+
+def test_node_stats_count_only_when_asked_and_in_budgeted_steps():
+    """Records are counted when ``sync`` is called, a chunk at a time until the budget is
+    spent; those the store dropped before being counted are never taken off."""
+    ticks = iter(range(10**6))
+    store = LogStore(max_messages=3 * CHUNK_SIZE)
+    stats = NodeStats(store, clock=lambda: next(ticks))
+    store.extend_records(
+        rec(i * S, level=(10, 20, 30, 40, 50)[i % 5], node="ab"[i % 2]) for i in range(CHUNK_SIZE + 10)
+    )
+    assert stats.nodes() == [] and not stats.counted  # nothing counted before asked
+    assert stats.sync(budget_s=1) is False  # one chunk's worth: the clock moved by 1
+    assert sum(e.total for e in stats.nodes()) == CHUNK_SIZE
+    assert stats.sync(budget_s=1) is True
+    assert {e.node: list(e.counts) for e in stats.nodes()} == brute_node_counts(store)
+    # The store drops records never counted: the counts only lose what they had.
+    store.extend_records(rec((10**5 + i) * S, node="c") for i in range(3 * CHUNK_SIZE))
+    assert {e.node: list(e.counts) for e in stats.nodes() if e.total} == {}
+    stats.update()
+    assert (
+        {e.node: list(e.counts) for e in stats.nodes()}
+        == brute_node_counts(store)
+        == {"c": [0, 3 * CHUNK_SIZE, 0, 0, 0]}
+    )
+    assert stats.nodes()[0].rate == 1.0  # one a second over the last minute
 
 
 def test_first_of_a_severity_and_of_a_node():

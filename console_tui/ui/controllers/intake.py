@@ -17,7 +17,6 @@ from typing import Any, Protocol
 from ...model.intake_queue import IntakeQueue
 from ...model.late_records import WINDOW, HistoryWindow, add_in_time_order
 from ...model.marks import Marks
-from ...model.node_stats import NodeStats
 from ...model.record import LogRecord
 from ...model.record_batch import RecordColumns
 from ...model.store import LogStore
@@ -67,7 +66,6 @@ class IntakeController:
         view: LogView,
         table: LogTable,
         marks: Marks,
-        node_stats: NodeStats,
         *,
         sources: list[Source],
         queue: IntakeQueue,
@@ -86,7 +84,6 @@ class IntakeController:
         self._view = view
         self._table = table
         self._marks = marks
-        self._node_stats = node_stats
         #: The sources running (emptied when they are stopped).
         self.sources = sources
         #: The live sources' records; file loads have a queue of their own, taken in first.
@@ -228,7 +225,6 @@ class IntakeController:
         self._arrivals.append((self._clock(), added))
         if rewritten:
             table.restyle()  # rows drawn before show other records now
-        self._node_stats.update()
         self._searching.after_records(rewritten=rewritten)
         return added
 

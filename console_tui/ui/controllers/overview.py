@@ -265,9 +265,20 @@ class OverviewController:
     # -- the summary --------------------------------------------------------------------------------
 
     def summary(self) -> None:
-        """The summary of the run; the message chosen there is shown in the table."""
-        self._node_stats.update()
+        """The summary of the run; the message chosen there is shown in the table. The nodes'
+        counts are brought up to date first, in slices when many messages came since (the
+        node panel closed, nobody counted them)."""
+        if self._node_stats.sync(CATCH_UP_BUDGET_S):
+            self._open_summary()
+        else:
+            self._host.run_worker(self._summary_when_counted(), name="summary", group="summary", exclusive=True)
 
+    async def _summary_when_counted(self) -> None:
+        while not self._node_stats.sync(CATCH_UP_BUDGET_S):
+            await pause_between_slices(CATCH_UP_PAUSE_S)
+        self._open_summary()
+
+    def _open_summary(self) -> None:
         def chosen(seq: int | None) -> None:
             if seq is None:
                 return
