@@ -8,6 +8,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
 
 import pytest
 
@@ -70,6 +71,34 @@ def test_a_status_that_changed_before_records_were_taken_is_sent_before_them():
     ]
     os.close(read_end)
     assert frames == [(STATUS, "/rosout"), (STATUS, "/rosout_agg"), (BATCH, "records")]
+
+
+def test_the_batches_queued_between_two_flushes_cross_as_one_frame():
+    """The source queues a batch a turn of its loop; the app pays for each batch it takes in,
+    so what a flush finds goes as one, in order."""
+    from console_tui.model.record_batch import BatchUnpacker
+    from console_tui.sources.intake_process.child import FRAME_RECORDS
+
+    class Steady:
+        status = SourceStatus(topic="/rosout")
+
+    read_end, write_end = os.pipe()
+    queue = IntakeQueue()
+    sender = Sender(write_end, queue)
+    total = FRAME_RECORDS + 300
+    for start in range(0, total, 100):
+        queue.put(RecordColumns.from_records([synthetic_record(n) for n in range(start, min(start + 100, total))]))
+    frames: list = []
+    reader = threading.Thread(target=lambda: frames.extend(read_frames(read_end)))  # the pipe holds less
+    reader.start()
+    sender.flush(Steady())
+    os.close(write_end)
+    reader.join(30)
+    os.close(read_end)
+    unpacker = BatchUnpacker()
+    batches = [unpacker.unpack(payload) for kind, payload in frames if kind == BATCH]
+    assert [len(batch) for batch in batches] == [FRAME_RECORDS, 300]  # at most FRAME_RECORDS a frame
+    assert [m for batch in batches for m in batch.msgs] == [synthetic_record(n).msg for n in range(total)]
 
 
 def test_batches_reach_the_queue_as_columns():
