@@ -17,13 +17,13 @@ costs, not how long the machine made it wait); the table shows medians of ``--ro
   following them, as the app does on each tick (15 a second);
 - ``nodes' counts``: ``NodeStats`` kept up to date, once a second, as while the node panel is
   open (closed, the app counts nothing);
+- ``frame``: drawing the table, the timeline strip and the status line again (160x48), as
+  the app does once a tick while records arrive, divided among the tick's records (measured
+  in the real app, headless: ``--frames`` seconds of frames, their median).
 
 With ``--full`` the store is full, as in any long session: it keeps a third of the records
 (the first third fills it, untimed), so every batch after that makes it drop as many of the
 oldest, and each stage pays for what it kept about them.
-- ``frame``: drawing the table, the timeline strip and the status line again (160x48), as
-  the app does once a tick while records arrive, divided among the tick's records (measured
-  in the real app, headless: ``--frames`` seconds of frames, their median).
 
 Taking a message from DDS and decoding it (the intake's take loop in C) needs ROS:
 ``benchmarks/take_loop.py`` measures it, and ``benchmarks/intake.py`` the whole intake

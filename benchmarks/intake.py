@@ -418,6 +418,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
 
     def stats() -> dict[str, Any]:
         stalls, keys = state["stalls"].stalls, state["keys"].latencies
+        longest, longest_cpu = state["stalls"].longest()
         pids = intake_pids(source)
         return {
             "lost_reported": source.status.lost,
@@ -426,8 +427,8 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "cpu": cpu_seconds(source),
             "cpu_intake": intake_cpu_seconds(source),
             "intake_pids": pids,
-            "stall_max": max(stalls, default=0.0) * 1000,
-            "stall_max_cpu": state["stalls"].longest()[1] * 1000,
+            "stall_max": longest * 1000,
+            "stall_max_cpu": longest_cpu * 1000,
             "stall_p99": percentile(stalls, 0.99) * 1000,
             "key_median": percentile(keys, 0.5) * 1000,
             "key_max": max(keys, default=0.0) * 1000,

@@ -5,10 +5,10 @@ chunk column at a time, only when asked: ``sync`` counts what arrived since the 
 (for about a budget of time, so that counting a million records does not stall a frame),
 ``update`` all of it, and the store's eviction hook takes off what the store drops (of what
 was counted). Nobody reads the counts while the node panel is closed, so then no record costs
-anything here (docs/architecture.md, "The nodes' counts are kept only while shown"). The rate of a node is
-its records in the last ``window_s`` seconds of stamps (the newest stamp's second and
-the ones before it) divided by that window, or by the seconds the history covers when
-it is shorter.
+anything here (docs/architecture.md, "The nodes' counts are kept only while shown"). The
+rate of a node is its records in the last ``window_s`` seconds of stamps (the newest stamp's
+second and the ones before it) divided by that window, or by the seconds the history covers
+when it is shorter.
 
 In a fleet (records that name their robot) a node is a robot's node: the same name on two
 robots is two nodes, each counted on its own (``NodeCounts.robot``).
