@@ -31,10 +31,12 @@ SYSTEM_PYTHON = "/usr/bin/python3"
 NODE_SCRIPT = Path(__file__).with_name("ros1_nodes.py")
 MASTER_WAIT_S = 30.0
 #: roscore runs under this watchdog, which stops it when its stdin closes: when the console
-#: exits, or dies, so that no roscore outlives it.
+#: exits, or dies, so that no roscore outlives it. Then it removes the demo's folder (its
+#: first argument, made by the console with ``mkdtemp``), which a killed console cannot.
 WATCHDOG = """
-import signal, subprocess, sys
-core = subprocess.Popen(sys.argv[1:], stdin=subprocess.DEVNULL)
+import os, shutil, signal, subprocess, sys, time
+folder = sys.argv[1]
+core = subprocess.Popen(sys.argv[2:], stdin=subprocess.DEVNULL)
 try:
     sys.stdin.read()
 finally:
@@ -43,6 +45,11 @@ finally:
         core.wait(10)
     except subprocess.TimeoutExpired:
         core.kill()
+    for _ in range(20):  # the demo's nodes, ending too, may still be writing their logs there
+        shutil.rmtree(folder, ignore_errors=True)
+        if not os.path.exists(folder):
+            break
+        time.sleep(0.25)
 """
 HOW_TO_GET_ROS1 = (
     "the ROS 1 demo needs roscore and rospy: apt-get install ros-core python3-rospy (Debian), "
@@ -92,7 +99,7 @@ class Ros1Demo:
     def start(self) -> None:
         with self._lock:
             self.roscore = subprocess.Popen(
-                [sys.executable, "-c", WATCHDOG, "roscore", "-p", str(self.port)],
+                [sys.executable, "-c", WATCHDOG, self._folder, "roscore", "-p", str(self.port)],
                 env=self.env,
                 stdin=subprocess.PIPE,
                 stdout=subprocess.DEVNULL,

@@ -3,8 +3,10 @@ ROS 1 source reads, all of which end with the console (even when it is killed)."
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+import tempfile
 import textwrap
 import time
 
@@ -50,6 +52,7 @@ def test_demo_nodes_log_through_their_own_roscore_and_stop_with_it(ros1_env):
         assert len(master_and_rosout) == 2 and len(_group_pids(core)) == 2  # the watchdog and roscore
     finally:
         demo.stop()
+    assert not os.path.exists(demo._folder)
     assert wait_until(lambda: not any(_alive(pid) for pid in pids + master_and_rosout))
     assert wait_until(lambda: not _group_pids(core))
 
@@ -65,12 +68,14 @@ def test_demo_roscore_and_nodes_end_when_the_console_dies(ros1_env):
         while not demo.processes:
             time.sleep(0.1)
         others = demo._master_processes()
+        print(demo._folder, flush=True)
         print(demo.roscore.pid, " ".join(str(p) for p in [*others, *(p.pid for p in demo.processes)]), flush=True)
         time.sleep(120)
         """
     )
     parent = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, env=ros1_env)
     try:
+        folder = parent.stdout.readline().strip()
         core, *nodes = (int(pid) for pid in parent.stdout.readline().split())
         assert nodes and all(_alive(pid) for pid in nodes) and _group_pids(core)
         time.sleep(1.0)
@@ -80,3 +85,5 @@ def test_demo_roscore_and_nodes_end_when_the_console_dies(ros1_env):
     assert len(nodes) == 3  # rosmaster, rosout, the node
     assert wait_until(lambda: not any(_alive(pid) for pid in nodes)), "demo processes outlived the console"
     assert wait_until(lambda: not _group_pids(core)), "roscore outlived the console"
+    assert folder.startswith(tempfile.gettempdir())
+    assert wait_until(lambda: not os.path.exists(folder)), "the demo's folder outlived the console"
