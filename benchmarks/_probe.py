@@ -14,12 +14,15 @@ from _report import table
 
 class StallProbe:
     """A task that sleeps 1 ms at a time; how late it wakes is how long the loop was busy.
-    ``loop_cpu`` holds, for each stall, the CPU the event loop's thread used in it: a stall
-    with little of it was the thread waiting (for a core, or for the GIL), not working."""
+    For each stall, ``loop_cpu`` holds the CPU the event loop's thread used in it, and
+    ``loop_waits`` how long that thread waited for a core (its run-queue delay, from
+    ``/proc/thread-self/schedstat``; 0 where there is none): a stall with little of either
+    was the thread blocked (on the GIL, a lock), not working or waiting for a core."""
 
     def __init__(self) -> None:
         self.stalls: list[float] = []
         self.loop_cpu: list[float] = []
+        self.loop_waits: list[float] = []
         self._running = False
         self._task: asyncio.Task | None = None
 
@@ -28,22 +31,38 @@ class StallProbe:
         self._task = asyncio.create_task(self._run())
 
     async def _run(self) -> None:
-        while self._running:
-            before, cpu = time.perf_counter(), time.thread_time()
-            await asyncio.sleep(0.001)
-            self.stalls.append(time.perf_counter() - before - 0.001)
-            self.loop_cpu.append(time.thread_time() - cpu)
+        try:
+            schedstat = os.open("/proc/thread-self/schedstat", os.O_RDONLY)
+        except OSError:
+            schedstat = -1
+
+        def run_delay() -> float:
+            if schedstat < 0:
+                return 0.0
+            return int(os.pread(schedstat, 100, 0).split()[1]) / 1e9
+
+        try:
+            while self._running:
+                before, cpu, waited = time.perf_counter(), time.thread_time(), run_delay()
+                await asyncio.sleep(0.001)
+                self.stalls.append(time.perf_counter() - before - 0.001)
+                self.loop_cpu.append(time.thread_time() - cpu)
+                self.loop_waits.append(run_delay() - waited)
+        finally:
+            if schedstat >= 0:
+                os.close(schedstat)
 
     def clear(self) -> None:
         self.stalls.clear()
         self.loop_cpu.clear()
+        self.loop_waits.clear()
 
-    def longest(self) -> tuple[float, float]:
-        """The longest stall and the loop's CPU in it (seconds)."""
+    def longest(self) -> tuple[float, float, float]:
+        """The longest stall, the loop's CPU in it and its wait for a core (seconds)."""
         if not self.stalls:
-            return 0.0, 0.0
+            return 0.0, 0.0, 0.0
         at = max(range(len(self.stalls)), key=self.stalls.__getitem__)
-        return self.stalls[at], self.loop_cpu[at]
+        return self.stalls[at], self.loop_cpu[at], self.loop_waits[at]
 
     async def stop(self) -> list[float]:
         self._running = False

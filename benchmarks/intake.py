@@ -418,7 +418,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
 
     def stats() -> dict[str, Any]:
         stalls, keys = state["stalls"].stalls, state["keys"].latencies
-        longest, longest_cpu = state["stalls"].longest()
+        longest, longest_cpu, longest_wait = state["stalls"].longest()
         pids = intake_pids(source)
         return {
             "lost_reported": source.status.lost,
@@ -429,6 +429,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "intake_pids": pids,
             "stall_max": longest * 1000,
             "stall_max_cpu": longest_cpu * 1000,
+            "stall_max_wait": longest_wait * 1000,
             "stall_p99": percentile(stalls, 0.99) * 1000,
             "key_median": percentile(keys, 0.5) * 1000,
             "key_max": max(keys, default=0.0) * 1000,
@@ -758,6 +759,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
     app_keys = (
         "stall_max",
         "stall_max_cpu",
+        "stall_max_wait",
         "stall_p99",
         "key_median",
         "key_max",
@@ -874,6 +876,7 @@ def app_table(rows: list[Row]) -> str:
                 row.kind,
                 both("stall_max"),
                 f"{app['stall_max_cpu']:.0f}",
+                f"{app.get('stall_max_wait', 0.0):.0f}",
                 both("stall_p99"),
                 both("key_median"),
                 both("key_max"),
@@ -889,6 +892,7 @@ def app_table(rows: list[Row]) -> str:
         "app",
         "longest stall ms",
         "its loop CPU ms",
+        "its wait for a core ms",
         "stall p99 ms",
         "key median ms",
         "key worst ms",
