@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """The subscribers of ``ros1_intake.py``, each run as a process of its own by it.
 
-    python benchmarks/_ros1_subscriber.py console|process|rospy
+    python benchmarks/_ros1_subscriber.py console|process|rospy|discard
 
 ``console``: console-tui's ``Ros1LiveSource`` in a thread of this process; ``process``: the
 same in the intake process, as ``console-tui`` runs it; ``rospy``: a ``rospy.Subscriber``
-(the system Python, where Debian's rospy imports). Each says ``ready``, then answers every
+(the system Python, where Debian's rospy imports); ``discard``: the ``console`` source's
+sockets read as they are, but each message only counted (its length prefix skipped over),
+nothing decoded or stored: about what any subscriber could get from the publisher. Each says ``ready``, then answers every
 ``report`` line on stdin with what it received (JSON lines on stdout), and ends when stdin
 closes.
 """
@@ -22,7 +24,7 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 TOPIC = "/console_tui_bench_log"
-KINDS = ("console", "process", "rospy")
+KINDS = ("console", "process", "rospy", "discard")
 DRAIN_S = 0.05
 
 
@@ -88,6 +90,32 @@ def run_console(kind: str) -> None:
     from console_tui.sources.intake_process.parent import ProcessSource
     from console_tui.sources.ros1.live_source import Ros1LiveSource
 
+    discarded = [0]
+    if kind == "discard":
+        from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder
+
+        def count_frames(_self: Any, buffer: bytes, start: int, *_args: Any, **_kwargs: Any) -> int:
+            pos, end, count = start, len(buffer), 0
+            while pos + 4 <= end:
+                after = pos + 4 + int.from_bytes(buffer[pos : pos + 4], "little")
+                if after > end:
+                    break
+                pos, count = after, count + 1
+            discarded[0] += count
+            return pos
+
+        Ros1LogDecoder.decode_frames = count_frames  # type: ignore[method-assign]
+        from console_tui.sources.coalesce import Coalescer
+
+        paced_by = Coalescer.after
+        counted = [0]
+
+        def after(self: Coalescer, _taken: int) -> float:  # the turn's messages, as counted
+            taken, counted[0] = discarded[0] - counted[0], discarded[0]
+            return paced_by(self, taken)
+
+        Coalescer.after = after  # type: ignore[method-assign]
+
     queue = IntakeQueue()
     store = LogStore()
     source: Any = ProcessSource(queue, "ros1", topic=TOPIC) if kind == "process" else Ros1LiveSource(queue, topic=TOPIC)
@@ -118,9 +146,16 @@ def run_console(kind: str) -> None:
                 received += len(batch)
                 store.extend(batch)
                 numbers.see(batch.msgs)
+        if kind == "discard" and discarded[0] != received:
+            now = time.monotonic()
+            if not first_at:
+                first_at, cpu_at_first = now, cpu()
+            last_at, received = now, discarded[0]
         if commands.report.is_set():
             commands.report.clear()
             status = source.status
+            # By the messages' numbers, where they were read (discard reads none).
+            by_numbers = {} if kind == "discard" else {"missing": numbers.missing, "next": numbers.next}
             say(
                 event="report",
                 received=received,
@@ -129,9 +164,8 @@ def run_console(kind: str) -> None:
                 lost_counted=status.lost,
                 problem=status.problem,
                 path=status.path,
-                missing=numbers.missing,
-                next=numbers.next,
                 repeated=numbers.repeated,
+                **by_numbers,
             )
         time.sleep(DRAIN_S)
     source.stop()
@@ -170,7 +204,7 @@ def run_rospy() -> None:
 
 def main() -> int:
     kind = sys.argv[1] if len(sys.argv) == 2 else ""
-    if kind in ("console", "process"):
+    if kind in ("console", "process", "discard"):
         run_console(kind)
     elif kind == "rospy":
         run_rospy()

@@ -12,7 +12,10 @@ other, each subscriber (a fresh process of its own) counts what it receives:
   batches packed onto the pipe, unpacked into the ``IntakeQueue`` and drained into a
   ``LogStore`` (its CPU includes the intake process's);
 - ``rospy``: ``rospy.Subscriber`` with a callback that counts, rqt_console's pattern (the
-  system Python, where Debian's rospy imports).
+  system Python, where Debian's rospy imports);
+- ``discard`` (only when asked for): the ``console`` source's sockets read as they are, each
+  message only counted by its length prefix, nothing decoded or stored: about the most any
+  subscriber could get from this publisher on this machine.
 
 Received/s is what a subscriber received over the time its messages arrived; lost is what was
 sent and never arrived once everything settled: the messages' numbers (``flood message N``)
@@ -26,6 +29,7 @@ report, per message received, less the time spent checking the numbers.
     .venv/bin/python benchmarks/ros1_intake.py --rates 100000 --duration 60 --kinds process
                                                                         # 100,000/s for 60 s, 0 lost?
     .venv/bin/python benchmarks/ros1_intake.py --rates max --threads  # where the CPU goes, thread by thread
+    .venv/bin/python benchmarks/ros1_intake.py --rates max --kinds process,rospy,discard --repeat 3
     CONSOLE_TUI_COMPILED_FRAMES=0 .venv/bin/python benchmarks/ros1_intake.py --kinds console
                                                                         # without the frame loop in C
 """
@@ -275,7 +279,12 @@ def _lost(cell: dict[str, Any]) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--rates", default=",".join(DEFAULT_RATES), help="comma-separated: max and/or messages/s")
-    parser.add_argument("--kinds", default=",".join(KINDS), help="subscribers: console, process, rospy")
+    parser.add_argument(
+        "--kinds",
+        default=",".join(KINDS),
+        help="subscribers: console, process, rospy; discard (the sockets read, each message only "
+        "counted: about the most any subscriber could get from the publisher)",
+    )
     parser.add_argument("--duration", type=float, default=5.0, help="seconds the publisher floods (default 5)")
     parser.add_argument("--repeat", type=int, default=1, help="runs per cell, the median shown (default 1)")
     parser.add_argument("--threads", action="store_true", help="where the CPU went, thread by thread, while sending")
