@@ -144,10 +144,12 @@ class Ros1Demo:
         with self._lock:
             self._stopped = True
             processes, self.processes = self.processes, []
+        leftovers = self._master_processes() if self.roscore is not None else []
+        if self.roscore is not None:  # roscore and the nodes stop at once: quitting waits for the slower
+            close_stdin(self.roscore)
+            self._signal_ours(leftovers, signal.SIGINT)  # rosmaster and rosout too, not one after the other
         stop_children(processes, timeout)
         if self.roscore is not None:
-            leftovers = self._master_processes()
-            close_stdin(self.roscore)
             try:
                 self.roscore.wait(timeout + 5.0)
             except subprocess.TimeoutExpired:
@@ -157,13 +159,17 @@ class Ros1Demo:
             except (ProcessLookupError, PermissionError):
                 pass
             self.roscore.wait(timeout)
-            for pid in leftovers:  # roslaunch gives rosmaster and rosout sessions of their own
-                if _is_ours(pid, str(self.port)) or _is_ours(pid, self._folder):
-                    try:
-                        os.kill(pid, signal.SIGKILL)
-                    except (ProcessLookupError, PermissionError):
-                        pass
+            self._signal_ours(leftovers, signal.SIGKILL)  # roslaunch gives them sessions of their own
         shutil.rmtree(self._folder, ignore_errors=True)
+
+    def _signal_ours(self, pids: list[int], number: signal.Signals) -> None:
+        """Send ``number`` to those of ``pids`` still this demo's (rosmaster, rosout)."""
+        for pid in pids:
+            if _is_ours(pid, str(self.port)) or _is_ours(pid, self._folder):
+                try:
+                    os.kill(pid, number)
+                except (ProcessLookupError, PermissionError):
+                    pass
 
     def _master_processes(self) -> list[int]:
         """The pids of this demo's rosmaster and rosout (they are not in roscore's process group)."""

@@ -37,14 +37,12 @@ def run(name: str) -> int:
     from console_tui.demo.behaviours import DEMO_NODES
 
     node_name, namespace, set_up = DEMO_NODES[name]
-    done = threading.Event()
 
     def exit_when_parent_goes() -> None:
         sys.stdin.read()
-        done.set()
-        # The main thread's clean exit comes first, unless it is stuck: rospy's init_node retries
-        # a master that went away (the console was killed, and its roscore with it) for ever.
-        time.sleep(3.0)
+        # The console quit or died, and stops the demo's own master at the same time: there
+        # is nothing to unregister from (and rospy's init_node would retry a master that went
+        # away for ever), so the node ends at once and quitting does not wait for it.
         os._exit(0)
 
     threading.Thread(target=exit_when_parent_goes, daemon=True).start()
@@ -59,13 +57,13 @@ def run(name: str) -> int:
         timers.append(rospy.Timer(rospy.Duration(seconds), lambda _event: callback()))
 
     set_up(_logger(rospy), every)
-    while not done.wait(0.2) and not rospy.is_shutdown():
-        pass
+    while not rospy.is_shutdown():  # until rospy is told to shut down (rosnode kill)
+        time.sleep(0.2)
     for timer in timers:
         timer.shutdown()
     # rospy unregisters from the master as it shuts down, with no timeout: a master that is
-    # itself going away (the console was killed) would hold this node forever.
-    closing = threading.Thread(target=rospy.signal_shutdown, args=("the console exited",), daemon=True)
+    # itself going away would hold this node forever.
+    closing = threading.Thread(target=rospy.signal_shutdown, args=("asked to shut down",), daemon=True)
     closing.start()
     closing.join(2.0)
     sys.stdout.flush()
