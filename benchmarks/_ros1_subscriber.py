@@ -6,10 +6,10 @@
 ``console``: console-tui's ``Ros1LiveSource`` in a thread of this process; ``process``: the
 same in the intake process, as ``console-tui`` runs it; ``rospy``: a ``rospy.Subscriber``
 (the system Python, where Debian's rospy imports); ``discard``: the ``console`` source's
-sockets read as they are, but each message only counted (its length prefix skipped over),
-nothing decoded or stored: about what any subscriber could get from the publisher. Each says ``ready``, then answers every
-``report`` line on stdin with what it received (JSON lines on stdout), and ends when stdin
-closes.
+sockets read by its loop at its pace, but each message only counted (its length prefix
+skipped over), nothing decoded or stored: about the most any subscriber gets from the
+publisher. Each says ``ready``, then answers every ``report`` line on stdin with what it
+received (JSON lines on stdout), and ends when stdin closes.
 """
 
 from __future__ import annotations

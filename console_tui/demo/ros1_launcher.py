@@ -144,8 +144,9 @@ class Ros1Demo:
         with self._lock:
             self._stopped = True
             processes, self.processes = self.processes, []
-        leftovers = self._master_processes() if self.roscore is not None else []
+        leftovers: list[int] = []
         if self.roscore is not None:  # roscore and the nodes stop at once: quitting waits for the slower
+            leftovers = self._master_processes()
             close_stdin(self.roscore)
             self._signal_ours(leftovers, signal.SIGINT)  # rosmaster and rosout too, not one after the other
         stop_children(processes, timeout)
