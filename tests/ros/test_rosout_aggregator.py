@@ -67,7 +67,7 @@ def talker_bursts(nodes, name: str, count: int, aggregator) -> None:
     process = talker(nodes, name)
     process.send({"cmd": "burst", "count": count})
     process.expect("burst")
-    assert wait_until(lambda: f"burst {count - 1}".encode() in aggregator.path.read_bytes())
+    assert wait_until(lambda: f"burst {count - 1}".encode() in aggregator.written())
 
 
 def counted(ticks: range) -> list[tuple[int, str]]:
@@ -99,7 +99,7 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
     try:
         # The run starts with its first message (the count program takes a while to start).
         first = b"3 is divisible by 3"
-        assert await asyncio.to_thread(wait_until, lambda: first in aggregator.path.read_bytes(), 60)
+        assert await asyncio.to_thread(wait_until, lambda: first in aggregator.written(), 60)
         await asyncio.sleep(SPAN_S)
         started_ns = time.time_ns()
         queue = IntakeQueue()
@@ -208,7 +208,7 @@ async def test_the_rosout_log_opens_in_the_app(aggregators, nodes):
     await asyncio.to_thread(talker.expect, "ready")
     talker.send({"cmd": "log_all", "tag": "multi\nline"})
     logged = (await asyncio.to_thread(talker.expect, "logged"))["messages"]
-    assert wait_until(lambda: b"multi\n\tline fatal" in aggregator.path.read_bytes())
+    assert wait_until(lambda: b"multi\n\tline fatal" in aggregator.written())
     assert aggregator.stop(signal.SIGTERM) == 0
     app = ConsoleApp(files=[str(aggregator.path)], utc=True)
     async with app.run_test(size=(160, 30)) as pilot:
@@ -228,7 +228,7 @@ def test_two_aggregators_do_not_echo_each_other(aggregators, nodes, ros_env, tmp
     wanted = [f"once {n}" for n in range(20)]
     talker_logs(nodes, "twice", wanted)
     for aggregator in (first, second):
-        assert wait_until(lambda a=aggregator: b"once 19" in a.path.read_bytes())
+        assert wait_until(lambda a=aggregator: b"once 19" in a.written())
     # A late subscriber of /rosout_agg hears each message once from each aggregator, no more.
     tail = subprocess.Popen(
         [sys.executable, "-m", "console_tui", "tail", "--topic", "/rosout_agg", "--json"],
@@ -302,7 +302,7 @@ def test_the_counts_are_reported_on_its_own_rosout_as_often_as_asked(aggregators
     def reports() -> list[str]:
         return [r.msg for r in aggregator.records() if r.node == "rosout" and report.match(r.msg)]
 
-    assert wait_until(lambda: b"counted 2" in aggregator.path.read_bytes())
+    assert wait_until(lambda: b"counted 2" in aggregator.written())
     before = len(reports())
     assert wait_until(lambda: len(reports()) >= before + 2), aggregator.path.read_text()[-2000:]
     assert aggregator.stop() == 0

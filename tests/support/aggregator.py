@@ -37,9 +37,20 @@ class Aggregator:
                 f.close()
         return records
 
+    def written(self) -> bytes:
+        """All it has written so far: ``rosout.log`` and the rotated files before it. A rotation
+        renames ``rosout.log`` before it opens a new one, so for a moment a file may be missing."""
+        out = []
+        for path in sorted(self.log_dir.glob("rosout.log*"), reverse=True):
+            try:
+                out.append(path.read_bytes())
+            except FileNotFoundError:
+                pass
+        return b"".join(out)
+
     def wait_running(self, timeout: float = 30) -> None:
         """Until its own start-up message came back through /rosout into rosout.log."""
-        assert wait_until(lambda: self.path.exists() and b"republishing /rosout" in self.path.read_bytes(), timeout), (
+        assert wait_until(lambda: b"republishing /rosout" in self.written(), timeout), (
             self.stop_and_read()
         )
 
