@@ -21,8 +21,8 @@ case and a regex:
   sleeps 1 ms at a time), from the first key typed in the search line to every match
   counted (the keys typed, Enter closing the line, ``n``, the walk), beside the floor: the
   same app's longest stall while Down and Up are pressed every 1/8 s with nothing searched
-  (drawing a frame is part of both); both also as the CPU time the process spent in that
-  stall. Opening the search line (``f``: the screen laid out again, before any search) is
+  (drawing a frame is part of both); both also as the CPU time the event loop's thread spent
+  in that stall. Opening the search line (``f``: the screen laid out again, before any search) is
   reported apart, as its own column.
 Targets: next match within 300 ms, no stall over the floor + 10 ms.
 """
@@ -59,22 +59,6 @@ KINDS = [
     ("plain text, ignoring case", "needle", "NEEDLE in the haystack"),
     ("regex", r"/need(le|ful) \d+/", "needle 42 in the haystack"),
 ]
-
-
-class CpuStallProbe(StallProbe):
-    """The stall probe, with the process's CPU time in each stall too (``cpu``): what the
-    app kept the loop busy with, without the other processes' turns on a shared machine."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.cpu: list[float] = []
-
-    async def _run(self) -> None:
-        while self._running:
-            before, cpu = time.perf_counter(), time.process_time()
-            await asyncio.sleep(0.001)
-            self.stalls.append(time.perf_counter() - before - 0.001)
-            self.cpu.append(time.process_time() - cpu)
 
 
 async def wait_for(condition, frames: list[float], since: float, timeout: float = 30.0) -> float:
@@ -115,7 +99,7 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
         frames = count_frames(app.main.table)
         await pilot.press("home")
         await pilot.pause()
-        stalls = CpuStallProbe()
+        stalls = StallProbe()
         stalls.start()
         # The floor: the same app drawing what keys ask for (Down, Up), nothing searched.
         began = time.perf_counter()
@@ -123,16 +107,14 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
             for key in ("down", "up"):
                 await press(app, key)
                 await asyncio.sleep(0.125)
-        floor, floor_cpu = max(stalls.stalls, default=0.0), max(stalls.cpu, default=0.0)
-        stalls.stalls.clear()
-        stalls.cpu.clear()
+        floor, floor_cpu = max(stalls.stalls, default=0.0), max(stalls.loop_cpu, default=0.0)
+        stalls.clear()
 
         await press(app, "f")
         await asyncio.sleep(0.2)
         # The search line is open: what it cost is reported apart (no search runs yet).
         opening = max(stalls.stalls, default=0.0)
-        stalls.stalls.clear()
-        stalls.cpu.clear()
+        stalls.clear()
         for character in text[:-1]:
             await press(app, key_of(character), character)
             await asyncio.sleep(0.05)
@@ -164,7 +146,7 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
         "stall": max(measured, default=0.0) * 1000,
         "floor": floor * 1000,
         "opening": opening * 1000,
-        "stall_cpu": max(stalls.cpu, default=0.0) * 1000,
+        "stall_cpu": max(stalls.loop_cpu, default=0.0) * 1000,
         "floor_cpu": floor_cpu * 1000,
         "ok": float("match 2 of 2" in status),
     }

@@ -50,9 +50,7 @@ class Aggregator:
 
     def wait_running(self, timeout: float = 30) -> None:
         """Until its own start-up message came back through /rosout into rosout.log."""
-        assert wait_until(lambda: b"republishing /rosout" in self.written(), timeout), (
-            self.stop_and_read()
-        )
+        assert wait_until(lambda: b"republishing /rosout" in self.written(), timeout), self.stop_and_read()
 
     def stop(self, sig: int = signal.SIGINT, timeout: float = 15) -> int:
         if self.process.poll() is None:
