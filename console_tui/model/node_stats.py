@@ -5,7 +5,7 @@ chunk column at a time, only when asked: ``sync`` counts what arrived since the 
 (for about a budget of time, so that counting a million records does not stall a frame),
 ``update`` all of it, and the store's eviction hook takes off what the store drops (of what
 was counted). Nobody reads the counts while the node panel is closed, so then no record costs
-anything here (docs/architecture.md, "The nodes' counts are kept only while shown"). The
+anything here (docs/decisions/0015-node-counts-while-shown.md). The
 rate of a node is its records in the last ``window_s`` seconds of stamps (the newest stamp's
 second and the ones before it) divided by that window, or by the seconds the history covers
 when it is shorter.

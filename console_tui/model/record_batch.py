@@ -4,8 +4,7 @@ A ``RecordColumns`` is a batch of records held as one sequence per field, the sh
 store keeps them in: adding one to the store costs a few C-level copies instead of a
 Python step per record. A live intake running in a child process packs its batches with
 a ``BatchPacker`` and the app unpacks them with a ``BatchUnpacker``, which costs it far
-less than decoding CDR bytes would (docs/architecture.md, "The live intake runs in a process
-of its own").
+less than decoding CDR bytes would (docs/decisions/0005-intake-in-its-own-process.md).
 
 The packed layout (native byte order: both ends are processes of the same machine)::
 

@@ -9,7 +9,7 @@ also keeps what holds for every screen: text from outside never markup and never
 (notifications, the clipboard), keys typed ahead going where they were meant (``focus``), the
 user's keymap, the exit on SIGTERM / SIGHUP, the help screen and the command palette
 (``palette``). A feature adds its keys to ``app_bindings``, its action here, its work in a
-controller of its own. (docs/architecture.md, "The app as controllers", says why.)
+controller of its own. (docs/decisions/0020-app-as-controllers.md says why.)
 """
 
 from __future__ import annotations

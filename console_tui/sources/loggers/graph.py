@@ -22,7 +22,7 @@ GRAPH_PERIOD_S = 0.5
 NO_SERVICES_GRACE_S = 1.5
 #: A graph is taken as complete once it has been watched this long and no node has come, gone
 #: or changed for the quiet time. Fast DDS repeats its discovery every 3 s, and a node missed
-#: by its first round comes seconds later (docs/architecture.md, "Waiting for discovery").
+#: by its first round comes seconds later (docs/decisions/0011-waiting-for-discovery.md).
 GRAPH_MIN_S = 5.0
 GRAPH_QUIET_S = 2.0
 

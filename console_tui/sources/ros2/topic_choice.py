@@ -3,7 +3,7 @@
 ``/rosout_agg`` when something publishes it (a rosout node, such as ``console-tui rosout``,
 keeps a deep history there), else ``/rosout``. ``/rosout`` is shown at once; when discovery
 finds an aggregator, the source switches to it, and its history comes without what
-``/rosout`` already gave (docs/architecture.md, "Waiting for discovery").
+``/rosout`` already gave (docs/decisions/0011-waiting-for-discovery.md).
 """
 
 from __future__ import annotations

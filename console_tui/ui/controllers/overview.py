@@ -28,7 +28,7 @@ from .host import Host
 FOLLOW_BUDGET_S = 0.010
 #: Catching up after a rule change (or over a history at start): slices of this long, the
 #: event loop free between them. A slice adds to the frame drawn in the same turn of the
-#: loop, as the search's do (docs/architecture.md, "Background work in slices").
+#: loop, as the search's do (docs/decisions/0016-background-work-in-slices.md).
 CATCH_UP_BUDGET_S = 0.010
 CATCH_UP_PAUSE_S = 0.001
 #: While the view is still filtering the oldest records, the catch-up looks again this often.

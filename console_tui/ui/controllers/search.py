@@ -28,7 +28,7 @@ from .host import Host
 
 #: Slices of the search on the event loop, and the pause between them. A slice adds to the
 #: frame drawn in the same turn of the loop, so it is short enough to keep the longest stall
-#: near the floor (the slices tried: docs/architecture.md, "Background work in slices").
+#: near the floor (the slices tried: docs/decisions/0016-background-work-in-slices.md).
 SEARCH_BUDGET_S = 0.003
 SEARCH_PAUSE_S = 0.001
 #: After the table moved or its marks changed, the pause that leaves the next frame (every
