@@ -1,24 +1,14 @@
 """Late records: a history that arrives after newer messages, placed by its stamp.
 
-A live source's messages arrive about in time order, except its histories: a ROS 2 node's
-``/rosout`` history (transient local) reaches a subscriber that joins late one publisher at
-a time, and a fleet's robot that joins late sends its own after the other robots' newer
-messages. Appended as they come they group the first rows by node, seconds apart.
-
-``add_in_time_order`` appends a batch as the store always does (the hot path: a C-level
-``min`` and ``max`` over its stamps more), unless its oldest record is more than ``LATE_NS``
-older than the newest one kept. Then the batch and the store's newest records it belongs
-among (at most ``WINDOW`` of them) are written again merged by stamp
-(``LogStore.rewrite_from``; older records of the batch go first, in order, before that
-window). A batch whose own records are that far apart (several publishers' histories in one
-batch) is sorted before it is added. Delivery that is only a little out of order
-(publishers' clocks, batching) stays as it came: rewriting for it would make the views count
-again every moment. The caller decides when rows may move (``window`` 0: none do): only while
-the table follows the tail, and only while histories are due (``HistoryWindow``): for a few
-seconds after a source starts, a publisher joins it or it changes topic. Outside those
-moments a batch is never placed among older rows, so that sources whose clocks differ (a
-fleet's robots, a ROS 1 node on another machine, a node on simulated time) are shown as they
-arrive instead of rewriting the newest rows on every tick.
+``add_in_time_order`` appends a batch as the store always does, unless its oldest record is more
+than ``LATE_NS`` older than the newest one kept. Then the batch and the store's newest records it
+belongs among (at most ``WINDOW`` of them) are written again merged by stamp
+(``LogStore.rewrite_from``; older records of the batch go first, in order, before that window). A
+batch whose own records are that far apart (several publishers' histories in one batch) is
+sorted before it is added. The caller decides when rows may move (``window`` 0: none do): only
+while the table follows the tail, and only while histories are due (``HistoryWindow``: for a few
+seconds after a source starts, a publisher joins it or it changes topic). Why, and what it
+costs: docs/decisions/0009-late-histories-rewrite-tail.md.
 """
 
 from __future__ import annotations

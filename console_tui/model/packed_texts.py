@@ -1,20 +1,13 @@
 """Many messages in one string, kept compressed: what a full chunk of the store keeps its messages as.
 
-A ``str`` object costs 49 bytes before its text and a list 8 more for pointing at it:
-for a log message of 90 characters that is 40% of its memory. ``PackedTexts`` keeps a
-full chunk's messages joined by NUL, as UTF-8 compressed with LZ4 (a log's messages
-repeat themselves: 2.5-4 times smaller), with where each one starts (4 bytes a message), and
-is read like a tuple of strings: an index gives one message, a slice a list of them (one
-C-level ``split``). Being no container of objects, it also costs Python's cyclic garbage
-collector nothing, where a million strings in lists cost it a visit each
-(docs/architecture.md, "The store keeps full chunks' texts compressed").
-
-Reading decompresses the chunk's joined text (about 0.15 ms for 4,096 messages), and
-reading a slice makes a ``str`` for each text, so the last few chunks read (``RECENT``)
-keep what was made for a while: filtering reads a chunk in several slices, once per rule,
-and the table draws the same rows frame after frame.
-
-``pack`` leaves texts that hold NUL themselves as a list.
+``PackedTexts`` keeps a full chunk's messages joined by NUL, as UTF-8 compressed with LZ4, with
+where each one starts (4 bytes a message), and is read like a tuple of strings: an index gives
+one message, a slice a list of them (one C-level ``split``). It holds no Python container, so
+the cyclic garbage collector never visits it. Reading decompresses the chunk's joined text, and
+reading a slice makes a ``str`` for each text, so the last few chunks read (``RECENT``) keep what
+was made for a while: filtering reads a chunk in several slices, once per rule, and the table
+draws the same rows frame after frame. ``pack`` leaves texts that hold NUL themselves as a list.
+Why, and what it costs: docs/decisions/0008-compressed-chunk-texts.md.
 """
 
 from __future__ import annotations

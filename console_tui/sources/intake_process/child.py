@@ -8,10 +8,9 @@ The source (``FACTORIES``) takes and decodes messages with its own thread into a
 ``IntakeQueue`` of this process, exactly as it would in the app's; every ``FLUSH_S`` the
 main thread packs what is waiting into one ``BATCH`` frame (``model.record_batch``; at most
 ``FRAME_RECORDS`` records a frame) and writes it, and the source's status as a ``STATUS``
-frame whenever it changed, to the pipe the app reads (see ``frames``). Nothing the app does
-(drawing, filtering, collecting garbage, holding its GIL) can hold up taking messages: while
-the app is busy, the pipe and then this process's queue hold what arrives (2 million records
-at most, then counted as lost).
+frame whenever it changed, to the pipe the app reads (see ``frames``). While the app is busy,
+the pipe and then this process's queue hold what arrives (2 million records at most, then
+counted as lost). Why a process: docs/decisions/0005-intake-in-its-own-process.md.
 
 It ends, stopping the source cleanly, when its stdin closes (the app stops it, or the app
 died: the kernel closes the app's end of the pipe, even after a SIGKILL), on SIGTERM, and

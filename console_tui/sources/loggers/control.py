@@ -3,42 +3,14 @@
 A ``LoggerControl`` runs one background thread (``console-tui-loggers``) that makes every ROS
 call. Its methods may be called from any thread and never block: calls return
 ``concurrent.futures.Future`` objects that always complete, within the call timeout, with a
-result or a ``LoggerCallError`` whose text is the message to show. A UI adds a done callback
-that posts the outcome back to its own thread (the callback runs on the loggers thread); a
-command line waits with ``future.result()``.
+result or a ``LoggerCallError`` whose text is the message to show. The futures' done callbacks
+run on the loggers thread: a UI posts the outcome back to its own thread from there; a command
+line waits with ``future.result()``. Levels are numbers on the ROS 2 scale everywhere
+(``model.levels.Severity``, 0 = unset). Temporary levels are restored by the loggers thread when
+their time is up, and by ``close`` (a process killed outright leaves them set).
 
-Levels are numbers on the ROS 2 scale everywhere (``model.levels.Severity``: 10 DEBUG ... 50
-FATAL, 0 = unset, the logger inherits). Temporary levels are restored by the loggers thread
-when their time is up, whatever the UI does. ``close`` restores the ones still running before
-it returns (each restore waits up to the call timeout); a process killed outright leaves them set.
-
-Beside it: ``errors.py`` (how a call fails), ``events.py`` (what it tells its listeners),
-``graph.py`` (the graph as watched, and waiting until it has settled), ``calls.py`` (one call
-as the loggers thread moves it on).
-
-A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``,
-``sources/ros1/logger_control.py``).
-The subclass provides, called on the loggers thread unless said otherwise:
-
-- ``_open()``: set up (a node, a connection to the master). An error ends the control and
-  becomes its ``problem``.
-- ``_look()``: the graph now, as ``(nodes, with_services)``: every node as a ``GraphNode``
-  whose ``has_logger_services`` says whether it offers the logger services, and the fully
-  qualified names of the nodes that show any service at all. Console-tui's own nodes and hidden
-  ones are left out here, not there.
-- ``_call_get(node, names)`` and ``_call_set(node, levels, restore=...)`` (any thread): a future
-  of ``{logger: level}``. Build a request, pass it to ``self._submit(...)``, map its reply with
-  ``futures.then``; raise ``LevelRefused`` for levels the node refused or the ROS cannot express.
-- ``_send(call)``: start a submitted call, returning an object with ``done()``, ``exception()``
-  and ``result()`` (any future), or None while the service cannot take it yet (asked again on
-  the next pass). Never blocks: a ROS whose calls block runs them on a worker thread.
-- ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
-- ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
-
-and may set ``lists_loggers``, ``read_when_asked``, ``graph_min_s`` and ``graph_quiet_s`` (see
-them), and may override ``_lost(call)`` (a sent call's service went away: default never),
-``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
-``no_services_hint`` (how a user gives a node the logger services).
+Beside it: ``errors.py``, ``events.py``, ``graph.py``, ``calls.py``. A ROS gets its control by
+subclassing ``LoggerControl`` (what a subclass provides: the class's docstring).
 """
 
 from __future__ import annotations
@@ -80,7 +52,32 @@ class LoggerControl(ABC):
     """Lists the graph's nodes and gets and sets their logger levels, off the caller's thread.
 
     ``start`` it, ``subscribe`` to its events, call it from anywhere, ``close`` it at exit.
-    Nodes are named by their fully qualified name (``GraphNode.fqn``) in every call.
+    Nodes are named by their fully qualified name (``GraphNode.fqn``) in every call. ``close``
+    restores the temporary levels still running before it returns (each restore waits up to
+    the call timeout).
+
+    A subclass (each ROS's ``logger_control.py``) provides, called on the loggers thread unless
+    said otherwise:
+
+    - ``_open()``: set up (a node, a connection to the master). An error ends the control and
+      becomes its ``problem``.
+    - ``_look()``: the graph now, as ``(nodes, with_services)``: every node as a ``GraphNode``
+      whose ``has_logger_services`` says whether it offers the logger services, and the fully
+      qualified names of the nodes that show any service at all. Console-tui's own nodes and hidden
+      ones are left out here, not there.
+    - ``_call_get(node, names)`` and ``_call_set(node, levels, restore=...)`` (any thread): a future
+      of ``{logger: level}``. Build a request, pass it to ``self._submit(...)``, map its reply with
+      ``futures.then``; raise ``LevelRefused`` for levels the node refused or the ROS cannot express.
+    - ``_send(call)``: start a submitted call, returning an object with ``done()``, ``exception()``
+      and ``result()`` (any future), or None while the service cannot take it yet (asked again on
+      the next pass). Never blocks: a ROS whose calls block runs them on a worker thread.
+    - ``_drop(call)``: forget a sent call given up on (timed out, node gone, closing).
+    - ``_shutdown()``: release everything; called once at the end, even after a failed ``_open``.
+
+    and may set ``lists_loggers``, ``read_when_asked``, ``graph_min_s`` and ``graph_quiet_s`` (see
+    them), and may override ``_lost(call)`` (a sent call's service went away: default never),
+    ``_wait(timeout)`` and ``_wake()`` (sleep until woken from any thread: default an Event), and
+    ``no_services_hint`` (how a user gives a node the logger services).
     """
 
     #: Appended to ``NoLoggerServices``: how a user gives a node the logger services.

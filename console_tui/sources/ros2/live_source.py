@@ -5,10 +5,9 @@ takes every message that is ready, with no executor in between, and hands each b
 an ``IntakeQueue``. Messages are read by the direct CDR decoder, path ``raw+cdr``, or
 typed by rclpy (``typed``); ``SourceStatus.path`` says which is in use.
 
-This loop needs less CPU per message than an executor feeding the same decoder, and loses
-less (docs/architecture.md, "Taking messages: no executor, serialized, decoded directly").
 When only a trickle arrives the loop pauses after each batch (``coalesce.Coalescer``), so
 that a turn of the loop pays for more than one message. ``stop()`` returns within tens of ms.
+Why no executor: docs/decisions/0003-take-without-executor.md.
 
 Loss is counted, never silent (``loss_counts.py``): the middleware's message-lost events
 and sequence gaps, batches the full ``IntakeQueue`` refused, and undecodable messages add

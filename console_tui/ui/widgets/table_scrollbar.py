@@ -1,17 +1,12 @@
 """The log table's vertical scrollbar: redrawn only when what it shows changes.
 
-Textual's ``ScrollBar`` redraws itself whenever the scrolled widget's height, the window or
-the position change. While the table follows a long history's tail, the height changes on
-every drain of the intake, but the thumb stays one cell at the bottom: each redraw (a
-frame's longest part after the rows) draws the same column. This one keeps the values exact
-(a click or a drag reads them) and redraws only when the thumb's cells, to an eighth of a
-cell as Textual draws them, are not the same.
-
-And when it does redraw, it makes its column's lines straight from Textual's own
-``ScrollBarRender.render_bar`` (one segment a row) and keeps them until the next refresh,
-instead of through Rich's rendering and Textual's styles cache, at less than half the cost
-(the compositor asks for a few rows at a time, often). The figures: docs/architecture.md,
-"Our own widgets where Textual's cost a frame".
+It keeps the values exact (a click or a drag reads them) and redraws only when the thumb's cells,
+to an eighth of a cell as Textual draws them, are not the same: while the table follows a long
+history's tail its height changes on every drain of the intake, but the thumb stays one cell at
+the bottom. A redraw makes the column's lines straight from Textual's own
+``ScrollBarRender.render_bar`` (one segment a row) and keeps them until the next refresh, instead
+of going through Rich's rendering and Textual's styles cache. Why, and the figures:
+docs/decisions/0018-own-widgets.md.
 """
 
 from __future__ import annotations
