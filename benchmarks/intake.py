@@ -343,8 +343,8 @@ def intake_cpu_seconds(source: Any) -> float:
 
 
 def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
 
     queue = IntakeQueue()
     store = LogStore()
@@ -392,7 +392,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
 
     from _probe import KeyProbe, StallProbe, count_frames, percentile, process_rss_mb
 
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.intake_process.synthetic import synthetic_record
     from console_tui.sources.ros2.logger_control import Ros2LoggerControl
     from console_tui.sources.ros2.runtime import RosRuntime
@@ -519,9 +519,9 @@ def run_intake_events_executor() -> None:
     from rclpy.signals import SignalHandlerOptions
 
     from console_tui.model.formats.ros2_log_msg import LogDecoder
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.record_batch import RecordColumns
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
+    from console_tui.model.store.record_batch import RecordColumns
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node("bench_intake_ee")

@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _report import machine_line, table  # noqa: E402
 
 from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder, encode_log  # noqa: E402
-from console_tui.model.record_batch import ColumnsBuilder  # noqa: E402
+from console_tui.model.store.record_batch import ColumnsBuilder  # noqa: E402
 from console_tui.sources.intake_process.child import YOUNG_COLLECTION_THRESHOLD  # noqa: E402
 from console_tui.sources.ros1 import compiled_frames  # noqa: E402
 from console_tui.sources.ros1.dedupe import Deduplicator  # noqa: E402

@@ -36,8 +36,8 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).parent))
 from _report import machine_line, table, verdict
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 
 BATCH = 1_000
 TARGET_MB = 150

@@ -10,8 +10,8 @@ from collections.abc import Callable
 from typing import Any
 
 from .commands.arguments import EXIT_NO_ROS
-from .model.intake_queue import IntakeQueue
-from .model.store import LogStore
+from .model.store.intake_queue import IntakeQueue
+from .model.store.log_store import LogStore
 from .sources.live import RosUnavailable, open_fleet, open_fleet_loggers, open_live
 from .sources.native_output import NativeOutput
 from .sources.ros_version import ROS1, choose_ros

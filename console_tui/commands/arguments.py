@@ -98,10 +98,10 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
     Sets ``args.query_entries`` (the query's rule entries, or ``()``) and ``args.rule_set``
     (the file's ``RuleSet``, or None).
     """
+    from ..model.inert_text import one_line
     from ..model.rules.query import QueryError, caret_line, parse_query
     from ..model.rules.rule import RuleError
     from ..model.rules.rulesfile import last_rules_path, load_rules
-    from ..model.text import one_line
 
     args.query_entries = ()
     args.rule_set = None

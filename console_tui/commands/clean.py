@@ -16,8 +16,8 @@ from collections.abc import Sequence
 from datetime import datetime
 from pathlib import Path
 
+from ..model.inert_text import one_line, plural
 from ..model.rules.query import QueryError, parse_time
-from ..model.text import one_line, plural
 from ..sources.log_dir import (
     LogRun,
     UnsafeRemoval,

@@ -15,9 +15,9 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
+from ..model.inert_text import plural
 from ..model.levels import SEVERITY_TABLE, Severity, severity_name
-from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
-from ..model.text import plural
+from ..model.loggers.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from .arguments import EXIT_NO_ROS
 from .closed_pipe import quiet_on_closed_pipe
 from .loggers_arguments import (

@@ -7,7 +7,7 @@ import argparse
 import textwrap
 
 from ..model.levels import Severity, parse_severity
-from ..model.logger_levels import DEFAULT_LOGGER
+from ..model.loggers.logger_levels import DEFAULT_LOGGER
 from ..sources.loggers.graph import GRAPH_MIN_S, GRAPH_QUIET_S
 from .arguments import add_fleet_arguments, add_ros_version_arguments, add_subcommand, command_parser
 

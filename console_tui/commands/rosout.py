@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..model.formats.rosout_log import ROS2_HEADER
 from ..model.formats.rotating_file import RotatingFile
-from ..model.text import plural
+from ..model.inert_text import plural
 from ..sources.live import RosUnavailable, start_ros2
 from ..sources.log_dir import ros_log_dir
 from ..sources.signal_stop import SignalStop

@@ -23,7 +23,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..model.intake_queue import IntakeQueue
+from ..model.store.intake_queue import IntakeQueue
 from .fleet import Robot
 from .ros2.rclpy_loader import RosUnavailable
 from .ros_version import ROS1, ROS2, choose_ros

@@ -21,11 +21,11 @@ import time
 from collections import deque
 from typing import IO, Any
 
-from ..model.intake_queue import IntakeQueue
+from ..model.inert_text import one_line, strip_colour
 from ..model.levels import Severity
-from ..model.record import LogRecord
-from ..model.record_batch import RecordColumns
-from ..model.text import one_line, strip_colour
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.record import LogRecord
+from ..model.store.record_batch import RecordColumns
 
 #: The node and source the caught lines are shown under.
 NODE = "console-tui"

@@ -28,12 +28,12 @@ from textual.binding import Binding
 from textual.notifications import SeverityLevel
 from textual.screen import Screen
 
-from ..model.intake_queue import IntakeQueue
+from ..model.inert_text import multi_line, one_line
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
-from ..model.store import LogStore
-from ..model.text import multi_line, one_line
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.log_store import LogStore
 from ..sources.fleet import Robot
 from . import textual_fixes
 from .app_bindings import APP_BINDINGS, NAV_KEYS, bindings_of, key_groups

@@ -14,7 +14,7 @@ import subprocess
 from collections.abc import Iterable
 from pathlib import Path
 
-from ..model.text import one_line
+from ..model.inert_text import one_line
 
 
 def run_folders(opened: Iterable[str]) -> list[Path]:

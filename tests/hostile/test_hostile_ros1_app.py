@@ -5,7 +5,7 @@ the logger pane is open."""
 
 from __future__ import annotations
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import open_live
 from console_tui.sources.ros1.environment import Ros1Environment
 from console_tui.sources.ros1.logger_control import Ros1LoggerControl

@@ -19,7 +19,7 @@ import sys
 import threading
 import time
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.ros2.live_source import LiveLogSource
 from console_tui.sources.ros2.runtime import RosRuntime
 

@@ -12,7 +12,7 @@ import asyncio
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 

@@ -11,7 +11,7 @@ import time
 import pytest
 from conftest import next_domain_id
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import open_fleet, open_fleet_loggers
 from console_tui.ui.app import ConsoleApp
 

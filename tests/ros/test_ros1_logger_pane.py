@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 
 from support.ros1 import ROSCPP_LOGGER

@@ -10,8 +10,8 @@ import time
 import pytest
 from nodes.stalled_intake import StalledQueue
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.ros2.runtime import uses_fast_dds_2
 
 from support.rosproc import PATIENCE_S, wait_until

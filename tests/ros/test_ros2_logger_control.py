@@ -25,7 +25,7 @@ class Rosout:
     """Records read from /rosout by the project's live source."""
 
     def __init__(self, runtime) -> None:
-        from console_tui.model.intake_queue import IntakeQueue
+        from console_tui.model.store.intake_queue import IntakeQueue
         from console_tui.sources.ros2.live_source import LiveLogSource
 
         self.queue = IntakeQueue()
@@ -114,7 +114,7 @@ def test_get_and_set_round_trip_and_a_refused_level(nodes, control):
 
 
 def test_debug_level_lets_debug_messages_through_and_info_stops_them(nodes, control, rosout):
-    from console_tui.model.logger_levels import NodeLoggers
+    from console_tui.model.loggers.logger_levels import NodeLoggers
 
     alpha = start_alpha(nodes)
     node = ready(control)

@@ -126,7 +126,7 @@ def test_a_deferred_runtime_starts_rclpy_at_its_first_use_and_the_app_imports_no
     own context is made when the logger levels start, after the first frame."""
     code = (
         "import sys\n"
-        "from console_tui.model.intake_queue import IntakeQueue\n"
+        "from console_tui.model.store.intake_queue import IntakeQueue\n"
         "from console_tui.sources.live import open_live\n"
         "live = open_live(IntakeQueue(), ros=2)\n"
         "assert 'rclpy' not in sys.modules and 'importlib.metadata' not in sys.modules, 'imported'\n"

@@ -9,7 +9,7 @@ import threading
 from collections.abc import Iterator
 from concurrent.futures import Future
 
-from console_tui.model.logger_levels import GraphNode, split_fqn
+from console_tui.model.loggers.logger_levels import GraphNode, split_fqn
 from console_tui.sources.loggers.calls import GET, SET
 from console_tui.sources.loggers.control import LoggerControl
 from console_tui.sources.loggers.errors import LevelRefused

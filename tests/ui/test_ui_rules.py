@@ -357,7 +357,7 @@ def test_rules_last_at_start_restores_the_saved_set(tmp_path):
 
 
 def test_quick_rules_for_several_rows():
-    from console_tui.model.record import LogRecord
+    from console_tui.model.store.record import LogRecord
     from console_tui.ui.screens.quick_rule import quick_rules
 
     rows = [

@@ -11,8 +11,8 @@ from console_tui.commands.arguments import robot_files
 from console_tui.model.formats.jsonl import JsonLinesFormat
 from console_tui.model.formats.rqt_csv import RqtCsvFormat
 from console_tui.model.formats.save import save_records
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files import FileLoad
 
 from support.formats import read_cleanly

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.logger_levels import GraphNode, node_of_logger
+from console_tui.model.loggers.logger_levels import GraphNode, node_of_logger
 from console_tui.sources.loggers.errors import LoggerCallError
 from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
 from console_tui.sources.loggers.fleet_control import FleetLoggerControl, split_node

@@ -8,7 +8,7 @@ import struct
 import pytest
 
 from console_tui.model.formats.ros2_log_msg import CdrError, LogDecoder
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 FIELDS = ("stamp_ns", "level", "node", "msg", "file", "function", "line", "source")
 ALPHABET = "abcXYZ_./:0 é日本語🤖\t\"';\\"

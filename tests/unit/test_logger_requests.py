@@ -8,7 +8,7 @@ import queue
 
 import pytest
 
-from console_tui.model.logger_view import NO_ROS_TEXT
+from console_tui.model.loggers.logger_pane_state import NO_ROS_TEXT
 from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
 from console_tui.ui.widgets.logger_requests import CallEnded, LoggerRequests
 

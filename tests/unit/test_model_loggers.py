@@ -2,7 +2,7 @@
 
 import pytest
 
-from console_tui.model.logger_levels import (
+from console_tui.model.loggers.logger_levels import (
     GraphNode,
     LoggerSource,
     NodeLoggers,
@@ -186,7 +186,7 @@ def test_cancel_retry_and_take_all():
 
 
 def test_an_empty_graph_is_looked_for_then_has_no_nodes_yet_and_files_have_no_ros():
-    from console_tui.model.logger_view import LOOKING_TEXT, NO_ROS_TEXT, LoggerView
+    from console_tui.model.loggers.logger_pane_state import LOOKING_TEXT, NO_ROS_TEXT, LoggerView
 
     view = LoggerView()
     assert view.notice_text(looking=True) == (LOOKING_TEXT, False)

@@ -7,7 +7,7 @@ import io
 import os
 import sys
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.native_output import NODE, NativeOutput, level_of
 
 

@@ -13,9 +13,9 @@ import xmlrpc.client
 import pytest
 
 from console_tui.model.formats.ros1_log_msg import MIN_LENGTH, Ros1LogDecoder, Ros1LogError, encode_log
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import ColumnsBuilder, RecordColumns
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import ColumnsBuilder, RecordColumns
 from console_tui.sources.ros1.dedupe import Deduplicator
 from console_tui.sources.ros1.environment import DEFAULT_MASTER_URI, Ros1Environment, new_node_name
 from console_tui.sources.ros1.intake import Connection, Ros1Intake

@@ -6,7 +6,7 @@
 
 The source (``FACTORIES``) takes and decodes messages with its own thread into an
 ``IntakeQueue`` of this process, exactly as it would in the app's; every ``FLUSH_S`` the
-main thread packs what is waiting into one ``BATCH`` frame (``model.record_batch``; at most
+main thread packs what is waiting into one ``BATCH`` frame (``model.store.record_batch``; at most
 ``FRAME_RECORDS`` records a frame) and writes it, and the source's status as a ``STATUS``
 frame whenever it changed, to the pipe the app reads (see ``frames``). Nothing the app does
 (drawing, filtering, collecting garbage, holding its GIL) can hold up taking messages: while
@@ -34,8 +34,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
-from ...model.intake_queue import IntakeQueue
-from ...model.record_batch import BatchPacker, RecordColumns
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record_batch import BatchPacker, RecordColumns
 from ..signal_stop import SignalStop
 from ..status import SourceStatus
 from .frames import BATCH, STATUS, status_payload, write_frame

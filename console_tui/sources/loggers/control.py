@@ -51,7 +51,7 @@ from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future
 from typing import Any
 
-from ...model.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
+from ...model.loggers.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
 from ..thread_names import os_named
 from .calls import Call
 from .errors import (

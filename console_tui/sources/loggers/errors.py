@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from ...model.levels import Severity
-from ...model.logger_levels import DEFAULT_LOGGER
+from ...model.loggers.logger_levels import DEFAULT_LOGGER
 
 
 class LoggerCallError(Exception):

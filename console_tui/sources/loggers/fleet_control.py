@@ -16,7 +16,7 @@ from concurrent.futures import Future
 from dataclasses import replace
 from typing import Any
 
-from ...model.logger_levels import GraphNode, TemporaryLevel, robot_qualified, split_robot
+from ...model.loggers.logger_levels import GraphNode, TemporaryLevel, robot_qualified, split_robot
 from .control import LoggerControl
 from .errors import LoggerCallError, NoLoggerServices
 from .events import LoggerEvent, NodesChanged, TemporaryEnded

@@ -24,8 +24,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from ...model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError
-from ...model.intake_queue import IntakeQueue
-from ...model.record_batch import ColumnsBuilder, RecordColumns
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record_batch import ColumnsBuilder, RecordColumns
 from ..coalesce import Coalescer
 from ..thread_names import os_named
 from . import compiled_frames

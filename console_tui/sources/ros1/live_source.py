@@ -31,7 +31,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from ...model.formats.ros1_log_msg import MD5SUM, TYPE
-from ...model.intake_queue import IntakeQueue
+from ...model.store.intake_queue import IntakeQueue
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
 from ..thread_names import os_named

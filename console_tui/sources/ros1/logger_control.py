@@ -23,7 +23,7 @@ from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any
 
 from ...model.levels import Severity
-from ...model.logger_levels import GraphNode, effective_level, split_fqn
+from ...model.loggers.logger_levels import GraphNode, effective_level, split_fqn
 from ..loggers.calls import GET, SET, Call
 from ..loggers.control import CALL_TIMEOUT_S, LoggerControl
 from ..loggers.errors import LevelRefused, LoggerCallError

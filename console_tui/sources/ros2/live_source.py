@@ -27,8 +27,8 @@ import threading
 import time
 from typing import Any
 
-from ...model.intake_queue import IntakeQueue
-from ...model.text import plural
+from ...model.inert_text import plural
+from ...model.store.intake_queue import IntakeQueue
 from ..coalesce import Coalescer
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus

@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable
 from concurrent.futures import Future
 from typing import Any
 
-from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode
+from ...model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode
 from ..loggers.calls import GET, SET, Call
 from ..loggers.control import CALL_TIMEOUT_S, LoggerControl
 from ..loggers.errors import LevelRefused

@@ -12,10 +12,10 @@ import time
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
-from ...model.intake_queue import IntakeQueue
-from ...model.store import LogStore
-from ...model.text import one_line, plural
-from ...model.view import LogView
+from ...model.inert_text import one_line, plural
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
 from ..widgets.load_bar import LoadBar
 from ..widgets.log_table import LogTable
 from .host import Host

@@ -8,14 +8,14 @@ import asyncio
 import os
 from collections.abc import Callable
 
+from ...model.inert_text import plural
 from ...model.rules.history import QueryHistory
 from ...model.rules.query import parse_query
 from ...model.rules.rule import RuleError
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
-from ...model.store import LogStore
-from ...model.text import plural
-from ...model.view import LogView
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
 from ..screens.quick_rule import QuickRuleScreen
 from ..screens.rule_editor import RuleEditor
 from ..slicing import pause_between_slices

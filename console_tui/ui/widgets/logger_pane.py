@@ -24,7 +24,7 @@ from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
+from ...model.loggers.logger_levels import GraphNode, LoggerRow, TemporaryLevel
 from ...sources.loggers.events import LoggerEvent, NodesChanged
 from ..keys import Hint, hint_line
 from ..plain import plain

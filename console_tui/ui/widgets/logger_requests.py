@@ -17,8 +17,8 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
-from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
-from ...model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
+from ...model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
+from ...model.loggers.logger_pane_state import NO_ROS_TEXT, LoggerView, level_word, shown_logger
 from ...sources.loggers.control import LoggerControl
 from ...sources.loggers.events import LoggerEvent, TemporaryEnded
 

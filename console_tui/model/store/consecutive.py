@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from array import array
 
-from .store import CHUNK_SIZE
+from .log_store import CHUNK_SIZE
 
 #: 1 in every 8-byte lane, and each lane's index, for CHUNK_SIZE lanes (``consecutive``).
 _LANES = 8 * CHUNK_SIZE

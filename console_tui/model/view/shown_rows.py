@@ -13,9 +13,9 @@ from bisect import bisect_left
 from collections.abc import Iterator, Sequence
 from typing import NamedTuple
 
-from .consecutive import shifted
-from .store import Chunk, LogStore
-from .view import LogView
+from ..store.consecutive import shifted
+from ..store.log_store import Chunk, LogStore
+from .log_view import LogView
 
 
 class ShownPiece(NamedTuple):

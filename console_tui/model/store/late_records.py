@@ -27,8 +27,8 @@ import time
 from collections.abc import Callable, Hashable
 from typing import NamedTuple
 
+from .log_store import LogStore
 from .record_batch import RecordColumns
-from .store import LogStore
 
 #: A batch is late when its oldest record is this much older than the newest kept one.
 LATE_NS = 250_000_000

@@ -27,13 +27,13 @@ from collections.abc import Sequence
 from operator import itemgetter
 from typing import NamedTuple
 
-from .find_level import find_node
-from .packed_texts import PackedTexts
+from ..store.find_level import find_node
+from ..store.log_store import Chunk, LogStore
+from ..store.packed_texts import PackedTexts
+from ..view.log_view import LogView
+from ..view.shown_rows import ShownPiece, shown_pieces
 from .shown_follower import ShownFollower
-from .shown_rows import ShownPiece, shown_pieces
-from .store import Chunk, LogStore
 from .storm_runs import Storm, repeating_nodes, take_apart, take_bulk, take_each
-from .view import LogView
 
 _DIGITS = re.compile(r"[0-9]+")
 #: Rows looked through for a collapsed repeat's storm (other nodes' rows in between).

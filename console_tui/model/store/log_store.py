@@ -25,7 +25,7 @@ from collections import Counter, deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import Any, NamedTuple
 
-from .levels import MESSAGE_SEVERITIES, severity_bucket
+from ..levels import MESSAGE_SEVERITIES, severity_bucket
 from .packed_texts import PackedTexts, pack
 from .record import LogRecord
 from .record_batch import RecordColumns

@@ -23,11 +23,11 @@ from dataclasses import dataclass
 from itertools import islice
 from operator import itemgetter, le
 
-from .levels import MESSAGE_SEVERITIES, severity_bucket
+from ..levels import MESSAGE_SEVERITIES, severity_bucket
+from ..store.log_store import Chunk, LogStore
+from ..view.log_view import LogView
+from ..view.shown_rows import ShownPiece
 from .shown_follower import ShownFollower
-from .shown_rows import ShownPiece
-from .store import Chunk, LogStore
-from .view import LogView
 
 MS = 1_000_000
 S = 1_000 * MS

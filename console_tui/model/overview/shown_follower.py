@@ -23,9 +23,9 @@ from collections.abc import Callable, Sequence
 from time import perf_counter
 from typing import Any, TypeVar
 
-from .shown_rows import ShownPiece, shown_pieces
-from .store import CHUNK_SIZE, Chunk, LogStore
-from .view import LogView
+from ..store.log_store import CHUNK_SIZE, Chunk, LogStore
+from ..view.log_view import LogView
+from ..view.shown_rows import ShownPiece, shown_pieces
 
 _Fact = TypeVar("_Fact")
 

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 
-from .rules.rule import Rule
-from .store import CHUNK_SIZE, Chunk
+from ..rules.rule import Rule
+from ..store.log_store import CHUNK_SIZE, Chunk
 
 #: ``test(rule, chunk, lo, hi)``: the rule's answers over ``chunk[lo:hi]``, a byte each.
 ChunkTest = Callable[[Rule, Chunk, int, int], bytes]

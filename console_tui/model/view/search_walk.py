@@ -28,15 +28,15 @@ from collections.abc import Callable, Iterator, Sequence
 from itertools import compress
 from operator import neg
 
-from .packed_texts import PackedTexts
-from .rules.message import messages_test
-from .rules.packed_match import lowered
-from .rules.regex_shape import required_literal
-from .rules.text_match import TextMatch
-from .rules.time_limit import MatchTimeout, time_limit
+from ..rules.message import messages_test
+from ..rules.packed_match import lowered
+from ..rules.pattern_match import TextMatch
+from ..rules.regex_shape import required_literal
+from ..rules.time_limit import MatchTimeout, time_limit
+from ..store.log_store import Chunk, LogStore
+from ..store.packed_texts import PackedTexts
+from .log_view import LogView
 from .seek import HITS_LIMIT_S, Hits, PieceSize, Walk, view_shows
-from .store import Chunk, LogStore
-from .view import LogView
 
 
 def parse_search(text: str) -> TextMatch:

@@ -29,13 +29,13 @@ from itertools import compress
 from operator import neg
 from time import perf_counter
 
-from .consecutive import consecutive
+from ..inert_text import plural
+from ..rules.rule import Rule, SpanTest
+from ..rules.ruleset import Decoration, RuleSet
+from ..rules.time_limit import MatchTimeout, alarms, time_limit
+from ..store.consecutive import consecutive
+from ..store.log_store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 from .rule_masks import RuleMasks
-from .rules.rule import Rule, SpanTest
-from .rules.ruleset import Decoration, RuleSet
-from .rules.time_limit import MatchTimeout, alarms, time_limit
-from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
-from .text import plural
 
 #: Rows filtered synchronously when the rules change (more than a screen).
 FIRST_SCREEN_ROWS = 200

@@ -10,8 +10,8 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
-from .levels import Severity
-from .store import LogStore
+from ..levels import Severity
+from .log_store import LogStore
 
 
 @lru_cache(maxsize=32)

@@ -15,10 +15,10 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from itertools import compress
 
-from .levels import severity_bucket
-from .rules.time_limit import MatchTimeout, time_limit
-from .store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
-from .view import LogView
+from ..levels import severity_bucket
+from ..rules.time_limit import MatchTimeout, time_limit
+from ..store.log_store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
+from .log_view import LogView
 
 #: ``hits(chunk, lo, hi)``: the offsets in ``lo..hi`` of the records picked, ascending.
 Hits = Callable[[Chunk, int, int], Sequence[int]]

@@ -21,11 +21,11 @@ from itertools import compress, filterfalse
 from operator import and_, eq, itemgetter, not_
 from typing import TYPE_CHECKING
 
-from .packed_texts import PackedTexts
-from .shown_rows import ShownPiece
+from ..store.packed_texts import PackedTexts
+from ..view.shown_rows import ShownPiece
 
 if TYPE_CHECKING:
-    from .store import Chunk
+    from ..store.log_store import Chunk
 
 
 class Storm:

@@ -22,9 +22,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from time import perf_counter
 
-from .find_level import find_level, find_node, severity_range
-from .levels import MESSAGE_SEVERITIES, severity_bucket
-from .store import Chunk, LogStore
+from ..levels import MESSAGE_SEVERITIES, severity_bucket
+from ..store.find_level import find_level, find_node, severity_range
+from ..store.log_store import Chunk, LogStore
 
 NS_PER_S = 1_000_000_000
 RATE_WINDOW_S = 60

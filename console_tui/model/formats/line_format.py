@@ -6,9 +6,9 @@ from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator
 from typing import BinaryIO
 
-from ..record import LogRecord
+from ..store.record import LogRecord
+from .line_groups import TextLines
 from .problems import Problems
-from .textlines import TextLines
 
 DEFAULT_BATCH = 5_000
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from bisect import bisect_right
 from itertools import accumulate
 
-from .search import Search
+from ..view.search_walk import Search
 from .storms import Storm, StormRows
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 
-from .levels import Severity, severity_name
+from ..levels import Severity, severity_name
 from .logger_levels import DEFAULT_LOGGER, GraphNode, LoggerRow, NodeLoggers, TemporaryLevel, node_of_logger
 
 #: What the pane says when this run has no live ROS (files only).

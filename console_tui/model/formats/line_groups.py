@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import BinaryIO
 
-from ...model.text import plural
-from ..record import LogRecord
+from ..inert_text import plural
+from ..store.record import LogRecord
 from .problems import Problems, RecordError
 
 BLOCK_SIZE = 1 << 20

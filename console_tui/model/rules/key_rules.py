@@ -17,10 +17,10 @@ from __future__ import annotations
 import re
 from dataclasses import replace
 
-from .levels import MESSAGE_SEVERITIES, severity_name
-from .rules.node import NodeRule
-from .rules.ruleset import Entry, Role, RuleSet
-from .rules.severity import SeverityRule
+from ..levels import MESSAGE_SEVERITIES, severity_name
+from .node import NodeRule
+from .ruleset import Entry, Role, RuleSet
+from .severity import SeverityRule
 
 LEVELS, SOLO, MUTE = "levels", "solo", "mute"
 ALL_LEVELS: frozenset[int] = frozenset(int(s) for s in MESSAGE_SEVERITIES)

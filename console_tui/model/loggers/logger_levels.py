@@ -15,7 +15,7 @@ from collections.abc import Callable, Collection, Iterable, Mapping
 from dataclasses import dataclass, replace
 from enum import Enum
 
-from .levels import Severity, severity_name
+from ..levels import Severity, severity_name
 
 #: The process-wide default logger.
 DEFAULT_LOGGER = ""
