@@ -34,7 +34,7 @@ from console_tui.model.store.record_batch import ColumnsBuilder  # noqa: E402
 from console_tui.sources.intake_process.child import YOUNG_COLLECTION_THRESHOLD  # noqa: E402
 from console_tui.sources.ros1 import compiled_frames  # noqa: E402
 from console_tui.sources.ros1.dedupe import Deduplicator  # noqa: E402
-from console_tui.sources.ros1.intake import RECV_BYTES  # noqa: E402
+from console_tui.sources.ros1.socket_reader import RECV_BYTES  # noqa: E402
 
 STAGES = ("decode", "columns", "dedupe")
 

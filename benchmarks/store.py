@@ -185,7 +185,7 @@ def load_the_apps_libraries(loggers: bool) -> tuple[str, Any]:
         return loaded, runtime
     os.environ.update(ROS_AUTOMATIC_DISCOVERY_RANGE="LOCALHOST", ROS_DOMAIN_ID=str(150 + os.getpid() % 80))
     try:
-        from console_tui.sources.ros2.runtime import RosRuntime
+        from console_tui.ros.ros2.runtime import RosRuntime
 
         runtime = RosRuntime()
         runtime.create_node("store_benchmark")

@@ -33,11 +33,11 @@ class Frozen:
 
 
 async def capture(out: Path, seconds: float) -> list[Path]:
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
     from console_tui.demo.launcher import DemoNodes
     from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
     demo = DemoNodes(domain=int(os.environ["ROS_DOMAIN_ID"]))  # as --demo shows it
@@ -284,8 +284,8 @@ async def capture_fleet(out: Path) -> list[Path]:
     states on the status line."""
     from console_tui.model.store.log_store import LogStore
     from console_tui.model.store.record_batch import RecordColumns
-    from console_tui.sources.fleet import Robot
-    from console_tui.sources.ros_version import ROS1, ROS2
+    from console_tui.ros.fleet import Robot
+    from console_tui.ros.ros_version import ROS1, ROS2
     from console_tui.sources.status import SourceStatus
     from console_tui.ui.app import ConsoleApp
 

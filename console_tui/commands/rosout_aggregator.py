@@ -28,9 +28,9 @@ from ..model.formats.rotating_file import RotatingFile
 from ..model.inert_text import plural
 from ..model.store.intake_queue import IntakeQueue
 from ..model.store.record import LogRecord
+from ..ros.ros2.runtime import RosRuntime
 from ..sources.log_topics import ROSOUT, ROSOUT_AGG
 from ..sources.ros2.live_source import LiveLogSource
-from ..sources.ros2.runtime import RosRuntime
 
 DEFAULT_DEPTH = 10_000
 DEFAULT_NODE_NAME = "rosout"

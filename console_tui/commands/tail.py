@@ -32,7 +32,7 @@ from ..model.store.record import LogRecord
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_live
-from ..sources.signal_stop import SignalStop
+from ..system.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
     add_fleet_arguments,

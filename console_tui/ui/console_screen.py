@@ -28,7 +28,7 @@ from ..model.store.intake_queue import IntakeQueue
 from ..model.store.log_store import LogStore
 from ..model.view.log_view import LogView
 from ..model.view.marks import Marks
-from ..sources.fleet import Robot
+from ..ros.fleet import Robot
 from .controllers.files import FilesController
 from .controllers.host import TerminalHost
 from .controllers.intake import IntakeController, Source
@@ -54,7 +54,7 @@ from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
 from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
-    from ..sources.loggers.control import LoggerControl
+    from ..control.control_thread import LoggerControl
 
 
 class ConsoleScreen(Screen[None]):

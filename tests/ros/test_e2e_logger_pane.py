@@ -26,8 +26,8 @@ TALKER = "/ns/talker"
 @pytest.fixture
 def live(ros_runtime):
     """A ConsoleApp reading /rosout with a LoggerControl on the test's runtime; closed after."""
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
     queue = IntakeQueue()
     control = Ros2LoggerControl(ros_runtime, call_timeout=2.0)

@@ -248,7 +248,7 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
 
 
 async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_robots_when_asked():
-    from console_tui.sources.loggers.fleet_control import FleetLoggerControl
+    from console_tui.control.fleet_control import FleetLoggerControl
 
     from support.memory_control import MemoryControl, MemoryNode
 

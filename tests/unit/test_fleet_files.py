@@ -102,7 +102,7 @@ def test_tail_prints_a_fleets_robot(tmp_path):
 def test_robots_from_names_names_each_file_for_itself(tmp_path, monkeypatch):
     from console_tui import run_app
     from console_tui.cli import main
-    from console_tui.sources.fleet import robot_name_for
+    from console_tui.ros.fleet import robot_name_for
 
     assert robot_name_for("logs/picker/") == "picker"
     assert robot_name_for("/x/cart.rosout.log") == "cart"

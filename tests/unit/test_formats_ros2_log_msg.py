@@ -56,7 +56,7 @@ def rclpy_log():
     from rcl_interfaces.msg import Log
     from rclpy.serialization import deserialize_message, serialize_message
 
-    from console_tui.sources.log_message import log_to_record
+    from console_tui.sources.ros2.log_message import log_to_record
 
     def make(sec, nanosec, level, name, msg, file, function, line):
         message = Log()

@@ -36,7 +36,7 @@ from typing import Any
 
 from ...model.store.intake_queue import IntakeQueue
 from ...model.store.record_batch import BatchPacker, RecordColumns
-from ..signal_stop import SignalStop
+from ...system.signal_stop import SignalStop
 from ..status import SourceStatus
 from .frames import BATCH, STATUS, status_payload, write_frame
 
@@ -55,9 +55,9 @@ Factory = Callable[[IntakeQueue, argparse.Namespace], tuple[Any, Callable[[], No
 
 
 def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ...ros.ros2.runtime import RosRuntime
     from ..ros2 import compiled_take
     from ..ros2.live_source import LiveLogSource
-    from ..ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
 
@@ -69,7 +69,7 @@ def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[
 
 
 def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
-    from ..c_build import stop_building
+    from ...system.c_build import stop_building
     from ..ros1.live_source import Ros1LiveSource
 
     # a compiler still at work on the frame loop would outlive this process

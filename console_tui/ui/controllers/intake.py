@@ -21,7 +21,7 @@ from ...model.store.record import LogRecord
 from ...model.store.record_batch import RecordColumns
 from ...model.view.log_view import LogView
 from ...model.view.marks import Marks
-from ...sources.fleet import Robot
+from ...ros.fleet import Robot
 from ...sources.status import SourceStatus
 from ..gc_policy import CollectionPolicy
 from ..widgets.log_table import LogTable

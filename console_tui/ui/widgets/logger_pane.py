@@ -23,9 +23,9 @@ from textual.timer import Timer
 from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 
+from ...control.events import LoggerEvent, NodesChanged
 from ...model.levels import MESSAGE_SEVERITIES
 from ...model.loggers.logger_levels import GraphNode, LoggerRow, TemporaryLevel
-from ...sources.loggers.events import LoggerEvent, NodesChanged
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
@@ -34,7 +34,7 @@ from .logger_requests import CallEnded, LoggerRequests
 from .side_pane import RightPane
 
 if TYPE_CHECKING:
-    from ...sources.loggers.control import LoggerControl
+    from ...control.control_thread import LoggerControl
 
 TICK_S = 1.0
 

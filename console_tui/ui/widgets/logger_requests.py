@@ -17,10 +17,10 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
+from ...control.control_thread import LoggerControl
+from ...control.events import LoggerEvent, TemporaryEnded
 from ...model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
 from ...model.loggers.logger_pane_state import NO_ROS_TEXT, LoggerView, level_word, shown_logger
-from ...sources.loggers.control import LoggerControl
-from ...sources.loggers.events import LoggerEvent, TemporaryEnded
 
 
 @dataclass(frozen=True)

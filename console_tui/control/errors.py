@@ -6,8 +6,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from ...model.levels import Severity
-from ...model.loggers.logger_levels import DEFAULT_LOGGER
+from ..model.levels import Severity
+from ..model.loggers.logger_levels import DEFAULT_LOGGER
 
 
 class LoggerCallError(Exception):

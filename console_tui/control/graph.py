@@ -13,7 +13,7 @@ import threading
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
-from ...model.loggers.logger_levels import OWN_NODE_PREFIX, GraphNode, match_nodes
+from ..model.loggers.logger_levels import OWN_NODE_PREFIX, GraphNode, match_nodes
 
 GRAPH_PERIOD_S = 0.5
 #: Services are discovered a little after their node: a node is taken to have no logger

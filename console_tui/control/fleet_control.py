@@ -11,13 +11,15 @@ master gone) keeps it to itself: ``problem`` names the robot, and the others go 
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import Future
 from dataclasses import replace
 from typing import Any
 
-from ...model.loggers.logger_levels import GraphNode, TemporaryLevel, robot_qualified, split_robot
-from .control import LoggerControl
+from ..model.loggers.logger_levels import GraphNode, TemporaryLevel, robot_qualified, split_robot
+from ..ros.fleet import Robot
+from ..ros.ros_version import ROS2
+from .control_thread import LoggerControl
 from .errors import LoggerCallError, NoLoggerServices
 from .events import LoggerEvent, NodesChanged, TemporaryEnded
 from .futures import failed_future, then
@@ -211,3 +213,28 @@ class FleetLoggerControl(LoggerControl):
 
     def _shutdown(self) -> None:
         raise AssertionError("a fleet's logger control makes no calls of its own")
+
+
+def open_fleet_loggers(
+    robots: Sequence[Robot], cleanups: list[Callable[[], object]], **options: Any
+) -> FleetLoggerControl:
+    """The logger control of every robot's nodes (``FleetLoggerControl``, not started): for a
+    ROS 2 robot an rclpy context of this process on its domain, for a ROS 1 robot its master;
+    ``options`` go to each robot's control (``call_timeout``, ``include_hidden``). What to shut
+    down after the control is closed goes into ``cleanups``. ``RosUnavailable`` when a ROS 2
+    robot's context cannot start."""
+    controls: dict[str, LoggerControl] = {}
+    for robot in robots:
+        if robot.ros == ROS2:
+            from ..ros.ros2.runtime import start_ros2
+            from .ros2.logger_control import Ros2LoggerControl
+
+            runtime = start_ros2(robot.domain)
+            cleanups.append(runtime.shutdown)
+            controls[robot.name] = Ros2LoggerControl(runtime, **options)
+        else:
+            from ..ros.ros1.environment import Ros1Environment
+            from .ros1.logger_control import Ros1LoggerControl
+
+            controls[robot.name] = Ros1LoggerControl(Ros1Environment.from_environ(robot.environment()), **options)
+    return FleetLoggerControl(controls)

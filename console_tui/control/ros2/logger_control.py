@@ -1,6 +1,6 @@
 """ROS 2 logger levels: the nodes' ``get_logger_levels`` / ``set_logger_levels`` services.
 
-``Ros2LoggerControl`` is the ROS 2 side of ``sources.loggers.control.LoggerControl`` (which says
+``Ros2LoggerControl`` is the ROS 2 side of ``control.control_thread.LoggerControl`` (which says
 what the control promises): its loggers thread owns a hidden node, the service clients and an
 executor, and every rclpy call happens there.
 """
@@ -13,11 +13,11 @@ from concurrent.futures import Future
 from typing import Any
 
 from ...model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode
-from ..loggers.calls import GET, SET, Call
-from ..loggers.control import CALL_TIMEOUT_S, LoggerControl
-from ..loggers.errors import LevelRefused
-from ..loggers.futures import then
-from .runtime import RosRuntime
+from ...ros.ros2.runtime import RosRuntime
+from ..calls import GET, SET, Call
+from ..control_thread import CALL_TIMEOUT_S, LoggerControl
+from ..errors import LevelRefused
+from ..futures import then
 
 _SERVICES = {GET: "get_logger_levels", SET: "set_logger_levels"}
 _SERVICE_TYPES = {

@@ -167,3 +167,15 @@ class RosRuntime:
                 context.try_shutdown()
             except Exception:
                 pass
+
+
+def start_ros2(domain_id: int | None = None, *, deferred: bool = False) -> RosRuntime:
+    """An rclpy context of our own (``RosRuntime``), on ``domain_id`` (default ``ROS_DOMAIN_ID``'s);
+    ``RosUnavailable`` with advice if ROS 2 cannot start. ``deferred``: rclpy is imported at the
+    context's first use (see ``RosRuntime``)."""
+    try:
+        return RosRuntime(domain_id=domain_id, deferred=deferred)
+    except RosUnavailable:
+        raise
+    except Exception as error:  # rclpy present but broken (wrong RMW, bad environment)
+        raise RosUnavailable(f"ROS 2 could not start: {type(error).__name__}: {error}") from None

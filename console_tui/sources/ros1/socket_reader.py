@@ -26,8 +26,8 @@ from dataclasses import dataclass, field
 from ...model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError
 from ...model.store.intake_queue import IntakeQueue
 from ...model.store.record_batch import ColumnsBuilder, RecordColumns
+from ...system.thread_names import os_named
 from ..coalesce import Coalescer
-from ..thread_names import os_named
 from . import compiled_frames
 from .dedupe import Deduplicator
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ...model.loggers.logger_levels import GraphNode, TemporaryLevel
+from ..model.loggers.logger_levels import GraphNode, TemporaryLevel
 from .errors import LoggerCallError
 
 

@@ -16,8 +16,8 @@ Beside it: ``errors.py`` (how a call fails), ``events.py`` (what it tells its li
 ``graph.py`` (the graph as watched, and waiting until it has settled), ``calls.py`` (one call
 as the loggers thread moves it on).
 
-A ROS gets its control by subclassing ``LoggerControl`` (``sources/ros2/logger_control.py``,
-``sources/ros1/logger_control.py``).
+A ROS gets its control by subclassing ``LoggerControl`` (``control/ros2/logger_control.py``,
+``control/ros1/logger_control.py``).
 The subclass provides, called on the loggers thread unless said otherwise:
 
 - ``_open()``: set up (a node, a connection to the master). An error ends the control and
@@ -51,8 +51,8 @@ from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future
 from typing import Any
 
-from ...model.loggers.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
-from ..thread_names import os_named
+from ..model.loggers.logger_levels import GraphNode, TemporaryLevel, TemporaryLevels
+from ..system.thread_names import os_named
 from .calls import Call
 from .errors import (
     CallTimedOut,

@@ -11,7 +11,7 @@ from __future__ import annotations
 import struct
 
 from ...model.levels import SEVERITY_TABLE, Severity
-from .tcpros import prefixed, read_prefixed
+from ...ros.ros1.tcpros import prefixed, read_prefixed
 
 GET_LOGGERS = "get_loggers"
 SET_LOGGER_LEVEL = "set_logger_level"

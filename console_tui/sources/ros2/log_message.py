@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..model.store.record import LogRecord
+from ...model.store.record import LogRecord
 
 
 def log_to_record(message: Any, source: str) -> LogRecord:

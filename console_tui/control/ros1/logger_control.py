@@ -1,6 +1,6 @@
 """ROS 1 logger levels: every node's ``~get_loggers`` and ``~set_logger_level``, natively.
 
-``Ros1LoggerControl`` is the ROS 1 side of ``sources.loggers.control.LoggerControl``. The
+``Ros1LoggerControl`` is the ROS 1 side of ``control.control_thread.LoggerControl``. The
 nodes come from the master's system state (a node offering both services has the logger
 services: every roscpp and rospy node). A read calls the node's ``get_loggers``, which
 lists all its loggers with their levels in force; a set calls ``set_logger_level`` once
@@ -24,11 +24,13 @@ from typing import Any
 
 from ...model.levels import Severity
 from ...model.loggers.logger_levels import GraphNode, effective_level, split_fqn
-from ..loggers.calls import GET, SET, Call
-from ..loggers.control import CALL_TIMEOUT_S, LoggerControl
-from ..loggers.errors import LevelRefused, LoggerCallError
-from ..loggers.futures import failed_future, then
-from .environment import NODE_PREFIX, Ros1Environment, new_node_name
+from ...ros.ros1.environment import NODE_PREFIX, Ros1Environment, new_node_name
+from ...ros.ros1.master import ROSCPP, ROSPY, Master, Ros1CallError, client_library
+from ...ros.ros1.tcpros import ServiceFailed, TcprosError, call_service
+from ..calls import GET, SET, Call
+from ..control_thread import CALL_TIMEOUT_S, LoggerControl
+from ..errors import LevelRefused, LoggerCallError
+from ..futures import failed_future, then
 from .logger_services import (
     GET_LOGGERS,
     GET_LOGGERS_MD5,
@@ -40,8 +42,6 @@ from .logger_services import (
     encode_set_level,
     level_of_word,
 )
-from .master import ROSCPP, ROSPY, Master, Ros1CallError, client_library
-from .tcpros import ServiceFailed, TcprosError, call_service
 
 NO_SERVICES_HINT = "only roscpp and rospy nodes offer ~get_loggers and ~set_logger_level"
 #: The logger a node's own messages go through, by its client library: rospy logs through
