@@ -9,7 +9,7 @@ from console_tui.model.formats.save import save_records
 from console_tui.model.store.log_store import LogStore
 from console_tui.model.store.record_batch import RecordColumns
 from console_tui.ui.app import ConsoleApp
-from console_tui.ui.screens.files import OpenScreen, SaveScreen
+from console_tui.ui.screens.file_dialogs import OpenScreen, SaveScreen
 from console_tui.ui.screens.load_problems import ProblemsScreen
 
 from support.feed import records

@@ -11,7 +11,7 @@ from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import Role
 from console_tui.model.rules.rulesfile import last_rules_path, query_history_path
 from console_tui.ui.app import ConsoleApp
-from console_tui.ui.screens.files import PathScreen
+from console_tui.ui.screens.file_dialogs import PathScreen
 from console_tui.ui.screens.quick_rule import QuickRuleScreen
 from console_tui.ui.screens.rule_editor import RuleEditor
 

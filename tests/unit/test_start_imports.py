@@ -15,7 +15,7 @@ LOADED_WHEN_USED = (
     "console_tui.ui.screens.summary",
     "console_tui.ui.screens.mark_list",
     "console_tui.ui.screens.columns_dialog",
-    "console_tui.ui.screens.files",
+    "console_tui.ui.screens.file_dialogs",
     "console_tui.ui.screens.load_problems",
     "tomllib",
     "tomli",

@@ -1,9 +1,9 @@
 """What the logger levels pane shows, without the screen: the graph's nodes, the selected node,
 its loggers and their levels, the calls under way per node, and the one-line notice.
 
-``LoggerView`` is to the logger levels pane what ``LogView`` is to the table: the pane draws
+``LoggerPaneState`` is to the logger levels pane what ``LogView`` is to the table: the pane draws
 it and turns keys into calls (``ui/widgets/logger_requests.py`` makes them and brings their
-outcomes here); the view keeps the books (which node is selected, what was read, which
+outcomes here); the state keeps the books (which node is selected, what was read, which
 calls are pending, what to say when a call ends). No ROS, no Textual.
 """
 
@@ -29,7 +29,7 @@ def level_word(level: int) -> str:
     return "inherited" if level == Severity.UNSET else severity_name(level)
 
 
-class LoggerView:
+class LoggerPaneState:
     """The nodes, the selected node's loggers and levels, calls under way, and the notice."""
 
     def __init__(

@@ -18,8 +18,8 @@ from ...model.store.log_store import LogStore
 from ...model.view.log_view import LogView
 from ...model.view.marks import Marks
 from ...model.view.seek import Hits, Seeker, level_hits, view_shows
+from ..code_file import editor_command, find_source, run_editor, run_folders
 from ..slicing import pause_between_slices
-from ..source_file import editor_command, find_source, run_editor, run_folders
 from ..widgets.log_table import LogTable
 from .host import TerminalHost
 

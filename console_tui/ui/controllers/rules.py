@@ -237,7 +237,7 @@ class RulesController:
                 return
             self._host.notify(f"Saved {plural(len(self.rules.entries), 'rule')} to {path}", timeout=5)
 
-        from ..screens.files import PathScreen  # loaded when first opened
+        from ..screens.file_dialogs import PathScreen  # loaded when first opened
 
         default = os.path.join(os.getcwd(), "console-tui-rules.toml")
         self._host.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
@@ -259,7 +259,7 @@ class RulesController:
         if path is not None:
             chosen(path)
         else:
-            from ..screens.files import PathScreen  # loaded when first opened
+            from ..screens.file_dialogs import PathScreen  # loaded when first opened
 
             self._host.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
 

@@ -1,6 +1,6 @@
 """The logger levels pane, beside the table: the graph's nodes, a node's loggers and their levels.
 
-The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into requests
+The pane draws a ``LoggerPaneState`` (the model of what it shows) and turns keys into requests
 (``logger_requests.py``: the calls of the ``LoggerControl`` and their books). With a
 control, the pane keeps the view fed (nodes as the graph changes, levels as they are read,
 temporary levels as they run); tests may feed it through ``show_*`` and ``select_node`` for a

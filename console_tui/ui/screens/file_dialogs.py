@@ -18,7 +18,7 @@ from textual.widgets import Checkbox, Input, Label, RadioButton, RadioSet
 from ...model.formats.save import save_format_for
 from ..keys import hint_line
 from ..plain import plain
-from ..widgets.marked_toggles import MarkedCheckbox, MarkedRadioButton
+from ..widgets.marked_buttons import MarkedCheckbox, MarkedRadioButton
 
 SAVE_FORMAT_TITLES = {
     "rqt": "rqt_console (ROS 2) .csv",
