@@ -223,8 +223,8 @@ def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
 def load_c_flood() -> Callable[..., tuple[int, int, float]]:
     """``c_flood.c``'s ``flood``, built against the rcl rclpy loaded, in a temporary directory
     that is gone once the built module is loaded."""
-    from console_tui.sources import c_build
     from console_tui.sources.ros2.compiled_take import loaded_rcl, rcl_flags
+    from console_tui.system import c_build
 
     library = loaded_rcl()
     flags = rcl_flags(library) if library is not None else "rclpy's librcl.so is not loaded"
@@ -270,9 +270,9 @@ class FleetSources:
     """A fleet's intake processes, one a domain, counted as one source by this benchmark."""
 
     def __init__(self, queue: Any, domains: int, first_domain: int) -> None:
-        from console_tui.sources.fleet import Robot
+        from console_tui.ros.fleet import Robot
+        from console_tui.ros.ros_version import ROS2
         from console_tui.sources.live import open_fleet
-        from console_tui.sources.ros_version import ROS2
 
         self.robots = [Robot(f"d{first_domain + i}", ROS2, domain=first_domain + i) for i in range(domains)]
         self.sources = [live.source for live in open_fleet(queue, self.robots, topic=TOPIC)]
@@ -315,9 +315,9 @@ def console_source(kind: str, queue: Any, domains: int = 1, first_domain: int = 
 
         args = ["--typed"] if kind == "intake-typed" else []
         return ProcessSource(queue, "ros2", topic=TOPIC, args=args), None
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources import coalesce
     from console_tui.sources.ros2 import live_source
-    from console_tui.sources.ros2.runtime import RosRuntime
 
     if kind == "app-thread-batched":  # fewer wake-ups of the intake thread, bigger batches
         coalesce.BELOW = live_source.MAX_BATCH
@@ -343,8 +343,8 @@ def intake_cpu_seconds(source: Any) -> float:
 
 
 def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
 
     queue = IntakeQueue()
     store = LogStore()
@@ -392,17 +392,17 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
 
     from _probe import KeyProbe, StallProbe, count_frames, percentile, process_rss_mb
 
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.intake_process.synthetic import synthetic_record
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
     queue = IntakeQueue()
     source, runtime = console_source(kind, queue, domains, first_domain)
     cleanups: list[Any] = []
     if isinstance(source, FleetSources):  # as console-tui --domain ... has it
-        from console_tui.sources.live import open_fleet_loggers
+        from console_tui.control.fleet_control import open_fleet_loggers
 
         control: Any = open_fleet_loggers(source.robots, cleanups)
         app = ConsoleApp(queue=queue, sources=source.sources, logger_control=control, robots=source.robots)
@@ -519,9 +519,9 @@ def run_intake_events_executor() -> None:
     from rclpy.signals import SignalHandlerOptions
 
     from console_tui.model.formats.ros2_log_msg import LogDecoder
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.record_batch import RecordColumns
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
+    from console_tui.model.store.record_batch import RecordColumns
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node("bench_intake_ee")

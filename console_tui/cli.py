@@ -26,7 +26,7 @@ from .commands.arguments import (
     robot_files,
     robots_from_names,
 )
-from .model.store import DEFAULT_MAX_MESSAGES
+from .model.store.log_store import DEFAULT_MAX_MESSAGES
 
 #: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
 SUBCOMMANDS: dict[str, str] = {
@@ -185,7 +185,7 @@ def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
     """``--last``: the newest run's folder (and its ROS 2 nodes' logs) joins ``args.files``;
     no run found exits 2 saying where it looked."""
     from .model.formats import FormatError
-    from .model.text import one_line
+    from .model.inert_text import one_line
     from .sources.files import latest_run
 
     try:

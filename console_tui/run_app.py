@@ -10,11 +10,12 @@ from collections.abc import Callable
 from typing import Any
 
 from .commands.arguments import EXIT_NO_ROS
-from .model.intake_queue import IntakeQueue
-from .model.store import LogStore
-from .sources.live import RosUnavailable, open_fleet, open_fleet_loggers, open_live
-from .sources.native_output import NativeOutput
-from .sources.ros_version import ROS1, choose_ros
+from .control.fleet_control import open_fleet_loggers
+from .model.store.intake_queue import IntakeQueue
+from .model.store.log_store import LogStore
+from .ros.ros_version import ROS1, choose_ros
+from .sources.live import RosUnavailable, open_fleet, open_live
+from .system.native_output import NativeOutput
 
 
 def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
@@ -149,12 +150,12 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
         live.source.start()
         cleanups.append(live.source.stop)
     if live.runtime is None:  # ROS 1
-        from .sources.ros1.logger_control import Ros1LoggerControl
+        from .control.ros1.logger_control import Ros1LoggerControl
 
         ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
         cleanups.append(ros1_control.close)  # puts temporary levels back
         return ros1_control
-    from .sources.ros2.logger_control import Ros2LoggerControl
+    from .control.ros2.logger_control import Ros2LoggerControl
 
     logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
     cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back

@@ -15,8 +15,8 @@ from collections.abc import Iterable, Sequence
 
 from ..model.formats import SAVE_FORMATS, FormatError, Problem, save_records
 from ..model.formats.save import save_format_for
-from ..model.record import LogRecord
-from ..model.text import one_line, plural
+from ..model.inert_text import one_line, plural
+from ..model.store.record import LogRecord
 from ..sources.files import LogFile, latest_run, load_records, open_logs
 from .arguments import add_last_argument, add_log_format_argument
 

@@ -31,7 +31,7 @@ from aiohttp import web
 from textual_serve.app_service import AppService
 from textual_serve.server import Server
 
-from ..model.text import one_line
+from ..model.inert_text import one_line
 from .serve_access import TOKEN_PARAMETER, Access
 
 #: Where the page's template is (textual-serve renders ``app_index.html`` from it).

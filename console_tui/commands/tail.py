@@ -24,15 +24,15 @@ from typing import BinaryIO, cast
 from ..model.formats import FormatError
 from ..model.formats.print_format import ROBOT_PREFIX, PrintFormat, TemplateError, json_text
 from ..model.formats.rcutils_log import DEFAULT_TEMPLATE
-from ..model.intake_queue import IntakeQueue
-from ..model.record import LogRecord
+from ..model.inert_text import one_line
 from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
-from ..model.text import one_line
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.record import LogRecord
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_live
-from ..sources.signal_stop import SignalStop
+from ..system.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
     add_fleet_arguments,

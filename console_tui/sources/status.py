@@ -41,7 +41,7 @@ class SourceStatus:
     #: A one-line problem the user should see, or "".
     problem: str = ""
     running: bool = False
-    #: The robot this source reads, when the console reads a fleet (``sources.fleet``), else "".
+    #: The robot this source reads, when the console reads a fleet (``ros.fleet``), else "".
     robot: str = ""
 
     @property

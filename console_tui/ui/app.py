@@ -28,13 +28,13 @@ from textual.binding import Binding
 from textual.notifications import SeverityLevel
 from textual.screen import Screen
 
-from ..model.intake_queue import IntakeQueue
+from ..model.inert_text import multi_line, one_line
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
-from ..model.store import LogStore
-from ..model.text import multi_line, one_line
-from ..sources.fleet import Robot
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.log_store import LogStore
+from ..ros.fleet import Robot
 from . import textual_fixes
 from .app_bindings import APP_BINDINGS, NAV_KEYS, bindings_of, key_groups
 from .console_screen import ConsoleScreen
@@ -47,7 +47,7 @@ from .palette import PaletteProvider
 from .screens.help import HelpScreen
 
 if TYPE_CHECKING:
-    from ..sources.loggers.control import LoggerControl
+    from ..control.control_thread import LoggerControl
 
 textual_fixes.apply()
 
@@ -139,7 +139,7 @@ class ConsoleApp(App[None]):
         name files, nodes and errors from outside, which may hold markup or escapes."""
         super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
 
-    #: What catches native code's output while the app draws (``sources.native_output``): put
+    #: What catches native code's output while the app draws (``system.native_output``): put
     #: aside while the app is suspended (an editor has the terminal). Set by ``run_app``.
     native_output: TerminalGuard | None = None
 

@@ -19,16 +19,16 @@ from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.screen import Screen
 
-from ..model.intake_queue import IntakeQueue
-from ..model.marks import Marks
-from ..model.node_stats import NodeStats
+from ..model.overview.node_stats import NodeStats
+from ..model.overview.storms import StormRows
+from ..model.overview.timeline import Timeline
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
-from ..model.store import LogStore
-from ..model.storms import StormRows
-from ..model.timeline import Timeline
-from ..model.view import LogView
-from ..sources.fleet import Robot
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.log_store import LogStore
+from ..model.view.log_view import LogView
+from ..model.view.marks import Marks
+from ..ros.fleet import Robot
 from .controllers.files import FilesController
 from .controllers.host import TerminalHost
 from .controllers.intake import IntakeController, Source
@@ -54,7 +54,7 @@ from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
 from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
-    from ..sources.loggers.control import LoggerControl
+    from ..control.control_thread import LoggerControl
 
 
 class ConsoleScreen(Screen[None]):

@@ -15,7 +15,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
 from console_tui.run_app import run_then_clean_up
 from console_tui.ui import app as app_module
 from console_tui.ui.app import ConsoleApp

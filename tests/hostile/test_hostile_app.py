@@ -11,8 +11,8 @@ import re
 from textual.command import CommandList, CommandPalette
 from textual.widgets import Checkbox, Input
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files.loader import FileProgress, LoadProgress
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.detail import DetailScreen

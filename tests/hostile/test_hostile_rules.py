@@ -9,11 +9,11 @@ import time
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules import MessageRule, RuleSet, exclude
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.rulesfile import load_rules
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.controllers import rules as rule_control
 from console_tui.ui.screens.help import HelpScreen

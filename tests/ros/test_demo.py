@@ -10,7 +10,7 @@ import time
 import pytest
 from test_e2e_live import until
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 
 from support.rosproc import pid_alive, wait_until

@@ -12,7 +12,7 @@ import asyncio
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 
@@ -26,8 +26,8 @@ TALKER = "/ns/talker"
 @pytest.fixture
 def live(ros_runtime):
     """A ConsoleApp reading /rosout with a LoggerControl on the test's runtime; closed after."""
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
     queue = IntakeQueue()
     control = Ros2LoggerControl(ros_runtime, call_timeout=2.0)

@@ -11,8 +11,9 @@ import time
 import pytest
 from conftest import next_domain_id
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.sources.live import open_fleet, open_fleet_loggers
+from console_tui.control.fleet_control import open_fleet_loggers
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.sources.live import open_fleet
 from console_tui.ui.app import ConsoleApp
 
 from support.fleet import ROS2_VALUES, LoopbackFleet

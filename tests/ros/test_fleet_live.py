@@ -10,7 +10,7 @@ import asyncio
 import pytest
 from conftest import next_domain_id
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import open_fleet
 from console_tui.ui.app import ConsoleApp
 

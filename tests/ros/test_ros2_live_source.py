@@ -10,9 +10,9 @@ import time
 import pytest
 from nodes.stalled_intake import StalledQueue
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.sources.ros2.runtime import uses_fast_dds_2
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.ros.ros2.runtime import uses_fast_dds_2
 
 from support.rosproc import PATIENCE_S, wait_until
 
@@ -39,8 +39,8 @@ def take_by(path: str, monkeypatch) -> bool:
 
 @contextlib.contextmanager
 def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue | None = None):
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
     source = LiveLogSource(runtime, IntakeQueue() if queue is None else queue, topic, raw=raw)
@@ -182,8 +182,8 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env, monkeypat
 
     from rcl_interfaces.msg import Log
 
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.loss_counts import LossCounts
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.topic_reader import TopicReader
 
     take_by("raw+cdr", monkeypatch)
@@ -268,8 +268,8 @@ def topic_reader(topic: str = "/rosout"):
     """A ``TopicReader`` on ``topic`` with a node of its own, and its loss counts."""
     from rcl_interfaces.msg import Log
 
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.loss_counts import LossCounts
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.topic_reader import TopicReader
 
     runtime = RosRuntime()

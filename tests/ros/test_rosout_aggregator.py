@@ -81,7 +81,7 @@ def counted(ticks: range) -> list[tuple[int, str]]:
 
 
 async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches(aggregators, ros_env, tmp_path):
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.live import open_live
     from console_tui.ui.app import ConsoleApp
 
@@ -141,7 +141,7 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
 def in_time_order(stamps: list[int]) -> bool:
     """In the order of their stamps, but for what came less than ``LATE_NS`` out of order
     (two nodes' messages of one moment, which the app leaves as they came)."""
-    from console_tui.model.late_records import LATE_NS
+    from console_tui.model.store.late_records import LATE_NS
 
     return all(
         stamp >= newest - LATE_NS for stamp, newest in zip(stamps[1:], itertools.accumulate(stamps, max), strict=False)
@@ -161,7 +161,7 @@ def assert_in_time_order_on_screen(app) -> None:
 async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_nothing_twice(aggregators, nodes):
     """The console shows /rosout at once; when an aggregator starts later it switches to
     /rosout_agg: every message of a node logging all along comes once, in order."""
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.live import open_live
     from console_tui.ui.app import ConsoleApp
 

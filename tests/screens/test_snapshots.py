@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.logger_levels import TemporaryLevel
-from console_tui.model.store import LogStore
+from console_tui.model.loggers.logger_levels import TemporaryLevel
+from console_tui.model.store.log_store import LogStore
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import PLANNER, feed_logger_pane, records

@@ -12,7 +12,7 @@ from rich.console import Console
 from textual.keys import _character_to_key
 from textual.pilot import Pilot
 
-from console_tui.model.store import DEFAULT_MAX_MESSAGES, LogStore
+from console_tui.model.store.log_store import DEFAULT_MAX_MESSAGES, LogStore
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import records

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import re
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import BASE_NS

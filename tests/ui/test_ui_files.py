@@ -6,10 +6,10 @@ import json
 from pathlib import Path
 
 from console_tui.model.formats.save import save_records
-from console_tui.model.record_batch import RecordColumns
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.ui.app import ConsoleApp
-from console_tui.ui.screens.files import OpenScreen, SaveScreen
+from console_tui.ui.screens.file_dialogs import OpenScreen, SaveScreen
 from console_tui.ui.screens.load_problems import ProblemsScreen
 
 from support.feed import records
@@ -196,7 +196,7 @@ async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
 
 async def test_with_live_records_waiting_the_files_come_first(tmp_path):
     """--live with files: live records wait until the files are in, so time order holds."""
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
 
     write_jsonl(tmp_path / "old.jsonl", 500)
     live = IntakeQueue()

@@ -6,9 +6,9 @@ import re
 
 import pytest
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
-from console_tui.model.text import multi_line
+from console_tui.model.inert_text import multi_line
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.detail import DetailScreen
 

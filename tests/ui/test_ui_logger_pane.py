@@ -13,8 +13,8 @@ from functools import partial
 
 from textual.pilot import Pilot
 
-from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
-from console_tui.model.logger_view import NO_ROS_TEXT
+from console_tui.model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
+from console_tui.model.loggers.logger_pane_state import NO_ROS_TEXT
 from console_tui.ui.palette import palette_commands
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 from console_tui.ui.widgets.logger_pane import LoggerPane
@@ -248,7 +248,7 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
 
 
 async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_robots_when_asked():
-    from console_tui.sources.loggers.fleet_control import FleetLoggerControl
+    from console_tui.control.fleet_control import FleetLoggerControl
 
     from support.memory_control import MemoryControl, MemoryNode
 
@@ -282,8 +282,8 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
 async def test_the_logger_control_starts_when_the_pane_first_opens():
     """The app joins the ROS graph for logger levels (rclpy, a DDS participant: 44 MB) only
     once they are wanted: live records and time passing do not start it, opening the pane does."""
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.record_batch import RecordColumns
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.record_batch import RecordColumns
     from console_tui.sources.status import SourceStatus
 
     from support.feed import StaticSource

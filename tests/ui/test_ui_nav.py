@@ -12,8 +12,8 @@ import sys
 import pytest
 from textual.binding import Binding
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import BASE_NS, records
@@ -317,7 +317,7 @@ async def test_node_panel_with_80_nodes_filters_and_sorts():
 async def test_node_panel_counts_what_came_while_closed_a_budget_at_a_time(monkeypatch):
     """Nothing is counted while the panel is closed; opened, it counts a budget's worth at a
     time and says so until done."""
-    from console_tui.model.store import CHUNK_SIZE
+    from console_tui.model.store.log_store import CHUNK_SIZE
     from console_tui.ui.widgets import node_pane
 
     monkeypatch.setattr(node_pane, "COUNT_BUDGET_S", 0.0)  # one chunk a refresh

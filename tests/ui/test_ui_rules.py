@@ -11,7 +11,7 @@ from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import Role
 from console_tui.model.rules.rulesfile import last_rules_path, query_history_path
 from console_tui.ui.app import ConsoleApp
-from console_tui.ui.screens.files import PathScreen
+from console_tui.ui.screens.file_dialogs import PathScreen
 from console_tui.ui.screens.quick_rule import QuickRuleScreen
 from console_tui.ui.screens.rule_editor import RuleEditor
 
@@ -357,7 +357,7 @@ def test_rules_last_at_start_restores_the_saved_set(tmp_path):
 
 
 def test_quick_rules_for_several_rows():
-    from console_tui.model.record import LogRecord
+    from console_tui.model.store.record import LogRecord
     from console_tui.ui.screens.quick_rule import quick_rules
 
     rows = [

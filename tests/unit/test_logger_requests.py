@@ -8,8 +8,8 @@ import queue
 
 import pytest
 
-from console_tui.model.logger_view import NO_ROS_TEXT
-from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
+from console_tui.control.events import NodesChanged, TemporaryEnded
+from console_tui.model.loggers.logger_pane_state import NO_ROS_TEXT
 from console_tui.ui.widgets.logger_requests import CallEnded, LoggerRequests
 
 from support.memory_control import MemoryControl, MemoryNode

@@ -27,13 +27,13 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
 
+from ..inert_text import plural
 from ..levels import Severity
-from ..record import LogRecord
-from ..text import plural
-from . import textlines
+from ..store.record import LogRecord
+from . import line_groups
+from .line_format import TextFormat
+from .line_groups import TextLines
 from .problems import Problems
-from .text_format import TextFormat
-from .textlines import TextLines
 
 #: Most records without a time held back waiting for the first time in a file; beyond
 #: it they are given the file's modification time.
@@ -200,8 +200,8 @@ def assemble(
             current is not None
             and current.is_record
             and current.owner == item.owner
-            and len(current.lines) < textlines.MAX_RECORD_LINES
-            and current.chars + len(item.text) < textlines.MAX_RECORD_CHARS
+            and len(current.lines) < line_groups.MAX_RECORD_LINES
+            and current.chars + len(item.text) < line_groups.MAX_RECORD_CHARS
         ):
             current.lines.append(item.text)
             current.chars += len(item.text) + 1
@@ -209,8 +209,8 @@ def assemble(
         if current is not None:
             if current.is_record and current.owner == item.owner:
                 problems.add(
-                    f"record of more than {textlines.MAX_RECORD_LINES:,} lines or "
-                    f"{textlines.MAX_RECORD_CHARS:,} characters: the lines after the cut are rows of their own",
+                    f"record of more than {line_groups.MAX_RECORD_LINES:,} lines or "
+                    f"{line_groups.MAX_RECORD_CHARS:,} characters: the lines after the cut are rows of their own",
                     line=current.line,
                 )
             yield from finish(current)

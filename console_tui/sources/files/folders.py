@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...model.formats import FormatError
-from ..log_dir import ros_log_dir
+from ...ros.log_dir import ros_log_dir
 
 #: File names read in a folder.
 _LOG_NAME = re.compile(r".+\.(?:log(?:\.\d+)?|csv|jsonl|ndjson|bag|bag\.active|mcap|db3)\Z")

@@ -25,7 +25,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 
 if TYPE_CHECKING:
     from .log_file import LogFile

@@ -6,7 +6,7 @@
 
 The source (``FACTORIES``) takes and decodes messages with its own thread into an
 ``IntakeQueue`` of this process, exactly as it would in the app's; every ``FLUSH_S`` the
-main thread packs what is waiting into one ``BATCH`` frame (``model.record_batch``; at most
+main thread packs what is waiting into one ``BATCH`` frame (``model.store.record_batch``; at most
 ``FRAME_RECORDS`` records a frame) and writes it, and the source's status as a ``STATUS``
 frame whenever it changed, to the pipe the app reads (see ``frames``). While the app is busy,
 the pipe and then this process's queue hold what arrives (2 million records at most, then
@@ -33,9 +33,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
-from ...model.intake_queue import IntakeQueue
-from ...model.record_batch import BatchPacker, RecordColumns
-from ..signal_stop import SignalStop
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record_batch import BatchPacker, RecordColumns
+from ...system.signal_stop import SignalStop
 from ..status import SourceStatus
 from .frames import BATCH, STATUS, status_payload, write_frame
 
@@ -54,9 +54,9 @@ Factory = Callable[[IntakeQueue, argparse.Namespace], tuple[Any, Callable[[], No
 
 
 def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ...ros.ros2.runtime import RosRuntime
     from ..ros2 import compiled_take
     from ..ros2.live_source import LiveLogSource
-    from ..ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
 
@@ -68,7 +68,7 @@ def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[
 
 
 def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
-    from ..c_build import stop_building
+    from ...system.c_build import stop_building
     from ..ros1.live_source import Ros1LiveSource
 
     # a compiler still at work on the frame loop would outlive this process

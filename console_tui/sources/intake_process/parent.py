@@ -21,11 +21,11 @@ from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
-from ...model.intake_queue import IntakeQueue
-from ...model.record_batch import BatchError, BatchUnpacker
-from ...model.text import one_line
+from ...model.inert_text import one_line
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record_batch import BatchError, BatchUnpacker
+from ...system.thread_names import os_named
 from ..status import SourceStatus
-from ..thread_names import os_named
 from .frames import BATCH, STATUS, FrameError, read_frames, status_from
 
 STOP_TIMEOUT_S = 0.8

@@ -20,8 +20,8 @@ import threading
 from collections.abc import Callable
 from pathlib import Path
 
-from .. import c_build
-from ..c_build import PRUNE_AFTER_S, stop_building
+from ...system import c_build
+from ...system.c_build import PRUNE_AFTER_S, stop_building
 
 __all__ = ["PRUNE_AFTER_S", "load", "loaded_now", "prune", "start_loading", "stop_building"]
 

@@ -26,14 +26,14 @@ import threading
 import time
 from typing import Any
 
-from ...model.intake_queue import IntakeQueue
-from ...model.text import plural
+from ...model.inert_text import plural
+from ...model.store.intake_queue import IntakeQueue
+from ...ros.ros2.runtime import RosRuntime
+from ...system.thread_names import os_named
 from ..coalesce import Coalescer
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
-from ..thread_names import os_named
 from .loss_counts import LossCounts
-from .runtime import RosRuntime
 from .topic_choice import START_GRAPH_PERIOD_S, TopicChoice
 from .topic_reader import PATH_RAW, PATH_TYPED, TopicReader
 

@@ -24,12 +24,12 @@ import time
 from typing import Any
 
 from ...model.formats.ros2_log_msg import CdrError, LogDecoder
-from ...model.logger_levels import node_logger_name
-from ...model.record import LogRecord
-from ...model.record_batch import RecordColumns
-from ..log_message import log_to_record
+from ...model.loggers.logger_levels import node_logger_name
+from ...model.store.record import LogRecord
+from ...model.store.record_batch import RecordColumns
 from ..status import PATH_NOTE_BUILDING
 from . import compiled_take
+from .log_message import log_to_record
 from .loss_counts import LossCounts, SequenceGaps
 
 QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profile.xml (else 5,000)

@@ -12,10 +12,10 @@ import time
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
-from ...model.intake_queue import IntakeQueue
-from ...model.store import LogStore
-from ...model.text import one_line, plural
-from ...model.view import LogView
+from ...model.inert_text import one_line, plural
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
 from ..widgets.load_bar import LoadBar
 from ..widgets.log_table import LogTable
 from .host import Host
@@ -24,7 +24,7 @@ from .host import Host
 # not with the first frame.
 if TYPE_CHECKING:
     from ...sources.files import FileLoad
-    from ..screens.files import SaveRequest
+    from ..screens.file_dialogs import SaveRequest
 
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
@@ -116,7 +116,7 @@ class FilesController:
             if paths:
                 self.open_files(paths)
 
-        from ..screens.files import OpenScreen
+        from ..screens.file_dialogs import OpenScreen
 
         self._host.push_screen(OpenScreen(), opened)
 
@@ -132,7 +132,7 @@ class FilesController:
             if request is not None:
                 self.save(request)
 
-        from ..screens.files import SaveScreen
+        from ..screens.file_dialogs import SaveScreen
 
         self._host.push_screen(SaveScreen(default, filtered=self._view.filtered), chosen)
 

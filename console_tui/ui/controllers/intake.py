@@ -14,14 +14,14 @@ from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any, Protocol
 
-from ...model.intake_queue import IntakeQueue
-from ...model.late_records import WINDOW, HistoryWindow, add_in_time_order
-from ...model.marks import Marks
-from ...model.record import LogRecord
-from ...model.record_batch import RecordColumns
-from ...model.store import LogStore
-from ...model.view import LogView
-from ...sources.fleet import Robot
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.late_records import WINDOW, HistoryWindow, add_in_time_order
+from ...model.store.log_store import LogStore
+from ...model.store.record import LogRecord
+from ...model.store.record_batch import RecordColumns
+from ...model.view.log_view import LogView
+from ...model.view.marks import Marks
+from ...ros.fleet import Robot
 from ...sources.status import SourceStatus
 from ..gc_policy import CollectionPolicy
 from ..widgets.log_table import LogTable

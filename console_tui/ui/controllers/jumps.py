@@ -12,14 +12,14 @@ from collections.abc import Callable
 
 from textual.app import SuspendNotSupported
 
+from ...model.inert_text import one_line
 from ...model.levels import Severity
-from ...model.marks import Marks
-from ...model.seek import Hits, Seeker, level_hits, view_shows
-from ...model.store import LogStore
-from ...model.text import one_line
-from ...model.view import LogView
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
+from ...model.view.marks import Marks
+from ...model.view.seek import Hits, Seeker, level_hits, view_shows
+from ..code_file import editor_command, find_source, run_editor, run_folders
 from ..slicing import pause_between_slices
-from ..source_file import editor_command, find_source, run_editor, run_folders
 from ..widgets.log_table import LogTable
 from .host import TerminalHost
 

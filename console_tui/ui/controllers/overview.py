@@ -11,12 +11,12 @@ from __future__ import annotations
 import asyncio
 from collections.abc import Callable, Sequence
 
-from ...model.node_stats import NodeStats
-from ...model.shown_follower import sync_together
-from ...model.store import LogStore
-from ...model.storms import StormRows
-from ...model.timeline import Timeline
-from ...model.view import LogView
+from ...model.overview.node_stats import NodeStats
+from ...model.overview.shown_follower import sync_together
+from ...model.overview.storms import StormRows
+from ...model.overview.timeline import Timeline
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
 from ...sources.status import SourceStatus
 from ..focus import focus_now
 from ..slicing import pause_between_slices

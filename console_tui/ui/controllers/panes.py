@@ -3,8 +3,8 @@ right side), and the logger pane's temporary levels. (The rules pane is the rule
 
 from __future__ import annotations
 
-from ...model.logger_view import shown_logger
-from ...model.store import LogStore
+from ...model.loggers.logger_pane_state import shown_logger
+from ...model.store.log_store import LogStore
 from ..screens.temporary_level import TemporaryLevelScreen
 from ..widgets.log_table import LogTable
 from ..widgets.logger_pane import LoggerPane

@@ -8,14 +8,14 @@ import asyncio
 import os
 from collections.abc import Callable
 
+from ...model.inert_text import plural
 from ...model.rules.history import QueryHistory
 from ...model.rules.query import parse_query
 from ...model.rules.rule import RuleError
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
-from ...model.store import LogStore
-from ...model.text import plural
-from ...model.view import LogView
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
 from ..screens.quick_rule import QuickRuleScreen
 from ..screens.rule_editor import RuleEditor
 from ..slicing import pause_between_slices
@@ -237,7 +237,7 @@ class RulesController:
                 return
             self._host.notify(f"Saved {plural(len(self.rules.entries), 'rule')} to {path}", timeout=5)
 
-        from ..screens.files import PathScreen  # loaded when first opened
+        from ..screens.file_dialogs import PathScreen  # loaded when first opened
 
         default = os.path.join(os.getcwd(), "console-tui-rules.toml")
         self._host.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
@@ -259,7 +259,7 @@ class RulesController:
         if path is not None:
             chosen(path)
         else:
-            from ..screens.files import PathScreen  # loaded when first opened
+            from ..screens.file_dialogs import PathScreen  # loaded when first opened
 
             self._host.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
 

@@ -12,14 +12,14 @@ from dataclasses import dataclass
 
 from textual.worker import Worker
 
-from ...model.marks import Marks
+from ...model.inert_text import plural
+from ...model.overview.search_rows import MatchRows
+from ...model.overview.storms import StormRows
 from ...model.rules.time_limit import MatchTimeout, time_limit
-from ...model.search import PENDING, Search, describe_search, display_pattern, parse_search
-from ...model.search_rows import MatchRows
-from ...model.store import LogStore
-from ...model.storms import StormRows
-from ...model.text import plural
-from ...model.view import LogView
+from ...model.store.log_store import LogStore
+from ...model.view.log_view import LogView
+from ...model.view.marks import Marks
+from ...model.view.search_walk import PENDING, Search, describe_search, display_pattern, parse_search
 from ..focus import focus_now
 from ..slicing import pause_between_slices
 from ..widgets.log_table import LogTable, Spans

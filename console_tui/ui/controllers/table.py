@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from ...model.marks import Marks
-from ...model.node_stats import NodeStats
-from ...model.record import LogRecord
-from ...model.store import LogStore
-from ...model.view import LogView
+from ...model.overview.node_stats import NodeStats
+from ...model.store.log_store import LogStore
+from ...model.store.record import LogRecord
+from ...model.view.log_view import LogView
+from ...model.view.marks import Marks
 from ..widgets.log_table import LogTable
 from ..widgets.table_columns import COLUMNS
 from .host import Host

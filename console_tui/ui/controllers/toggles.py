@@ -1,6 +1,6 @@
 """One-key toggles: severity levels, nodes (solo / mute), and what the Time column shows.
 
-Level and node toggles are rules (``model/toggles.py``): applied like any rule, shown in the
+Level and node toggles are rules (``model/rules/key_rules.py``): applied like any rule, shown in the
 rules pane, in the status line.
 """
 
@@ -9,10 +9,10 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 
-from ...model import toggles
-from ...model.logger_levels import robot_qualified
+from ...model.loggers.logger_levels import robot_qualified
+from ...model.rules import key_rules as toggles
 from ...model.rules.ruleset import RuleSet
-from ...model.store import LogStore
+from ...model.store.log_store import LogStore
 from ...model.time_column import TimeFormat, format_info, next_format, sim_time_note
 from ..widgets.log_table import LogTable
 from ..widgets.node_pane import NodePane

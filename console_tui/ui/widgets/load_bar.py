@@ -8,7 +8,7 @@ from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
-from ...model.text import plural
+from ...model.inert_text import plural
 from ..keys import hint_line
 from ..plain import plain
 

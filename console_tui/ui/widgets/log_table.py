@@ -26,8 +26,8 @@ from textual.scroll_view import ScrollView
 from textual.scrollbar import ScrollBar
 from textual.strip import Strip
 
-from ...model.store import LogStore
-from ...model.storms import StormBadge
+from ...model.overview.storms import StormBadge
+from ...model.store.log_store import LogStore
 from ...model.time_column import TimeFormat
 from ..severity_styles import severity_classes, severity_css
 from .log_table_cells import Decoration, Spans

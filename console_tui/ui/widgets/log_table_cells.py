@@ -18,11 +18,11 @@ from rich.style import Style
 from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
+from ...model.inert_text import one_line, shorten_name
 from ...model.levels import severity_level, severity_name
-from ...model.record import LogRecord
-from ...model.store import LogStore
-from ...model.storms import StormBadge
-from ...model.text import one_line, shorten_name
+from ...model.overview.storms import StormBadge
+from ...model.store.log_store import LogStore
+from ...model.store.record import LogRecord
 from ...model.time_column import TimeFormat, column_title, time_cell
 from ...model.timefmt import clock_text, duration_text
 from .table_columns import PlacedColumn

@@ -15,7 +15,7 @@ from textual.message import Message
 from textual.scroll_view import ScrollView
 
 if TYPE_CHECKING:
-    from ...model.store import LogStore
+    from ...model.store.log_store import LogStore
     from .table_rows import TableRows
 
 

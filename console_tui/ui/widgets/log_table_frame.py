@@ -17,8 +17,8 @@ from textual.cache import LRUCache
 from textual.geometry import Region, Spacing
 from textual.strip import Strip
 
-from ...model.storms import StormBadge
-from ...model.text import one_line
+from ...model.inert_text import one_line
+from ...model.overview.storms import StormBadge
 from ...model.time_column import TimeFormat
 from .log_table_cells import Decoration, TableCells, fit
 from .log_table_layout import TableLayout

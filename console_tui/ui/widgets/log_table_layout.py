@@ -12,7 +12,7 @@ from collections.abc import Callable
 from rich.cells import cell_len
 from textual.scroll_view import ScrollView
 
-from ...model.store import LogStore
+from ...model.store.log_store import LogStore
 from ...model.time_column import TimeFormat, format_info
 from .log_table_cells import GUTTER
 from .table_columns import PlacedColumn, layout_columns

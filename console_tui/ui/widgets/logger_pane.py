@@ -1,6 +1,6 @@
 """The logger levels pane, beside the table: the graph's nodes, a node's loggers and their levels.
 
-The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into requests
+The pane draws a ``LoggerPaneState`` (the model of what it shows) and turns keys into requests
 (``logger_requests.py``: the calls of the ``LoggerControl`` and their books). With a
 control, the pane keeps the view fed (nodes as the graph changes, levels as they are read,
 temporary levels as they run); tests may feed it through ``show_*`` and ``select_node`` for a
@@ -23,9 +23,9 @@ from textual.timer import Timer
 from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 
+from ...control.events import LoggerEvent, NodesChanged
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
-from ...sources.loggers.events import LoggerEvent, NodesChanged
+from ...model.loggers.logger_levels import GraphNode, LoggerRow, TemporaryLevel
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
@@ -34,7 +34,7 @@ from .logger_requests import CallEnded, LoggerRequests
 from .side_pane import RightPane
 
 if TYPE_CHECKING:
-    from ...sources.loggers.control import LoggerControl
+    from ...control.control_thread import LoggerControl
 
 TICK_S = 1.0
 

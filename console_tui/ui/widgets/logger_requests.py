@@ -1,4 +1,4 @@
-"""What the logger levels pane asks of a ``LoggerControl``, kept in the books of its ``LoggerView``.
+"""What the logger levels pane asks of a ``LoggerControl``, kept in the books of its ``LoggerPaneState``.
 
 The pane's presenter: the pane (``logger_pane.py``) draws the view and turns keys into these
 requests.
@@ -17,10 +17,10 @@ from concurrent.futures import Future
 from dataclasses import dataclass
 from typing import Any
 
-from ...model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
-from ...model.logger_view import NO_ROS_TEXT, LoggerView, level_word, shown_logger
-from ...sources.loggers.control import LoggerControl
-from ...sources.loggers.events import LoggerEvent, TemporaryEnded
+from ...control.control_thread import LoggerControl
+from ...control.events import LoggerEvent, TemporaryEnded
+from ...model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, GraphNode, TemporaryLevel
+from ...model.loggers.logger_pane_state import NO_ROS_TEXT, LoggerPaneState, level_word, shown_logger
 
 
 @dataclass(frozen=True)
@@ -56,7 +56,7 @@ class LoggerRequests:
         #: Logger names seen in records (the store's node column): where child loggers come from.
         self.seen_loggers = seen_loggers
         # Without a control nodes are ROS 2's.
-        self.view = LoggerView(
+        self.view = LoggerPaneState(
             has_ros=control is not None,
             no_services_hint=control.no_services_hint if control is not None else ENABLE_LOGGER_SERVICE_HINT,
             lists_loggers=control is not None and control.lists_loggers,

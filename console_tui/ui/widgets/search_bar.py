@@ -11,7 +11,7 @@ from textual.message import Message
 from textual.widgets import Input, Static
 
 from ...model.rules.rule import RuleError
-from ...model.search import parse_search
+from ...model.view.search_walk import parse_search
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .input_line import InputLine, LineInput

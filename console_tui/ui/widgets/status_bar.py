@@ -12,8 +12,8 @@ from rich.text import Text
 from textual.reactive import reactive
 from textual.widget import Widget
 
+from ...model.inert_text import one_line, plural
 from ...model.levels import SEVERITY_TABLE
-from ...model.text import one_line, plural
 from ...sources.status import SourceStatus
 from ..severity_styles import severity_classes, severity_css
 from .status_fit import COUNTS, DEMO, DETAIL, RATE, SOURCE, STATE, WHERE, Part, fit

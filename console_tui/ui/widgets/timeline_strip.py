@@ -26,7 +26,7 @@ from textual.binding import Binding
 from textual.message import Message
 from textual.strip import Strip
 
-from ...model.timeline import Timeline, TimelineColumns
+from ...model.overview.timeline import Timeline, TimelineColumns
 from .timeline_drawing import SEVERITIES, TimelineDrawing
 
 
