@@ -108,7 +108,12 @@ def say(**fields: Any) -> None:
 # -- the publisher process ---------------------------------------------------------------------
 
 
-def message_pool(index: int, size: int = 512) -> list[bytes]:
+#: The levels of a pool's messages: ``mixed`` (every level, INFO most), or ``debug`` (a robot
+#: logging at DEBUG: every message DEBUG but the pool's first, an ERROR; ``level_filter.py``).
+POOL_LEVELS = ("mixed", "debug")
+
+
+def message_pool(index: int, size: int = 512, levels: str = "mixed") -> list[bytes]:
     """Realistic serialized Log messages: a few nodes, files and functions, 60-120 char texts."""
     from rcl_interfaces.msg import Log
     from rclpy.serialization import serialize_message
@@ -137,6 +142,8 @@ def message_pool(index: int, size: int = 512) -> list[bytes]:
         now = time.time_ns()
         message.stamp.sec, message.stamp.nanosec = divmod(now, 1_000_000_000)
         message.level = rng.choice([10, 20, 20, 20, 30, 40, 50])
+        if levels == "debug":
+            message.level = 40 if number == 0 else 10
         message.name = f"bench.publisher{index}.{rng.choice(['planner', 'controller', 'driver', 'camera'])}"
         text = f"[{number}] " + " ".join(rng.choice(words) for _ in range(30))
         message.msg = text[: rng.randint(60, 120)]
@@ -171,8 +178,9 @@ def subscriber_qos():
     )
 
 
-def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
-    """A publisher process; ``loop`` "c" publishes from ``c_flood.c`` (see there), else from Python."""
+def run_publisher(index: int, topic: str = TOPIC, loop: str = "python", levels: str = "mixed") -> None:
+    """A publisher process; ``loop`` "c" publishes from ``c_flood.c`` (see there), else from
+    Python; ``levels``: the pool's (``message_pool``)."""
     import rclpy
     from rcl_interfaces.msg import Log
     from rclpy.node import Node
@@ -181,7 +189,7 @@ def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node(f"bench_publisher_{index}")
     publisher = node.create_publisher(Log, topic, rosout_qos())
-    pool = message_pool(index)
+    pool = message_pool(index, levels=levels)
     mask = len(pool) - 1
     publish = publisher.publish
     flood = load_c_flood() if loop == "c" else None
@@ -991,6 +999,7 @@ def main() -> None:
         help="the publishers' loop: rclpy's publish from Python (default), or rcl's from C (c_flood.c), "
         "as cheap a publisher as a node in C++",
     )
+    parser.add_argument("--pool", choices=POOL_LEVELS, default="mixed", help=argparse.SUPPRESS)  # level_filter.py
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
@@ -998,7 +1007,7 @@ def main() -> None:
     args = parser.parse_args()
 
     if args.role == "publisher":
-        return run_publisher(args.index, args.topic, args.publisher)
+        return run_publisher(args.index, args.topic, args.publisher, args.pool)
     if args.role == "subscriber":
         if args.kind in APP_KINDS:
             return run_app_subscriber(args.kind, args.domains, args.domain)

@@ -25,6 +25,7 @@ from ..model.formats import FormatError
 from ..model.formats.print_format import ROBOT_PREFIX, PrintFormat, TemplateError, json_text
 from ..model.formats.rcutils_log import DEFAULT_TEMPLATE
 from ..model.inert_text import one_line
+from ..model.levels import parse_severity
 from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
 from ..model.store.intake_queue import IntakeQueue
@@ -229,11 +230,13 @@ class _Run:
 
     def main(self, args: argparse.Namespace) -> int:
         lives: list[LiveIntake] = []
+        # --level is asked of the middleware too (a DDS content filter, as ros2 log watch asks).
+        min_level = int(parse_severity(args.level)) if args.level is not None else 0
         if args.robots:  # a fleet: an intake process per robot
-            lives = open_fleet(self.queue, args.robots, topic=args.topic)
+            lives = open_fleet(self.queue, args.robots, topic=args.topic, min_level=min_level)
         elif args.live or not args.files:
             try:
-                lives = [open_live(self.queue, topic=args.topic, ros=args.ros)]
+                lives = [open_live(self.queue, topic=args.topic, ros=args.ros, min_level=min_level)]
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
@@ -278,7 +281,7 @@ class _Run:
 
     def keep_reading(self, followed: list[FollowedFile], lives: Sequence[LiveIntake]) -> None:
         told = [_Told() for _ in lives]
-        slow_told = False
+        slow_told = filter_told = False
         try:
             while not self.stop.wait(POLL_S):
                 self.printer.check_reader()
@@ -295,9 +298,13 @@ class _Run:
                     if status.problem and status.problem != said.problem:
                         _complain(robot + status.problem)
                     said.problem = status.problem
-                    if status.path_note and not slow_told:
-                        _complain(status.slow_path_text())
+                    slow = status.slow_path_text() if status.path_note and not slow_told else ""
+                    if slow:  # (nothing while the loop in C is being built)
+                        _complain(slow)
                         slow_told = True
+                    if status.level_filter_note and not filter_told:  # the middleware does not filter
+                        _complain(f"--level: {status.level_filter_text()}")
+                        filter_told = True
                     now = time.monotonic()
                     if status.lost > said.lost and now - said.lost_at >= LOSS_REPORT_S:
                         _complain(robot + status.loss_text())

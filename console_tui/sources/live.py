@@ -61,21 +61,26 @@ class LiveIntake:
                 pass
 
 
-def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None) -> LiveIntake:
+def open_live(
+    queue: IntakeQueue, *, topic: str | None = None, ros: int | None = None, min_level: int = 0
+) -> LiveIntake:
     """The live log stream into ``queue`` (not started yet: call ``source.start()``).
 
     ``ros`` is 1 or 2 (``--ros1``/``--ros2``), or None to decide from the environment.
     ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``.
-    Raises ``RosUnavailable`` (with what to do) when there is no ROS to read from.
+    ``min_level`` (a ROS 2 severity): only messages of it and worse, asked of the middleware
+    where it can (``tail --level``). Raises ``RosUnavailable`` (with what to do) when there is
+    no ROS to read from.
     """
     from .intake_process.parent import ProcessSource
 
     choice = choose_ros(ros)
+    args = _level_args(min_level)
     if choice.version == ROS1:
         from ..ros.ros1.environment import Ros1Environment
 
         origin = f"ROS 1 {Ros1Environment.from_environ().master_uri}"
-        return LiveIntake(ProcessSource(queue, "ros1", topic=topic, origin=origin))
+        return LiveIntake(ProcessSource(queue, "ros1", topic=topic, args=args, origin=origin))
     from ..ros.ros2.runtime import start_ros2
 
     try:
@@ -85,14 +90,22 @@ def open_live(queue: IntakeQueue, *, topic: str | None = None, ros: int | None =
     origin = f"ROS 2 domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
     # A ROS 1 user would wonder why ROS 2: the status line says so.
     remark = f"no ROS 1 master answered at {choice.master_silent} (--ros1 waits for it)" if choice.master_silent else ""
-    source = ProcessSource(queue, "ros2", topic=topic, origin=origin, remark=remark)
+    source = ProcessSource(queue, "ros2", topic=topic, args=args, origin=origin, remark=remark)
     return LiveIntake(source, runtime, [runtime.shutdown])
 
 
-def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None = None) -> list[LiveIntake]:
+def _level_args(min_level: int) -> list[str]:
+    """The intake process's arguments for a lowest severity (none for 0)."""
+    return ["--min-level", str(int(min_level))] if min_level else []
+
+
+def open_fleet(
+    queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None = None, min_level: int = 0
+) -> list[LiveIntake]:
     """An intake process per robot into ``queue`` (none started yet), each robot's records and
-    status named for it; a robot's own topic before ``topic``. One robot's trouble (a silent
-    domain, a master gone, its process ended) stays in its own source's status."""
+    status named for it; a robot's own topic before ``topic``; ``min_level`` as ``open_live``
+    takes it. One robot's trouble (a silent domain, a master gone, its process ended) stays in
+    its own source's status."""
     from .intake_process.parent import ProcessSource
 
     return [
@@ -101,6 +114,7 @@ def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None
                 queue,
                 "ros2" if robot.ros == ROS2 else "ros1",
                 topic=robot.topic or topic,
+                args=_level_args(min_level),
                 env=robot.environment(),
                 origin=robot.origin,
                 robot=robot.name,

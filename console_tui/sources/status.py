@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..model.levels import severity_name
+
 #: ``path_note`` while the take loop in C is being built (rclpy takes meanwhile).
 PATH_NOTE_BUILDING = "being built (taken through rclpy meanwhile)"
 
@@ -43,6 +45,11 @@ class SourceStatus:
     running: bool = False
     #: The robot this source reads, when the console reads a fleet (``ros.fleet``), else "".
     robot: str = ""
+    #: The lowest severity taken (``tail --level``; 0: every message).
+    min_level: int = 0
+    #: Why the middleware does not drop what is below ``min_level`` (the intake then drops it
+    #: itself), or "" (a DDS content filter drops it before it is sent).
+    level_filter_note: str = ""
 
     @property
     def state(self) -> str:
@@ -69,6 +76,15 @@ class SourceStatus:
             "message, so high rates are kept up with less well. The fast path needs a C compiler "
             "(cc) and Python's headers (python3-dev)."
         )
+
+    def level_filter_text(self) -> str:
+        """Where messages below ``min_level`` are dropped, in words; "" without a lowest severity."""
+        if not self.min_level:
+            return ""
+        words = f"level >= {severity_name(self.min_level)}"
+        if not self.level_filter_note:
+            return f"{words}: asked of DDS (a content filter: what is below is never sent here)"
+        return f"{words}: filtered by the intake, not by the middleware ({self.level_filter_note})"
 
     def loop_name(self) -> str:
         """The loop in C of this source's intake: ``the take loop in C`` (ROS 2) or ``the frame

@@ -38,12 +38,12 @@ def take_by(path: str, monkeypatch) -> bool:
 
 
 @contextlib.contextmanager
-def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue | None = None):
+def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue | None = None, min_level: int = 0):
     from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.live_source import LiveLogSource
 
     runtime = RosRuntime()
-    source = LiveLogSource(runtime, IntakeQueue() if queue is None else queue, topic, raw=raw)
+    source = LiveLogSource(runtime, IntakeQueue() if queue is None else queue, topic, raw=raw, min_level=min_level)
     source.start()
     try:
         yield source
@@ -351,3 +351,46 @@ def test_middleware_losses_count_on_the_main_subscription_and_on_the_second_only
         assert (counts.incompatible, counts.last_policy) == (1, "durability")
         reader._on_incompatible_main(None)
         assert reader.graph_changed
+
+
+@pytest.mark.parametrize("path", ["c+cdr", "raw+cdr"])
+def test_a_lowest_severity_is_asked_of_dds_and_what_it_skips_is_no_loss(nodes, monkeypatch, path):
+    """``tail --level error``: the subscriptions carry the content filter ``level >= 40``
+    (Fast DDS filters on the writer's side), so DEBUG to WARN never arrive here, and the gaps
+    they leave in the talker's sequence numbers are not counted as lost."""
+    raw = take_by(path, monkeypatch)
+    talker = nodes.start("talker.py", "--name", "filtered", "--debug")
+    talker.expect("ready")
+    with live_source(raw=raw, min_level=40) as source:
+        logged = []
+        for number in range(3):  # each round DEBUG, INFO, WARN, ERROR, FATAL
+            talker.send({"cmd": "log_all", "tag": f"round{number}"})
+            logged += talker.expect_next("logged")["messages"]
+        records = collect(source, lambda got: sum(r.node == "filtered" for r in got) >= 6)
+        time.sleep(0.3)  # what else would come
+        records += source.queue.drain()
+        status = source.status
+    got = [(r.level, r.msg) for r in records if r.node == "filtered"]
+    assert got == [(m["level"], m["msg"]) for m in logged if m["level"] >= 40]
+    assert status.min_level == 40 and status.level_filter_note == "", status.level_filter_text()
+    assert status.lost == 0 and status.path == path
+
+
+def test_without_a_content_filter_the_source_says_why(nodes, monkeypatch):
+    """Switched off (as on a middleware without content filters): every message arrives,
+    and the status says the filter is not the middleware's (the intake process drops them)."""
+    from console_tui.sources.ros2.level_filter import SWITCH
+
+    monkeypatch.setenv(SWITCH, "0")
+    talker = nodes.start("talker.py", "--name", "unfiltered", "--debug")
+    talker.expect("ready")
+    with live_source(min_level=40) as source:
+        talker.send({"cmd": "log_all", "tag": "all"})
+        talker.expect_next("logged")
+        records = collect(source, lambda got: sum(r.node == "unfiltered" for r in got) >= 5)
+        status = source.status
+    assert sorted(r.level for r in records if r.node == "unfiltered") == [10, 20, 30, 40, 50]
+    assert status.level_filter_text() == (
+        "level >= ERROR: filtered by the intake, not by the middleware "
+        f"(the content filter is switched off: {SWITCH}=0)"
+    )

@@ -3,12 +3,15 @@
     python -m console_tui.sources.intake_process.child ros2 [--topic T] [--typed]
     python -m console_tui.sources.intake_process.child ros1 [--topic T]
     python -m console_tui.sources.intake_process.child synthetic [--rate N] [--count N]
+    ... [--min-level N]   (only records of that ROS 2 severity and worse: ``tail --level``)
 
 The source (``FACTORIES``) takes and decodes messages with its own thread into an
 ``IntakeQueue`` of this process, exactly as it would in the app's; every ``FLUSH_S`` the
 main thread packs what is waiting into one ``BATCH`` frame (``model.store.record_batch``; at most
 ``FRAME_RECORDS`` records a frame) and writes it, and the source's status as a ``STATUS``
-frame whenever it changed, to the pipe the app reads (see ``frames``). While the app is busy,
+frame whenever it changed, to the pipe the app reads (see ``frames``). With ``--min-level``
+the records below it are dropped before they are sent (ROS 2 asks the middleware to drop
+them first: ``ros2/level_filter.py``). While the app is busy,
 the pipe and then this process's queue hold what arrives (2 million records at most, then
 counted as lost). Why a process: docs/decisions/0005-intake-in-its-own-process.md.
 
@@ -64,7 +67,7 @@ def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[
         runtime.shutdown()
         compiled_take.stop_building()  # a compiler still at work would outlive this process
 
-    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed), cleanup
+    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed, min_level=args.min_level), cleanup
 
 
 def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
@@ -94,6 +97,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--typed", action="store_true", help="ROS 2: take typed messages (the slow path)")
     parser.add_argument("--rate", type=float, default=1000.0, help="synthetic: records a second")
     parser.add_argument("--count", type=int, help="synthetic: records in all (default: until stopped)")
+    parser.add_argument("--min-level", type=int, default=0, help="only records of this ROS 2 severity and worse")
     parser.add_argument("--parent", type=int, help="end when this process (the app) ends")
     return parser
 
@@ -111,12 +115,19 @@ def die_with_parent(parent: int) -> None:
         raise SystemExit(0)
 
 
-class Sender:
-    """Writes what the source queued, and its status when it changed, to ``fd``."""
+#: Why records below ``--min-level`` are dropped here, for a source that asks no middleware.
+NO_CONTENT_FILTER = {"ros1": "ROS 1 has no content filter"}
 
-    def __init__(self, fd: int, queue: IntakeQueue) -> None:
+
+class Sender:
+    """Writes what the source queued (what is below ``min_level`` left out), and its status
+    when it changed, to ``fd``."""
+
+    def __init__(self, fd: int, queue: IntakeQueue, min_level: int = 0, kind: str = "") -> None:
         self.fd = fd
         self.queue = queue
+        self.min_level = min_level
+        self._no_filter = NO_CONTENT_FILTER.get(kind, "this source has no content filter")
         self.packer = BatchPacker()
         self._sent: SourceStatus | None = None
 
@@ -127,6 +138,8 @@ class Sender:
         while True:
             batches = self.queue.drain_batches(FRAME_RECORDS)
             status = source.status
+            if self.min_level and not status.min_level:  # a source that does not filter itself
+                status = replace(status, min_level=self.min_level, level_filter_note=self._no_filter)
             if status != self._sent:
                 write_frame(self.fd, STATUS, status_payload(status))
                 self._sent = status
@@ -134,12 +147,19 @@ class Sender:
                 break
             # One frame for all of them: the source puts a batch a turn of its loop (about a
             # hundred records at 50,000/s), and the app pays for each batch it takes in.
-            write_frame(self.fd, BATCH, self.packer.pack(RecordColumns.joined(batches)))
+            batch = RecordColumns.joined(batches)
+            if self.min_level:
+                minimum = self.min_level
+                batch = batch.kept([level >= minimum for level in batch.levels])
+                if not batch:
+                    continue
+            write_frame(self.fd, BATCH, self.packer.pack(batch))
 
 
-def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event) -> None:
-    """Run ``source`` until ``stop`` is set, sending its records and status to ``fd``."""
-    sender = Sender(fd, queue)
+def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event, min_level: int = 0, kind: str = "") -> None:
+    """Run ``source`` (of ``kind``) until ``stop`` is set, sending its records (of
+    ``min_level`` and worse) and status to ``fd``."""
+    sender = Sender(fd, queue, min_level, kind)
     source.start()
     gc.freeze()
     _, middle, old = gc.get_threshold()
@@ -182,7 +202,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             pass
         return 2
     try:
-        serve(source, queue, fd, stop)
+        serve(source, queue, fd, stop, args.min_level, args.kind)
     except BrokenPipeError:  # the app is gone
         pass
     except Exception as error:

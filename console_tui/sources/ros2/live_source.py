@@ -47,15 +47,20 @@ class LiveLogSource:
 
     ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``.
     ``raw=False`` takes typed messages (the slower path rclpy always has).
+    ``min_level`` (``tail --level``) asks the middleware to drop what is below it
+    (``level_filter.py``; the intake process drops what it still sends).
     ``status`` is replaced by the thread as things change; read it from any thread.
     """
 
-    def __init__(self, runtime: RosRuntime, queue: IntakeQueue, topic: str | None = None, *, raw: bool = True) -> None:
+    def __init__(
+        self, runtime: RosRuntime, queue: IntakeQueue, topic: str | None = None, *, raw: bool = True, min_level: int = 0
+    ) -> None:
         self.runtime = runtime
         self.queue = queue
         self.requested_topic = topic
         self.raw = raw
-        self.status = SourceStatus(topic=topic or "", path=PATH_RAW if raw else PATH_TYPED)
+        self.min_level = min_level
+        self.status = SourceStatus(topic=topic or "", path=PATH_RAW if raw else PATH_TYPED, min_level=min_level)
         self.counts = LossCounts()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -96,6 +101,7 @@ class LiveLogSource:
             "lost_undecodable": counts.lost_undecodable,
             "decoded_by_rclpy": counts.decoded_by_rclpy,
             "incompatible": counts.incompatible,
+            "level_filter_note": reader.filter_note,
         }
         if counts.incompatible:
             fields["problem"] = (
@@ -121,7 +127,7 @@ class LiveLogSource:
         self._guard = node.create_guard_condition(lambda: None)
         choice = TopicChoice(time.monotonic()) if self.requested_topic is None else None
         topic = self.requested_topic or ROSOUT
-        reader = TopicReader(node, Log, topic, self.counts, raw=self.raw)
+        reader = TopicReader(node, Log, topic, self.counts, raw=self.raw, min_level=self.min_level)
         self._set_status(topic=topic, running=True, **self._loss_fields(reader))
         next_graph_check = 0.0
         wait_set = None
@@ -137,7 +143,7 @@ class LiveLogSource:
                 and _has_publishers(node, ROSOUT_AGG)
             ):
                 reader.close()
-                reader = TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
+                reader = TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw, min_level=self.min_level)
                 choice.switched(now)
                 next_graph_check = 0.0
             if now >= next_graph_check or reader.graph_changed:
