@@ -26,6 +26,7 @@ from .commands.arguments import (
     robot_files,
     robots_from_names,
 )
+from .commands.journal_options import add_journal_arguments, apply_journal_arguments
 from .model.store.log_store import DEFAULT_MAX_MESSAGES
 
 #: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
@@ -95,7 +96,9 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
             help=(
                 "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
                 "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
-                "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it"
+                "directory, the systemd journal (*.journal, a journal directory); a folder (a ROS 1 run, a ROS 2 "
+                "launch, the whole log directory) opens every log in it; journal:, journal:UNIT, journal:PATH "
+                "follow the journal live"
             ),
         )
     add_log_format_argument(parser)
@@ -125,6 +128,7 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     add_ros_version_arguments(parser)
     add_fleet_arguments(parser)
     add_robot_argument(parser)
+    add_journal_arguments(parser)
     parser.add_argument(
         "--topic",
         metavar="NAME",
@@ -229,6 +233,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args_list, file_robots = robot_files(parser, args_list)
     args = parser.parse_args(args_list)
+    apply_journal_arguments(parser, args, follow=True)
     args.file_robots = robots_from_names(args.files, file_robots) if args.robots_from_names else file_robots
     check_rule_arguments(parser, args)
     if args.demo_domain is not None and not args.demo:

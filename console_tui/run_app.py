@@ -14,7 +14,7 @@ from .control.fleet_control import open_fleet_loggers
 from .model.store.intake_queue import IntakeQueue
 from .model.store.log_store import LogStore
 from .ros.ros_version import ROS1, choose_ros
-from .sources.live import RosUnavailable, open_fleet, open_live
+from .sources.live import RosUnavailable, open_fleet, open_journal, open_live
 from .system.native_output import NativeOutput
 
 
@@ -28,7 +28,8 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     logger_control = None
     files = list(getattr(args, "files", None) or [])
     robots = getattr(args, "robots", None) or []
-    live = args.demo or getattr(args, "live", False) or not files or bool(robots)
+    journals = getattr(args, "journals", None) or []
+    live = args.demo or getattr(args, "live", False) or (not files and not journals) or bool(robots)
     # Native code (rcl, Fast DDS) prints to the terminal below Textual: caught as records.
     native = NativeOutput(queue) if live and end_process and NativeOutput.possible() else None
     if native is not None:
@@ -38,6 +39,10 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
             logger_control = _start_fleet(args, queue, sources, cleanups)
         elif live:
             logger_control = _start_live(args, queue, sources, cleanups)
+        for query in journals:  # the journal followed, each query by an intake process
+            journal = open_journal(queue, query, log_format=getattr(args, "log_format", None) or "")
+            cleanups.append(journal.close)
+            sources.append(journal.source)
         from .ui.app import ConsoleApp
 
         app = ConsoleApp(

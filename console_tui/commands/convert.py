@@ -18,7 +18,9 @@ from ..model.formats.save import save_format_for
 from ..model.inert_text import one_line, plural
 from ..model.store.record import LogRecord
 from ..sources.files import LogFile, latest_run, load_records, open_logs
+from ..sources.files.journal_file import journal_file
 from .arguments import add_last_argument, add_log_format_argument
+from .journal_options import add_journal_arguments, apply_journal_arguments
 
 CLEAN, PROBLEMS, NOTHING_WRITTEN = 0, 1, 2
 #: Longest problem text printed (a file's own text may be quoted in it).
@@ -52,6 +54,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(default: jsonl for .jsonl/.ndjson/.json, else rqt)",
     )
     add_log_format_argument(parser)
+    add_journal_arguments(parser)
     return parser
 
 
@@ -64,16 +67,20 @@ def main(argv: Sequence[str]) -> int:
     """Convert as the arguments say; returns the exit status (see the module's text)."""
     parser = build_parser()
     args = parser.parse_args(list(argv))
-    inputs = list(args.inputs)
+    args.files = args.inputs
+    apply_journal_arguments(parser, args, follow=False)  # journal: read to its end, as a file
+    inputs = list(args.files)
+    named = inputs + [location for location in args.inputs if location.startswith("journal:")]
     if args.last:
         try:
             inputs += [str(path) for path in latest_run()]
         except FormatError as error:
             say(str(error))
             return NOTHING_WRITTEN
-    if not inputs:
+    if not inputs and not args.journals:
         parser.error("give the files to convert, or --last")
     opened = open_logs(inputs, log_format=args.log_format)
+    opened.files += [journal_file(query, log_format=args.log_format or "") for query in args.journals]
     files, failures = opened.files, opened.failures
     save_format = args.format or ("rqt" if args.output == "-" else save_format_for(args.output))
     try:
@@ -81,7 +88,7 @@ def main(argv: Sequence[str]) -> int:
         first = next(records, None)  # nothing is written before there is something to write
         if first is None:
             _report(failures, files)
-            say(f"nothing written: no record could be read from {_inputs(inputs)}")
+            say(f"nothing written: no record could be read from {_inputs(named)}")
             return NOTHING_WRITTEN
         everything = itertools.chain((first,), records)
         if args.output == "-":

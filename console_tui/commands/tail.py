@@ -32,7 +32,9 @@ from ..model.store.intake_queue import IntakeQueue
 from ..model.store.record import LogRecord
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
-from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_live
+from ..sources.journal.journal_location import journal_location
+from ..sources.journal.journalctl import JournalUnavailable, find_journalctl, local_journal_problem
+from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_journal, open_live
 from ..system.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
@@ -45,6 +47,7 @@ from .arguments import (
     command_parser,
 )
 from .closed_pipe import quiet_stdout, reader_gone
+from .journal_options import add_journal_arguments, apply_journal_arguments
 from .watch_options import add_watch_arguments, apply_watch_arguments
 
 EXIT_OK = 0
@@ -123,6 +126,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
     add_log_format_argument(parser)
     add_watch_arguments(parser)
+    add_journal_arguments(parser)
     return parser
 
 
@@ -186,8 +190,17 @@ def main(argv: Sequence[str]) -> int:
             args.files = [*args.files, *(str(path) for path in latest_run())]
         except FormatError as error:
             parser.error(f"--last: {one_line(str(error))}")
-    if args.follow and not args.files:
+    apply_journal_arguments(parser, args, follow=True)
+    if args.follow:  # a journal file or directory is followed by journalctl itself
+        journals = [(path, journal_location(path)) for path in args.files]
+        args.journals += [found.query(follow=True) for _, found in journals if found is not None]
+        args.files = [path for path, found in journals if found is None]
+    if args.follow and not args.files and not args.journals:
         parser.error("--follow needs FILEs to follow (the live stream is followed anyway)")
+    problem = _journal_problem(args.journals)
+    if problem:
+        print(f"console-tui tail: {problem}", file=sys.stderr)
+        return EXIT_NO_ROS  # not available here, as a missing ROS is
     rules = (args.rule_set or RuleSet()).with_query(args.query_entries)
     line: PrintFormat | None = None
     if not args.json:
@@ -234,12 +247,13 @@ class _Run:
         min_level = int(parse_severity(args.level)) if args.level is not None else 0
         if args.robots:  # a fleet: an intake process per robot
             lives = open_fleet(self.queue, args.robots, topic=args.topic, min_level=min_level)
-        elif args.live or not args.files:
+        elif args.live or not (args.files or args.journals):
             try:
                 lives = [open_live(self.queue, topic=args.topic, ros=args.ros, min_level=min_level)]
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
+        lives += [open_journal(self.queue, query, log_format=args.log_format or "") for query in args.journals]
         try:
             followed: list[FollowedFile] = []
             if args.files:
@@ -309,6 +323,9 @@ class _Run:
                     if status.lost > said.lost and now - said.lost_at >= LOSS_REPORT_S:
                         _complain(robot + status.loss_text())
                         said.lost, said.lost_at = status.lost, now
+                if lives and not followed and all(_ended(live) for live in lives):
+                    self.status = EXIT_FILES  # the journal could not be read (said above)
+                    break
         finally:
             for f in followed:
                 f.close()
@@ -328,6 +345,23 @@ class _Told:
     problem: str = ""
     lost: int = 0
     lost_at: float = 0.0
+
+
+def _journal_problem(queries: Sequence) -> str:
+    """Why the journal asked for cannot be read here (no journalctl, no journal), or ""."""
+    if not queries:
+        return ""
+    try:
+        find_journalctl()
+    except JournalUnavailable as error:
+        return str(error)
+    return next((local_journal_problem() for query in queries if query.local and local_journal_problem()), "")
+
+
+def _ended(live: LiveIntake) -> bool:
+    """A journal source whose journalctl ended with a problem (a ROS source never ends)."""
+    status = live.source.status
+    return getattr(live.source, "kind", "") == "journal" and bool(status.problem) and not status.running
 
 
 def _stamp(record: LogRecord) -> int:

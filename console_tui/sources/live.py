@@ -28,13 +28,14 @@ from ..model.store.intake_queue import IntakeQueue
 from ..ros.fleet import Robot
 from ..ros.ros2.rclpy_loader import RosUnavailable
 from ..ros.ros_version import ROS1, ROS2, choose_ros
+from .journal.journalctl import JournalQuery
 
 HOW_TO_USE_ROS1 = (
     "  - For ROS 1: set ROS_MASTER_URI to the master (and ROS_IP to this machine's address) and run\n"
     "      console-tui --ros1"
 )
 
-__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_live"]
+__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_journal", "open_live"]
 
 
 @dataclass
@@ -122,3 +123,21 @@ def open_fleet(
         )
         for robot in robots
     ]
+
+
+def open_journal(queue: IntakeQueue, query: JournalQuery, *, log_format: str = "") -> LiveIntake:
+    """The journal ``query`` asks for, followed into ``queue`` by an intake process of its own
+    (``journal/journal_source.py``; not started yet). ``log_format``: the
+    ``RCUTILS_CONSOLE_OUTPUT_FORMAT`` its ROS 2 lines were written with (default: the
+    environment's, else ROS 2's default)."""
+    from .intake_process.parent import ProcessSource
+
+    args = [f"--unit={unit}" for unit in query.units] + [f"--journal-file={name}" for name in query.files]
+    if query.directory:
+        args.append(f"--journal-directory={query.directory}")
+    if query.since:
+        args.append(f"--since={query.since}")
+    template = log_format or os.environ.get("RCUTILS_CONSOLE_OUTPUT_FORMAT", "")
+    if template:
+        args.append(f"--log-format={template}")
+    return LiveIntake(ProcessSource(queue, "journal", args=args, origin=query.describe()))

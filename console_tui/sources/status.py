@@ -45,6 +45,9 @@ class SourceStatus:
     running: bool = False
     #: The robot this source reads, when the console reads a fleet (``ros.fleet``), else "".
     robot: str = ""
+    #: What the table says while this source has given nothing, for a source that reads no ROS
+    #: topic (the journal, a launch's output): ``following this machine's journal: no entries yet…``.
+    hint: str = ""
     #: The lowest severity taken (``tail --level``; 0: every message).
     min_level: int = 0
     #: Why the middleware does not drop what is below ``min_level`` (the intake then drops it

@@ -34,8 +34,9 @@ if TYPE_CHECKING:
 ROSOUT_KINDS = frozenset({"rosout", "rosout2"})
 #: Formats of the logs of a ROS 2 launch (``model.formats.launch_log``).
 LAUNCH_KINDS = frozenset({"launch"})
-#: Formats of a node's own log files: ROS 1's console output and rospy log, ROS 2's rcutils log.
-NODE_KINDS = frozenset({"ros1-console", "rospy-log", "rcutils"})
+#: Formats of a node's own log files: ROS 1's console output and rospy log, ROS 2's rcutils log,
+#: the journal (rcl_logging_syslog's entries).
+NODE_KINDS = frozenset({"ros1-console", "rospy-log", "rcutils", "journal"})
 #: The most two copies' stamps may be apart.
 TOLERANCE_NS = 20_000_000
 

@@ -3,6 +3,8 @@
     python -m console_tui.sources.intake_process.child ros2 [--topic T] [--typed]
     python -m console_tui.sources.intake_process.child ros1 [--topic T]
     python -m console_tui.sources.intake_process.child synthetic [--rate N] [--count N]
+    python -m console_tui.sources.intake_process.child journal [--unit U]... [--since T]
+        [--journal-file F]... [--journal-directory D] [--log-format TEMPLATE]
     ... [--min-level N]   (only records of that ROS 2 severity and worse: ``tail --level``)
 
 The source (``FACTORIES``) takes and decodes messages with its own thread into an
@@ -84,10 +86,24 @@ def _synthetic(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Calla
     return SyntheticSource(queue, args.rate, count=args.count), lambda: None
 
 
+def _journal(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ..journal.journal_source import JournalSource
+    from ..journal.journalctl import JournalQuery
+
+    query = JournalQuery(
+        files=tuple(args.journal_file or ()),
+        directory=args.journal_directory or "",
+        units=tuple(args.unit or ()),
+        since=args.since or "",
+        follow=True,
+    )
+    return JournalSource(queue, query, template=args.log_format or ""), lambda: None
+
+
 #: The sources this process can run: a name, and how to make one (the source and what
 #: to call once it has stopped). A source has ``start()``, ``stop()`` and ``status``
 #: (a ``SourceStatus``) and puts record batches into the queue it is given.
-FACTORIES: dict[str, Factory] = {"ros2": _ros2, "ros1": _ros1, "synthetic": _synthetic}
+FACTORIES: dict[str, Factory] = {"ros2": _ros2, "ros1": _ros1, "synthetic": _synthetic, "journal": _journal}
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -97,6 +113,11 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--typed", action="store_true", help="ROS 2: take typed messages (the slow path)")
     parser.add_argument("--rate", type=float, default=1000.0, help="synthetic: records a second")
     parser.add_argument("--count", type=int, help="synthetic: records in all (default: until stopped)")
+    parser.add_argument("--unit", action="append", help="journal: this unit's entries (repeatable)")
+    parser.add_argument("--since", help="journal: from this time (journalctl's --since)")
+    parser.add_argument("--journal-file", action="append", help="journal: this journal file (repeatable)")
+    parser.add_argument("--journal-directory", help="journal: the journal files in this directory")
+    parser.add_argument("--log-format", help="journal: the RCUTILS_CONSOLE_OUTPUT_FORMAT of ROS 2 lines")
     parser.add_argument("--min-level", type=int, default=0, help="only records of this ROS 2 severity and worse")
     parser.add_argument("--parent", type=int, help="end when this process (the app) ends")
     return parser
