@@ -42,10 +42,14 @@ SUBCOMMANDS: dict[str, str] = {
 ALIASES: dict[str, str] = {"watch": "tail"}
 
 
+#: ``console-tui run -- COMMAND``: the app, reading a launch it starts (``launch_parser``).
+RUN = "run"
+
 EPILOG = "\n".join(
     [
         "subcommands (each has --help):",
         *(f"  {name:9} {what}" for name, what in SUBCOMMANDS.items()),
+        f"  {RUN:9} runs a launch (ros2 launch, roslaunch) and shows what it prints with the live log stream",
         *(f"  {alias:9} the same as '{verb}' (as in 'ros2 log {alias}')" for alias, verb in ALIASES.items()),
         "",
         "exit status:",
@@ -161,6 +165,21 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     return parser
 
 
+def launch_parser() -> argparse.ArgumentParser:
+    """``console-tui run [OPTIONS] [--] COMMAND [ARG...]``: the app's options, and a command."""
+    parser = build_parser(files=False)
+    parser.prog = f"console-tui {RUN}"
+    parser.usage = f"console-tui {RUN} [OPTIONS] -- COMMAND [ARG...]"
+    parser.description = (
+        "Run a launch (ros2 launch PKG FILE, roslaunch PKG FILE, or any command) in a process group of its own "
+        "and show what each of its processes prints, its deaths as errors, with the live log stream (ROS 1 for "
+        "roslaunch, ROS 2 for ros2, else as the environment says): a message that arrives both ways shows once. "
+        "q or Ctrl+C stops the launch as its terminal's Ctrl+C would (SIGINT, then SIGTERM and SIGKILL)."
+    )
+    parser.add_argument("command", nargs=argparse.REMAINDER, metavar="COMMAND", help="the command and its arguments")
+    return parser
+
+
 def completion_parser() -> argparse.ArgumentParser:
     """The app's parser with every subcommand's own parser under it, for shell completion
     (argcomplete); running ``console-tui VERB`` hands the words to the verb's parser instead."""
@@ -172,6 +191,8 @@ def completion_parser() -> argparse.ArgumentParser:
     for alias, verb in ALIASES.items():
         commands.add_parser(alias, help=f"the same as {verb}")
         commands.choices[alias] = commands.choices[verb]
+    commands.add_parser(RUN, help="runs a launch and shows what it prints")
+    commands.choices[RUN] = launch_parser()
     return parser
 
 
@@ -196,6 +217,18 @@ def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
         args.files = [*args.files, *(str(path) for path in latest_run())]
     except FormatError as error:
         parser.error(f"--last: {one_line(str(error))}")
+
+
+def check_launch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """``run``'s command into ``args.launch`` (no files); what cannot go with it exits 2."""
+    command = list(args.command)
+    if command[:1] == ["--"]:
+        command = command[1:]
+    if not command:
+        parser.error("give the command to run after --, for example: console-tui run -- ros2 launch PKG FILE")
+    if args.demo or args.robots:
+        parser.error("run starts a launch of its own: it cannot be used with --demo, --domain, --master or --fleet")
+    args.launch, args.files = command, []
 
 
 #: What ``console-tui`` says, and exits 2 with, when there is no terminal to draw on or read keys from.
@@ -230,9 +263,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         module = importlib.import_module(f"{__package__}.commands.{verb}")
         status: int = module.main(args_list[1:])
         return status
-    parser = build_parser()
-    args_list, file_robots = robot_files(parser, args_list)
+    launching = bool(args_list) and args_list[0] == RUN
+    parser = launch_parser() if launching else build_parser()
+    args_list, file_robots = robot_files(parser, args_list[1:] if launching else args_list)
     args = parser.parse_args(args_list)
+    if launching:
+        check_launch(parser, args)
     apply_journal_arguments(parser, args, follow=True)
     args.file_robots = robots_from_names(args.files, file_robots) if args.robots_from_names else file_robots
     check_rule_arguments(parser, args)

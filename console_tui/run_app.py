@@ -29,7 +29,8 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     files = list(getattr(args, "files", None) or [])
     robots = getattr(args, "robots", None) or []
     journals = getattr(args, "journals", None) or []
-    live = args.demo or getattr(args, "live", False) or (not files and not journals) or bool(robots)
+    launch = getattr(args, "launch", None) or []
+    live = args.demo or getattr(args, "live", False) or (not files and not journals) or bool(robots) or bool(launch)
     # Native code (rcl, Fast DDS) prints to the terminal below Textual: caught as records.
     native = NativeOutput(queue) if live and end_process and NativeOutput.possible() else None
     if native is not None:
@@ -37,6 +38,8 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     try:
         if robots:
             logger_control = _start_fleet(args, queue, sources, cleanups)
+        elif launch:
+            logger_control = _start_launch(args, queue, sources, cleanups)
         elif live:
             logger_control = _start_live(args, queue, sources, cleanups)
         for query in journals:  # the journal followed, each query by an intake process
@@ -117,6 +120,26 @@ def _start_fleet(args: argparse.Namespace, queue: IntakeQueue, sources: list, cl
         sources.append(live.source)
     control = open_fleet_loggers(args.robots, cleanups)
     cleanups.append(control.close)  # before the runtimes go: puts temporary levels back
+    return control
+
+
+def _start_launch(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    """``console-tui run -- COMMAND``: the launch started, the live source of the ROS it runs
+    feeding it (``sources/launch/launch_source.py``); returns the logger control."""
+    from .sources.launch.launch_source import LaunchSource, ros_of
+
+    launch = LaunchSource(queue, args.launch, say=lambda text: print(f"console-tui: {text}", file=sys.stderr))
+    args.ros = getattr(args, "ros", None) or ros_of(args.launch)
+    control = _start_live(args, launch.ros_queue, sources, cleanups)
+    launch.start()  # before the app is made, as the live intake: its first lines come sooner
+    sources.insert(0, launch)
+
+    def stop_launch() -> None:
+        if launch.status.running:
+            print(f"console-tui: stopping the launch ({launch.name}: SIGINT sent)…", file=sys.stderr, flush=True)
+        launch.stop()
+
+    cleanups.append(stop_launch)  # the first cleanup: the launch's nodes go before ROS does
     return control
 
 
