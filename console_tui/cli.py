@@ -8,6 +8,7 @@ import gc
 import importlib
 import os
 import sys
+import textwrap
 from collections.abc import Sequence
 
 from . import __version__
@@ -170,11 +171,12 @@ def launch_parser() -> argparse.ArgumentParser:
     parser = build_parser(files=False)
     parser.prog = f"console-tui {RUN}"
     parser.usage = f"console-tui {RUN} [OPTIONS] -- COMMAND [ARG...]"
-    parser.description = (
+    parser.description = textwrap.fill(
         "Run a launch (ros2 launch PKG FILE, roslaunch PKG FILE, or any command) in a process group of its own "
         "and show what each of its processes prints, its deaths as errors, with the live log stream (ROS 1 for "
         "roslaunch, ROS 2 for ros2, else as the environment says): a message that arrives both ways shows once. "
-        "q or Ctrl+C stops the launch as its terminal's Ctrl+C would (SIGINT, then SIGTERM and SIGKILL)."
+        "q or Ctrl+C stops the launch as its terminal's Ctrl+C would (SIGINT, then SIGTERM and SIGKILL).",
+        100,
     )
     parser.add_argument("command", nargs=argparse.REMAINDER, metavar="COMMAND", help="the command and its arguments")
     return parser
