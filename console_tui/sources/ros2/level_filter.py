@@ -4,9 +4,9 @@
 cost the console nothing for the messages it does not print. As ``ros2 log watch`` does
 (ros2cli 0.42, ``ros2log/verb/watch.py``), each subscription is given the content filter
 ``level >= %0`` with the level as its parameter (``Subscription.set_content_filter``), and
-``Subscription.is_cft_enabled`` says whether the middleware took it. Fast DDS (Kilted's and
-Jazzy's rclpy with ``rmw_fastrtps_cpp``) filters on the writer's side: a message below the
-level is never sent to the console. Where the middleware has no content filter (Cyclone
+``Subscription.is_cft_enabled`` says whether the middleware took it. Fast DDS (Kilted's rclpy
+with ``rmw_fastrtps_cpp``) filters on the writer's side: a message below the level is never
+sent to the console. Jazzy's rclpy (7.1) has no content filter calls at all. Where the middleware has no content filter (Cyclone
 DDS, Zenoh) or refuses this one, the intake process drops those messages itself after
 taking them (``intake_process.child``), and the status says why, once.
 
@@ -22,6 +22,8 @@ from typing import Any
 #: ``0`` never asks the middleware (the benchmark's comparison, or a middleware that misbehaves).
 SWITCH = "CONSOLE_TUI_CONTENT_FILTER"
 EXPRESSION = "level >= %0"
+#: Why not, where rclpy has no content filters (Jazzy's 7.1; Kilted's has them).
+NO_RCLPY_FILTER = "this rclpy has no content filters (Jazzy's has none)"
 
 
 def filter_below(subscription: Any, min_level: int) -> str:
@@ -29,6 +31,8 @@ def filter_below(subscription: Any, min_level: int) -> str:
     ``""`` when it does, else why not (the intake then drops them itself)."""
     if os.environ.get(SWITCH, "") == "0":
         return f"the content filter is switched off: {SWITCH}=0"
+    if not hasattr(subscription, "set_content_filter"):
+        return NO_RCLPY_FILTER
     try:
         subscription.set_content_filter(EXPRESSION, [str(int(min_level))])
         if subscription.is_cft_enabled:
