@@ -51,12 +51,10 @@ def processes_of(marker: str) -> list[str]:
     return found
 
 
-@pytest.mark.ros1
-def test_run_roslaunch_shows_each_line_once_with_its_process(ros1_env, monkeypatch, tmp_path):
-    if shutil.which("roslaunch") is None:
-        pytest.skip("roslaunch is not installed (apt-get install ros-core)")
-    monkeypatch.setenv("ROS_PACKAGE_PATH", f"{PACKAGE}{os.pathsep}/usr/share")
-    launch_file = PACKAGE / "two_nodes.launch"
+def run_until_shown(monkeypatch, command: list[str], *words: str) -> tuple[list[str], str]:
+    """``console-tui run -- COMMAND`` in this process at 220x70 until its rows hold each of
+    ``words`` (and a moment more: what would come twice has come by then), then ``q``; the
+    rows and the status line as they were shown."""
     seen: dict[str, object] = {}
 
     async def script(pilot) -> None:
@@ -64,18 +62,27 @@ def test_run_roslaunch_shows_each_line_once_with_its_process(ros1_env, monkeypat
 
         def complete() -> bool:
             shown = rows(app)
-            return any("process has died" in row for row in shown) and any("printer done" in row for row in shown)
+            return all(any(word in row for row in shown) for word in words)
 
         await until(pilot, complete, timeout=90, what=lambda: screen_text(app))
-        await pilot.pause(1.5)  # anything that would come twice has come by now
+        await pilot.pause(1.5)
         seen["rows"] = rows(app)
-        status = screen_text(app).splitlines()[app.main.status_bar.region.y]
-        seen["pid"] = int(re.search(r"running \(pid (\d+)\)", status)[1])  # type: ignore[index]
+        seen["status"] = screen_text(app).splitlines()[app.main.status_bar.region.y]
         await pilot.press("q")
 
-    code, _apps = run_main(monkeypatch, ["run", "--utc", "--", "roslaunch", str(launch_file)], script, size=(220, 70))
+    code, _apps = run_main(monkeypatch, ["run", "--utc", "--", *command], script, size=(220, 70))
     assert code == 0
-    shown: list[str] = seen["rows"]  # type: ignore[assignment]
+    return seen["rows"], seen["status"]  # type: ignore[return-value]
+
+
+@pytest.mark.ros1
+def test_run_roslaunch_shows_each_line_once_with_its_process(ros1_env, monkeypatch, tmp_path):
+    if shutil.which("roslaunch") is None:
+        pytest.skip("roslaunch is not installed (apt-get install ros-core)")
+    monkeypatch.setenv("ROS_PACKAGE_PATH", f"{PACKAGE}{os.pathsep}/usr/share")
+    command = ["roslaunch", str(PACKAGE / "two_nodes.launch")]
+    shown, status = run_until_shown(monkeypatch, command, "process has died", "printer done")
+    pid = int(re.search(r"running \(pid (\d+)\)", status)[1])  # type: ignore[index]
     text = "\n".join(shown)
     for number in range(3):
         assert shown.count(f"INFO /printer printed line {number}") == 1, text
@@ -94,13 +101,13 @@ def test_run_roslaunch_shows_each_line_once_with_its_process(ros1_env, monkeypat
     assert any(row.startswith("INFO /printer process[printer-") for row in shown), text
     assert any(row.startswith("INFO roslaunch SUMMARY") for row in shown), text
     # q stopped the launch as Ctrl+C at its terminal does: nothing of it is left
-    assert group_members(seen["pid"]) == []  # type: ignore[arg-type]
+    assert group_members(pid) == []
     assert processes_of(str(tmp_path)) == []
     assert not any(Path(ros1_env["ROS_LOG_DIR"]).glob("*/dier-*-stdout.log")), "dier printed to the screen"
 
 
 @pytest.mark.ros2
-def test_run_a_ros2_launch_merges_each_process_console_with_rosout(ros_env, monkeypatch, tmp_path):
+def test_run_a_ros2_launch_merges_each_process_console_with_rosout(ros_env, monkeypatch):
     """ROS 2 nodes under a stand-in for ``ros2 launch`` (tests/nodes/mini_launch.py: launch's
     screen format, as ros2 launch cannot be installed here): a node's console line (its
     stderr, after ``[counter-1]``) and its /rosout copy are one row, at the /rosout copy's
@@ -112,25 +119,7 @@ def test_run_a_ros2_launch_merges_each_process_console_with_rosout(ros_env, monk
         f"counter={python} {NODES / 'ros2_counter.py'} counter",
         f"crasher={python} {NODES / 'ros2_counter.py'} crasher --count 1 --exit 3",
     ]
-    seen: dict[str, object] = {}
-
-    async def script(pilot) -> None:
-        app = pilot.app
-
-        def complete() -> bool:
-            shown = rows(app)
-            return any("finished cleanly" in row for row in shown) and any("process has died" in row for row in shown)
-
-        await until(pilot, complete, timeout=90, what=lambda: screen_text(app))
-        await pilot.pause(1.5)
-        seen["rows"] = rows(app)
-        status = screen_text(app).splitlines()[app.main.status_bar.region.y]
-        seen["status"] = status
-        await pilot.press("q")
-
-    code, _apps = run_main(monkeypatch, ["run", "--utc", "--", *command], script, size=(220, 70))
-    assert code == 0
-    shown: list[str] = seen["rows"]  # type: ignore[assignment]
+    shown, status = run_until_shown(monkeypatch, command, "finished cleanly", "process has died")
     text = "\n".join(shown)
     for number in range(3):
         # once: the /rosout copy (with its file) stands for the console line too
@@ -145,4 +134,4 @@ def test_run_a_ros2_launch_merges_each_process_console_with_rosout(ros_env, monk
     assert "exit code 3" in died[0]
     assert any(row.startswith("INFO counter-1 process has finished cleanly") for row in shown), text
     assert any(row.startswith("INFO launch Default logging verbosity") for row in shown), text
-    assert "ROS 2 domain" in str(seen["status"])
+    assert "ROS 2 domain" in status
