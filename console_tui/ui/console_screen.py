@@ -29,6 +29,8 @@ from ..model.store.log_store import LogStore
 from ..model.view.log_view import LogView
 from ..model.view.marks import Marks
 from ..ros.fleet import Robot
+from .controllers.announcements import Announcements
+from .controllers.context import ConsoleContext
 from .controllers.files import FilesController
 from .controllers.host import TerminalHost
 from .controllers.intake import IntakeController, Source
@@ -115,94 +117,60 @@ class ConsoleScreen(Screen[None]):
         #: Messages per node and severity, and rates: the node panel shows them.
         self.node_stats = NodeStats(self.store)
         self.node_pane = NodePane(self.node_stats, lambda: self.toggles.node_toggles())
-        self.files = FilesController(
-            host, self.store, self.view, self.table, self.load_bar, self.file_queue, log_format=log_format
+        #: What every controller works on (``controllers.context``).
+        self.context = ConsoleContext(
+            host=host,
+            store=self.store,
+            view=self.view,
+            table=self.table,
+            marks=self.marks,
+            clock=clock,
+            utc=utc,
+            changed=self.state_changed,
+            announce=Announcements(),
         )
-        self._make_controllers(host, utc, clock)
+        self._make_controllers(log_format)
+        # The collector's turn comes with the intake's tick, after everything else it does.
+        self.context.announce.tick.subscribe(collection_policy.tick)
 
-    def _make_controllers(self, host: TerminalHost, utc: bool, clock: Callable[[], float]) -> None:
-        """Each controller with what it works on (the store, the view, the table, widgets, the
-        controllers it hands on to), the app as its ``Host``, and the status line to update."""
-        store, view, table, status = self.store, self.view, self.table, self.update_status
+    def _make_controllers(self, log_format: str | None) -> None:
+        """Each controller with the context and the few things only it drives. They subscribe
+        to what they follow as they are made: the order here is the order they hear news in
+        (the rules before the table, the table before the search: a late history's rows are
+        drawn again before the search starts again over them)."""
+        context = self.context
+        self.files = FilesController(context, self.load_bar, self.file_queue, log_format=log_format)
         self.overview = OverviewController(
-            host,
-            store,
-            view,
-            table,
+            context,
             self.timeline,
             self.storms,
             self.timeline_strip,
             self.node_stats,
             sources=lambda: [source.status for source in self.sources],
-            utc=utc,
-            clock=clock,
-            update_status=status,
         )
-        self.filtering = RulesController(
-            host,
-            store,
-            view,
-            table,
-            self.query_bar,
-            self.rules_pane,
-            self.query_history,
-            self.overview,
-            utc=utc,
-            clock=clock,
-            update_status=status,
-        )
+        self.filtering = RulesController(context, self.query_bar, self.rules_pane, self.query_history)
         self.table_control = TableController(
-            host,
-            store,
-            view,
-            table,
-            self.marks,
-            self.node_stats,
-            self.overview,
-            source_notes=self.files.source_notes,
-            utc=utc,
-            update_status=status,
+            context, source_notes=self.files.source_notes, robot_column=len(self.robots) > 1
         )
         self.toggles = TogglesController(
-            store,
-            table,
+            context,
             self.node_pane,
             rules=lambda: self.filtering.rules,
             apply_rules=self.filtering.apply_rules,
             live=lambda: bool(self.sources),
-            update_status=status,
         )
-        self.panes = PanesController(host, store, table, self.logger_pane, self.node_pane)
-        self.searching = SearchController(
-            host, store, view, table, self.search_bar, self.marks, self.storms, clock=clock, update_status=status
-        )
+        self.panes = PanesController(context, self.logger_pane, self.node_pane)
+        self.searching = SearchController(context, self.search_bar, self.storms)
         self.intake = IntakeController(
-            host,
-            store,
-            view,
-            table,
-            self.marks,
+            context,
             sources=self.sources,
             queue=self.queue,
             file_queue=self.file_queue,
+            files_loading=lambda: self.files.loading,
             robots=self.robots,
-            collection_policy=self.collection_policy,
-            files=self.files,
-            filtering=self.filtering,
-            overview=self.overview,
-            searching=self.searching,
-            clock=clock,
-            update_status=status,
         )
         self.jumps = JumpsController(
-            host,
-            store,
-            view,
-            table,
-            self.marks,
-            opened_paths=self.files.opened_paths,
-            show_marks=self.searching.show_marks,
-            update_status=status,
+            context, opened_paths=self.files.opened_paths, show_marks=self.searching.show_marks
         )
 
     #: Whether the panes and lines hidden at start are mounted (``_mount_hidden``): until
@@ -248,7 +216,22 @@ class ConsoleScreen(Screen[None]):
         if self._initial_files:
             self.files.open_files(self._initial_files, robots=self._file_robots)
 
+    _state_due = False
+
+    def state_changed(self) -> None:
+        """The console's state changed (``ConsoleContext.changed``): the status line, the
+        table's hint and the footer's keys are drawn again once this turn of the event loop
+        is over, however many changes it brings."""
+        if not self._state_due:
+            self._state_due = True
+            self.context.host.call_later(self._state_drawn)
+
+    def _state_drawn(self) -> None:
+        self._state_due = False
+        self.update_status()
+
     def update_status(self) -> None:
+        """The status line, the table's hint and the footer's keys drawn now."""
         table = self.table
         statuses = [source.status for source in self.sources]
         paused_end = table.paused_end
@@ -306,7 +289,7 @@ class ConsoleScreen(Screen[None]):
         focus_now(self.table)
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
-        self.update_status()  # the footer's Pause or Resume too
+        self.state_changed()  # the footer's Pause or Resume too
         self.overview.show(force=True)
 
     def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:

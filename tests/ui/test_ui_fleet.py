@@ -148,4 +148,4 @@ async def test_solo_and_mute_act_on_one_robots_node():
         app.action_mute_row_node()
         await until(pilot, lambda: "forklift says" not in screen_text(app), what="the mute")
         assert "picker says 3" in screen_text(app)
-        assert "muted forklift:/talker" in screen_text(app)
+        await until(pilot, lambda: "muted forklift:/talker" in screen_text(app), what="the status line")

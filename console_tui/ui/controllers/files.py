@@ -14,11 +14,8 @@ from typing import TYPE_CHECKING
 
 from ...model.inert_text import one_line, plural
 from ...model.store.intake_queue import IntakeQueue
-from ...model.store.log_store import LogStore
-from ...model.view.log_view import LogView
 from ..widgets.load_bar import LoadBar
-from ..widgets.log_table import LogTable
-from .host import Host
+from .context import ConsoleContext
 
 # Reading and writing files (the formats, the readers) and the dialogs load when first used,
 # not with the first frame.
@@ -34,20 +31,10 @@ class FilesController:
     """Files read in the background into the table, merged by time; the table saved to a file."""
 
     def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        load_bar: LoadBar,
-        file_queue: IntakeQueue,
-        *,
-        log_format: str | None,
+        self, context: ConsoleContext, load_bar: LoadBar, file_queue: IntakeQueue, *, log_format: str | None
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
         self._load_bar = load_bar
         #: File loads: their records come through a queue of their own, ahead of live ones.
         self._file_queue = file_queue
@@ -60,6 +47,7 @@ class FilesController:
         self.problems: list[str] = []
         #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
         self.source_notes: dict[str, list[str]] = {}
+        context.announce.tick.subscribe(self.check_loads)
 
     @property
     def loading(self) -> bool:
@@ -82,6 +70,8 @@ class FilesController:
 
     def check_loads(self) -> None:
         """Progress on the load bar; a finished load says what it read, and what went wrong."""
+        if not self.loads:
+            return
         self._load_bar.show_progress([load.progress for load in self.loads])
         for load in [load for load in self.loads if load.finished]:
             if len(self._file_queue):

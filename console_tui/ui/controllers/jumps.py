@@ -14,14 +14,10 @@ from textual.app import SuspendNotSupported
 
 from ...model.inert_text import one_line
 from ...model.levels import Severity
-from ...model.store.log_store import LogStore
-from ...model.view.log_view import LogView
-from ...model.view.marks import Marks
 from ...model.view.seek import Hits, Seeker, level_hits, view_shows
 from ..code_file import editor_command, find_source, run_editor, run_folders
 from ..slicing import pause_between_slices
-from ..widgets.log_table import LogTable
-from .host import TerminalHost
+from .context import ConsoleContext
 
 #: A jump looks this long at once, then goes on in slices of the same length.
 SEEK_BUDGET_S = 0.008
@@ -31,28 +27,14 @@ SEEK_PAUSE_S = 0.001
 class JumpsController:
     """Jumps to errors, warnings and marks; the source of a message in the editor."""
 
-    def __init__(
-        self,
-        host: TerminalHost,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        marks: Marks,
-        *,
-        opened_paths: list[str],
-        show_marks: Callable[[], None],
-        update_status: Callable[[], None],
-    ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
-        self._marks = marks
+    def __init__(self, context: ConsoleContext, *, opened_paths: list[str], show_marks: Callable[[], None]) -> None:
+        c = context
+        self._host, self._store, self._view, self._table, self._marks = c.host, c.store, c.view, c.table, c.marks
+        self._changed = c.changed
         #: Every file and folder opened: where a message's bare file name may resolve.
         self._opened_paths = opened_paths
         #: Draws the gutter again (it shows marks and search matches).
         self._show_marks = show_marks
-        self._update_status = update_status
 
     # -- levels -----------------------------------------------------------------------------------
 
@@ -96,7 +78,7 @@ class JumpsController:
         self._marks.trim(self._store.first_seq)
         self._marks.toggle(seq)
         self._show_marks()
-        self._update_status()
+        self._changed()
 
     def to_mark(self, *, forward: bool) -> None:
         table, marks, view = self._table, self._marks, self._view

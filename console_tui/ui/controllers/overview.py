@@ -15,14 +15,12 @@ from ...model.overview.node_stats import NodeStats
 from ...model.overview.shown_follower import sync_together
 from ...model.overview.storms import StormRows
 from ...model.overview.timeline import Timeline
-from ...model.store.log_store import LogStore
-from ...model.view.log_view import LogView
+from ...model.rules.ruleset import RuleSet
 from ...sources.status import SourceStatus
 from ..focus import focus_now
 from ..slicing import pause_between_slices
-from ..widgets.log_table import LogTable
 from ..widgets.timeline_strip import TimelineStrip
-from .host import Host
+from .context import ConsoleContext
 
 #: Taking in what arrived, each tick: at most this long (the rest in the background).
 FOLLOW_BUDGET_S = 0.010
@@ -42,39 +40,34 @@ class OverviewController:
 
     def __init__(
         self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
+        context: ConsoleContext,
         timeline: Timeline,
         storms: StormRows,
         strip: TimelineStrip,
         node_stats: NodeStats,
         *,
         sources: Callable[[], Sequence[SourceStatus]],
-        utc: bool,
-        clock: Callable[[], float],
-        update_status: Callable[[], None],
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
+        self._clock, self._utc, self._changed = c.clock, c.utc, c.changed
         self._timeline = timeline
         self._storms = storms
         self._strip = strip
         self._node_stats = node_stats
         #: The live sources' states: the summary says what each reads and lost.
         self._sources = sources
-        self._utc = utc
-        self._clock = clock
-        self._update_status = update_status
         self._catching_up = False
         self._strip_at = 0.0
         #: The table followed the tail when the strip was last updated.
         self._strip_following = False
         #: The store's end when the strip was last updated.
         self._strip_end = -1
+        announce = context.announce
+        announce.placing.subscribe(self.follow)
+        announce.tick.subscribe(self.show)
+        announce.rules_changed.subscribe(self._rules_changed)
+        announce.cleared.subscribe(self._cleared)
 
     def start(self) -> None:
         """Once the table is there: storm rows get their marks, and what is in the store is taken in."""
@@ -115,7 +108,7 @@ class OverviewController:
         finally:
             self._catching_up = False
         self.show(now=True)
-        self._update_status()  # the storms counted
+        self._changed()  # the storms counted
 
     def show(self, *, force: bool = False, now: bool = False) -> None:
         """The strip follows the counts and the table's place a few times a second, or now
@@ -161,8 +154,13 @@ class OverviewController:
         if enabled:
             self._catch_up()
 
-    def restart(self) -> None:
-        """After the store was cleared."""
+    def _rules_changed(self, _rules: RuleSet) -> None:
+        with self._table.keeping_position(cursor_line=True):
+            self.follow()  # the storms and the timeline count again under these rules
+        self.show(now=True)  # counting again, or (the same rows shown) counted already
+
+    def _cleared(self) -> None:
+        self._node_stats.clear()
         self._storms.restart()
         self._timeline.restart()
         self.show(force=True)
@@ -240,7 +238,7 @@ class OverviewController:
             else "Storms not collapsed: every message is a row",
             timeout=3,
         )
-        self._update_status()
+        self._changed()
 
     def toggle_mask_digits(self) -> None:
         storms = self._storms

@@ -4,12 +4,10 @@ right side), and the logger pane's temporary levels. (The rules pane is the rule
 from __future__ import annotations
 
 from ...model.loggers.logger_pane_state import shown_logger
-from ...model.store.log_store import LogStore
 from ..screens.temporary_level import TemporaryLevelScreen
-from ..widgets.log_table import LogTable
 from ..widgets.logger_pane import LoggerPane
 from ..widgets.node_pane import NodePane
-from .host import Host
+from .context import ConsoleContext
 
 #: How long ``t`` sets a temporary level for unless told otherwise.
 DEFAULT_TEMPORARY_S = 30.0
@@ -18,12 +16,8 @@ DEFAULT_TEMPORARY_S = 30.0
 class PanesController:
     """Opening the logger levels pane and the node panel, and a temporary level's dialog."""
 
-    def __init__(
-        self, host: Host, store: LogStore, table: LogTable, logger_pane: LoggerPane, node_pane: NodePane
-    ) -> None:
-        self._host = host
-        self._store = store
-        self._table = table
+    def __init__(self, context: ConsoleContext, logger_pane: LoggerPane, node_pane: NodePane) -> None:
+        self._host, self._store, self._table = context.host, context.store, context.table
         self._logger_pane = logger_pane
         self._node_pane = node_pane
 

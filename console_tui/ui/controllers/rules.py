@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import asyncio
 import os
-from collections.abc import Callable
 
 from ...model.inert_text import plural
 from ...model.rules.history import QueryHistory
@@ -14,16 +13,13 @@ from ...model.rules.query import parse_query
 from ...model.rules.rule import RuleError
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
-from ...model.store.log_store import LogStore
-from ...model.view.log_view import LogView
 from ..screens.quick_rule import QuickRuleScreen
 from ..screens.rule_editor import RuleEditor
 from ..slicing import pause_between_slices
-from ..widgets.log_table import LogTable
 from ..widgets.query_bar import QueryBar
 from ..widgets.rules_pane import RulesPane
-from .host import Host
-from .overview import OverviewController
+from .announcements import TakenIn
+from .context import ConsoleContext
 
 #: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
 REFILTER_BUDGET_S = 0.015
@@ -39,35 +35,19 @@ class RulesController:
     """Rules in force, and every way to change them."""
 
     def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        query_bar: QueryBar,
-        rules_pane: RulesPane,
-        query_history: QueryHistory,
-        overview: OverviewController,
-        *,
-        utc: bool,
-        clock: Callable[[], float],
-        update_status: Callable[[], None],
+        self, context: ConsoleContext, query_bar: QueryBar, rules_pane: RulesPane, query_history: QueryHistory
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
+        self._clock, self._utc, self._changed, self._announce = c.clock, c.utc, c.changed, c.announce
         self._query_bar = query_bar
         self._rules_pane = rules_pane
         self._query_history = query_history
-        #: The storms and the timeline count again under new rules.
-        self._overview = overview
-        self._utc = utc
-        self._clock = clock
-        self._update_status = update_status
         #: The rules in force; a new set replaces it whole (rule sets are values).
         self.rules = RuleSet()
         self._counts_at = 0.0
+        context.announce.taken_in.subscribe(self._after_records)
+        context.announce.tick.subscribe(self.follow_counts)
 
     def apply_rules(self, rules: RuleSet) -> None:
         """Put ``rules`` in force: the screenful around the selected row (the newest while
@@ -86,9 +66,7 @@ class RulesController:
         rules = self.rules = self._view.rules
         table.decoration_of = self._view.decoration_of if rules.highlighting else None
         table.restyle()
-        with table.keeping_position(cursor_line=True):
-            self._overview.follow()  # the storms and the timeline count again under these rules
-        self._overview.show(now=True)  # counting again, or (the same rows shown) counted already
+        self._announce.rules_changed(rules)  # the storms and the timeline count again under them
         for rule, why in self._view.take_switched_off():
             self._host.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
         if self._view.refiltering:
@@ -96,7 +74,11 @@ class RulesController:
                 self._filter_in_background(), name="_filter_in_background", group="refilter", exclusive=True
             )
         self.show_counts()
-        self._update_status()
+        self._changed()
+
+    def _after_records(self, _taken: TakenIn) -> None:
+        if self._view.switched_off:  # a rule too slow to test on the records that came
+            self.rules_changed()
 
     def stop_filtering(self) -> None:
         """Esc while rules are being applied: switch off the rules not applied yet."""
@@ -122,10 +104,10 @@ class RulesController:
                 break
             if self._clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
                 shown_at = self._clock()
-                self._update_status()
+                self._changed()
             await pause_between_slices(REFILTER_PAUSE_S)
         self.show_counts()
-        self._update_status()
+        self._changed()
 
     def note(self) -> str:
         """What the status line says of the rules: ``2 rules, filtering 40%``."""

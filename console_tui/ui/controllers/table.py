@@ -1,58 +1,46 @@
-"""The table's keys that need more than the table: clear, the columns shown, a row's details."""
+"""The table's keys that need more than the table: clear, the columns shown (the Robot column
+when records of two robots come), a row's details."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
-from ...model.overview.node_stats import NodeStats
-from ...model.store.log_store import LogStore
 from ...model.store.record import LogRecord
-from ...model.view.log_view import LogView
-from ...model.view.marks import Marks
-from ..widgets.log_table import LogTable
 from ..widgets.table_columns import COLUMNS
-from .host import Host
-from .overview import OverviewController
+from .announcements import TakenIn
+from .context import ConsoleContext
 
 
 class TableController:
     """Clear, columns and details."""
 
     def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        marks: Marks,
-        node_stats: NodeStats,
-        overview: OverviewController,
-        *,
-        source_notes: dict[str, list[str]],
-        utc: bool,
-        update_status: Callable[[], None],
+        self, context: ConsoleContext, *, source_notes: dict[str, list[str]], robot_column: bool = False
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
-        self._marks = marks
-        self._node_stats = node_stats
-        self._overview = overview
+        c = context
+        self._host, self._store, self._view, self._table, self._marks = c.host, c.store, c.view, c.table, c.marks
+        self._utc, self._changed, self._announce = c.utc, c.changed, c.announce
         #: How loaded files were read, by source: the detail view says it.
         self._source_notes = source_notes
-        self._utc = utc
-        self._update_status = update_status
+        #: The Robot column was shown (a fleet given, or records of two robots came; the
+        #: person may hide it again).
+        self._robot_column = robot_column
+        context.announce.taken_in.subscribe(self._after_records)
 
     def clear(self) -> None:
         """Drop every message."""
         self._marks.clear()
         self._store.clear()
-        self._node_stats.clear()
         self._view.rebuild()
-        self._overview.restart()
+        self._announce.cleared()
         self._table.reset()
-        self._update_status()
+        self._changed()
+
+    def _after_records(self, taken: TakenIn) -> None:
+        table = self._table
+        if not self._robot_column and len(self._store.robots) > 2:  # "" and two robots or more
+            self._robot_column = True
+            table.set_column_shown("robot", True)
+        if taken.rewritten:
+            table.restyle()  # rows drawn before show other records now
 
     # -- columns ----------------------------------------------------------------------------------
 

@@ -12,10 +12,9 @@ from collections.abc import Callable
 from ...model.loggers.logger_levels import robot_qualified
 from ...model.rules import key_rules as toggles
 from ...model.rules.ruleset import RuleSet
-from ...model.store.log_store import LogStore
 from ...model.time_column import TimeFormat, format_info, next_format, sim_time_note
-from ..widgets.log_table import LogTable
 from ..widgets.node_pane import NodePane
+from .context import ConsoleContext
 
 
 class TogglesController:
@@ -23,24 +22,20 @@ class TogglesController:
 
     def __init__(
         self,
-        store: LogStore,
-        table: LogTable,
+        context: ConsoleContext,
         node_pane: NodePane,
         *,
         rules: Callable[[], RuleSet],
         apply_rules: Callable[[RuleSet], None],
         live: Callable[[], bool],
-        update_status: Callable[[], None],
     ) -> None:
-        self._store = store
-        self._table = table
+        self._store, self._table, self._changed = context.store, context.table, context.changed
         self._node_pane = node_pane
         #: The rules in force, and how to put others in force.
         self._rules = rules
         self._apply_rules = apply_rules
         #: Whether live sources run (a sim time note is about them).
         self._live = live
-        self._update_status = update_status
 
     # -- levels -----------------------------------------------------------------------------------
 
@@ -109,11 +104,11 @@ class TogglesController:
 
     def time_format(self, name: str) -> None:
         self._table.set_time_format(TimeFormat(name), self._table.utc)
-        self._update_status()
+        self._changed()
 
     def toggle_utc(self) -> None:
         self._table.set_time_format(self._table.time_format, not self._table.utc)
-        self._update_status()
+        self._changed()
 
     def time_status(self) -> str:
         """What the Time column shows when not the local wall clock, and a sim time note."""
