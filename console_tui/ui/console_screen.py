@@ -4,8 +4,8 @@
 logger levels pane and the node panel, the query and search lines, the load bar, the status
 line, the footer), owns one controller a concern (``controllers``: intake, table, rules, files,
 panes, search, jumps, toggles, overview), each made with the few things it works on, and hands
-the widgets' messages to them. The keys are the app's (``ConsoleApp.BINDINGS``): its actions
-hand over to the controllers here, and ask ``key_applies`` which keys apply now.
+the widgets' messages to them. Their commands (``command_table``) are gathered here in
+``commands``; the app binds their keys.
 """
 
 from __future__ import annotations
@@ -29,6 +29,7 @@ from ..model.store.log_store import LogStore
 from ..model.view.log_view import LogView
 from ..model.view.marks import Marks
 from ..ros.fleet import Robot
+from .command_table import CommandTable
 from .controllers.announcements import Announcements
 from .controllers.context import ConsoleContext
 from .controllers.files import FilesController
@@ -66,6 +67,7 @@ class ConsoleScreen(Screen[None]):
         self,
         host: TerminalHost,
         *,
+        controllers: Sequence[type],
         store: LogStore,
         queue: IntakeQueue,
         sources: Sequence[Source],
@@ -130,6 +132,12 @@ class ConsoleScreen(Screen[None]):
             announce=Announcements(),
         )
         self._make_controllers(log_format)
+        #: Every controller's commands, in the order of ``controllers`` (those not made by
+        #: ``_make_controllers`` need only the context: made here).
+        self.commands = CommandTable()
+        made = {type(controller): controller for controller in self._controllers()}
+        for kind in controllers:
+            self.commands.add(made[kind] if kind in made else kind(self.context))
         # The collector's turn comes with the intake's tick, after everything else it does.
         self.context.announce.tick.subscribe(collection_policy.tick)
 
@@ -172,6 +180,19 @@ class ConsoleScreen(Screen[None]):
         self.jumps = JumpsController(
             context, opened_paths=self.files.opened_paths, show_marks=self.searching.show_marks
         )
+
+    def _controllers(self) -> list[object]:
+        return [
+            self.files,
+            self.overview,
+            self.filtering,
+            self.table_control,
+            self.toggles,
+            self.panes,
+            self.searching,
+            self.intake,
+            self.jumps,
+        ]
 
     #: Whether the panes and lines hidden at start are mounted (``_mount_hidden``): until
     #: then keys wait (``focus.KeyGate``) and nothing is drained into the table.
@@ -254,30 +275,16 @@ class ConsoleScreen(Screen[None]):
         table.show_hint(empty_hint(facts, self.view.refiltering))
         self._refresh_footer()
 
-    _footer_state: tuple[bool | None, ...] = ()
+    _footer_state: tuple[bool, ...] = ()
 
     def _refresh_footer(self) -> None:
-        """The footer's keys that come and go (``key_applies``) follow the console's state when
-        it changes (paused, a load ends, filtering is done), not only when the focus moves."""
-        state = tuple(self.key_applies(action) for action in ("pause", "cancel_load", "stop_filtering", "clear_search"))
+        """The footer's keys that come and go (the commands' ``applies``) follow the console's
+        state when it changes (paused, a load ends, filtering is done), not only when the
+        focus moves."""
+        state = self.commands.state()
         if state != self._footer_state:
             self._footer_state = state
             self.refresh_bindings()
-
-    def key_applies(self, action: str) -> bool | None:
-        """Whether the app's key for ``action`` applies now (``ConsoleApp.check_action``): space
-        is Pause or Resume, the keys that end a load, a filtering, a search only while there is one."""
-        if action == "pause":
-            return self.table.paused_end is None
-        if action == "resume":
-            return self.table.paused_end is not None
-        if action == "cancel_load":
-            return self.files.loading
-        if action == "stop_filtering":
-            return self.view.refiltering
-        if action == "clear_search":
-            return self.searching.search is not None and not self.view.refiltering
-        return True
 
     # -- what the widgets say -----------------------------------------------------------------------
 

@@ -33,7 +33,7 @@ class Console(ConsoleApp):
     CSS_PATH = str(Path(app_module.__file__).with_name("app.tcss"))
 
     def on_ready(self) -> None:
-        self.action_toggle_loggers()  # the logger levels pane: its first opening starts the control
+        self.commands.run("console.loggers")  # the logger levels pane: its first opening starts the control
         self.set_timer(0.3, self.set_level)
 
     def set_level(self) -> None:

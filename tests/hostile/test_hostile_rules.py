@@ -52,7 +52,7 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
         else:
             path = tmp_path / "rules.toml"
             path.write_text('[[rules]]\nkind = "message"\ntext = "(a+)+$"\nregex = true\n')
-            app.action_load_rules(str(path))
+            app.main.filtering.open_rules(str(path))
             await pilot.press("up")
         await until(pilot, lambda: app.main.table.cursor_row == row - 1, timeout=10, what="the key's effect")
         # Under 1 s of CPU run alone; the suite's coverage tracing doubles that. Before the fix:

@@ -145,7 +145,7 @@ async def test_solo_and_mute_act_on_one_robots_node():
         app.main.table.jump_to_seq(
             next(s for s in range(app.main.store.end_seq) if app.main.store.get(s).robot == "forklift")
         )
-        app.action_mute_row_node()
+        await app.run_action("command('nav.mute_row_node')")
         await until(pilot, lambda: "forklift says" not in screen_text(app), what="the mute")
         assert "picker says 3" in screen_text(app)
         await until(pilot, lambda: "muted forklift:/talker" in screen_text(app), what="the status line")

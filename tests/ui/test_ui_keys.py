@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from console_tui.ui.keys import load_keymap
-from console_tui.ui.palette import palette_commands
 from console_tui.ui.widgets.key_footer import KeyFooter
 
 from support.feed import feed_logger_pane
@@ -67,9 +66,9 @@ async def test_a_bad_keymap_is_reported_and_the_default_keys_stay(own_config_fol
 
 
 async def test_palette_entries_have_distinct_names_and_show_their_keys():
-    titles = [command.title for command in palette_commands()]
-    assert len(titles) == len(set(titles))
     app = make_app(5)
+    titles = [command.title for command in app.commands.palette()]
+    assert len(titles) == len(set(titles))
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("ctrl+p", *"pause")
         await pilot.pause(0.3)

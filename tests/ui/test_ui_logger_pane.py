@@ -15,7 +15,6 @@ from textual.pilot import Pilot
 
 from console_tui.model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
 from console_tui.model.loggers.logger_pane_state import NO_ROS_TEXT
-from console_tui.ui.palette import palette_commands
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 from console_tui.ui.widgets.logger_pane import LoggerPane
 
@@ -171,7 +170,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
 async def test_help_and_command_palette_offer_the_pane():
     app = make_app(5)
     async with app.run_test(size=(100, 40)) as pilot:
-        titles = [command.title for command in palette_commands()]
+        titles = [command.title for command in app.commands.palette()]
         assert "Logger levels" in titles and "Logger levels of this row's node" in titles
         groups = dict(app.binding_groups())
         assert any(b.action == "set_level(10)" for b in groups["Logger levels pane"])

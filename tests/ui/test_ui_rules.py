@@ -308,7 +308,7 @@ async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
         app.screen.query_one("#path").value = str(target)
         await pilot.press("enter")
         assert target.exists()
-        app.action_clear_rules()
+        await app.run_action("command('console.clear_rules')")
         await pilot.pause()
         assert not app.main.filtering.rules.entries and len(app.main.view) == 300
         await pilot.press("O")
@@ -319,7 +319,7 @@ async def test_rule_sets_save_and_load_and_a_bad_file_changes_nothing(tmp_path):
         bad = tmp_path / "bad.toml"
         bad.write_text('[[rules]]\nkind = "severity"\nlevels = ["warm"]\n')
         before = app.main.filtering.rules
-        app.action_load_rules(str(bad))
+        app.main.filtering.open_rules(str(bad))
         await pilot.pause()
         assert app.main.filtering.rules == before
         assert any("warm" in str(n.message) for n in app._notifications)

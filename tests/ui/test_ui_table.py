@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.ui.palette import palette_commands
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records
@@ -252,7 +251,7 @@ async def test_narrow_terminals_keep_severity_node_and_message(width):
 async def test_command_palette_offers_the_actions():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
-        titles = [command.title for command in palette_commands()]
+        titles = [command.title for command in app.commands.palette()]
         for title in ("Pause / resume", "Follow tail", "Clear", "Details", "Columns"):
             assert title in titles
         await pilot.press("ctrl+p")

@@ -10,10 +10,11 @@ import asyncio
 import os
 import time
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 from ...model.inert_text import one_line, plural
 from ...model.store.intake_queue import IntakeQueue
+from ..command_table import Command
 from ..widgets.load_bar import LoadBar
 from .context import ConsoleContext
 
@@ -155,3 +156,36 @@ class FilesController:
         note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
         self._host.notify(f"Saved {plural(written, 'message')} to {request.path}{note}", timeout=8)
         return written
+
+    COMMANDS: ClassVar[tuple[Command[FilesController], ...]] = (
+        Command(
+            "console.open",
+            ask_open,
+            keys="o",
+            label="Open",
+            footer=30,
+            title="Open files",
+            about="Log files and recordings, merged by time",
+        ),
+        Command(
+            "console.save",
+            ask_save,
+            keys="s",
+            label="Save",
+            footer=40,
+            title="Save",
+            about="Save the rows shown, or everything (rqt_console CSV or JSON Lines)",
+            words="export write",
+        ),
+        Command(
+            "console.cancel_load", cancel_loads, keys="x", label="Cancel load", footer=50, applies=lambda f: f.loading
+        ),
+        Command(
+            "console.problems",
+            show_problems,
+            keys="exclamation_mark",
+            label="Problems",
+            title="Load problems",
+            about="What went wrong while loading files, and where",
+        ),
+    )

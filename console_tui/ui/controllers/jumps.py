@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import subprocess
 from collections.abc import Callable
+from typing import ClassVar
 
 from textual.app import SuspendNotSupported
 
@@ -16,12 +17,19 @@ from ...model.inert_text import one_line
 from ...model.levels import Severity
 from ...model.view.seek import Hits, Seeker, level_hits, view_shows
 from ..code_file import editor_command, find_source, run_editor, run_folders
+from ..command_table import NAVIGATION, Command
 from ..slicing import pause_between_slices
 from .context import ConsoleContext
 
 #: A jump looks this long at once, then goes on in slices of the same length.
 SEEK_BUDGET_S = 0.008
 SEEK_PAUSE_S = 0.001
+
+
+def _seeking(level: int, forward: bool) -> Callable[[JumpsController], None]:
+    if forward:
+        return lambda jumps: jumps.next_level(level)
+    return lambda jumps: jumps.previous_level(level)
 
 
 class JumpsController:
@@ -68,6 +76,14 @@ class JumpsController:
         else:
             where = "below" if seeker.forward else "above"
             self._host.notify(f"No {what} {where}{'' if not seeker.failed else ': ' + seeker.failed}", timeout=3)
+
+    # -- the ends ---------------------------------------------------------------------------------
+
+    def first_row(self) -> None:
+        self._table.move_cursor(0)
+
+    def last_row(self) -> None:
+        self._table.follow()
 
     # -- marks ------------------------------------------------------------------------------------
 
@@ -144,3 +160,71 @@ class JumpsController:
         host.refresh()
         if result.returncode:
             host.notify(f"The editor exited with status {result.returncode}.", severity="warning", timeout=5)
+
+    COMMANDS: ClassVar[tuple[Command[JumpsController], ...]] = (
+        *(
+            Command(
+                f"nav.{name}",
+                _seeking(level, forward),
+                keys=key,
+                label=f"{'Next' if forward else 'Previous'} {Severity(level).name} or worse",
+                group=NAVIGATION,
+                title=f"{'Next' if forward else 'Previous'} {name.split('_')[-1]}",
+                about=about,
+            )
+            for name, key, level, forward, about in (
+                ("next_error", "e", 40, True, "The next ERROR or FATAL below"),
+                ("previous_error", "E", 40, False, "The previous ERROR or FATAL above"),
+                ("next_warning", "w", 30, True, "The next WARN or worse below"),
+                ("previous_warning", "W", 30, False, "The previous WARN or worse above"),
+            )
+        ),
+        Command("nav.first", first_row, keys_of="table.first", title="First message", about="The oldest row"),
+        Command("nav.last", last_row, keys_of="table.follow", title="Last message", about="The newest row, and follow"),
+        Command(
+            "nav.mark",
+            toggle_mark,
+            keys="m",
+            label="Mark the row (or unmark it)",
+            group=NAVIGATION,
+            title="Mark the row",
+            about="Put a mark on the selected row (or take it off)",
+        ),
+        Command(
+            "nav.next_mark",
+            lambda j: j.to_mark(forward=True),
+            keys="u",
+            label="Next mark",
+            group=NAVIGATION,
+            title="Next mark",
+            about="The next marked row below",
+        ),
+        Command(
+            "nav.previous_mark",
+            lambda j: j.to_mark(forward=False),
+            keys="U",
+            label="Previous mark",
+            group=NAVIGATION,
+            title="Previous mark",
+            about="The previous marked row above",
+        ),
+        Command(
+            "nav.marks",
+            list_marks,
+            keys="M",
+            label="Marks: list them, jump to one",
+            group=NAVIGATION,
+            title="Marks",
+            about="Every marked row; go to one",
+        ),
+        Command(
+            "nav.source",
+            open_source,
+            keys="v",
+            label="Open the row's source file in $VISUAL / $EDITOR",
+            group=NAVIGATION,
+            title="Open the source file",
+            about="The row's file in $VISUAL / $EDITOR at its line",
+            words="editor code vim",
+        ),
+    )

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable, Sequence
+from typing import ClassVar
 
 from ...model.overview.node_stats import NodeStats
 from ...model.overview.shown_follower import sync_together
@@ -17,6 +18,7 @@ from ...model.overview.storms import StormRows
 from ...model.overview.timeline import Timeline
 from ...model.rules.ruleset import RuleSet
 from ...sources.status import SourceStatus
+from ..command_table import Command
 from ..focus import focus_now
 from ..slicing import pause_between_slices
 from ..widgets.timeline_strip import TimelineStrip
@@ -63,6 +65,8 @@ class OverviewController:
         self._strip_following = False
         #: The store's end when the strip was last updated.
         self._strip_end = -1
+        #: The summary screen is open (its key does nothing meanwhile).
+        self.summary_open = False
         announce = context.announce
         announce.placing.subscribe(self.follow)
         announce.tick.subscribe(self.show)
@@ -278,6 +282,7 @@ class OverviewController:
 
     def _open_summary(self) -> None:
         def chosen(seq: int | None) -> None:
+            self.summary_open = False
             if seq is None:
                 return
             if seq not in self._store:
@@ -290,6 +295,7 @@ class OverviewController:
         from ..screens.summary import SummaryScreen  # loaded when first opened
 
         sources = list(self._sources())
+        self.summary_open = True
         self._host.push_screen(
             SummaryScreen(self._store, self._node_stats, len(self._view), utc=self._utc, sources=sources), chosen
         )
@@ -300,3 +306,53 @@ class OverviewController:
             return True
         row = view.row_of(seq)
         return row < len(view) and view.seq_at(row) == seq
+
+    COMMANDS: ClassVar[tuple[Command[OverviewController], ...]] = (
+        Command(
+            "overview.timeline",
+            pick_time,
+            keys="T",
+            label="Timeline: pick a time to show",
+            title="Timeline: pick a time",
+            about="The rate by severity over the whole history; Enter shows a time",
+        ),
+        Command(
+            "overview.toggle_timeline",
+            toggle_timeline,
+            keys="ctrl+t",
+            label="Show / hide the timeline",
+            title="Show / hide the timeline",
+            about="The strip of the message rate above the table",
+        ),
+        Command(
+            "overview.storm",
+            toggle_storm,
+            keys="z",
+            label="Expand / collapse the row's storm",
+            title="Expand / collapse this storm",
+            about="The repeats of the selected row's message, each a row",
+        ),
+        Command(
+            "overview.storms",
+            toggle_storms,
+            keys="Z",
+            label="Storms collapsed on / off",
+            title="Storms collapsed on / off",
+            about="A node's repeats of one message as one row (×N), or every message a row",
+        ),
+        Command(
+            "overview.mask_digits",
+            toggle_mask_digits,
+            title="Storms: digits count as the same",
+            about="'took 12 ms' repeats 'took 9 ms' (on / off)",
+        ),
+        Command(
+            "overview.summary",
+            summary,
+            keys="S",
+            label="Summary of the run",
+            applies=lambda o: not o.summary_open,
+            title="Summary",
+            about="Counts per severity and node, the busiest nodes, the first ERROR and FATAL",
+        ),
+    )

@@ -3,7 +3,10 @@ right side), and the logger pane's temporary levels. (The rules pane is the rule
 
 from __future__ import annotations
 
+from typing import ClassVar
+
 from ...model.loggers.logger_pane_state import shown_logger
+from ..command_table import Command
 from ..screens.temporary_level import TemporaryLevelScreen
 from ..widgets.logger_pane import LoggerPane
 from ..widgets.node_pane import NodePane
@@ -50,3 +53,32 @@ class PanesController:
                 pane.set_temporary(fqn, logger, *choice)
 
         self._host.push_screen(TemporaryLevelScreen(fqn, shown_logger(logger), DEFAULT_TEMPORARY_S), chosen)
+
+    COMMANDS: ClassVar[tuple[Command[PanesController], ...]] = (
+        Command(
+            "console.loggers",
+            toggle_loggers,
+            keys="l",
+            label="Loggers",
+            footer=100,
+            title="Logger levels",
+            about="Show or hide the logger levels pane",
+        ),
+        Command(
+            "console.nodes",
+            toggle_nodes,
+            keys="ctrl+n",
+            label="Nodes",
+            footer=110,
+            title="Nodes",
+            about="The node panel: every node, its counts and rate; solo, mute",
+        ),
+        Command(
+            "console.loggers_for_row",
+            loggers_for_row,
+            keys="L",
+            label="Logger levels of the row's node",
+            title="Logger levels of this row's node",
+            about="Open the logger levels pane on the selected row's node",
+        ),
+    )

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+from typing import ClassVar
 
 from ...model.inert_text import plural
 from ...model.rules.history import QueryHistory
@@ -13,6 +14,7 @@ from ...model.rules.query import parse_query
 from ...model.rules.rule import RuleError
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
+from ..command_table import Command
 from ..screens.quick_rule import QuickRuleScreen
 from ..screens.rule_editor import RuleEditor
 from ..slicing import pause_between_slices
@@ -79,6 +81,11 @@ class RulesController:
     def _after_records(self, _taken: TakenIn) -> None:
         if self._view.switched_off:  # a rule too slow to test on the records that came
             self.rules_changed()
+
+    @property
+    def refiltering(self) -> bool:
+        """Rules are being applied to older records (in the background)."""
+        return self._view.refiltering
 
     def stop_filtering(self) -> None:
         """Esc while rules are being applied: switch off the rules not applied yet."""
@@ -166,6 +173,9 @@ class RulesController:
 
     # -- the query line and the rules pane ----------------------------------------------------
 
+    def open_query(self) -> None:
+        self._query_bar.open()
+
     def query_applied(self, message: QueryBar.Applied) -> None:
         self.apply_rules(self.rules.with_query(message.entries))
 
@@ -251,3 +261,82 @@ class RulesController:
             self._host.notify("No rule set was saved at the end of an earlier run.", timeout=5)
             return
         self.open_rules(str(path))
+
+    COMMANDS: ClassVar[tuple[Command[RulesController], ...]] = (
+        Command(
+            "console.stop_filtering",
+            stop_filtering,
+            keys="escape",
+            label="Stop a long filtering",
+            applies=lambda r: r.refiltering,
+        ),
+        Command(
+            "console.query",
+            open_query,
+            keys="slash",
+            label="Query",
+            footer=60,
+            title="Query",
+            about='Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"',
+            words="filter",
+        ),
+        Command(
+            "console.rules",
+            toggle_pane,
+            keys="r",
+            label="Rules",
+            footer=80,
+            title="Rules",
+            about="Show or hide the rules pane: every rule, its switches and counts",
+            words="filter",
+        ),
+        Command(
+            "console.add_rule",
+            lambda r: r.edit_rule(None),
+            title="Add a rule",
+            about="A new exclude or highlight rule of any kind",
+            words="filter",
+        ),
+        Command(
+            "console.hide_like",
+            lambda r: r.quick_rule("exclude"),
+            keys="minus",
+            label="Hide like the selected rows",
+            title="Hide messages like the selected rows",
+            about="Exclude their nodes, severities, messages or location",
+        ),
+        Command(
+            "console.highlight_like",
+            lambda r: r.quick_rule("highlight"),
+            keys="plus",
+            label="Highlight like the selected rows",
+            title="Highlight messages like the selected rows",
+            about="Highlight their nodes, severities, messages or location",
+        ),
+        Command(
+            "console.highlighted_only",
+            toggle_highlighted_only,
+            keys="H",
+            label="Highlighted only",
+            title="Highlighted only",
+            about="Show only highlighted messages (or all again)",
+        ),
+        Command("console.save_rules", ask_save, title="Save rules", about="Save the rule set to a TOML file"),
+        Command(
+            "console.open_rules", lambda r: r.open_rules(), title="Open rules", about="Load a rule set from a TOML file"
+        ),
+        Command(
+            "console.restore_rules",
+            restore_rules,
+            title="Restore the last rules",
+            about="The rule set in force when console-tui last exited",
+        ),
+        Command(
+            "console.clear_rules",
+            clear_rules,
+            title="Clear rules",
+            about="Remove every rule",
+            words="filter",
+            ends=True,
+        ),
+    )

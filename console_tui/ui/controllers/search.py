@@ -8,6 +8,7 @@ line says "match 3 of 17".
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import ClassVar
 
 from textual.worker import Worker
 
@@ -16,6 +17,7 @@ from ...model.overview.search_rows import MatchRows
 from ...model.overview.storms import StormRows
 from ...model.rules.time_limit import MatchTimeout, time_limit
 from ...model.view.search_walk import PENDING, Search, describe_search, display_pattern, parse_search
+from ..command_table import NAVIGATION, Command
 from ..focus import focus_now
 from ..slicing import pause_between_slices
 from ..widgets.log_table import Spans
@@ -304,3 +306,45 @@ class SearchController:
         if self._match_rows is None or self._match_rows[0] != key:
             self._match_rows = (key, MatchRows(search, storms))
         return self._match_rows[1]
+
+    COMMANDS: ClassVar[tuple[Command[SearchController], ...]] = (
+        Command(
+            "nav.find",
+            open_search_line,
+            keys="f,ctrl+f",
+            label="Find",
+            footer=70,
+            group=NAVIGATION,
+            title="Find",
+            about="Search a text or /regex/ in the messages; the rows stay, matches are marked",
+            words="search grep look",
+        ),
+        Command(
+            "nav.next_match",
+            lambda s: s.jump_to_match(forward=True),
+            keys="n",
+            label="Next match",
+            group=NAVIGATION,
+            title="Next match",
+            about="The next row the search matches, below",
+        ),
+        Command(
+            "nav.previous_match",
+            lambda s: s.jump_to_match(forward=False),
+            keys="N",
+            label="Previous match",
+            group=NAVIGATION,
+            title="Previous match",
+            about="The previous row the search matches, above",
+        ),
+        Command(
+            "console.clear_search",
+            clear_search,
+            keys="escape",
+            label="Clear the search",
+            applies=lambda s: s.search is not None and not s._view.refiltering,
+            title="Clear the search",
+            about="No search: no marks, no counter",
+            ends=True,
+        ),
+    )

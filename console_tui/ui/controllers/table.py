@@ -1,16 +1,24 @@
-"""The table's keys that need more than the table: clear, the columns shown (the Robot column
-when records of two robots come), a row's details."""
+"""The table's commands that need more than the table: pause, clear, the columns shown (the
+Robot column when records of two robots come), a row's details."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import ClassVar
+
 from ...model.store.record import LogRecord
+from ..command_table import Command
 from ..widgets.table_columns import COLUMNS
 from .announcements import TakenIn
 from .context import ConsoleContext
 
 
+def _toggling_column(key: str) -> Callable[[TableController], None]:
+    return lambda table: table.toggle_column(key)
+
+
 class TableController:
-    """Clear, columns and details."""
+    """Pause, clear, columns and details."""
 
     def __init__(
         self, context: ConsoleContext, *, source_notes: dict[str, list[str]], robot_column: bool = False
@@ -24,6 +32,24 @@ class TableController:
         #: person may hide it again).
         self._robot_column = robot_column
         context.announce.taken_in.subscribe(self._after_records)
+
+    # -- pause and the tail -----------------------------------------------------------------------
+
+    @property
+    def paused(self) -> bool:
+        return self._table.paused_end is not None
+
+    def pause(self) -> None:
+        self._table.set_paused(True)
+
+    def resume(self) -> None:
+        self._table.set_paused(False)
+
+    def toggle_pause(self) -> None:
+        self._table.set_paused(not self.paused)
+
+    def follow(self) -> None:
+        self._table.follow()
 
     def clear(self) -> None:
         """Drop every message."""
@@ -61,6 +87,10 @@ class TableController:
 
     # -- a row's details --------------------------------------------------------------------------
 
+    def details(self) -> None:
+        """The selected row's details (as Enter in the table)."""
+        self._table.action_activate()
+
     def open_detail(self, seq: int) -> None:
         if seq not in self._store:
             return
@@ -78,3 +108,59 @@ class TableController:
             return None
         table.move_cursor(row)
         return self._store.get(table.view.seq_at(row))
+
+    COMMANDS: ClassVar[tuple[Command[TableController], ...]] = (
+        Command("console.pause", pause, keys="space", label="Pause", footer=10, applies=lambda t: not t.paused),
+        # Space is Pause or Resume, whichever applies (the footer says which): one key, one id.
+        Command(
+            "console.resume",
+            resume,
+            keys="space",
+            label="Resume",
+            footer=10,
+            applies=lambda t: t.paused,
+            keys_of="console.pause",
+        ),
+        Command(
+            "console.toggle_pause",
+            toggle_pause,
+            keys_of="console.pause",
+            title="Pause / resume",
+            about="Stop the view; messages keep arriving",
+        ),
+        Command(
+            "console.follow",
+            follow,
+            keys_of="table.follow",
+            title="Follow tail",
+            about="Jump to the newest message and follow it",
+        ),
+        Command("console.clear", clear, keys="c", label="Clear", footer=20, title="Clear", about="Drop every message"),
+        Command(
+            "console.details",
+            details,
+            keys_of="table.details",
+            title="Details",
+            about="Every field of the selected message; y copies it",
+            words="copy yank",
+        ),
+        Command(
+            "console.columns",
+            ask_columns,
+            keys="C",
+            label="Columns",
+            footer=90,
+            title="Columns",
+            about="Choose the table's columns",
+        ),
+        *(
+            Command(
+                f"console.column_{column.key}",
+                _toggling_column(column.key),
+                title=f"Toggle column: {column.title}",
+                about=f"Show or hide the {column.title} column",
+            )
+            for column in COLUMNS
+            if column.key != "message"
+        ),
+    )

@@ -8,13 +8,28 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from typing import ClassVar
 
+from ...model.levels import MESSAGE_SEVERITIES
 from ...model.loggers.logger_levels import robot_qualified
 from ...model.rules import key_rules as toggles
 from ...model.rules.ruleset import RuleSet
-from ...model.time_column import TimeFormat, format_info, next_format, sim_time_note
+from ...model.time_column import FORMATS, TimeFormat, format_info, next_format, sim_time_note
+from ..command_table import NAVIGATION, Command
 from ..widgets.node_pane import NodePane
 from .context import ConsoleContext
+
+
+def _toggling_level(level: int) -> Callable[[TogglesController], None]:
+    return lambda toggles: toggles.toggle_level(level)
+
+
+def _minimum(level: int) -> Callable[[TogglesController], None]:
+    return lambda toggles: toggles.minimum_level(level)
+
+
+def _showing_time(fmt: TimeFormat) -> Callable[[TogglesController], None]:
+    return lambda toggles: toggles.time_format(fmt.value)
 
 
 class TogglesController:
@@ -125,3 +140,95 @@ class TogglesController:
             if note:
                 parts.append(note)
         return ", ".join(parts)
+
+    COMMANDS: ClassVar[tuple[Command[TogglesController], ...]] = (
+        *(
+            Command(
+                f"levels.{severity.name.lower()}",
+                _toggling_level(int(severity)),
+                keys=str(number),
+                label=f"Show / hide {severity.name} messages",
+                group=NAVIGATION,
+                title=f"Show / hide {severity.name}",
+                about=f"Hide {severity.name} messages, or show them again (a rule underneath)",
+            )
+            for number, severity in enumerate(MESSAGE_SEVERITIES, start=1)
+        ),
+        *(
+            Command(
+                f"levels.minimum_{severity.name.lower()}",
+                _minimum(int(severity)),
+                title=f"Minimum level: {severity.name}",
+                about=f"Show {severity.name} and worse",
+            )
+            for severity in MESSAGE_SEVERITIES
+        ),
+        Command(
+            "levels.up",
+            raise_minimum,
+            keys="greater_than_sign",
+            label="Minimum level up (hide the lowest shown)",
+            group=NAVIGATION,
+            title="Minimum level up",
+            about="Hide the lowest level shown",
+        ),
+        Command(
+            "levels.down",
+            lower_minimum,
+            keys="less_than_sign",
+            label="Minimum level down (show one more)",
+            group=NAVIGATION,
+            title="Minimum level down",
+            about="Show one more level",
+        ),
+        Command(
+            "levels.all",
+            all_levels,
+            keys="0",
+            label="Every level shown again",
+            group=NAVIGATION,
+            title="Every level",
+            about="Show every level again",
+            words="severity level",
+        ),
+        Command(
+            "nav.solo_row_node",
+            solo_row_node,
+            title="Solo this row's node",
+            about="Show only the selected row's node (again: undo)",
+        ),
+        Command(
+            "nav.mute_row_node",
+            mute_row_node,
+            title="Mute this row's node",
+            about="Hide the selected row's node (again: undo)",
+        ),
+        Command("nav.every_node", clear_node_toggles, title="Every node heard", about="No node soloed or muted"),
+        *(
+            Command(
+                f"time.{fmt.value}",
+                _showing_time(fmt),
+                title=f"Time: {format_info(fmt).name}",
+                about=f"The Time column shows the {format_info(fmt).name}",
+            )
+            for fmt in FORMATS
+        ),
+        Command(
+            "time.format",
+            next_time_format,
+            keys="t",
+            label="Time format: clock, date, stamp, since first, since row, Δ",
+            group=NAVIGATION,
+            title="Time format: the next one",
+            about="Wall clock, date, stamp, since first, since row, delta",
+        ),
+        Command(
+            "time.utc",
+            toggle_utc,
+            keys="ctrl+u",
+            label="Time in UTC / local time",
+            group=NAVIGATION,
+            title="Time in UTC / local time",
+            about="The wall clock in UTC, or local time",
+        ),
+    )
