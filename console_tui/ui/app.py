@@ -70,17 +70,22 @@ class TerminalGuard(Protocol):
 
 
 def console_bindings(controllers: Iterable[type], own: Iterable[Command[Any]]) -> list[BindingType]:
-    """The keys of the controllers' commands and the app's own."""
+    """Every key of the app: Textual's own (Ctrl+Q), the controllers' commands' and the app's,
+    the footer's in its order (``key_bindings``)."""
     commands = [*(command for owner in controllers for command in commands_of(owner)), *own]
+    textual = [binding for binding in App.BINDINGS if not isinstance(binding, Binding) or binding.key != "ctrl+c"]
     # Ctrl+C quits too, as a terminal's interrupt (not in the footer, not remapped).
-    return [*key_bindings(commands), Binding("ctrl+c", "quit", "Quit", show=False)]
+    return [*textual, *key_bindings(commands), Binding("ctrl+c", "quit", "Quit", show=False)]
 
 
-class ConsoleApp(App[None]):
+# Not inherited: BINDINGS is every key, in order (a console with other controllers binds them
+# all again, its new ones in their places).
+class ConsoleApp(App[None], inherit_bindings=False):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
-    CSS_PATH = "app.tcss"
+    #: By its whole path: a console with other controllers (a subclass elsewhere) finds it too.
+    CSS_PATH = str(Path(__file__).with_name("app.tcss"))
     #: Textual's own palette entries (theme, quit, screenshot...) and ours.
     COMMANDS = App.COMMANDS | {PaletteProvider}
 
@@ -289,7 +294,7 @@ class ConsoleApp(App[None]):
     def __init_subclass__(cls, **kwargs: Any) -> None:
         # A console with other controllers (``CONTROLLERS``) binds their keys.
         cls.BINDINGS = console_bindings(cls.CONTROLLERS, cls.APP_COMMANDS)
-        super().__init_subclass__(**kwargs)
+        super().__init_subclass__(**{"inherit_bindings": False, **kwargs})
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # Textual's "Keys" opens its key panel; "Help: every key" (ours) says more.
