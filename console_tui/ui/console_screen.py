@@ -98,9 +98,9 @@ class ConsoleScreen(Screen[None]):
         self.table = LogTable(self.store, self.storms, utc=utc, id="log-table")
         #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self.robots = list(robots)
-        self.table.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
+        self.table.painter.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
         if len(self.robots) > 1:
-            self.table.shown_columns |= {"robot"}
+            self.table.painter.set_column_shown("robot", True)
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
         self._initial_query = query

@@ -84,9 +84,9 @@ async def test_a_robots_colour_paints_its_name():
         put(queue, "picker", 1)
         put(queue, "forklift", 1, start=5)
         await until(pilot, lambda: "forklift says 0" in screen_text(app), what="the rows")
-        picker = app.main.table.robot_styles["picker"]
+        picker = app.main.table.painter.robot_styles["picker"]
         assert picker.color is not None and picker.color.name == "cyan"
-        assert "forklift" not in app.main.table.robot_styles
+        assert "forklift" not in app.main.table.painter.robot_styles
 
 
 async def test_the_node_panel_and_the_summary_count_per_robot():

@@ -271,8 +271,8 @@ async def test_a_change_of_focus_redraws_only_the_cursor_row():
         other_y = table_rows(app)[99][0]
         other = style_at(app, 10, other_y)
         drawn = []
-        draw = table._render_row
-        table._render_row = lambda record, *args: drawn.append(record.seq + 1) or draw(record, *args)
+        draw = table.painter.row
+        table.painter.row = lambda record, *args: drawn.append(record.seq + 1) or draw(record, *args)
         await pilot.press("f")
         await until(pilot, lambda: app.main.search_bar.is_open, what="the search line")
         await pilot.pause(0.2)

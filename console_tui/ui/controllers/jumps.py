@@ -127,7 +127,7 @@ class JumpsController:
 
         records = [self._store.get(seq) for seq in self._marks]
         shown = {record.seq for record in records if view_shows(self._view, record.seq)}
-        self._host.push_screen(MarksScreen(records, shown, self._marks, utc=self._table.utc), chosen)
+        self._host.push_screen(MarksScreen(records, shown, self._marks, utc=self._table.painter.utc), chosen)
 
     # -- the source file --------------------------------------------------------------------------
 

@@ -53,6 +53,8 @@ class OverviewController:
         c = context
         self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
         self._clock, self._utc, self._changed = c.clock, c.utc, c.changed
+        #: Storm rows are marked with their counts.
+        self._decorations = c.table.decorations
         self._timeline = timeline
         self._storms = storms
         self._strip = strip
@@ -75,7 +77,7 @@ class OverviewController:
 
     def start(self) -> None:
         """Once the table is there: storm rows get their marks, and what is in the store is taken in."""
-        self._table.badge_of = self._storms.badge
+        self._decorations.show_badges(self._storms.badge)
         self.follow()
 
     # -- keeping up ---------------------------------------------------------------------------------
@@ -152,9 +154,8 @@ class OverviewController:
         benchmark's run without them)."""
         self._timeline.set_enabled(enabled)
         self._storms.set_enabled(enabled)
-        self._table.badge_of = self._storms.badge if enabled else None
+        self._decorations.show_badges(self._storms.badge if enabled else None)
         self._strip.set_class(not enabled, "-hidden")
-        self._table.restyle()
         if enabled:
             self._catch_up()
 
@@ -223,7 +224,7 @@ class OverviewController:
                 self._storms.expand(storm)
         if self._table.cursor_seq != storm.head:
             self.show_seq(storm.head)
-        self._table.restyle()
+        self._decorations.changed()  # the storms' rows and counts
 
     def toggle_storms(self) -> None:
         """Storms collapsed, or every message a row."""
@@ -232,8 +233,7 @@ class OverviewController:
             storms.set_enabled(not storms.enabled)
             if storms.enabled:
                 storms.sync(FOLLOW_BUDGET_S)
-        self._table.badge_of = storms.badge if storms.enabled else None
-        self._table.restyle()
+        self._decorations.show_badges(storms.badge if storms.enabled else None)
         if storms.behind:
             self._catch_up()
         self._host.notify(
@@ -249,7 +249,7 @@ class OverviewController:
         with self._table.keeping_position():
             storms.set_mask_digits(not storms.mask_digits)
             storms.sync(FOLLOW_BUDGET_S)
-        self._table.restyle()
+        self._decorations.changed()  # the storms' rows and counts
         if storms.behind:
             self._catch_up()
         self._host.notify(

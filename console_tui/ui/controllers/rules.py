@@ -66,8 +66,7 @@ class RulesController:
         to test, and says which)."""
         table = self._table
         rules = self.rules = self._view.rules
-        table.decoration_of = self._view.decoration_of if rules.highlighting else None
-        table.restyle()
+        table.decorations.show_highlights(self._view.decoration_of if rules.highlighting else None)
         self._announce.rules_changed(rules)  # the storms and the timeline count again under them
         for rule, why in self._view.take_switched_off():
             self._host.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)

@@ -7,6 +7,7 @@ line says "match 3 of 17".
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -234,6 +235,7 @@ class SearchController:
     def show_marks(self) -> None:
         table = self._table
         search = self.search
+        matches: Callable[[int, str], Spans] | None = None
         if search is not None:
             pattern = display_pattern(search.match)
             regex = search.match.regex
@@ -249,11 +251,9 @@ class SearchController:
                 except MatchTimeout:
                     return []
 
-            table.match_spans = spans
-        else:
-            table.match_spans = None
-        table.set_gutter(self._gutter if search is not None or len(self._marks) else None)
-        table.restyle()
+            matches = spans
+        gutter = self._gutter if search is not None or len(self._marks) else None
+        table.decorations.show_matches(matches, gutter)
 
     def _gutter(self, seq: int) -> str:
         if seq in self._marks:

@@ -66,7 +66,7 @@ class TableController:
             self._robot_column = True
             table.set_column_shown("robot", True)
         if taken.rewritten:
-            table.restyle()  # rows drawn before show other records now
+            table.decorations.changed()  # rows drawn before show other records now
 
     # -- columns ----------------------------------------------------------------------------------
 
@@ -80,10 +80,10 @@ class TableController:
 
         from ..screens.columns_dialog import ColumnsScreen  # loaded when first opened
 
-        self._host.push_screen(ColumnsScreen(table.shown_columns), apply)
+        self._host.push_screen(ColumnsScreen(table.painter.shown_columns), apply)
 
     def toggle_column(self, key: str) -> None:
-        self._table.set_column_shown(key, key not in self._table.shown_columns)
+        self._table.set_column_shown(key, key not in self._table.painter.shown_columns)
 
     # -- a row's details --------------------------------------------------------------------------
 

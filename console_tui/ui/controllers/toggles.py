@@ -115,20 +115,21 @@ class TogglesController:
     # -- time -------------------------------------------------------------------------------------
 
     def next_time_format(self) -> None:
-        self.time_format(next_format(self._table.time_format).value)
+        self.time_format(next_format(self._table.painter.time_format).value)
 
     def time_format(self, name: str) -> None:
-        self._table.set_time_format(TimeFormat(name), self._table.utc)
+        self._table.set_time_format(TimeFormat(name), self._table.painter.utc)
         self._changed()
 
     def toggle_utc(self) -> None:
-        self._table.set_time_format(self._table.time_format, not self._table.utc)
+        painter = self._table.painter
+        self._table.set_time_format(painter.time_format, not painter.utc)
         self._changed()
 
     def time_status(self) -> str:
         """What the Time column shows when not the local wall clock, and a sim time note."""
         table = self._table
-        fmt = table.time_format
+        fmt = table.painter.time_format
         parts = []
         if fmt is not TimeFormat.CLOCK:
             parts.append(f"time: {format_info(fmt).name}")
