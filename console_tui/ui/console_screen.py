@@ -177,9 +177,7 @@ class ConsoleScreen(Screen[None]):
             files_loading=lambda: self.files.loading,
             robots=self.robots,
         )
-        self.jumps = JumpsController(
-            context, opened_paths=self.files.opened_paths, show_marks=self.searching.show_marks
-        )
+        self.jumps = JumpsController(context, opened_paths=self.files.opened_paths)
 
     def _controllers(self) -> list[object]:
         return [

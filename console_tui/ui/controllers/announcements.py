@@ -1,5 +1,6 @@
 """What the console's controllers announce, and who listens: the intake says records were
-taken in, the rules that they changed, the table that the store was cleared; whoever follows
+taken in, the rules that they changed, the table that the store was cleared, the jumps that the marks
+changed; whoever follows
 them (the overview, the search, the rules' counts, the load bar, the status line) subscribes
 where it is made, and the one announcing knows nobody.
 
@@ -63,3 +64,5 @@ class Announcements:
     rules_changed: Announcement[[RuleSet]] = field(default_factory=_announcement)
     #: Every record was dropped (``c``).
     cleared: Announcement[[]] = field(default_factory=_announcement)
+    #: A mark was put on a row or taken off (the gutter shows them).
+    marks_changed: Announcement[[]] = field(default_factory=_announcement)

@@ -35,14 +35,13 @@ def _seeking(level: int, forward: bool) -> Callable[[JumpsController], None]:
 class JumpsController:
     """Jumps to errors, warnings and marks; the source of a message in the editor."""
 
-    def __init__(self, context: ConsoleContext, *, opened_paths: list[str], show_marks: Callable[[], None]) -> None:
+    def __init__(self, context: ConsoleContext, *, opened_paths: list[str]) -> None:
         c = context
         self._host, self._store, self._view, self._table, self._marks = c.host, c.store, c.view, c.table, c.marks
         self._changed = c.changed
         #: Every file and folder opened: where a message's bare file name may resolve.
         self._opened_paths = opened_paths
-        #: Draws the gutter again (it shows marks and search matches).
-        self._show_marks = show_marks
+        self._marks_changed = c.announce.marks_changed
 
     # -- levels -----------------------------------------------------------------------------------
 
@@ -93,7 +92,7 @@ class JumpsController:
             return
         self._marks.trim(self._store.first_seq)
         self._marks.toggle(seq)
-        self._show_marks()
+        self._marks_changed()
         self._changed()
 
     def to_mark(self, *, forward: bool) -> None:
@@ -117,7 +116,7 @@ class JumpsController:
         self._marks.trim(self._store.first_seq)
 
         def chosen(seq: int | None) -> None:
-            self._show_marks()
+            self._marks_changed()
             if seq is None:
                 return
             if not self._table.jump_to_seq(seq):

@@ -70,6 +70,7 @@ class SearchController:
         self._match_rows: tuple[tuple, MatchRows] | None = None
         self._worker: Worker[None] | None = None
         context.announce.taken_in.subscribe(self.after_records)
+        context.announce.marks_changed.subscribe(self.show_marks)  # the gutter shows them
 
     # -- the search line ----------------------------------------------------------------------
 
