@@ -278,14 +278,14 @@ class ConsoleApp(App[None], inherit_bindings=False):
         Command(
             "console.help",
             show_help,
-            keys="question_mark,f1",
-            label="Help",
+            "question_mark,f1",
+            "Help",
             footer=120,
             applies=lambda app: not isinstance(app.screen, HelpScreen),
             title="Help: every key",
             about="What console-tui shows, and every key (remap them in keys.toml)",
         ),
-        Command("console.quit", lambda app: app.begin_quitting(), keys="q", label="Quit", footer=130),
+        Command("console.quit", lambda app: app.begin_quitting(), "q", "Quit", footer=130),
     )
 
     #: Every command's keys, read from the rows.

@@ -2,11 +2,15 @@
 command, and the keys, the footer, the help screen, the command palette and whether a key
 applies now are all read from the rows.
 
-A row says what the command is called (``id``: ``keys.toml`` remaps its keys by it), its
-default keys, what its key does in a few words (the footer and the help screen say it), its
-entry in the palette (a title, a line of help, other words people look for it by), when it
-applies (the footer leaves it out, the key goes on to whatever else takes it) and what runs:
-a function of the controller that declares it. Its key runs it as the action
+A row says what the command is called (``id``: ``keys.toml`` remaps its keys by it), what runs
+(a function of the controller that declares it), its default keys and what its key does in a
+few words (the footer and the help screen say it; these four in that order, as Textual's
+``Binding`` takes a key, an action and a description), then by name: its place in the footer,
+when it applies (the footer leaves it out, the key goes on to whatever else takes it), its entry
+in the palette (a line of help, a title when not the label, other words people look for it by).
+For example::
+
+    Command("console.open", ask_open, "o", "Open", footer=30, about="Log files and recordings") Its key runs it as the action
 ``command('<id>')`` (``ConsoleApp.action_command``), and so does its palette entry.
 (docs/decisions/0028-commands-as-data.md says why.)
 """
@@ -44,10 +48,11 @@ class Command(Generic[Owner]):
     #: Whether it applies now (None: always). A key that does not apply shows nowhere and
     #: goes on to whatever else takes it (Esc: the table's selection, a search, a filtering).
     applies: Callable[[Owner], bool] | None = None
-    #: Its entry in the palette: a title ("" for none), a line of help, and other words
-    #: people look for it by (searched as the title is).
-    title: str = ""
+    #: Its entry in the palette, when it has one: a line of help (none: not in the palette),
+    #: a title (its label unless said), other words people look for it by (searched as the
+    #: title is).
     about: str = ""
+    title: str = ""
     words: str = ""
     #: It ends or undoes what another entry starts: it ranks below that one in the palette.
     ends: bool = False
@@ -56,6 +61,10 @@ class Command(Generic[Owner]):
     keys_of: str = ""
     #: Its group in the help screen.
     group: str = CONSOLE
+
+    @property
+    def palette_title(self) -> str:
+        return self.title or self.label
 
     @property
     def action(self) -> str:
@@ -131,4 +140,4 @@ class CommandTable:
 
     def palette(self) -> list[Command[Any]]:
         """The palette's entries, in the order it lists them before anything is typed."""
-        return [command for command in self if command.title]
+        return [command for command in self if command.about]

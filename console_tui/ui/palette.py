@@ -47,7 +47,7 @@ class PaletteProvider(Provider):
 
     async def discover(self) -> Hits:
         for command, help_text in self._entries():
-            yield DiscoveryHit(command.title, partial(self.app.run_action, command.action), help=help_text)
+            yield DiscoveryHit(command.palette_title, partial(self.app.run_action, command.action), help=help_text)
 
     async def search(self, query: str) -> Hits:
         matcher = self.matcher(query)
@@ -56,9 +56,9 @@ class PaletteProvider(Provider):
             if score > 0:
                 yield Hit(
                     score,
-                    matcher.highlight(command.title),
+                    matcher.highlight(command.palette_title),
                     partial(self.app.run_action, command.action),
-                    text=command.title,
+                    text=command.palette_title,
                     help=help_text,
                 )
 
@@ -77,12 +77,12 @@ def palette_score(command: Command[Any], query: str, fuzzy: Callable[[str], floa
         words = _words(text)
         return bool(typed) and all(any(word.startswith(part) for word in words) for part in typed)
 
-    if holds(command.title):
+    if holds(command.palette_title):
         score = 1.0
     elif holds(command.words):
         score = 0.9
     elif holds(command.about):
         score = 0.8
     else:
-        score = 0.7 * fuzzy(command.title)
+        score = 0.7 * fuzzy(command.palette_title)
     return score * 0.6 if command.ends else score

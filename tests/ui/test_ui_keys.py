@@ -67,7 +67,7 @@ async def test_a_bad_keymap_is_reported_and_the_default_keys_stay(own_config_fol
 
 async def test_palette_entries_have_distinct_names_and_show_their_keys():
     app = make_app(5)
-    titles = [command.title for command in app.commands.palette()]
+    titles = [command.palette_title for command in app.commands.palette()]
     assert len(titles) == len(set(titles))
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("ctrl+p", *"pause")

@@ -170,7 +170,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
 async def test_help_and_command_palette_offer_the_pane():
     app = make_app(5)
     async with app.run_test(size=(100, 40)) as pilot:
-        titles = [command.title for command in app.commands.palette()]
+        titles = [command.palette_title for command in app.commands.palette()]
         assert "Logger levels" in titles and "Logger levels of this row's node" in titles
         groups = dict(app.binding_groups())
         assert any(b.action == "set_level(10)" for b in groups["Logger levels pane"])

@@ -251,7 +251,7 @@ async def test_narrow_terminals_keep_severity_node_and_message(width):
 async def test_command_palette_offers_the_actions():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
-        titles = [command.title for command in app.commands.palette()]
+        titles = [command.palette_title for command in app.commands.palette()]
         for title in ("Pause / resume", "Follow tail", "Clear", "Details", "Columns"):
             assert title in titles
         await pilot.press("ctrl+p")

@@ -161,8 +161,8 @@ class FilesController:
         Command(
             "console.open",
             ask_open,
-            keys="o",
-            label="Open",
+            "o",
+            "Open",
             footer=30,
             title="Open files",
             about="Log files and recordings, merged by time",
@@ -170,21 +170,18 @@ class FilesController:
         Command(
             "console.save",
             ask_save,
-            keys="s",
-            label="Save",
+            "s",
+            "Save",
             footer=40,
-            title="Save",
             about="Save the rows shown, or everything (rqt_console CSV or JSON Lines)",
             words="export write",
         ),
-        Command(
-            "console.cancel_load", cancel_loads, keys="x", label="Cancel load", footer=50, applies=lambda f: f.loading
-        ),
+        Command("console.cancel_load", cancel_loads, "x", "Cancel load", footer=50, applies=lambda f: f.loading),
         Command(
             "console.problems",
             show_problems,
-            keys="exclamation_mark",
-            label="Problems",
+            "exclamation_mark",
+            "Problems",
             title="Load problems",
             about="What went wrong while loading files, and where",
         ),

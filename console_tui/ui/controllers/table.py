@@ -110,13 +110,13 @@ class TableController:
         return self._store.get(table.view.seq_at(row))
 
     COMMANDS: ClassVar[tuple[Command[TableController], ...]] = (
-        Command("console.pause", pause, keys="space", label="Pause", footer=10, applies=lambda t: not t.paused),
+        Command("console.pause", pause, "space", "Pause", footer=10, applies=lambda t: not t.paused),
         # Space is Pause or Resume, whichever applies (the footer says which): one key, one id.
         Command(
             "console.resume",
             resume,
-            keys="space",
-            label="Resume",
+            "space",
+            "Resume",
             footer=10,
             applies=lambda t: t.paused,
             keys_of="console.pause",
@@ -135,7 +135,7 @@ class TableController:
             title="Follow tail",
             about="Jump to the newest message and follow it",
         ),
-        Command("console.clear", clear, keys="c", label="Clear", footer=20, title="Clear", about="Drop every message"),
+        Command("console.clear", clear, "c", "Clear", footer=20, about="Drop every message"),
         Command(
             "console.details",
             details,
@@ -147,10 +147,9 @@ class TableController:
         Command(
             "console.columns",
             ask_columns,
-            keys="C",
-            label="Columns",
+            "C",
+            "Columns",
             footer=90,
-            title="Columns",
             about="Choose the table's columns",
         ),
         *(

@@ -147,8 +147,8 @@ class TogglesController:
             Command(
                 f"levels.{severity.name.lower()}",
                 _toggling_level(int(severity)),
-                keys=str(number),
-                label=f"Show / hide {severity.name} messages",
+                str(number),
+                f"Show / hide {severity.name} messages",
                 group=NAVIGATION,
                 title=f"Show / hide {severity.name}",
                 about=f"Hide {severity.name} messages, or show them again (a rule underneath)",
@@ -167,8 +167,8 @@ class TogglesController:
         Command(
             "levels.up",
             raise_minimum,
-            keys="greater_than_sign",
-            label="Minimum level up (hide the lowest shown)",
+            "greater_than_sign",
+            "Minimum level up (hide the lowest shown)",
             group=NAVIGATION,
             title="Minimum level up",
             about="Hide the lowest level shown",
@@ -176,8 +176,8 @@ class TogglesController:
         Command(
             "levels.down",
             lower_minimum,
-            keys="less_than_sign",
-            label="Minimum level down (show one more)",
+            "less_than_sign",
+            "Minimum level down (show one more)",
             group=NAVIGATION,
             title="Minimum level down",
             about="Show one more level",
@@ -185,8 +185,8 @@ class TogglesController:
         Command(
             "levels.all",
             all_levels,
-            keys="0",
-            label="Every level shown again",
+            "0",
+            "Every level shown again",
             group=NAVIGATION,
             title="Every level",
             about="Show every level again",
@@ -217,8 +217,8 @@ class TogglesController:
         Command(
             "time.format",
             next_time_format,
-            keys="t",
-            label="Time format: clock, date, stamp, since first, since row, Δ",
+            "t",
+            "Time format: clock, date, stamp, since first, since row, Δ",
             group=NAVIGATION,
             title="Time format: the next one",
             about="Wall clock, date, stamp, since first, since row, delta",
@@ -226,10 +226,9 @@ class TogglesController:
         Command(
             "time.utc",
             toggle_utc,
-            keys="ctrl+u",
-            label="Time in UTC / local time",
+            "ctrl+u",
+            "Time in UTC / local time",
             group=NAVIGATION,
-            title="Time in UTC / local time",
             about="The wall clock in UTC, or local time",
         ),
     )
