@@ -48,7 +48,7 @@ def row_of(pane, logger_label: str) -> str:
 
 
 def notice(pane) -> str:
-    return pane.view.notice_text()[0]
+    return pane.state.notice_text()[0]
 
 
 def messages(app, node: str) -> list:
@@ -205,7 +205,7 @@ async def test_node_killed_during_a_call_gives_a_clear_message_and_the_app_carri
         talker.send({"cmd": "block", "seconds": 30})
         await asyncio.to_thread(talker.expect, "blocking")
         await pilot.press("right", "d")
-        assert pane.view.pending.get(TALKER)
+        assert pane.state.pending.get(TALKER)
         talker.kill()
         await until(pilot, lambda: "Could not set ns.talker to DEBUG" in notice(pane), timeout=10, what="the failure")
         assert TALKER in notice(pane)

@@ -85,7 +85,7 @@ async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
         await pilot.press("L")
         await until(pilot, lambda: pane_says(app, "No node in the ROS graph logs as"), what="the pane's answer to L")
         assert "Temporary level for" not in screen_text(app), "t opened no dialog"
-        assert app.main.logger_pane.view.notice_is_error
+        assert app.main.logger_pane.state.notice_is_error
 
 
 async def test_nodes_marks_loggers_and_levels_as_shown():
@@ -236,7 +236,7 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
     try:
         async with app.run_test(size=(140, 30)) as pilot:
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
-            assert not control.graph_watched and not app.main.logger_pane.view.nodes
+            assert not control.graph_watched and not app.main.logger_pane.state.nodes
             await pilot.press("L")
             await until(
                 pilot, lambda: app.main.logger_pane.selected == "/power/battery_monitor", what="the row's node selected"

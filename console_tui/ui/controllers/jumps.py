@@ -1,5 +1,5 @@
-"""Jumps: next / previous error and warning, first / last message, marks, and opening a
-message's source file in the person's editor.
+"""Jumps: next / previous error and warning, first / last message, marks, and opening the
+code file a message names in the person's editor.
 
 A jump walks the history from the selected row with the model's ``Seeker``: a few milliseconds
 at a time on the event loop, so a jump a million rows away never freezes the screen.
@@ -16,7 +16,7 @@ from textual.app import SuspendNotSupported
 from ...model.inert_text import one_line
 from ...model.levels import Severity
 from ...model.view.seek import Hits, Seeker, level_hits, view_shows
-from ..code_file import editor_command, find_source, run_editor, run_folders
+from ..code_file import editor_command, find_code_file, run_editor, run_folders
 from ..command_table import NAVIGATION, Command
 from ..slicing import pause_between_slices
 from .context import ConsoleContext
@@ -33,7 +33,7 @@ def _seeking(level: int, forward: bool) -> Callable[[JumpsController], None]:
 
 
 class JumpsController:
-    """Jumps to errors, warnings and marks; the source of a message in the editor."""
+    """Jumps to errors, warnings and marks; the code file a message names, in the editor."""
 
     def __init__(self, context: ConsoleContext, *, opened_paths: list[str]) -> None:
         c = context
@@ -128,10 +128,10 @@ class JumpsController:
         shown = {record.seq for record in records if view_shows(self._view, record.seq)}
         self._host.push_screen(MarksScreen(records, shown, self._marks, utc=self._table.painter.utc), chosen)
 
-    # -- the source file --------------------------------------------------------------------------
+    # -- the code file ----------------------------------------------------------------------------
 
-    def open_source(self) -> None:
-        """The selected message's source file in ``$VISUAL`` / ``$EDITOR``, at its line."""
+    def open_code_file(self) -> None:
+        """The selected message's code file in ``$VISUAL`` / ``$EDITOR``, at its line."""
         seq = self._table.cursor_seq
         if seq is None or seq not in self._store:
             return
@@ -140,7 +140,7 @@ class JumpsController:
         if not record.file:
             host.notify("This message names no source file.", timeout=4)
             return
-        path, why = find_source(record.file, run_folders(self._opened_paths))
+        path, why = find_code_file(record.file, run_folders(self._opened_paths))
         if path is None:
             host.notify(why, severity="warning", timeout=8)
             return
@@ -216,7 +216,7 @@ class JumpsController:
         ),
         Command(
             "nav.source",
-            open_source,
+            open_code_file,
             "v",
             "Open the row's source file in $VISUAL / $EDITOR",
             group=NAVIGATION,
