@@ -9,7 +9,7 @@ owns one controller a concern. The app also keeps what holds for every screen: t
 outside never markup and never raw (notifications, the clipboard), keys typed ahead going where
 they were meant (``focus``), the user's keymap, the exit on SIGTERM / SIGHUP, the help screen
 and the command palette (``palette``). A new command is a row in its controller's
-``COMMANDS``. (docs/decisions/0028-commands-as-data.md says why.)
+``COMMANDS``. (docs/decisions/0029-commands-as-data.md says why.)
 """
 
 from __future__ import annotations

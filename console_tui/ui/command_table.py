@@ -12,7 +12,7 @@ For example::
 
     Command("console.open", ask_open, "o", "Open", footer=30, about="Log files and recordings") Its key runs it as the action
 ``command('<id>')`` (``ConsoleApp.action_command``), and so does its palette entry.
-(docs/decisions/0028-commands-as-data.md says why.)
+(docs/decisions/0029-commands-as-data.md says why.)
 """
 
 from __future__ import annotations
