@@ -131,17 +131,16 @@ class ConsoleScreen(Screen[None]):
             changed=self.state_changed,
             announce=Announcements(),
         )
-        self._make_controllers(log_format)
+        made = {type(controller): controller for controller in self._make_controllers(log_format)}
         #: Every controller's commands, in the order of ``controllers`` (those not made by
         #: ``_make_controllers`` need only the context: made here).
         self.commands = CommandTable()
-        made = {type(controller): controller for controller in self._controllers()}
         for kind in controllers:
             self.commands.add(made[kind] if kind in made else kind(self.context))
         # The collector's turn comes with the intake's tick, after everything else it does.
         self.context.announce.tick.subscribe(collection_policy.tick)
 
-    def _make_controllers(self, log_format: str | None) -> None:
+    def _make_controllers(self, log_format: str | None) -> list[object]:
         """Each controller with the context and the few things only it drives. They subscribe
         to what they follow as they are made: the order here is the order they hear news in
         (the rules before the table, the table before the search: a late history's rows are
@@ -178,8 +177,6 @@ class ConsoleScreen(Screen[None]):
             robots=self.robots,
         )
         self.jumps = JumpsController(context, opened_paths=self.files.opened_paths)
-
-    def _controllers(self) -> list[object]:
         return [
             self.files,
             self.overview,
@@ -273,16 +270,22 @@ class ConsoleScreen(Screen[None]):
         table.show_hint(empty_hint(facts, self.view.refiltering))
         self._refresh_footer()
 
-    _footer_state: tuple[bool, ...] = ()
+    _footer_state: tuple[bool, ...] | None = None
 
     def _refresh_footer(self) -> None:
         """The footer's keys that come and go (the commands' ``applies``) follow the console's
         state when it changes (paused, a load ends, filtering is done), not only when the
         focus moves."""
-        state = self.commands.state()
-        if state != self._footer_state:
-            self._footer_state = state
+        if self.commands.state() != self._footer_state:
             self.refresh_bindings()
+
+    def refresh_bindings(self) -> None:
+        # Whoever asks (this screen, or Textual when the focus moves), the footer is drawn
+        # from the commands' states of now: a change after it is one to draw again.
+        commands: CommandTable | None = getattr(self, "commands", None)
+        if commands is not None:
+            self._footer_state = commands.state()
+        super().refresh_bindings()
 
     # -- what the widgets say -----------------------------------------------------------------------
 

@@ -116,3 +116,20 @@ async def test_a_click_on_a_key_in_the_footer_presses_it():
         await until(pilot, lambda: "Resume" in screen_text(app).splitlines()[-1], what="Resume in the footer")
         await pilot.click(offset=(screen_text(app).splitlines()[-1].index("space"), bottom))
         await until(pilot, lambda: "FOLLOW" in screen_text(app), what="resumed by the click")
+
+
+async def test_a_key_that_stops_applying_leaves_the_footer_whoever_drew_it_last():
+    """The footer drawn again by Textual (a focus move) while a load ran showed Cancel load; when
+    the load ended, the console's check saw no change from what it had drawn itself and left
+    the key there."""
+    from console_tui.model.store.record_batch import RecordColumns
+
+    from support.feed import records
+
+    app = make_app(5)
+    async with app.run_test(size=(160, 30)) as pilot:
+        app.main.file_queue.put(RecordColumns.from_records(records(10, start=5)))  # a load's last records
+        app.main.refresh_bindings()  # as Textual does when the focus moves
+        await until(pilot, lambda: len(app.main.store) == 15, what="the load's records taken in")
+        await until(pilot, lambda: "Cancel load" not in screen_text(app).splitlines()[-1], what="the key gone")
+        assert " q Quit " in screen_text(app).splitlines()[-1]
