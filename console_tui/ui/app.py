@@ -267,7 +267,9 @@ class ConsoleApp(App[None], inherit_bindings=False):
         return True
 
     def show_help(self) -> None:
-        self.push_screen(HelpScreen(self.binding_groups()))
+        # Not an ``applies``: the footer under the help screen keeps its key, as it always did.
+        if not isinstance(self.screen, HelpScreen):
+            self.push_screen(HelpScreen(self.binding_groups()))
 
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         """Every key, by where it works: the help screen, the keymap and the palette read these."""
@@ -281,7 +283,6 @@ class ConsoleApp(App[None], inherit_bindings=False):
             "question_mark,f1",
             "Help",
             footer=120,
-            applies=lambda app: not isinstance(app.screen, HelpScreen),
             title="Help: every key",
             about="What console-tui shows, and every key (remap them in keys.toml)",
         ),
