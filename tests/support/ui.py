@@ -67,16 +67,19 @@ async def until_shown(pilot, *texts: str, timeout: float = PATIENCE_S) -> str:
     return screen_text(app)
 
 
-async def frame_drawn(pilot, timeout: float = PATIENCE_S) -> None:
+async def frame_drawn(pilot, *widgets, timeout: float = PATIENCE_S) -> None:
     """Until the screen has drawn what was asked of it so far: every message already sent
-    handled (``Pilot.pause``), then the screen refreshed (``Screen.wait_for_refresh``: its
-    callback runs after Textual's next compositor update, or at once when nothing is left
-    to draw). What a timer of the app does later is not waited for: wait for a condition
-    that shows it (``until``). A check that something is *not* drawn waits first for a sign
-    that the frame which would have drawn it came (the thing it follows shown), then for
-    this, and then looks."""
+    handled (``Pilot.pause``), then the screen refreshed (``wait_for_refresh``: its callback
+    runs after Textual's next compositor update, or at once when nothing is left to draw).
+    ``widgets``: ones whose own work ``Pilot.pause`` does not wait for (a scrollbar is no
+    child of its widget), each waited through first.
+
+    What a timer of the app does later is not waited for: wait for a condition that shows it
+    (``until``). A check that something is *not* drawn waits first for a sign that the frame
+    which would have drawn it came (what it follows, shown), then for this, then looks."""
     await pilot.pause()
-    await asyncio.wait_for(pilot.app.screen.wait_for_refresh(), timeout)
+    for node in (*widgets, pilot.app.screen):
+        await asyncio.wait_for(node.wait_for_refresh(), timeout)
 
 
 def _screen_update(app, color_system: str | None):
@@ -144,6 +147,12 @@ def widget_lines(app, widget) -> list[str]:
     return [columns(line, region.x, region.right).rstrip() for line in lines]
 
 
+def option_lines(option_list) -> list[str]:
+    """What an option list shows, line by line, as the screen shows it (``widget_lines``,
+    at most one a option)."""
+    return widget_lines(option_list.app, option_list)[: option_list.option_count]
+
+
 def columns(line: str, start: int, end: int) -> str:
     """The part of a screen row from terminal column ``start`` to ``end``: columns, not
     characters (a wide character such as 漢 takes two)."""
@@ -180,6 +189,30 @@ def cursor_after(app, text: str) -> bool:
     return style_at(app, x, y).bgcolor != style_at(app, x + 1, y).bgcolor
 
 
+def toasts(app, severity: str = "") -> list[str]:
+    """The notifications on the screen (``run_test(..., notifications=True)``), each as one
+    line: its rows joined, as a person reads it; of one ``severity`` only (``"warning"``...)."""
+    found = app.screen.query(f"Toast.-{severity}" if severity else "Toast")
+    return [" ".join(line.strip() for line in widget_lines(app, toast) if line.strip()) for toast in found]
+
+
+async def run_command(pilot, title: str) -> None:
+    """Run the command palette's entry ``title`` as a person does: ctrl+p, the title typed,
+    enter once the palette offers it first."""
+    from textual.command import CommandList
+
+    app = pilot.app
+
+    def offered_first() -> bool:
+        lists = app.screen.query(CommandList)
+        return bool(lists) and lists.first().highlighted == 0 and widget_lines(app, lists.first())[0].strip() == title
+
+    await pilot.press("ctrl+p")
+    await type_text(pilot, title)
+    await until(pilot, offered_first, what=f"the palette offering {title!r} first")
+    await pilot.press("enter")
+
+
 async def type_text(pilot, text: str) -> None:
     """Type ``text`` one key at a time, as a person does."""
     for char in text:
@@ -212,11 +245,23 @@ def table_rows(app) -> dict[int, tuple[int, str]]:
     return rows
 
 
+def cursor_line(app) -> str | None:
+    """The table's row drawn in the cursor's colours, as the screen shows it, or None when
+    none is. While the table has the focus only: a blurred cursor's colour is blended."""
+    table = app.main.table
+    cursor = table.get_component_rich_style("log-table--cursor").bgcolor
+    lines = screen_text(app).splitlines()
+    drawn = [
+        y for y in range(table.region.y, table.region.bottom) if style_at(app, table.region.x + 1, y).bgcolor == cursor
+    ]
+    assert len(drawn) <= 1, f"more than one row drawn as the cursor: {[lines[y] for y in drawn]}"
+    return lines[drawn[0]] if drawn else None
+
+
 def cursor_number(app) -> int | None:
-    """The number of the table row drawn in the cursor's colours, or None when none is.
-    While the table has the focus only: a blurred cursor's colour is blended on the screen."""
-    cursor = app.main.table.get_component_rich_style("log-table--cursor").bgcolor
-    x = app.main.table.region.x + 1
-    drawn = [number for number, (y, _) in table_rows(app).items() if style_at(app, x, y).bgcolor == cursor]
-    assert len(drawn) <= 1, f"more than one row drawn as the cursor: {drawn}"
-    return drawn[0] if drawn else None
+    """The number in the # column of the table's row drawn in the cursor's colours
+    (``cursor_line``), or None when none is."""
+    line = cursor_line(app)
+    if line is None:
+        return None
+    return next((number for number, (_, shown) in table_rows(app).items() if shown == line), None)
