@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from console_tui.model.rules import MessageRule, RuleSet, exclude
+from console_tui.model.rules import MessageRule
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.rulesfile import load_rules
 from console_tui.model.store.log_store import LogStore
@@ -76,9 +76,11 @@ async def test_esc_stops_a_long_filtering(monkeypatch):
     app = ConsoleApp(store=store, utc=True)
     app.main.view.clock = TickingClock(0.001)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
-        await pilot.pause()
-        app.main.filtering.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
+        await pilot.press("slash")
+        await type_text(pilot, '-"message 1"')
+        await pilot.press("enter")
         await until(pilot, lambda: "filtering" in screen_text(app), timeout=30, what="the filtering shown")
+        assert app.main.filtering.rules.entries[0].rule == MessageRule("message 1", ignore_case=True)
         assert app.main.view.refiltering
         await pilot.press("escape")
         await until(pilot, lambda: not app.main.view.refiltering, timeout=5, what="filtering to stop")
