@@ -63,7 +63,12 @@ async def until(
 async def until_shown(pilot, *texts: str, timeout: float = PATIENCE_S) -> str:
     """Let the app run until the screen shows every one of ``texts``; the screen as text then."""
     app = pilot.app
-    await until(pilot, lambda: all(text in screen_text(app) for text in texts), timeout, what=f"{texts} on screen")
+    await until(
+        pilot,
+        lambda: all(text in screen_text(app) for text in texts),
+        timeout,
+        what=lambda: f"{texts} on the screen, which shows:\n{screen_text(app)}",
+    )
     return screen_text(app)
 
 
