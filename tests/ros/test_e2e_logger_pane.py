@@ -16,7 +16,7 @@ from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 
-from support.ui import option_lines, until
+from support.ui import option_lines, pick_node, until
 
 pytestmark = pytest.mark.ros2
 
@@ -195,7 +195,7 @@ async def test_node_killed_during_a_call_gives_a_clear_message_and_the_app_carri
             ),
             what="the nodes",
         )
-        pane.select_node(TALKER)
+        await pick_node(pilot, TALKER)
         await until(pilot, lambda: "inherited" in row_of(pane, "ns.talker"), what="the talker's levels")
         talker.send({"cmd": "block", "seconds": 30})
         await asyncio.to_thread(talker.expect, "blocking")

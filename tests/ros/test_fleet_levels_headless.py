@@ -18,7 +18,7 @@ from console_tui.ui.app import ConsoleApp
 
 from support.fleet import ROS2_VALUES, LoopbackFleet
 from support.rosproc import ros_available
-from support.ui import option_lines, until
+from support.ui import option_lines, pick_node, until
 
 pytestmark = pytest.mark.ros2
 
@@ -82,8 +82,9 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
                 timeout=DEADLINE_S,
                 what="both robots' talkers shown in the pane",
             )
-            pane.select_node("left:/talker", "talker")
-            pane.logger_list.focus()
+            await pick_node(pilot, "left:/talker")
+            await pilot.press("right")  # to its loggers, its own ("talker") highlighted
+            assert pane.logger_list.has_focus and pane.highlighted_logger == "talker"
             await until(
                 pilot,
                 lambda: any(

@@ -228,6 +228,18 @@ def _key_name(char: str) -> str:
     return _character_to_key(char)
 
 
+async def pick_node(pilot, name: str) -> None:
+    """Highlight the node ``name`` in the logger pane's node list (its loggers shown) with
+    the arrow keys, as a person does; the list has the focus."""
+    pane = pilot.app.main.logger_pane
+    await pilot.press("home")
+    for _ in range(pane.node_list.option_count):
+        if pane.selected == name:
+            return
+        await pilot.press("down")
+    assert pane.selected == name, f"{name} is not in the node list"
+
+
 def type_ahead(app, text: str = "", keys: tuple[str, ...] = ()) -> None:
     """Queue ``keys`` (names) and then ``text`` all at once, as the terminal driver does when
     keys arrive while the app is busy: none is handled before the next is queued."""

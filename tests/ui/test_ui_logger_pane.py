@@ -21,7 +21,7 @@ from console_tui.ui.widgets.logger_pane import LoggerPane
 
 from support import ui
 from support.feed import GRAPH, PLANNER, feed_logger_pane, records
-from support.ui import cursor_number, frame_drawn, option_lines, screen_text, table_rows, type_text, until
+from support.ui import cursor_number, frame_drawn, option_lines, pick_node, screen_text, table_rows, type_text, until
 
 make_app = partial(ui.make_app, clock=lambda: 100.0)  # nodes include navigation.planner and its costmap
 
@@ -37,16 +37,6 @@ async def fed_pane() -> AsyncIterator[tuple[Pilot, LoggerPane]]:
         feed_logger_pane(pane)
         await pilot.pause()
         yield pilot, pane
-
-
-async def pick_node(pilot: Pilot, pane: LoggerPane, name: str) -> None:
-    """Highlight the node ``name`` in the node list with the arrow keys, as a person does."""
-    await pilot.press("home")
-    for _ in range(pane.node_list.option_count):
-        if pane.selected == name:
-            return
-        await pilot.press("down")
-    assert pane.selected == name, f"{name} is not in the node list"
 
 
 def notice(pane: LoggerPane) -> str:
@@ -273,15 +263,14 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
             await pilot.press("l")
             await until(pilot, lambda: pane_says(app, "cart:/cart_driver"), what="both robots' nodes")
-            pane = app.main.logger_pane
-            await pick_node(pilot, pane, "arm:/arm_driver")
+            await pick_node(pilot, "arm:/arm_driver")
             default_is = partial(re.search, r'^"" \(default\) +(\S+)$', flags=re.M)
             await until(
                 pilot,
                 lambda: (found := default_is("\n".join(pane_text(app)))) and found[1] == "INFO",
                 what="the ROS 2 robot's levels, read at once",
             )
-            await pick_node(pilot, pane, "cart:/cart_driver")
+            await pick_node(pilot, "cart:/cart_driver")
             await until(pilot, lambda: pane_says(app, "Loggers of cart:/cart_driver"), what="the ROS 1 robot's node")
             assert pane_says(app, "read its loggers")
             assert default_is("\n".join(pane_text(app)))[1] == "?", "not read until asked"
