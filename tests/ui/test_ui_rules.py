@@ -18,6 +18,7 @@ from console_tui.ui.screens.rule_editor import RuleEditor
 from support import ui
 from support.feed import NODES, records
 from support.ui import (
+    frame_drawn,
     line_with,
     run_command,
     screen_text,
@@ -154,7 +155,7 @@ async def test_query_given_at_start():
 
 
 async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], role: str = "exclude") -> None:
-    """Through the rules pane: a, choose the kind, fill the fields, Enter."""
+    """Through the rules pane: a, choose the kind, fill the fields, ctrl+s (Apply)."""
     if not app.main.rules_pane.is_open:
         await pilot.press("r")
     await pilot.press("a")
@@ -169,8 +170,8 @@ async def add_rule(pilot, app: ConsoleApp, kind: str, fill: dict[str, object], r
     if role == "highlight":
         editor.query_one("RadioButton[name='highlight']").value = True
     await pilot.pause()
-    editor.action_apply()
-    await pilot.pause()
+    await pilot.press("ctrl+s")
+    await frame_drawn(pilot)  # the editor closed, or its error shown
 
 
 @pytest.mark.parametrize(
