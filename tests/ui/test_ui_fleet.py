@@ -18,7 +18,7 @@ from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import StaticSource
-from support.ui import line_with, screen_text, table_rows, type_text, until
+from support.ui import cursor_line, line_with, run_command, screen_text, table_rows, type_text, until
 
 ROBOTS = [Robot("picker", ROS2, domain=3, colour="cyan"), Robot("forklift", ROS1, master="http://127.0.0.1:1/")]
 
@@ -142,10 +142,12 @@ async def test_solo_and_mute_act_on_one_robots_node():
         assert re.search(r"▏ +forklift: /talker", screen_text(app))
         await pilot.press("x", "escape")
         await until(pilot, lambda: "forklift says 3" in screen_text(app), what="every node again")
-        app.main.table.jump_to_seq(
-            next(s for s in range(app.main.store.end_seq) if app.main.store.get(s).robot == "forklift")
-        )
-        await app.run_action("command('nav.mute_row_node')")
+        await until(pilot, lambda: cursor_line(app) is not None, what="the table's cursor")
+        for _ in range(8):
+            if "forklift" in cursor_line(app):
+                break
+            await pilot.press("up")  # to a row of forklift's
+        await run_command(pilot, "Mute this row's node")
         await until(pilot, lambda: "forklift says" not in screen_text(app), what="the mute")
         assert "picker says 3" in screen_text(app)
         await until(pilot, lambda: "muted forklift:/talker" in screen_text(app), what="the status line")

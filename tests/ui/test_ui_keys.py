@@ -6,7 +6,7 @@ from console_tui.ui.keys import load_keymap
 from console_tui.ui.widgets.key_footer import KeyFooter
 
 from support.feed import feed_logger_pane
-from support.ui import make_app, screen_text, until
+from support.ui import frame_drawn, make_app, screen_text, toasts, until, until_shown
 
 
 def write_keys(config, text: str):
@@ -56,10 +56,9 @@ async def test_a_remapped_key_works_and_the_screen_names_it(own_config_folder):
 async def test_a_bad_keymap_is_reported_and_the_default_keys_stay(own_config_folder):
     write_keys(own_config_folder, 'console.pause = "p"\nconsole.nothing = "n"\n')
     app = make_app(5)
-    async with app.run_test(size=(120, 30)) as pilot:
-        # The warning is a toast, which screen_text does not draw (yet): read from the app.
-        await until(pilot, lambda: any(n.severity == "warning" for n in app._notifications), what="the warning")
-        warnings = [str(n.message) for n in app._notifications if n.severity == "warning"]
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await until(pilot, lambda: toasts(app, "warning"), what="the warning")
+        warnings = toasts(app, "warning")
         assert "no key is named 'console.nothing'" in warnings[0]
         await pilot.press("p")
         await until(pilot, lambda: "PAUSED" in screen_text(app).splitlines()[-2], what="the good entries applying")
@@ -71,7 +70,7 @@ async def test_palette_entries_have_distinct_names_and_show_their_keys():
     assert len(titles) == len(set(titles))
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("ctrl+p", *"pause")
-        await pilot.pause(0.3)
+        await until_shown(pilot, "(space)")
         assert "(space)" in screen_text(app)
         system = [command.title for command in app.get_system_commands(app.screen)]
         assert "Keys" not in system, "Textual's key panel gives way to the help screen"
@@ -98,7 +97,9 @@ async def test_the_footer_draws_its_keys_again_only_when_they_change_and_asks_no
         await until(pilot, lambda: "f1 Help" in screen_text(app).splitlines()[-1], what="the search line's keys")
         await pilot.press("escape")
         await until(pilot, lambda: app.focused is app.main.table, what="the table focused again")
-        await pilot.pause(0.2)
+        # The table's keys back in the footer: the frame after the close's changes.
+        await until(pilot, lambda: screen_text(app).splitlines()[-1] == keys_before, what="the table's keys again")
+        await frame_drawn(pilot)
         assert footer.changes - before <= 2, f"{footer.changes - before} changes for open and close"
         assert True not in layouts, "the footer asked for a layout"
         assert screen_text(app).splitlines()[-1] == keys_before
