@@ -112,12 +112,12 @@ def ros_runtime(ros_env):
 def ros1_env(tmp_path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
     """A ROS 1 environment of its own for one test: a port of its own for its master, loopback,
     logs under the test's tmp folder. Set in this process too (for sources run in-process)."""
-    from support.ros1 import master_port, ros1_environment, ros1_missing
+    from support.ros1 import own_port, ros1_environment, ros1_missing
 
     reason = ros1_missing()
     if reason:
         pytest.skip(reason)
-    env = ros1_environment(tmp_path, master_port())
+    env = ros1_environment(tmp_path, own_port())
     for key in [k for k in os.environ if k.startswith("ROS_")]:
         monkeypatch.delenv(key)
     for key, value in env.items():

@@ -44,15 +44,8 @@ def roscpp_missing() -> str:
     return ""
 
 
-def free_port() -> int:
-    """A port free now, from the kernel's ephemeral range (for a server bound at once)."""
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
-
-
-#: ``CONSOLE_TUI_TEST_ROS1_PORTS=FIRST-LAST``: the ports the tests' ROS 1 masters listen on, a
-#: share for each xdist worker. The default lies below Linux's ephemeral ports (32768 and up):
+#: ``CONSOLE_TUI_TEST_ROS1_PORTS=FIRST-LAST``: the ports the tests' ROS 1 masters (and their
+#: ``serve``) listen on, a share for each xdist worker. The default lies below Linux's ephemeral ports (32768 and up):
 #: a port the kernel hands out to any socket bound to port 0 (every ROS 1 node's XML-RPC
 #: server) could be taken between a test's choice and roscore's bind, and the test would ask a
 #: node's slave API for the master's ``getSystemState``.
@@ -61,8 +54,8 @@ DEFAULT_PORTS = (21100, 22099)
 _ports = taker(lambda: range_of(PORTS_VARIABLE, DEFAULT_PORTS, 1024, 65535, "21100-22099"))
 
 
-def master_port() -> int:
-    """A port for a test's ROS 1 master: this worker's next one that nothing listens on."""
+def own_port() -> int:
+    """A port for a test's server (a ROS 1 master, serve): this worker's next one that nothing listens on."""
     for port in _ports():
         with socket.socket() as sock:
             try:
