@@ -9,7 +9,7 @@ from rich.text import Text
 from console_tui.model.inert_text import one_line
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.widgets.status_bar import StatusFacts, render_status, short_problem
-from console_tui.ui.widgets.status_fit import COUNTS, DETAIL, SOURCE, STATE, Part, fit
+from console_tui.ui.widgets.status_fit import COUNTS, DETAIL, SOURCE, STATE, WHERE, Part, fit
 
 
 def parts() -> list[Part]:
@@ -37,6 +37,20 @@ def test_the_least_important_shortened_then_left_out_first():
     assert fit(parts(), 40).plain == " FOLLOW   /rosout_agg 5 pubs  a problem"
     assert fit(parts(), 36).plain == " FOLLOW   /rosout_agg 5p  a problem"
     assert fit(parts(), 5).plain == " FOLLOW   a problem"  # the state and a problem never go
+
+
+def test_a_part_too_wide_for_the_room_leaves_it_to_the_next():
+    # console-tui run: a long command's words (where, even shortened) left a 100-column line
+    # with the state and the topic only; the counts and the pid fit in the room it leaves.
+    line = [
+        Part(Text(" FOLLOW "), STATE, gap=""),
+        Part(Text("6/6 shown"), COUNTS, Text("6/6")),
+        Part(Text("bash -c " + "x" * 60), WHERE, Text("bash -c " + "x" * 23 + "…")),
+        Part(Text("running (pid 42)"), WHERE),
+        Part(Text("/rosout 0 pubs"), SOURCE),
+    ]
+    assert fit(line, 60).plain == " FOLLOW   bash -c xxxxxxxxxxxxxxxxxxxxxxx…  /rosout 0 pubs"
+    assert fit(line, 81).plain == " FOLLOW   6/6  bash -c xxxxxxxxxxxxxxxxxxxxxxx…  running (pid 42)  /rosout 0 pubs"
 
 
 def test_a_problem_in_a_narrow_line_says_what_is_wrong_not_where():

@@ -238,10 +238,12 @@ def short_problem(problem: str) -> str:
 
 
 def _short_origin(origin: str) -> str:
-    """``ROS 2 domain 11`` as ``domain 11``; ``ROS 1 http://robot:11311/`` as ``ROS 1 robot:11311``."""
+    """``ROS 2 domain 11`` as ``domain 11``; ``ROS 1 http://robot:11311/`` as ``ROS 1 robot:11311``;
+    anything else (a command ``run`` runs) in 32 cells."""
     if origin.startswith("ROS 2 domain "):
         return origin.removeprefix("ROS 2 ")
-    return origin.replace("http://", "").rstrip("/")
+    origin = origin.replace("http://", "").rstrip("/")
+    return origin if len(origin) <= 32 else origin[:31] + "…"
 
 
 #: A fleet's robot's state in one mark (``SourceStatus.state``): the status line's legend.

@@ -2,8 +2,9 @@
 short form. When the line is too long, parts give way in turn, the least important first:
 each is shortened when it has a short form, and left out when that is not enough, before a
 more important part is touched. What room is left then (a more important part shortened
-late) takes parts back and gives them their full forms, the most important first. The state (FOLLOW, PAUSED) and a source's problem are
-shortened at most, never left out.
+late, or left out) takes parts back and gives them their full forms, the most important
+first; a part that does not fit in it leaves the room to the next. The state (FOLLOW,
+PAUSED) and a source's problem are shortened at most, never left out.
 """
 
 from __future__ import annotations
@@ -53,14 +54,13 @@ def fit(parts: Sequence[Part], width: int | None) -> Text:
                 if total + part.width(False) - part.width(True) <= width:
                     total += part.width(False) - part.width(True)
                     shortened[i] = False
-                elif part.priority > STATE:
-                    break  # never a less important part in the room a more important one lacks
             elif not kept[i]:
+                # A part too wide for the room leaves it to the less important ones after it
+                # (a long command's words must not leave the counts out of a wide line).
                 short = part.short is not None and total + part.width(False) > width
-                if total + part.width(short) > width:
-                    break
-                total += part.width(short)
-                kept[i], shortened[i] = True, short
+                if total + part.width(short) <= width:
+                    total += part.width(short)
+                    kept[i], shortened[i] = True, short
     line = Text(no_wrap=True, overflow="ellipsis")
     first = True
     for part, short, keep in zip(parts, shortened, kept, strict=True):
