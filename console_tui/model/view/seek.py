@@ -30,13 +30,7 @@ _MIN_PIECE, _START_PIECE = 64, 1024
 
 def view_shows(view: LogView, seq: int) -> bool:
     """Whether the view shows ``seq`` as a row (under its rules)."""
-    store = view.store
-    if seq not in store:
-        return False
-    if not view.filtered:
-        return True
-    row = view.row_of(seq)
-    return row < len(view) and view.seq_at(row) == seq
+    return view.shows(seq)
 
 
 def level_hits(at_least: int) -> Hits:
