@@ -28,7 +28,7 @@ from .commands.arguments import (
     robots_from_names,
 )
 from .commands.journal_options import add_journal_arguments, apply_journal_arguments
-from .model.store.log_store import DEFAULT_MAX_MESSAGES
+from .model.store.log_store import DEFAULT_MAX_MESSAGES, MEMORY_BOUND
 
 #: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
 SUBCOMMANDS: dict[str, str] = {
@@ -144,7 +144,10 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         metavar="N",
         type=positive_int,
         default=DEFAULT_MAX_MESSAGES,
-        help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
+        help=(
+            f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,}): all but the "
+            f"newest on disk, in your cache directory; {MEMORY_BOUND:,} at most when they cannot go to disk"
+        ),
     )
     parser.add_argument("--utc", action="store_true", help="show times in UTC instead of local time")
     parser.add_argument(

@@ -45,12 +45,24 @@ class PackedTexts(Sequence[str]):
         self._texts: list[str] | None = None
         _remember(self)  # just made: the newest records are read first
 
+    @classmethod
+    def from_packed(cls, packed: bytes, starts: array) -> PackedTexts:
+        """Texts kept as ``packed`` (``_packed``'s form) and ``starts``, made when first read."""
+        texts = cls.__new__(cls)
+        texts._packed, texts.starts, texts._text, texts._texts = packed, starts, None, None
+        return texts
+
+    @property
+    def packed(self) -> bytes:
+        """The joined text's UTF-8, LZ4-compressed (what is kept for good)."""
+        return self._packed
+
     @property
     def text(self) -> str:
         """Every text, joined by NUL."""
         text = self._text
         if text is None:
-            text = _decompressed(self._packed).decode("utf-8", "surrogatepass")
+            text = decompress_bytes(self._packed).decode("utf-8", "surrogatepass")
             if self._texts is None:
                 _remember(self)
             self._text = text
@@ -104,19 +116,21 @@ class PackedTexts(Sequence[str]):
 
 
 def _compressed(text: str) -> bytes:
-    return _compress(text.encode("utf-8", "surrogatepass"))
+    return compress_bytes(text.encode("utf-8", "surrogatepass"))
 
 
 # lz4 is imported when first used: the headless commands (``console-tui loggers`` on a robot's
 # Python) import the model without ever packing a chunk.
-def _compress(data: bytes) -> bytes:
+def compress_bytes(data: bytes) -> bytes:
+    """``data`` LZ4-compressed (a block, its size stored with it)."""
     from lz4.block import compress
 
     packed: bytes = compress(data, store_size=True)
     return packed
 
 
-def _decompressed(packed: bytes) -> bytes:
+def decompress_bytes(packed: bytes) -> bytes:
+    """What ``compress_bytes`` compressed."""
     from lz4.block import decompress
 
     data: bytes = decompress(packed)
@@ -142,4 +156,4 @@ def pack(texts: list[str]) -> list[str] | PackedTexts:
     if len(encoded) > _SIZE_LIMIT:
         return texts
     starts = array("I", accumulate(map(add, map(len, texts), repeat(1)), initial=0))
-    return PackedTexts(joined, starts, _compress(encoded))
+    return PackedTexts(joined, starts, compress_bytes(encoded))
