@@ -361,7 +361,7 @@ def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) ->
 
     def app_drain() -> None:  # what the app's timer does
         while not stop.wait(0.05):
-            for batch in queue.drain_batches():
+            for batch in queue.drain_columns():
                 store.extend(batch)
 
     drain = threading.Thread(target=app_drain, daemon=True)
@@ -547,7 +547,7 @@ def run_intake_events_executor() -> None:
         while not stop.wait(0.05):
             batch, pending = pending, []
             queue.put(RecordColumns.from_records(batch))
-            for columns in queue.drain_batches():
+            for columns in queue.drain_columns():
                 store.extend(columns)
 
     spinner = EventsExecutorThread(node)

@@ -13,21 +13,18 @@ from __future__ import annotations
 
 import struct
 from array import array
-from collections import Counter
 from dataclasses import dataclass
-from itertools import islice
-from operator import le
 
 from ..levels import MESSAGE_SEVERITIES, severity_bucket
 from .chunk import Chunk
 from .packed_texts import PackedTexts, compress_bytes, decompress_bytes
 
-#: count, flags, columns' bytes, columns compressed, texts' bytes, oldest stamp, newest stamp,
+#: count, flags, columns' bytes, columns compressed, texts' bytes, first and last record's stamps,
 #: records per severity (DEBUG .. FATAL); then, for texts in a file, its number and bytes.
 _HEADER = struct.Struct("<IIIIIqq5I")
 _FILE = struct.Struct("<Iqq")
 _WIDE = {"lines": 1, "nodes": 2, "files": 4, "functions": 8, "sources": 16, "topics": 32, "robots": 64}
-_HAS_TOPICS, _HAS_ROBOTS, _LISTED, _IN_FILE, _IN_ORDER = 128, 256, 512, 1024, 2048
+_HAS_TOPICS, _HAS_ROBOTS, _LISTED, _IN_FILE = 128, 256, 512, 1024
 _IDS = ("lines", "nodes", "files", "functions", "sources")
 _SLOT = {level: MESSAGE_SEVERITIES.index(severity_bucket(level)) for level in range(256)}
 
@@ -46,14 +43,14 @@ class ColdChunk:
     """A chunk on disk, as the store keeps it in memory: where its blob is and what its
     header says (a few dozen bytes, whatever the chunk holds)."""
 
-    __slots__ = ("count", "file_texts", "in_order", "length", "newest", "offset", "oldest", "segment", "severities")
+    __slots__ = ("count", "file_texts", "first_stamp", "last_stamp", "length", "offset", "segment", "severities")
 
     def __init__(self, segment: int, offset: int, length: int, header: bytes) -> None:
         self.segment, self.offset, self.length = segment, offset, length
-        count, flags, _raw, _packed, _texts, oldest, newest, *severities = _HEADER.unpack_from(header)
+        count, flags, _raw, _packed, _texts, first, last, *severities = _HEADER.unpack_from(header)
         self.count: int = count
-        #: The records' stamps' span, and whether they are in order.
-        self.oldest, self.newest, self.in_order = oldest, newest, bool(flags & _IN_ORDER)
+        #: The stamps of its first and last records.
+        self.first_stamp, self.last_stamp = first, last
         #: Records per severity, DEBUG .. FATAL (as ``MESSAGE_SEVERITIES``).
         self.severities = tuple(severities)
         self.file_texts = FileTexts(*_FILE.unpack_from(header, _HEADER.size)) if flags & _IN_FILE else None
@@ -85,8 +82,6 @@ def pack_chunk(chunk: Chunk, file_texts: FileTexts | None = None) -> bytes:
             flags |= present | (_WIDE[name] if column.typecode != "H" else 0)
             parts.append(column.tobytes())
     stamps = chunk.stamps
-    if all(map(le, stamps, islice(stamps, 1, None))):
-        flags |= _IN_ORDER
     raw = b"".join(parts)
     columns = compress_bytes(raw)
     tail = starts = b""
@@ -101,10 +96,11 @@ def pack_chunk(chunk: Chunk, file_texts: FileTexts | None = None) -> bytes:
         encoded = [text.encode("utf-8", "surrogatepass") for text in chunk.msgs]
         texts = compress_bytes(array("I", map(len, encoded)).tobytes() + b"".join(encoded))
     severities = [0] * len(MESSAGE_SEVERITIES)
-    for level, number in Counter(chunk.levels).items():
-        severities[_SLOT[level]] += number
+    levels = chunk.levels.tobytes()
+    for level in set(levels):
+        severities[_SLOT[level]] += levels.count(level)
     header = _HEADER.pack(
-        count, flags, len(raw), len(columns), len(texts), min(stamps, default=0), max(stamps, default=0), *severities
+        count, flags, len(raw), len(columns), len(texts), *(stamps[0], stamps[-1]) if count else (0, 0), *severities
     )
     return header + tail + columns + texts + starts
 

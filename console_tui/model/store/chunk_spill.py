@@ -24,9 +24,11 @@ import time
 from array import array
 from collections import OrderedDict
 from collections.abc import Callable, Mapping
+from functools import partial
 
 from .chunk import Chunk, StringTable
 from .chunk_blob import ColdChunk, FileTexts, header_size, pack_chunk, unpack_chunk
+from .indexed_chunk import FileChunk, TextSource
 from .spill_file import CHUNK, TABLES, SpillFiles
 
 #: Chunks kept in memory after being read back or spilled (about 200 KB each).
@@ -62,13 +64,18 @@ class ChunkSpill:
         self._failed_at: float | None = None
         #: Chunks that could not be read back.
         self.unreadable = 0
-        #: How a chunk's messages kept in a log file are read: by ``FileTexts.source``.
-        self.text_sources: dict[int, Callable[[FileTexts, Chunk], None]] = {}
+        #: What reads the messages of chunks of log files read by index: by ``FileTexts.source``.
+        self.text_sources: dict[int, TextSource] = {}
         files.on_new_segment = self._segment_begun
 
     def attach(self, tables: Mapping[str, StringTable]) -> None:
         """The store's string tables, written to disk as its chunks need them."""
         self._tables = tables
+
+    @property
+    def read_problem(self) -> str:
+        """Why messages of a file read by index could not be read again (it changed), or ""."""
+        return next((source.problem for source in self.text_sources.values() if source.problem), "")
 
     @property
     def writing(self) -> bool:
@@ -100,7 +107,9 @@ class ChunkSpill:
         try:
             chunk, file_texts = unpack_chunk(self.files.read(cold.segment, cold.offset, cold.length))
             if file_texts is not None:
-                self.text_sources[file_texts.source](file_texts, chunk)
+                chunk = FileChunk.of(
+                    chunk, partial(self.text_sources[file_texts.source].load, file_texts, chunk.stamps)
+                )
         except (OSError, ValueError, KeyError) as error:
             self.unreadable += 1
             self.problem = f"a chunk of the history on disk cannot be read: {_describe(error)}"
@@ -170,10 +179,10 @@ def read_tables(blob: bytes) -> list[tuple[str, int, list[str]]]:
 
 
 def lost_chunk(cold: ColdChunk, why: str) -> Chunk:
-    """``cold``'s records as placeholders: its oldest stamp, INFO, and ``why`` as each message."""
+    """``cold``'s records as placeholders: its first stamp, INFO, and ``why`` as each message."""
     chunk = Chunk()
     count = cold.count
-    chunk.stamps = array("q", [cold.oldest]) * count
+    chunk.stamps = array("q", [cold.first_stamp]) * count
     chunk.levels = array("B", [20]) * count
     for name in ("lines", "nodes", "files", "functions", "sources"):
         setattr(chunk, name, array("H", bytes(2 * count)))

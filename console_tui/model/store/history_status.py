@@ -29,6 +29,9 @@ def history_state(store: LogStore) -> HistoryState | None:
         if dropped:
             text, short = f"{dropped}; {text}", f"{dropped}; {short}"
         return HistoryState(text, short, True)
+    changed = store.spill.read_problem if store.spill is not None else ""
+    if changed:
+        return HistoryState(f"{dropped}; {changed}" if dropped else changed, "file changed", True)
     if dropped:
         return HistoryState(f"{dropped} (the oldest, at the bound of {store.bound:,})", dropped, False)
     return None

@@ -27,13 +27,16 @@ stamp, ``late_records.py``); whoever keys on their seqs is told first (``rewind_
 
 from __future__ import annotations
 
+from array import array
 from collections import Counter, deque
 from collections.abc import Callable, Iterable, Iterator
+from functools import partial
 
 from ..levels import MESSAGE_SEVERITIES, severity_bucket
 from .chunk import CHUNK_SIZE, INT64_MAX, UINT32_MAX, Chunk, ChunkSpan, StringTable, clamp, extended, optional_ids
-from .chunk_blob import ColdChunk
+from .chunk_blob import ColdChunk, FileTexts
 from .chunk_spill import ChunkSpill
+from .indexed_chunk import FileChunk, IdColumn, IndexedChunk
 from .record import LogRecord
 from .record_batch import RecordColumns
 
@@ -65,6 +68,10 @@ class LogStore:
         self.spill = spill
         #: Why there is no spill when one was wanted (its directory refused), for the status line.
         self.memory_reason = ""
+        #: The files read by index whose chunks are kept (``extend_indexed``): numbers by
+        #: their ``TextSource``'s id, and their strings' ids in the store's tables.
+        self._text_sources: dict[int, int] = {}
+        self._lookups: dict[tuple[int, str], list[int]] = {}
         self.nodes = StringTable()
         self.files = StringTable()
         self.functions = StringTable()
@@ -148,6 +155,51 @@ class LogStore:
             # Writing to disk fails: memory keeps the newest records, and all older ones go.
             self._evict_to(max(self.end_seq - self.memory_bound, self.first_seq))
         return range(max(start, self.first_seq), self.end_seq)
+
+    def extend_indexed(self, part: IndexedChunk) -> range:
+        """Append a chunk of a log file read by its index: its columns go to disk and its
+        messages stay in the file (read from there when read), when the store has a disk and
+        the chunk fills one of its own; otherwise its messages are read now and it is added
+        as any batch (``extend``)."""
+        spill, chunks = self.spill, self._chunks
+        if spill is not None:
+            self._spill_full()
+        whole = len(part) == CHUNK_SIZE and self._cold == len(chunks)
+        if spill is None or not whole or not spill.writing:
+            return self.extend(part.with_messages())
+        number = self._text_sources.setdefault(id(part.source), len(self._text_sources))
+        spill.text_sources[number] = part.source
+        chunk = Chunk()
+        chunk.stamps = part.stamps  # (int64: the indexer clamps them as ``extend`` does)
+        chunk.levels = part.levels
+        chunk.lines = extended(array("H"), part.lines) if part.lines is not None else array("H", bytes(2 * CHUNK_SIZE))
+        for name in ("nodes", "files", "functions", "sources", "topics", "robots"):
+            column = getattr(part, name)
+            if column is not None:
+                setattr(chunk, name, self._ids_of(number, name, column))
+        base = self.end_seq
+        texts = FileTexts(number, part.start, part.end)
+        cold = spill.spill(base, FileChunk.of(chunk, partial(part.source.load, texts, chunk.stamps)), texts)
+        if cold is None:
+            return self.extend(part.with_messages())
+        chunks.append(cold)
+        self._cold += 1
+        self.end_seq = base + CHUNK_SIZE
+        for severity, count in zip(_SEVERITIES, cold.severities, strict=True):
+            self.counts[severity] += count
+        if len(self) > self.bound:
+            self._evict_to(self.end_seq - self.bound)
+        return range(max(base, self.first_seq), self.end_seq)
+
+    def _ids_of(self, source: int, name: str, column: IdColumn) -> array:
+        """A file's column of strings as ids into the store's table ``name``."""
+        table: StringTable = getattr(self, name)
+        lookup = self._lookups.setdefault((source, name), [])
+        if len(lookup) < len(column.names):
+            lookup += table.ids_of(column.names[len(lookup) :])
+        if column.ids is None:
+            return extended(array("H"), [lookup[0]]) * CHUNK_SIZE
+        return extended(array("H"), list(map(lookup.__getitem__, column.ids)))
 
     def _spill_full(self) -> None:
         """Write the full chunks still in memory to disk, oldest first (while that works)."""
