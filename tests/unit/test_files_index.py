@@ -28,8 +28,9 @@ from console_tui.model.store.record import LogRecord
 from console_tui.model.store.spill_file import SpillFiles
 from console_tui.sources.files import FileLoad, compiled_scan, open_log_file
 
-SCAN, _NOTE = compiled_scan.load()
-needs_scan = pytest.mark.skipif(SCAN is None, reason=f"no scanner in C here: {_NOTE}")
+SCANNER, _NOTE = compiled_scan.load()
+SCAN = SCANNER.scan if SCANNER is not None else None
+needs_scan = pytest.mark.skipif(SCANNER is None, reason=f"no scanner in C here: {_NOTE}")
 LEVELS = ("DEBUG", "INFO", "WARN", "ERROR", "FATAL", "UNSET")
 
 
@@ -231,3 +232,38 @@ def test_a_file_cut_short_while_it_is_read_is_said(tmp_path):
     load.start()
     assert load.join(30)
     assert any("got shorter while it was read" in str(problem) for problem in load.problems())
+
+
+@needs_scan
+def test_a_search_reads_only_the_messages_of_chunks_whose_bytes_hold_the_text(tmp_path):
+    from console_tui.model.view.log_view import LogView
+    from console_tui.model.view.search_walk import Search, parse_search
+
+    rng = random.Random(8)
+    lines = [rcutils_line(i, rng) for i in range(4 * CHUNK_SIZE)]
+    lines[CHUNK_SIZE + 5] = lines[CHUNK_SIZE + 5].replace("message", "Needle message")
+    store, _load = indexed_store(write(tmp_path / "search.log", lines), tmp_path)
+    assert store.spill is not None
+    store.spill._warm.clear()
+    read = []
+    for source in store.spill.text_sources.values():
+        load = source.load
+        source.load = lambda texts, stamps, load=load: read.append(texts.start) or load(texts, stamps)  # type: ignore[method-assign]
+    search = Search(LogView(store), parse_search("Needle"), store.end_seq)
+    while not search.step(1.0):
+        pass
+    assert list(search.seqs()) == [CHUNK_SIZE + 5]
+    assert len(read) == 1  # one chunk's messages read, not four
+
+
+@needs_scan
+@settings(max_examples=300, deadline=None)
+@given(st.binary(max_size=200), st.binary(min_size=0, max_size=6).map(lambda b: b.lower()), st.booleans())
+def test_contains_is_bytes_in(data, needle, ignore_case):
+    assert SCANNER is not None
+    if ignore_case:
+        if not (data.isascii() and needle.isascii()):
+            return
+        assert SCANNER.contains(data, needle, True) == (needle in data.lower())
+    else:
+        assert SCANNER.contains(data, needle, False) == (needle in data)

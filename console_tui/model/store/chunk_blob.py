@@ -22,7 +22,7 @@ from .packed_texts import PackedTexts, compress_bytes, decompress_bytes
 #: count, flags, columns' bytes, columns compressed, texts' bytes, first and last record's stamps,
 #: records per severity (DEBUG .. FATAL); then, for texts in a file, its number and bytes.
 _HEADER = struct.Struct("<IIIIIqq5I")
-_FILE = struct.Struct("<Iqq")
+_FILE = struct.Struct("<I?qq")
 _WIDE = {"lines": 1, "nodes": 2, "files": 4, "functions": 8, "sources": 16, "topics": 32, "robots": 64}
 _HAS_TOPICS, _HAS_ROBOTS, _LISTED, _IN_FILE = 128, 256, 512, 1024
 _IDS = ("lines", "nodes", "files", "functions", "sources")
@@ -32,9 +32,12 @@ _SLOT = {level: MESSAGE_SEVERITIES.index(severity_bucket(level)) for level in ra
 @dataclass(frozen=True, slots=True)
 class FileTexts:
     """Where a chunk's messages are in a log file: ``source`` (the store's number for the
-    file's reader, ``LogStore.text_sources``), bytes ``start:end``."""
+    file's reader, ``LogStore.text_sources``), bytes ``start:end``; ``verbatim``: each message
+    is those bytes' own (no colour codes taken out, nothing replaced), so a text no byte of
+    the range holds is in no message of the chunk."""
 
     source: int
+    verbatim: bool
     start: int
     end: int
 
@@ -88,7 +91,7 @@ def pack_chunk(chunk: Chunk, file_texts: FileTexts | None = None) -> bytes:
     if file_texts is not None:
         flags |= _IN_FILE
         texts = b""
-        tail = _FILE.pack(file_texts.source, file_texts.start, file_texts.end)
+        tail = _FILE.pack(file_texts.source, file_texts.verbatim, file_texts.start, file_texts.end)
     elif isinstance(chunk.msgs, PackedTexts):
         texts, starts = chunk.msgs.packed, chunk.msgs.starts.tobytes()
     else:

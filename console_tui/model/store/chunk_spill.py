@@ -24,7 +24,6 @@ import time
 from array import array
 from collections import OrderedDict
 from collections.abc import Callable, Mapping
-from functools import partial
 
 from .chunk import Chunk, StringTable
 from .chunk_blob import ColdChunk, FileTexts, header_size, pack_chunk, unpack_chunk
@@ -107,15 +106,26 @@ class ChunkSpill:
         try:
             chunk, file_texts = unpack_chunk(self.files.read(cold.segment, cold.offset, cold.length))
             if file_texts is not None:
-                chunk = FileChunk.of(
-                    chunk, partial(self.text_sources[file_texts.source].load, file_texts, chunk.stamps)
-                )
+                chunk = FileChunk.of(chunk, self.text_sources[file_texts.source], file_texts)
         except (OSError, ValueError, KeyError) as error:
             self.unreadable += 1
             self.problem = f"a chunk of the history on disk cannot be read: {_describe(error)}"
             chunk = lost_chunk(cold, self.problem)
         self._keep_warm(base, chunk)
         return chunk
+
+    def holds(self, base: int, cold: ColdChunk, text: str, lower: bool) -> bool | None:
+        """Whether a message of chunk ``cold`` (first seq ``base``) of a log file read by index
+        may hold ``text`` (lower-cased ASCII when ``lower``), as the file's bytes say, without
+        reading the chunk back; None when they cannot say."""
+        texts = cold.file_texts
+        if texts is None or not texts.verbatim:
+            return None
+        warm = self._warm.get(base)
+        if isinstance(warm, FileChunk):
+            return warm.may_hold(text, lower)
+        source = self.text_sources.get(texts.source)
+        return None if source is None else source.holds(texts, text.encode("utf-8"), lower)
 
     def _keep_warm(self, base: int, chunk: Chunk) -> None:
         warm = self._warm

@@ -16,6 +16,7 @@ from __future__ import annotations
 from array import array
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
 from typing import Protocol
 
 from .chunk import Chunk
@@ -33,6 +34,11 @@ class TextSource(Protocol):
     problem: str
 
     def load(self, texts: FileTexts, stamps: array) -> list[str] | PackedTexts: ...
+
+    def holds(self, texts: FileTexts, needle: bytes, lower: bool) -> bool | None:
+        """Whether the file's bytes ``texts.start:end`` hold ``needle`` (lower-cased ASCII when
+        ``lower``), or None when that cannot be told."""
+        ...
 
 
 @dataclass(slots=True)
@@ -68,6 +74,8 @@ class IndexedChunk:
     #: ROS 1's topics, a fleet's robots (None: no record has any).
     topics: IdColumn | None = None
     robots: IdColumn | None = None
+    #: Each message is its bytes in the file as they are (``FileTexts.verbatim``).
+    verbatim: bool = False
 
     def __len__(self) -> int:
         return len(self.levels)
@@ -76,7 +84,7 @@ class IndexedChunk:
         """The records whole, their messages read from the file now (what a store without a
         disk keeps)."""
         count = len(self)
-        texts = self.source.load(FileTexts(-1, self.start, self.end), self.stamps)
+        texts = self.source.load(FileTexts(-1, self.verbatim, self.start, self.end), self.stamps)
         return RecordColumns(
             self.stamps.tolist(),
             self.levels.tolist(),
@@ -94,17 +102,35 @@ class IndexedChunk:
 class FileChunk(Chunk):
     """A chunk whose messages are read from their file the first time they are read."""
 
-    __slots__ = ("_load", "_texts")
+    __slots__ = ("_held", "_load", "_texts", "file_texts", "text_source")
     _load: Callable[[], list[str] | PackedTexts]
     _texts: list[str] | PackedTexts | None
+    _held: dict[tuple[str, bool], bool]
+    #: Where its messages are, and what reads them.
+    file_texts: FileTexts
+    text_source: TextSource
 
     @classmethod
-    def of(cls, chunk: Chunk, load: Callable[[], list[str] | PackedTexts]) -> FileChunk:
+    def of(cls, chunk: Chunk, source: TextSource, texts: FileTexts) -> FileChunk:
         made = cls.__new__(cls)
         for name in ("stamps", "levels", "lines", "nodes", "files", "functions", "sources", "topics", "robots"):
             setattr(made, name, getattr(chunk, name))
-        made._load, made._texts = load, None
+        made._load, made._texts = partial(source.load, texts, made.stamps), None
+        made.file_texts, made.text_source = texts, source
+        made._held = {}
         return made
+
+    def may_hold(self, text: str, lower: bool) -> bool:
+        """Whether a message of the chunk may hold ``text`` (lower-cased ASCII when ``lower``),
+        as its bytes in the file say without reading its messages (True when they cannot tell)."""
+        if not self.file_texts.verbatim or self._texts is not None:
+            return True
+        key = (text, lower)
+        held = self._held.get(key)
+        if held is None:
+            found = self.text_source.holds(self.file_texts, text.encode("utf-8"), lower)
+            held = self._held[key] = found is not False
+        return held
 
     @property
     def msgs(self) -> list[str] | PackedTexts:

@@ -30,7 +30,6 @@ from __future__ import annotations
 from array import array
 from collections import Counter, deque
 from collections.abc import Callable, Iterable, Iterator
-from functools import partial
 
 from ..levels import MESSAGE_SEVERITIES, severity_bucket
 from .chunk import CHUNK_SIZE, INT64_MAX, UINT32_MAX, Chunk, ChunkSpan, StringTable, clamp, extended, optional_ids
@@ -72,6 +71,7 @@ class LogStore:
         #: their ``TextSource``'s id, and their strings' ids in the store's tables.
         self._text_sources: dict[int, int] = {}
         self._lookups: dict[tuple[int, str], list[int]] = {}
+        self._same_ids: dict[tuple[int, str], bool] = {}
         self.nodes = StringTable()
         self.files = StringTable()
         self.functions = StringTable()
@@ -178,8 +178,8 @@ class LogStore:
             if column is not None:
                 setattr(chunk, name, self._ids_of(number, name, column))
         base = self.end_seq
-        texts = FileTexts(number, part.start, part.end)
-        cold = spill.spill(base, FileChunk.of(chunk, partial(part.source.load, texts, chunk.stamps)), texts)
+        texts = FileTexts(number, part.verbatim, part.start, part.end)
+        cold = spill.spill(base, FileChunk.of(chunk, part.source, texts), texts)
         if cold is None:
             return self.extend(part.with_messages())
         chunks.append(cold)
@@ -194,11 +194,15 @@ class LogStore:
     def _ids_of(self, source: int, name: str, column: IdColumn) -> array:
         """A file's column of strings as ids into the store's table ``name``."""
         table: StringTable = getattr(self, name)
-        lookup = self._lookups.setdefault((source, name), [])
+        key = (source, name)
+        lookup = self._lookups.setdefault(key, [])
         if len(lookup) < len(column.names):
             lookup += table.ids_of(column.names[len(lookup) :])
+            self._same_ids[key] = lookup == list(range(len(lookup)))
         if column.ids is None:
             return extended(array("H"), [lookup[0]]) * CHUNK_SIZE
+        if self._same_ids.get(key) and column.ids.typecode in "HI":
+            return column.ids  # the file's ids are the table's (its strings came first): no mapping
         return extended(array("H"), list(map(lookup.__getitem__, column.ids)))
 
     def _spill_full(self) -> None:
@@ -391,6 +395,17 @@ class LogStore:
         """Records with ``start <= seq < stop`` (clamped to what is kept), oldest first."""
         for seq in range(max(start, self.first_seq), min(stop, self.end_seq)):
             yield self.get(seq)
+
+    def chunk_may_hold(self, seq: int, text: str, lower: bool) -> bool | None:
+        """Whether a message of the chunk holding ``seq`` may hold ``text`` (lower-cased ASCII
+        when ``lower``), when a log file read by index can say so without the chunk being read
+        back (``ChunkSpill.holds``); None when it cannot."""
+        number = (seq - self._base_seq) // CHUNK_SIZE
+        if not 0 <= number < self._cold or self.spill is None:
+            return None
+        cold = self._chunks[number]
+        assert isinstance(cold, ColdChunk)
+        return self.spill.holds(self._base_seq + number * CHUNK_SIZE, cold, text, lower)
 
     def chunk_start(self, seq: int) -> int:
         """The first seq of the chunk that holds (or would hold) ``seq``."""

@@ -31,6 +31,7 @@ from ..rules.packed_match import lowered
 from ..rules.pattern_match import TextMatch
 from ..rules.regex_shape import required_literal
 from ..rules.time_limit import MatchTimeout, time_limit
+from ..store.indexed_chunk import FileChunk
 from ..store.log_store import Chunk, LogStore
 from ..store.packed_texts import PackedTexts
 from .log_view import LogView
@@ -97,6 +98,8 @@ def first_candidate(match: TextMatch) -> FirstCandidate | None:
     find = re.compile(re.escape(text)).search
 
     def first(chunk: Chunk, lo: int, hi: int) -> int:
+        if isinstance(chunk, FileChunk) and not chunk.may_hold(text, lower):
+            return hi  # none of its bytes in the file: its messages need not be read
         texts = chunk.msgs
         if not isinstance(texts, PackedTexts) or lo >= hi:
             return lo
@@ -141,6 +144,9 @@ class Search:
         self.hits = text_hits(match)
         #: Only a regex can run long (plain text is found by ``str.find``).
         self._limit_s = HITS_LIMIT_S if match.regex else None
+        #: The plain text every match holds, looked for in a log file's bytes before its
+        #: chunks are read back (``LogStore.chunk_may_hold``).
+        self._must = must_hold(match)
         self.up = Walk(self.store, anchor, forward=True)
         self.down = Walk(self.store, anchor, forward=False)
         #: The matches found (shown rows only), on both sides of the anchor.
@@ -193,6 +199,13 @@ class Search:
     _last_rows = 0
 
     def _walk_piece(self, walk: Walk) -> bool:
+        text, lower = self._must
+        if text:
+            seq = walk.next_seq()
+            if seq is not None and self.store.chunk_may_hold(seq, text, lower) is False:
+                walk.skip_chunk()  # none of its bytes in the file hold it: not read back
+                self._last_rows = 0
+                return True
         span = walk.next_span(self._piece.rows)
         if span is None:
             return True

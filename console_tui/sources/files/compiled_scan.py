@@ -16,7 +16,7 @@ import sys
 import threading
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from ...system import c_build
 
@@ -30,11 +30,20 @@ BUILD_TIMEOUT_S = 60.0
 #: ``scan(data, start, end, max_records, nodes, new_names, want_messages, at_eof)``: see rcutils_scan.c.
 ScanFunction = Callable[..., tuple[Any, ...]]
 
-_loaded: tuple[ScanFunction | None, str] | None = None
+
+class Scanner(NamedTuple):
+    """What the built module offers: ``scan``, and ``contains(data, needle, ignore_case)``
+    (memmem, or ASCII letters compared ignoring case with a lower-case needle)."""
+
+    scan: ScanFunction
+    contains: Callable[[bytes, bytes, bool], bool]
+
+
+_loaded: tuple[Scanner | None, str] | None = None
 _build_lock = threading.Lock()
 
 
-def load() -> tuple[ScanFunction | None, str]:
+def load() -> tuple[Scanner | None, str]:
     """The compiled scanner and ``""`` (or a note on how it was built), or ``None`` and why
     not (built once, then cached)."""
     global _loaded
@@ -47,11 +56,11 @@ def load() -> tuple[ScanFunction | None, str]:
         return _loaded
 
 
-def _load() -> tuple[ScanFunction | None, str]:
+def _load() -> tuple[Scanner | None, str]:
     if os.environ.get(SWITCH, "1") == "0":
         return None, f"{SWITCH}=0"
     module, note = c_build.load_or_build(f"{STEM}_{build_key()}{c_build.suffix()}", STEM, MODULE, build)
-    return (None if module is None else module.scan), note
+    return (None if module is None else Scanner(module.scan, module.contains)), note
 
 
 def build_key() -> str:

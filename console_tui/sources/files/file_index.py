@@ -30,7 +30,7 @@ from ...model.formats.rcutils_log import RcutilsLogFormat
 from ...model.store.chunk import CHUNK_SIZE, UINT32_MAX
 from ...model.store.indexed_chunk import IdColumn, IndexedChunk
 from ...model.store.record import LogRecord
-from .compiled_scan import ScanFunction
+from .compiled_scan import Scanner
 from .indexed_texts import IndexedTexts, clamped
 from .log_file import LogFile, TextLogFile
 
@@ -64,15 +64,17 @@ class FileIndexer:
         deliver: Callable[[IndexedChunk], None],
         cancel: threading.Event,
         *,
-        scan: ScanFunction | None = None,
+        scanner: Scanner | None = None,
     ) -> None:
         self.file = file
         self.deliver = deliver
         self.cancel = cancel
         text_format = file.format
         default = isinstance(text_format, RcutilsLogFormat) and text_format.default_template
-        #: The scanner in C, for the format it reads (else None: the format's reader reads all).
-        self.scan = scan if default else None
+        #: The scanner in C (its ``contains`` serves every format), and its ``scan`` for the
+        #: format it reads (else None: the format's reader reads all).
+        self.scanner = scanner
+        self.scan = scanner.scan if scanner is not None and default else None
         self.texts: IndexedTexts | None = None
         self.records = 0
         self._names: dict[str, tuple[dict[str, int], list[str]]] = {}
@@ -87,7 +89,7 @@ class FileIndexer:
         with open(file.path, "rb") as stream:
             fd = stream.fileno()
             header = self._header(stream)
-            self.texts = IndexedTexts(file.path, file.format, file.source, scan=self.scan, header=header)
+            self.texts = IndexedTexts(file.path, file.format, file.source, scanner=self.scanner, header=header)
             if self.scan is None:
                 end, _line = self._read_in_python(stream, 0, 1, until_end=True)
                 size = os.fstat(fd).st_size
@@ -114,6 +116,7 @@ class FileIndexer:
         start, start_line = 0, 1  # where the chunk being read begins
         stamps, levels, nodes = bytearray(), bytearray(), bytearray()
         data, block_at, size = b"", 0, 0  # the block read, from byte block_at of the file
+        final = False  # the file's end reached: its last record ends there
         while not self.cancel.is_set():
             if at - block_at >= len(data) or at < block_at:
                 size = os.fstat(fd).st_size
@@ -124,7 +127,7 @@ class FileIndexer:
                 if not data:
                     break
             status, stop, _count, lines, new_stamps, new_levels, new_nodes, _, _ = self.scan(
-                data, at - block_at, len(data), CHUNK_SIZE - len(levels), self._c_nodes, self._c_names, False, False
+                data, at - block_at, len(data), CHUNK_SIZE - len(levels), self._c_nodes, self._c_names, False, final
             )
             if self._c_names:
                 self._nodes.extend(name.decode("utf-8") for name in self._c_names)
@@ -141,6 +144,8 @@ class FileIndexer:
                 start, start_line = at, line
                 continue
             end_of_file = block_at + len(data) >= size
+            if status == 2 and final:
+                break  # (a last line without its newline, say: the format's reader says so)
             if status == 2 or (status == 1 and not end_of_file and moved == 0 and at == block_at):
                 # A line the scanner does not read as the Python reader would (or a record
                 # longer than a block): the format's reader reads this chunk.
@@ -154,9 +159,14 @@ class FileIndexer:
                     data = b""  # the rest of the block is the start of a record: read on from it
                     continue
                 if os.fstat(fd).st_size > size:
-                    data = b""
+                    data, final = b"", False
                     continue  # it grew meanwhile: on to the new end
-                break
+                if not final:
+                    final = True  # once more: the last record ends at the end
+                    continue
+                if levels:
+                    self._deliver_scanned(stamps, levels, nodes, start, at)
+                return
         if self.cancel.is_set():
             return
         size = os.fstat(fd).st_size
@@ -187,6 +197,7 @@ class FileIndexer:
                 start,
                 end,
                 self.texts,
+                verbatim=True,  # the scanner reads only lines whose messages are their bytes
             ),
             count,
         )

@@ -20,10 +20,11 @@ from operator import add
 from pathlib import Path
 
 from ...model.formats import Problems, TextFormat, TextLines
+from ...model.formats.rcutils_log import RcutilsLogFormat
 from ...model.store.chunk import INT64_MAX
 from ...model.store.chunk_blob import FileTexts
 from ...model.store.packed_texts import PackedTexts
-from .compiled_scan import ScanFunction
+from .compiled_scan import Scanner
 
 
 def clamped(stamp: int) -> int:
@@ -31,16 +32,23 @@ def clamped(stamp: int) -> int:
     return min(max(stamp, -INT64_MAX), INT64_MAX)
 
 
+def _contains(data: bytes, needle: bytes, lower: bool) -> bool:
+    """The scanner's ``contains``, without the scanner."""
+    return needle in (data.lower() if lower else data)
+
+
 class IndexedTexts:
     """Reads the messages of ``path``'s byte ranges again (see the module)."""
 
     def __init__(
-        self, path: Path, text_format: TextFormat, source: str, *, scan: ScanFunction | None, header: bytes = b""
+        self, path: Path, text_format: TextFormat, source: str, *, scanner: Scanner | None, header: bytes = b""
     ) -> None:
         self.path = path
         self.format = text_format
         self.source = source
-        self.scan = scan
+        default = isinstance(text_format, RcutilsLogFormat) and text_format.default_template
+        self.scan = scanner.scan if scanner is not None and default else None
+        self._contains = scanner.contains if scanner is not None else _contains
         #: The file's lines before its first record, for a format that needs them (CSV's header).
         self.header = header if text_format.needs_header else b""
         self._header_lines = self.header.count(b"\n")
@@ -68,6 +76,21 @@ class IndexedTexts:
             return found  # (messages that hold NUL: kept one by one)
         text, starts = found
         return PackedTexts.from_source(text, starts, lambda: self._text_again(texts, stamps))
+
+    def holds(self, texts: FileTexts, needle: bytes, lower: bool) -> bool | None:
+        """Whether the bytes ``texts.start:end`` hold ``needle`` (lower-cased ASCII bytes when
+        ``lower``), or None when that cannot be told (they cannot be read, or they are not ASCII)."""
+        if self._fd is None:
+            return None
+        try:
+            data = os.pread(self._fd, texts.end - texts.start, texts.start)
+        except OSError:
+            return None
+        if len(data) != texts.end - texts.start:
+            return None
+        if lower and not data.isascii():
+            return None  # (other letters may fold to ASCII ones)
+        return self._contains(data, needle, lower)
 
     def _text_again(self, texts: FileTexts, stamps: array) -> str:
         found = self._read(texts, stamps)

@@ -313,10 +313,10 @@ class FileLoad:
         from . import compiled_scan
 
         assert isinstance(file, TextLogFile)
-        scan, note = compiled_scan.load()
+        scanner, note = compiled_scan.load()
         self.indexed = True
-        self.index_note = note if scan is None else ""
-        indexer = FileIndexer(file, self._deliver_batch, self.cancel_event, scan=scan)
+        self.index_note = note if scanner is None else ""
+        indexer = FileIndexer(file, self._deliver_batch, self.cancel_event, scanner=scanner)
         try:
             records = indexer.run()
         except OSError as error:

@@ -26,6 +26,9 @@
  * else None and None.
  */
 #define PY_SSIZE_T_CLEAN
+#ifndef _GNU_SOURCE
+#define _GNU_SOURCE /* memmem */
+#endif
 #include <Python.h>
 #include <stdint.h>
 #include <string.h>
@@ -406,8 +409,52 @@ static PyObject *scan(PyObject *self, PyObject *args) {
     return result;
 }
 
+/* Whether data holds needle (lower-case ASCII) when ASCII letters are compared ignoring case. */
+static int contains_folded(const unsigned char *data, Py_ssize_t size, const unsigned char *needle, Py_ssize_t length) {
+    if (length == 0)
+        return 1;
+    unsigned char first = needle[0], other = (first >= 'a' && first <= 'z') ? first - 32 : first;
+    for (Py_ssize_t i = 0; i + length <= size; i++) {
+        unsigned char c = data[i];
+        if (c != first && c != other)
+            continue;
+        Py_ssize_t j = 1;
+        for (; j < length; j++) {
+            unsigned char x = data[i + j];
+            if (x >= 'A' && x <= 'Z')
+                x += 32;
+            if (x != needle[j])
+                break;
+        }
+        if (j == length)
+            return 1;
+    }
+    return 0;
+}
+
+/* contains(data, needle, ignore_case): whether needle is in data (glibc's memmem, several
+ * times bytes.find's speed); with ignore_case, needle is lower-case and ASCII letters of data
+ * are compared ignoring case (data should be ASCII: the caller checks). */
+static PyObject *contains(PyObject *self, PyObject *args) {
+    Py_buffer data, needle;
+    int ignore_case = 0;
+    if (!PyArg_ParseTuple(args, "y*y*|p", &data, &needle, &ignore_case))
+        return NULL;
+    int found;
+    Py_BEGIN_ALLOW_THREADS;
+    if (ignore_case)
+        found = contains_folded(data.buf, data.len, needle.buf, needle.len);
+    else
+        found = needle.len == 0 || memmem(data.buf, data.len, needle.buf, needle.len) != NULL;
+    Py_END_ALLOW_THREADS;
+    PyBuffer_Release(&data);
+    PyBuffer_Release(&needle);
+    return PyBool_FromLong(found);
+}
+
 static PyMethodDef methods[] = {
     {"scan", scan, METH_VARARGS, "Read rcutils default-format records of data[start:end] (see rcutils_scan.c)."},
+    {"contains", contains, METH_VARARGS, "Whether needle is in data (memmem; or ignoring ASCII case)."},
     {NULL, NULL, 0, NULL},
 };
 

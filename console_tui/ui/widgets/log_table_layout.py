@@ -67,10 +67,12 @@ class TableLayout(ScrollView):
         gutter = GUTTER if self.gutter_of is not None else 0
         # A fleet's robots: as wide as the widest name, 5 to 16 cells.
         robot_width = max(min(max(map(cell_len, self.store.robots), default=5), 16), 5)
-        key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc, robot_width)
+        # The row number's digits, however long the history (8 for 20,000,000).
+        seq_width = max(7, len(str(self.store.end_seq)))
+        key = (width, self.shown_columns, node_width, gutter, self.time_format, self.utc, robot_width, seq_width)
         if key != self._layout_key:
             self._layout_key = key
-            widths = {"time": format_info(self.time_format).width, "robot": robot_width}
+            widths = {"time": format_info(self.time_format).width, "robot": robot_width, "seq": seq_width}
             self._placed = layout_columns(width - gutter, self.shown_columns, node_width, widths)
             self._forget_drawn_rows()
         return self._placed
