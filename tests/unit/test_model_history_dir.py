@@ -73,3 +73,13 @@ def test_the_directories_of_sessions_that_were_killed_go(tmp_path):
     os.chmod(base, 0o700)
     mine = session_directory(base)
     assert not stale.exists() and mine.exists()
+
+
+def test_a_shared_directory_with_the_sticky_bit_may_hold_ours(tmp_path):
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    os.chmod(shared, 0o1777)  # as /tmp
+    assert private_directory(shared / "history").is_dir()
+    os.chmod(shared, 0o777)  # without the sticky bit: anyone could replace ours
+    with pytest.raises(UnsafeDirectory, match="can be written by other users"):
+        private_directory(shared / "history")

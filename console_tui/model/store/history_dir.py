@@ -39,9 +39,11 @@ def cache_base() -> Path:
     return Path(base) / "console-tui" / "history"
 
 
-def why_unsafe(path: Path) -> str:
+def why_unsafe(path: Path, *, above: bool = False) -> str:
     """Why ``path`` must not hold the history, or "": it must be a real directory of this
-    user's that no one else can write to."""
+    user's that no one else can write to. ``above``: the directory above the history's, which
+    may also be a shared one with the sticky bit (``/tmp``: no one can take away or replace
+    what is ours in it) of any owner."""
     try:
         info = os.lstat(path)
     except OSError as error:
@@ -50,6 +52,8 @@ def why_unsafe(path: Path) -> str:
         return f"{path} is a symbolic link"
     if not stat.S_ISDIR(info.st_mode):
         return f"{path} is not a directory"
+    if above and info.st_mode & stat.S_ISVTX:
+        return ""
     if info.st_uid != os.geteuid():
         return f"{path} belongs to another user (uid {info.st_uid})"
     if info.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
@@ -65,8 +69,8 @@ def private_directory(path: Path) -> Path:
         path.mkdir(exist_ok=True, mode=0o700)
     except OSError as error:
         raise UnsafeDirectory(f"cannot make {path}: {error.strerror or error}") from None
-    for place in (path.parent, path):
-        reason = why_unsafe(place)
+    for place, above in ((path.parent, True), (path, False)):
+        reason = why_unsafe(place, above=above)
         if reason:
             raise UnsafeDirectory(reason)
     return path
