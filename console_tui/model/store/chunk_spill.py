@@ -85,8 +85,9 @@ class ChunkSpill:
         """Write full ``chunk`` (first seq ``base``); its ``ColdChunk``, or None when writing
         failed (``problem`` says why: the chunk stays in memory)."""
         try:
-            self._write_tables()
             blob = pack_chunk(chunk, file_texts)
+            self.files.make_room(len(blob))  # (a new segment begins with every string: _segment_begun)
+            self._write_tables()
             segment, offset = self.files.append(CHUNK, blob)
         except OSError as error:
             self.problem = _describe(error)

@@ -7,6 +7,10 @@ the user's cache (``$XDG_CACHE_HOME/console-tui/history``, else
 directory and the one above it must be real directories (no links), the user's, and
 writable by nobody else; files are made 0600, directories 0700. A directory that is not so
 is refused (``UnsafeDirectory``, saying why) and the history stays in memory.
+
+A kept history (``--keep-history``) is a directory of its own (in the ROS log directory),
+one ``kept-<time>-<pid>`` directory a session, kept when it ends and pruned to a bound, the
+oldest segments first (``prune_kept``): a rotating history across sessions, as log_view has.
 """
 
 from __future__ import annotations
@@ -15,12 +19,16 @@ import os
 import shutil
 import stat
 import tempfile
+import time
 from pathlib import Path
 
 from .chunk_spill import ChunkSpill
 from .spill_file import SpillFiles
 
 SESSION_PREFIX = "session-"
+KEPT_PREFIX = "kept-"
+#: A kept history holds at most this much, the oldest sessions' segments going first.
+KEPT_BYTES = 100 << 20
 
 
 class UnsafeDirectory(Exception):
@@ -87,6 +95,54 @@ def session_directory(base: Path | None = None) -> Path:
         raise UnsafeDirectory(f"cannot make a directory in {base}: {error.strerror or error}") from None
 
 
+def kept_directory(base: Path) -> Path:
+    """A new private directory for this session's kept history in ``base`` (pruned first:
+    a session that was killed did not prune it)."""
+    base = private_directory(base)
+    now = time.time_ns()
+    stamp = time.strftime("%Y%m%d-%H%M%S", time.localtime(now // 1_000_000_000)) + f".{now % 1_000_000_000:09d}"
+    try:
+        return Path(tempfile.mkdtemp(prefix=f"{KEPT_PREFIX}{stamp}-{os.getpid()}-", dir=base))
+    except OSError as error:
+        raise UnsafeDirectory(f"cannot make a directory in {base}: {error.strerror or error}") from None
+
+
+def kept_sessions(base: Path) -> list[Path]:
+    """The kept sessions' directories in ``base``, oldest first (their names begin with their time)."""
+    try:
+        entries = [Path(entry.path) for entry in os.scandir(base) if entry.name.startswith(KEPT_PREFIX)]
+    except OSError:
+        return []
+    return sorted(path for path in entries if path.is_dir() and not path.is_symlink())
+
+
+def prune_kept(base: Path, bound: int = KEPT_BYTES, *, keep: Path | None = None) -> int:
+    """Remove the oldest segment files of the kept sessions in ``base`` until they hold at most
+    ``bound`` bytes (never from ``keep``'s while it is being written); the bytes left."""
+    segments = []
+    for session in kept_sessions(base):
+        for path in sorted(session.glob("segment-*.ctc")):
+            try:
+                segments.append((session, path, path.stat().st_size))
+            except OSError:
+                pass
+    total = sum(size for _, _, size in segments)
+    for session, path, size in segments:
+        if total <= bound:
+            break
+        if session == keep:
+            continue
+        try:
+            path.unlink()
+            total -= size
+        except OSError:
+            pass
+    for session in kept_sessions(base):
+        if session != keep and not any(session.iterdir()):
+            session.rmdir()
+    return total
+
+
 def remove_stale_sessions(base: Path) -> None:
     """Remove the session directories in ``base`` whose process has ended."""
     try:
@@ -135,8 +191,23 @@ def open_session_spill(base: Path | None = None) -> tuple[ChunkSpill | None, Pat
     return ChunkSpill(SpillFiles(directory)), directory, ""
 
 
-def close_spill(spill: ChunkSpill, directory: Path) -> None:
-    """The session ends: its files closed, and its directory removed unless it is kept."""
+def open_kept_spill(base: Path) -> tuple[ChunkSpill | None, Path | None, str]:
+    """A spill whose history is kept in a new session directory of ``base``; as
+    ``open_session_spill``."""
+    try:
+        directory = kept_directory(base)
+    except UnsafeDirectory as error:
+        return None, None, str(error)
+    prune_kept(base, keep=directory)
+    spill = ChunkSpill(SpillFiles(directory), keep=True)
+    return spill, directory, ""
+
+
+def close_spill(spill: ChunkSpill, directory: Path, *, bound: int = KEPT_BYTES) -> None:
+    """The session ends: its files closed, and its directory removed, or, kept, the kept
+    history pruned to ``bound`` (the oldest segments go first)."""
     spill.files.close()
     if not spill.keep:
         remove_directory(directory)
+    else:
+        prune_kept(directory.parent, bound)

@@ -205,6 +205,18 @@ class LogStore:
             return column.ids  # the file's ids are the table's (its strings came first): no mapping
         return extended(array("H"), list(map(lookup.__getitem__, column.ids)))
 
+    def keep_rest(self) -> None:
+        """Write the records still in memory to disk as well (the newest chunk too, as it is):
+        the session ends, and its history is kept (``--keep-history``). The last call on the store."""
+        spill = self.spill
+        if spill is None:
+            return
+        self._spill_full()
+        for number in range(self._cold, len(self._chunks)):
+            chunk = self._chunks[number]
+            if isinstance(chunk, Chunk) and len(chunk):
+                spill.spill(self._base_seq + number * CHUNK_SIZE, chunk)
+
     def _spill_full(self) -> None:
         """Write the full chunks still in memory to disk, oldest first (while that works)."""
         spill, chunks = self.spill, self._chunks

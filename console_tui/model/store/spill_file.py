@@ -59,12 +59,20 @@ class SpillFiles:
     def path_of(self, segment: int) -> Path:
         return self.directory / _NAME.format(segment)
 
-    def append(self, kind: bytes, blob: bytes, *, hold: bool = True) -> tuple[int, int]:
-        """Write ``blob`` at the end of the newest segment; its segment and offset. ``hold``:
-        a chunk is kept in it (``release`` when it goes). ``OSError`` when it cannot be
-        written (nothing of it stays)."""
+    def make_room(self, size: int) -> None:
+        """Begin a new segment unless ``size`` more bytes fit in the newest (``OSError`` when
+        the disk has not the room for one)."""
         with self._lock:
-            if self._current < 0 or self._size + len(blob) > self.segment_bytes:
+            if self._current < 0 or self._size + size > self.segment_bytes:
+                self._begin()
+
+    def append(self, kind: bytes, blob: bytes, *, hold: bool = True) -> tuple[int, int]:
+        """Write ``blob`` at the end of the newest segment (begun first when there is none;
+        ``make_room`` begins the next); its segment and offset. ``hold``: a chunk is kept in
+        it (``release`` when it goes). ``OSError`` when it cannot be written (nothing of it
+        stays)."""
+        with self._lock:
+            if self._current < 0:
                 self._begin()
             segment, offset = self._current, self._size + _RECORD.size
             self._put(_RECORD.pack(kind, len(blob)) + blob)
