@@ -62,7 +62,19 @@ class Chunk:
     usually a ``PackedTexts``: read it as a sequence of ``str`` (a slice is a list).
     """
 
-    __slots__ = ("files", "functions", "levels", "lines", "msgs", "nodes", "robots", "sources", "stamps", "topics")
+    __slots__ = (
+        "files",
+        "functions",
+        "levels",
+        "lines",
+        "msgs",
+        "nodes",
+        "robots",
+        "severities",
+        "sources",
+        "stamps",
+        "topics",
+    )
 
     def __init__(self) -> None:
         self.stamps = array("q")
@@ -77,6 +89,8 @@ class Chunk:
         self.topics: array | None = None
         #: Ids of the records' ``robot``; made only once a record of the chunk names one.
         self.robots: array | None = None
+        #: Its records per severity (as the store's ``counts``), kept as they are added (None: not kept).
+        self.severities: dict[int, int] | None = {}
 
     def __len__(self) -> int:
         return len(self.msgs)

@@ -86,7 +86,7 @@ def pack_chunk(chunk: Chunk, file_texts: FileTexts | None = None) -> bytes:
             parts.append(column.tobytes())
     stamps = chunk.stamps
     raw = b"".join(parts)
-    columns = compress_bytes(raw)
+    columns = compress_bytes(raw, acceleration=4)  # (a tenth larger, a third of the time: as a chunk fills)
     tail = starts = b""
     if file_texts is not None:
         flags |= _IN_FILE
@@ -98,10 +98,14 @@ def pack_chunk(chunk: Chunk, file_texts: FileTexts | None = None) -> bytes:
         flags |= _LISTED
         encoded = [text.encode("utf-8", "surrogatepass") for text in chunk.msgs]
         texts = compress_bytes(array("I", map(len, encoded)).tobytes() + b"".join(encoded))
-    severities = [0] * len(MESSAGE_SEVERITIES)
-    levels = chunk.levels.tobytes()
-    for level in set(levels):
-        severities[_SLOT[level]] += levels.count(level)
+    kept = chunk.severities
+    if kept is not None and sum(kept.values()) == count:  # counted as the records came
+        severities = [kept.get(int(severity), 0) for severity in MESSAGE_SEVERITIES]
+    else:
+        severities = [0] * len(MESSAGE_SEVERITIES)
+        levels = chunk.levels.tobytes()
+        for level in set(levels):
+            severities[_SLOT[level]] += levels.count(level)
     header = _HEADER.pack(
         count, flags, len(raw), len(columns), len(texts), *(stamps[0], stamps[-1]) if count else (0, 0), *severities
     )

@@ -113,7 +113,18 @@ class FileChunk(Chunk):
     @classmethod
     def of(cls, chunk: Chunk, source: TextSource, texts: FileTexts) -> FileChunk:
         made = cls.__new__(cls)
-        for name in ("stamps", "levels", "lines", "nodes", "files", "functions", "sources", "topics", "robots"):
+        for name in (
+            "stamps",
+            "levels",
+            "lines",
+            "nodes",
+            "files",
+            "functions",
+            "sources",
+            "topics",
+            "robots",
+            "severities",
+        ):
             setattr(made, name, getattr(chunk, name))
         made._load, made._texts = partial(source.load, texts, made.stamps), None
         made.file_texts, made.text_source = texts, source

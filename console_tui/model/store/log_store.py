@@ -266,9 +266,12 @@ class LogStore:
         msgs = chunk.msgs
         assert isinstance(msgs, list), "only the newest chunk grows, and it is never sealed"
         msgs.extend(piece.msgs)
-        counts = self.counts
+        counts, kept = self.counts, chunk.severities
         for level, number in Counter(levels).items():
-            counts[_BUCKET[level]] += number
+            bucket = _BUCKET[level]
+            counts[bucket] += number
+            if kept is not None:
+                kept[bucket] = kept.get(bucket, 0) + number
 
     def rewrite_from(self, start: int, columns: RecordColumns) -> range:
         """Replace the records from seq ``start`` on with ``columns`` (the same records, in
@@ -329,6 +332,7 @@ class LogStore:
                 if column is not None:
                     del column[keep:]
             chunk.msgs = list(chunk.msgs[:keep])
+            chunk.severities = None  # (counted again when it is written)
         else:
             self._base_seq = end
         self.end_seq = end
