@@ -3,16 +3,21 @@
 Numbers are ``array``s, the repeated strings (node, file, function, source) ids into the
 store's ``StringTable``s, messages ``str``s while the chunk fills and, once it is full, joined
 and compressed (``PackedTexts``). ``ChunkSpan`` is a run of a chunk's records, as readers
-scan them; ``extended`` and ``optional_ids`` add a batch's column to a chunk's.
+scan them; ``add_columns`` adds a batch that fits, a column at a time (``extended`` and
+``optional_ids``), and ``columns`` gives records back as columns; ``Tables`` are the strings
+the chunks name by id.
 """
 
 from __future__ import annotations
 
 from array import array
+from collections import Counter
 from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, NamedTuple
 
+from ..levels import severity_bucket
 from .packed_texts import PackedTexts, pack
+from .record_batch import RecordColumns
 
 CHUNK_SIZE = 4096
 
@@ -52,6 +57,28 @@ class StringTable:
 
     def __contains__(self, text: object) -> bool:
         return text in self._ids
+
+
+class Tables:
+    """The strings a store's chunks name by id: nodes, files, functions, sources, topics, robots."""
+
+    __slots__ = ("files", "functions", "nodes", "robots", "sources", "topics")
+
+    def __init__(self) -> None:
+        self.nodes = StringTable()
+        self.files = StringTable()
+        self.functions = StringTable()
+        self.sources = StringTable()
+        self.topics = StringTable()
+        self.topics.id_of("")  # id 0: no topics
+        self.robots = StringTable()
+        self.robots.id_of("")  # id 0: no robot
+
+    def by_name(self) -> dict[str, StringTable]:
+        return {name: getattr(self, name) for name in ("nodes", "files", "functions", "sources", "topics", "robots")}
+
+
+_BUCKET = {level: int(severity_bucket(level)) for level in range(256)}
 
 
 class Chunk:
@@ -94,6 +121,60 @@ class Chunk:
 
     def __len__(self) -> int:
         return len(self.msgs)
+
+    def add_columns(self, piece: RecordColumns, tables: Tables) -> dict[int, int]:
+        """Add ``piece`` (which fits) column by column; its records per severity."""
+        levels = piece.levels
+        try:
+            self.stamps = extended(self.stamps, piece.stamps)
+        except (OverflowError, TypeError):
+            self.stamps.fromlist([clamp(v, -INT64_MAX, INT64_MAX) for v in piece.stamps])
+        try:
+            self.levels = extended(self.levels, levels)
+        except (OverflowError, TypeError):
+            levels = [clamp(v, 0, 255) for v in levels]
+            self.levels.fromlist(levels)
+        try:
+            self.lines = extended(self.lines, piece.lines)
+        except (OverflowError, TypeError):
+            self.lines = extended(self.lines, [clamp(v, 0, UINT32_MAX) for v in piece.lines])
+        self.nodes = extended(self.nodes, tables.nodes.ids_of(piece.nodes))
+        self.files = extended(self.files, tables.files.ids_of(piece.files))
+        self.functions = extended(self.functions, tables.functions.ids_of(piece.functions))
+        self.sources = extended(self.sources, tables.sources.ids_of(piece.sources))
+        self.topics = optional_ids(self.topics, len(self.msgs), tables.topics, piece.topics, len(piece))
+        self.robots = optional_ids(self.robots, len(self.msgs), tables.robots, piece.robots, len(piece))
+        msgs = self.msgs
+        assert isinstance(msgs, list), "only the newest chunk grows, and it is never sealed"
+        msgs.extend(piece.msgs)
+        added: dict[int, int] = {}
+        for level, number in Counter(levels).items():
+            bucket = _BUCKET[level]
+            added[bucket] = added.get(bucket, 0) + number
+        kept = self.severities
+        if kept is not None:
+            for bucket, number in added.items():
+                kept[bucket] = kept.get(bucket, 0) + number
+        return added
+
+    def columns(self, lo: int, hi: int, tables: Tables) -> RecordColumns:
+        """Its records ``lo:hi`` as columns."""
+
+        def strings(table: StringTable, ids: Sequence[int]) -> list[str]:
+            return list(map(table.__getitem__, ids))
+
+        return RecordColumns(
+            self.stamps[lo:hi].tolist(),
+            self.levels[lo:hi].tolist(),
+            strings(tables.nodes, self.nodes[lo:hi]),
+            list(self.msgs[lo:hi]),
+            strings(tables.files, self.files[lo:hi]),
+            strings(tables.functions, self.functions[lo:hi]),
+            self.lines[lo:hi].tolist(),
+            strings(tables.sources, self.sources[lo:hi]),
+            None if self.topics is None else strings(tables.topics, self.topics[lo:hi]),
+            None if self.robots is None else strings(tables.robots, self.robots[lo:hi]),
+        )
 
     def seal(self) -> None:
         """The chunk is full: keep its messages packed (compressed)."""

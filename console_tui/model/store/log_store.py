@@ -32,7 +32,7 @@ from collections import Counter, deque
 from collections.abc import Callable, Iterable, Iterator
 
 from ..levels import MESSAGE_SEVERITIES, severity_bucket
-from .chunk import CHUNK_SIZE, INT64_MAX, UINT32_MAX, Chunk, ChunkSpan, StringTable, clamp, extended, optional_ids
+from .chunk import CHUNK_SIZE, Chunk, ChunkSpan, StringTable, Tables, extended
 from .chunk_blob import ColdChunk, FileTexts
 from .chunk_spill import ChunkSpill
 from .indexed_chunk import FileChunk, IdColumn, IndexedChunk
@@ -72,14 +72,11 @@ class LogStore:
         self._text_sources: dict[int, int] = {}
         self._lookups: dict[tuple[int, str], list[int]] = {}
         self._same_ids: dict[tuple[int, str], bool] = {}
-        self.nodes = StringTable()
-        self.files = StringTable()
-        self.functions = StringTable()
-        self.sources = StringTable()
-        self.topics = StringTable()
-        self.topics.id_of("")  # id 0: no topics
-        self.robots = StringTable()
-        self.robots.id_of("")  # id 0: no robot
+        #: The strings the chunks name by id (``nodes``, ``files``, ... are its tables).
+        self.tables = Tables()
+        tables = self.tables
+        self.nodes, self.files, self.functions = tables.nodes, tables.files, tables.functions
+        self.sources, self.topics, self.robots = tables.sources, tables.topics, tables.robots
         self._chunks: deque[Chunk | ColdChunk] = deque()
         self._base_seq = 0  # seq of the first record of self._chunks[0]; all but the last are full
         self._cold = 0  # self._chunks[:_cold] are on disk (ColdChunk), the rest in memory
@@ -96,16 +93,7 @@ class LogStore:
         #: again in another order (``rewrite_from``): they can still be read.
         self.rewind_listeners: list[Callable[[int], None]] = []
         if spill is not None:
-            spill.attach(
-                {
-                    "nodes": self.nodes,
-                    "files": self.files,
-                    "functions": self.functions,
-                    "sources": self.sources,
-                    "topics": self.topics,
-                    "robots": self.robots,
-                }
-            )
+            spill.attach(tables.by_name())
 
     @property
     def bound(self) -> int:
@@ -141,7 +129,8 @@ class LogStore:
             assert isinstance(chunk, Chunk), "the newest chunk is in memory (full ones only are on disk)"
             room = CHUNK_SIZE - len(chunk)
             piece = columns if done == 0 and count <= room else columns.slice(done, done + room)
-            self._append_columns(chunk, piece)
+            for level, number in chunk.add_columns(piece, self.tables).items():
+                self.counts[level] += number
             done += len(piece)
             if len(chunk) >= CHUNK_SIZE:
                 chunk.seal()
@@ -241,38 +230,6 @@ class LogStore:
         assert self.spill is not None
         return self.spill.warm(self._base_seq + number * CHUNK_SIZE, chunk)
 
-    def _append_columns(self, chunk: Chunk, piece: RecordColumns) -> None:
-        """Add ``piece`` (which fits in ``chunk``) column by column."""
-        levels = piece.levels
-        try:
-            chunk.stamps = extended(chunk.stamps, piece.stamps)
-        except (OverflowError, TypeError):
-            chunk.stamps.fromlist([clamp(v, -INT64_MAX, INT64_MAX) for v in piece.stamps])
-        try:
-            chunk.levels = extended(chunk.levels, levels)
-        except (OverflowError, TypeError):
-            levels = [clamp(v, 0, 255) for v in levels]
-            chunk.levels.fromlist(levels)
-        try:
-            chunk.lines = extended(chunk.lines, piece.lines)
-        except (OverflowError, TypeError):
-            chunk.lines = extended(chunk.lines, [clamp(v, 0, UINT32_MAX) for v in piece.lines])
-        chunk.nodes = extended(chunk.nodes, self.nodes.ids_of(piece.nodes))
-        chunk.files = extended(chunk.files, self.files.ids_of(piece.files))
-        chunk.functions = extended(chunk.functions, self.functions.ids_of(piece.functions))
-        chunk.sources = extended(chunk.sources, self.sources.ids_of(piece.sources))
-        chunk.topics = optional_ids(chunk.topics, len(chunk.msgs), self.topics, piece.topics, len(piece))
-        chunk.robots = optional_ids(chunk.robots, len(chunk.msgs), self.robots, piece.robots, len(piece))
-        msgs = chunk.msgs
-        assert isinstance(msgs, list), "only the newest chunk grows, and it is never sealed"
-        msgs.extend(piece.msgs)
-        counts, kept = self.counts, chunk.severities
-        for level, number in Counter(levels).items():
-            bucket = _BUCKET[level]
-            counts[bucket] += number
-            if kept is not None:
-                kept[bucket] = kept.get(bucket, 0) + number
-
     def rewrite_from(self, start: int, columns: RecordColumns) -> range:
         """Replace the records from seq ``start`` on with ``columns`` (the same records, in
         another order, and new ones after them); returns the range of seqs written."""
@@ -285,31 +242,7 @@ class LogStore:
 
     def columns(self, start: int, stop: int) -> RecordColumns:
         """The kept records of ``start:stop`` as one batch of columns."""
-        spans = list(self.spans(start, stop))
-        parts = []
-        for chunk, lo, hi, _seq in spans:
-            ids = (chunk.nodes[lo:hi], chunk.files[lo:hi], chunk.functions[lo:hi], chunk.sources[lo:hi])
-            tables = (self.nodes, self.files, self.functions, self.sources)
-            nodes, files, functions, sources = (
-                list(map(table.__getitem__, part)) for table, part in zip(tables, ids, strict=True)
-            )
-            optional = [
-                None if column is None else list(map(table.__getitem__, column[lo:hi]))
-                for column, table in ((chunk.topics, self.topics), (chunk.robots, self.robots))
-            ]
-            parts.append(
-                RecordColumns(
-                    chunk.stamps[lo:hi].tolist(),
-                    chunk.levels[lo:hi].tolist(),
-                    nodes,
-                    list(chunk.msgs[lo:hi]),
-                    files,
-                    functions,
-                    chunk.lines[lo:hi].tolist(),
-                    sources,
-                    *optional,
-                )
-            )
+        parts = [chunk.columns(lo, hi, self.tables) for chunk, lo, hi, _seq in self.spans(start, stop)]
         if not parts:
             return RecordColumns([], [], [], [], [], [], [], [])
         return RecordColumns.joined(parts)
