@@ -20,6 +20,7 @@ The compiler runs in a process group of its own, killed whole at its time limit;
 
 from __future__ import annotations
 
+import hashlib
 import importlib.machinery
 import importlib.util
 import os
@@ -28,6 +29,7 @@ import shutil
 import signal
 import stat
 import subprocess
+import sys
 import sysconfig
 import tempfile
 import time
@@ -45,6 +47,13 @@ _compiling: set[subprocess.Popen] = set()
 def cache_dir() -> Path:
     base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
     return Path(base) / "console-tui"
+
+
+def source_key(source: Path) -> str:
+    """What a loop built from ``source`` alone depends on: its text and this Python (16 hex digits)."""
+    digest = hashlib.sha256(source.read_bytes())
+    digest.update(f"{sys.version}|{suffix()}".encode())
+    return digest.hexdigest()[:16]
 
 
 def suffix() -> str:

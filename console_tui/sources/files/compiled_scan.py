@@ -10,9 +10,7 @@ is built and cached as ``c_build`` does for the intake's loops in C. Without the
 
 from __future__ import annotations
 
-import hashlib
 import os
-import sys
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -65,9 +63,7 @@ def _load() -> tuple[Scanner | None, str]:
 
 def build_key() -> str:
     """What the built file depends on: the C source and this Python."""
-    digest = hashlib.sha256(SOURCE.read_bytes())
-    digest.update(f"{sys.version}|{c_build.suffix()}".encode())
-    return digest.hexdigest()[:16]
+    return c_build.source_key(SOURCE)
 
 
 def build(target: Path) -> str:

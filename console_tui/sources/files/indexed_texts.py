@@ -80,17 +80,22 @@ class IndexedTexts:
     def holds(self, texts: FileTexts, needle: bytes, lower: bool) -> bool | None:
         """Whether the bytes ``texts.start:end`` hold ``needle`` (lower-cased ASCII bytes when
         ``lower``), or None when that cannot be told (they cannot be read, or they are not ASCII)."""
+        data = self._bytes(texts)
+        if data is None:
+            return None
+        if lower and not data.isascii():
+            return None  # (other letters may fold to ASCII ones)
+        return self._contains(data, needle, lower)
+
+    def _bytes(self, texts: FileTexts) -> bytes | None:
+        """The file's bytes ``texts.start:end`` as they are now (None: not all there)."""
         if self._fd is None:
             return None
         try:
             data = os.pread(self._fd, texts.end - texts.start, texts.start)
         except OSError:
             return None
-        if len(data) != texts.end - texts.start:
-            return None
-        if lower and not data.isascii():
-            return None  # (other letters may fold to ASCII ones)
-        return self._contains(data, needle, lower)
+        return data if len(data) == texts.end - texts.start else None
 
     def _text_again(self, texts: FileTexts, stamps: array) -> str:
         found = self._read(texts, stamps)
@@ -101,13 +106,8 @@ class IndexedTexts:
     def _read(self, texts: FileTexts, stamps: array) -> tuple[str, array] | list[str] | None:
         """The messages joined by NUL and where each starts (a list when some hold NUL), or
         None when the bytes do not hold those records any more."""
-        if self._fd is None:
-            return None
-        try:
-            data = os.pread(self._fd, texts.end - texts.start, texts.start)
-        except OSError:
-            return None
-        if len(data) != texts.end - texts.start:
+        data = self._bytes(texts)
+        if data is None:
             return None
         count = len(stamps)
         if self.scan is not None:

@@ -80,6 +80,18 @@ static int put(Buffer *buffer, const void *bytes, Py_ssize_t length) {
     return 0;
 }
 
+/* The message of the record ending at data[end] (its last newline) goes to messages, NUL after
+ * it, and where the next begins (in characters) to starts. */
+static int end_message(Buffer *messages, Buffer *starts, const unsigned char *data, Py_ssize_t from, Py_ssize_t end,
+                       Py_ssize_t *chars, Py_ssize_t record_chars) {
+    unsigned char nul = 0;
+    *chars += record_chars + 1;
+    uint32_t next = (uint32_t)*chars;
+    if (put(messages, data + from, end - from) < 0 || put(messages, &nul, 1) < 0 || put(starts, &next, 4) < 0)
+        return -1;
+    return 0;
+}
+
 /* Whether line[0:length] is valid UTF-8 (as Python's strict decoder has it) with no NUL or
  * ESC; adds its characters to *chars. */
 static int plain_utf8(const unsigned char *line, Py_ssize_t length, Py_ssize_t *chars) {
@@ -244,17 +256,9 @@ static PyObject *scan(PyObject *self, PyObject *args) {
         }
         if (kind == 1) {
             if (record >= 0) { /* the record before this one ends here */
-                if (want_messages) {
-                    Py_ssize_t message_length = at - 1 - message_from;
-                    unsigned char nul = 0;
-                    uint32_t next;
-                    chars += record_chars + 1;
-                    next = (uint32_t)chars;
-                    if (put(&messages, data + message_from, message_length) < 0 || put(&messages, &nul, 1) < 0 ||
-                        put(&starts, &next, 4) < 0) {
-                        failed = 1;
-                        break;
-                    }
+                if (want_messages && end_message(&messages, &starts, data, message_from, at - 1, &chars, record_chars) < 0) {
+                    failed = 1;
+                    break;
                 }
                 count++;
                 if (count >= max_records) {
@@ -354,16 +358,8 @@ static PyObject *scan(PyObject *self, PyObject *args) {
     if (!failed && record >= 0) {
         if (status == 1 && at_eof && at >= end) {
             /* the last record ends at the end of the data */
-            if (want_messages) {
-                Py_ssize_t message_length = end - 1 - message_from;
-                unsigned char nul = 0;
-                uint32_t next;
-                chars += record_chars + 1;
-                next = (uint32_t)chars;
-                if (put(&messages, data + message_from, message_length) < 0 || put(&messages, &nul, 1) < 0 ||
-                    put(&starts, &next, 4) < 0)
-                    failed = 1;
-            }
+            if (want_messages && end_message(&messages, &starts, data, message_from, end - 1, &chars, record_chars) < 0)
+                failed = 1;
             count++;
             stop = end;
         } else {
