@@ -18,7 +18,7 @@ from ..model.inert_text import one_line
 
 
 def run_folders(opened: Iterable[str]) -> list[Path]:
-    """The folders a relative source name may resolve under: each opened folder, and the
+    """The folders a message's relative file name may resolve under: each opened folder, and the
     folder of each opened file; in order, each once."""
     folders: list[Path] = []
     for name in opened:
@@ -33,7 +33,7 @@ def run_folders(opened: Iterable[str]) -> list[Path]:
     return folders
 
 
-def find_source(file: str, folders: Iterable[Path]) -> tuple[str | None, str]:
+def find_code_file(file: str, folders: Iterable[Path]) -> tuple[str | None, str]:
     """The path to open for a message's ``file``, or None and why not, in words."""
     if os.path.isabs(file):
         if os.path.isfile(file):

@@ -499,15 +499,12 @@ async def test_a_bare_file_name_opens_under_the_run_folder(tmp_path, monkeypatch
 
 
 async def test_every_palette_entry_names_an_action_and_a_key_that_exist():
-    from console_tui.ui.palette import palette_commands
-
     app = make_app(5)
     async with app.run_test(size=(100, 30)):
         ids = {b.id for _title, group in app.binding_groups() for b in group if b.id}
-        for command in palette_commands():
-            name = command.action.split("(")[0]
-            assert callable(getattr(app, f"action_{name}", None)), command.action
-            assert command.key is None or command.key in ids, command.key
+        for command in app.commands.palette():
+            assert command.action == f"command({command.id!r})" and command.id in app.commands, command.id
+            assert not command.key_id or command.key_id in ids, command.key_id
 
 
 async def test_a_time_format_from_the_palette():

@@ -11,16 +11,14 @@ import os
 import queue
 import time
 from collections.abc import Iterator, Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 from ...model.inert_text import one_line, plural
 from ...model.store.intake_queue import IntakeQueue
-from ...model.store.log_store import LogStore
 from ...model.store.record import LogRecord
-from ...model.view.log_view import LogView
+from ..command_table import Command
 from ..widgets.load_bar import LoadBar
-from ..widgets.log_table import LogTable
-from .host import Host
+from .context import ConsoleContext
 
 # Reading and writing files (the formats, the readers) and the dialogs load when first used,
 # not with the first frame.
@@ -37,20 +35,10 @@ class FilesController:
     """Files read in the background into the table, merged by time; the table saved to a file."""
 
     def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        load_bar: LoadBar,
-        file_queue: IntakeQueue,
-        *,
-        log_format: str | None,
+        self, context: ConsoleContext, load_bar: LoadBar, file_queue: IntakeQueue, *, log_format: str | None
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
         self._load_bar = load_bar
         #: File loads: their records come through a queue of their own, ahead of live ones.
         self._file_queue = file_queue
@@ -63,6 +51,7 @@ class FilesController:
         self.problems: list[str] = []
         #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
         self.source_notes: dict[str, list[str]] = {}
+        context.announce.tick.subscribe(self.check_loads)
 
     @property
     def loading(self) -> bool:
@@ -85,6 +74,8 @@ class FilesController:
 
     def check_loads(self) -> None:
         """Progress on the load bar; a finished load says what it read, and what went wrong."""
+        if not self.loads:
+            return
         self._load_bar.show_progress([load.progress for load in self.loads])
         for load in [load for load in self.loads if load.finished]:
             if len(self._file_queue):
@@ -190,3 +181,33 @@ class FilesController:
         note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
         self._host.notify(f"Saved {plural(written, 'message')} to {request.path}{note}", timeout=8)
         return written
+
+    COMMANDS: ClassVar[tuple[Command[FilesController], ...]] = (
+        Command(
+            "console.open",
+            ask_open,
+            "o",
+            "Open",
+            footer=30,
+            title="Open files",
+            about="Log files and recordings, merged by time",
+        ),
+        Command(
+            "console.save",
+            ask_save,
+            "s",
+            "Save",
+            footer=40,
+            about="Save the rows shown, or everything (rqt_console CSV or JSON Lines)",
+            words="export write",
+        ),
+        Command("console.cancel_load", cancel_loads, "x", "Cancel load", footer=50, applies=lambda f: f.loading),
+        Command(
+            "console.problems",
+            show_problems,
+            "exclamation_mark",
+            "Problems",
+            title="Load problems",
+            about="What went wrong while loading files, and where",
+        ),
+    )

@@ -48,7 +48,7 @@ class LoadBar(Horizontal):
             reading = next(iter(started), None) or next((f for f in files if not f.failed and f.fraction < 1.0), None)
             name = reading.source.rsplit("/", 1)[-1] if reading else ""
             what = f"Loading {plural(len(files), 'file')}: {name}"
-        hint = hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
+        hint = hint_line(self.app, self.app.BINDINGS, [("console.cancel_load", "cancels")])
         self.query_one(Label).update(plain(f"{what}  {plural(records, 'record')}  {hint}"))
         self.query_one(ProgressBar).update(progress=done)
 

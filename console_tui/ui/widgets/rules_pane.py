@@ -27,7 +27,7 @@ _HINTS: list[Hint] = [
     ("edit", "edit"),
     ("delete", "delete"),
     ("add", "add"),
-    ("toggle_highlighted_only", "highlighted only"),
+    ("console.highlighted_only", "highlighted only"),
     ("save_rules", "save"),
     ("load_rules", "open"),
     ("leave", "table"),

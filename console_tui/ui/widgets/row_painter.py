@@ -1,9 +1,12 @@
 """How the log table draws one row, and its header: a record's cells fitted to the columns'
-widths and styled (severity, rules, cursor, selection, search matches, storm counts) into a
-``Strip``.
+widths and styled (severity, the row's look: rules, cursor, selection, storm counts, the
+gutter's mark, search matches) into a ``Strip``; and the columns laid out for a width (which
+are shown, how wide the node column is, what the Time column shows), again only when one of
+them or the width changed (the columns themselves, and how they share the width:
+``table_columns.py``).
 
-A part of ``LogTable`` (it mixes this in); ``log_table_frame.py`` calls it for the rows a frame
-shows that are not cached yet, with the styles and columns it worked out once for the frame.
+A plain object (``RowPainter``) the table owns: it reads only what it is given, the store for
+the records' strings and the component styles the table looks up.
 """
 
 from __future__ import annotations
@@ -15,7 +18,6 @@ from functools import lru_cache
 from rich.cells import cell_len, set_cell_size
 from rich.segment import Segment
 from rich.style import Style
-from textual.scroll_view import ScrollView
 from textual.strip import Strip
 
 from ...model.inert_text import one_line, shorten_name
@@ -23,65 +25,130 @@ from ...model.levels import severity_level, severity_name
 from ...model.overview.storms import StormBadge
 from ...model.store.log_store import LogStore
 from ...model.store.record import LogRecord
-from ...model.time_column import TimeFormat, column_title, time_cell
+from ...model.time_column import TimeFormat, column_title, format_info, time_cell
 from ...model.timefmt import clock_text, duration_text
-from .table_columns import PlacedColumn
-
-#: How a row is marked by the rules: None (plain), "highlight" or "dim".
-Decoration = str | None
-#: Where a search matches in a message as shown: (start, end) character spans.
-Spans = list[tuple[int, int]]
+from ..severity_styles import severity_classes, severity_css
+from .row_decorations import RowLook, Spans
+from .table_columns import COLUMNS, PlacedColumn, layout_columns
 
 #: Cells of the gutter (a mark, and a space).
 GUTTER = 2
 _MESSAGE_LIMIT = 2000
+_NO_STYLE = Style()
 
 
-class TableCells(ScrollView):
-    """The header's and a row's strip (``LogTable`` mixes this in)."""
+#: The table's looks: the rows' styles by their component classes (``LogTable`` takes these).
+ROW_CSS = (
+    """
+    LogTable {
+        background: $surface;
+        color: $foreground;
+        scrollbar-gutter: stable;
+    }
+    LogTable > .log-table--header { text-style: bold; background: $panel; color: $foreground; }
+    LogTable > .log-table--cursor { background: $block-cursor-blurred-background; }
+    LogTable:focus > .log-table--cursor { background: $block-cursor-background; color: $block-cursor-foreground; }
+    LogTable > .log-table--dim-column { color: $foreground-muted; }
+    LogTable > .log-table--selected { background: $primary-muted; }
+    LogTable > .log-table--highlight { background: $accent-muted; }
+    LogTable > .log-table--dimmed { text-style: dim; }
+    LogTable > .log-table--storm { color: $text-accent; text-style: bold; }
+    LogTable > .log-table--match { background: $warning; color: $background; text-style: bold; }
+    LogTable > .log-table--gutter { color: $text-accent; text-style: bold; }
+"""
+    + severity_css("LogTable", "log-table--row", row=True)
+    + severity_css("LogTable", "log-table--severity")
+)
 
-    # What it reads of the table (``LogTable`` sets them).
-    store: LogStore
-    utc: bool
-    time_format: TimeFormat
-    gutter_of: Callable[[int], str] | None
-    match_spans: Callable[[int, str], Spans] | None
-    #: A fleet's robots' colours (``--fleet``'s ``colour``) by name, for the Robot column.
-    robot_styles: dict[str, Style]
-    #: The component styles by class name (``log_table_frame.py`` looks them up).
-    _styles: dict[str, Style]
+ROW_CLASSES = {
+    "log-table--header",
+    "log-table--cursor",
+    "log-table--selected",
+    "log-table--dim-column",
+    *severity_classes("log-table--row"),
+    *severity_classes("log-table--severity"),
+    "log-table--highlight",
+    "log-table--dimmed",
+    "log-table--storm",
+    "log-table--match",
+    "log-table--gutter",
+}
 
-    def _header(self, placed: tuple[PlacedColumn, ...], width: int, base: Style) -> Strip:
-        style = base + self._styles.get("log-table--header", Style())
+
+class RowPainter:
+    """The columns as laid out, and the strips of the header and of one row."""
+
+    def __init__(self, store: LogStore, *, utc: bool = False) -> None:
+        self.store = store
+        self.utc = utc
+        #: What the Time column shows (``t``), in local time or UTC.
+        self.time_format = TimeFormat.CLOCK
+        self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
+        #: A fleet's robots' colours (``--fleet``'s ``colour``) by name, for the Robot column.
+        self.robot_styles: dict[str, Style] = {}
+        #: The table's component styles by class name (it looks them up once a frame).
+        self.styles: dict[str, Style] = {}
+        self.placed: tuple[PlacedColumn, ...] = ()
+        self._layout_key: tuple = ()
+        self._nodes_measured = 0
+        self._widest_node = 8
+
+    def set_column_shown(self, key: str, shown: bool) -> None:
+        columns = set(self.shown_columns)
+        (columns.add if shown else columns.discard)(key)
+        columns.add("message")
+        self.shown_columns = frozenset(columns)
+
+    def layout(self, width: int, gutter: bool) -> bool:
+        """Lay the columns out for ``width`` cells (and a gutter); True when they moved."""
+        store = self.store
+        nodes = store.nodes
+        if len(nodes) != self._nodes_measured:
+            self._nodes_measured = len(nodes)
+            self._widest_node = max((cell_len(name) for name in nodes), default=8)
+        # Wide enough for most names whole (20 of 80 columns, 24 of 100, 32 of 160); longer
+        # ones are shortened from the front, keeping the end that tells them apart (shorten_name).
+        node_width = max(min(self._widest_node, max(24, width // 5), max((width + 3) // 4, 12)), 6)
+        cells = GUTTER if gutter else 0
+        # A fleet's robots: as wide as the widest name, 5 to 16 cells.
+        robot_width = max(min(max(map(cell_len, store.robots), default=5), 16), 5)
+        # The row number's digits, however long the history (8 for 20,000,000).
+        seq_width = max(7, len(str(store.end_seq)))
+        key = (width, self.shown_columns, node_width, cells, self.time_format, self.utc, robot_width, seq_width)
+        if key == self._layout_key:
+            return False
+        self._layout_key = key
+        widths = {"time": format_info(self.time_format).width, "robot": robot_width, "seq": seq_width}
+        self.placed = layout_columns(width - cells, self.shown_columns, node_width, widths)
+        return True
+
+    @property
+    def layout_key(self) -> tuple:
+        return self._layout_key
+
+    def header(self, width: int, base: Style, gutter: bool) -> Strip:
+        style = base + self.styles.get("log-table--header", _NO_STYLE)
         segments: list[Segment] = []
-        if self.gutter_of is not None:
+        if gutter:
             segments.append(Segment(" " * GUTTER, style))
-        for place in placed:
+        for place in self.placed:
             title = column_title(self.time_format, self.utc) if place.column.key == "time" else place.column.title
             segments.append(Segment(fit(title, place.width, place.column.align) + " ", style))
         return Strip(segments).adjust_cell_length(width, style)
 
-    def _render_row(
-        self,
-        record: LogRecord,
-        placed: tuple[PlacedColumn, ...],
-        width: int,
-        base: Style,
-        is_cursor: bool,
-        selected: bool,
-        decoration: Decoration,
-        badge: StormBadge | None = None,
-        gutter: str | None = None,
-        relative: int | None = None,
+    def row(
+        self, record: LogRecord, width: int, base: Style, look: RowLook, matches: Callable[[int, str], Spans] | None
     ) -> Strip:
-        styles = self._styles
+        """The row of ``record`` as ``look`` says, ``matches`` marking where a search matches."""
+        styles = self.styles
+        is_cursor, decoration, badge, gutter = look.cursor, look.decoration, look.badge, look.gutter
         name = severity_level(record.level).style
         row_style = base + styles.get(f"log-table--row-{name}", Style())
         if decoration == "highlight":
             row_style += styles.get("log-table--highlight", Style())
         elif decoration == "dim":
             row_style += styles.get("log-table--dimmed", Style())
-        if selected:
+        if look.selected:
             row_style += styles.get("log-table--selected", Style())
         if is_cursor:
             row_style += styles.get("log-table--cursor", Style())
@@ -91,20 +158,24 @@ class TableCells(ScrollView):
         if gutter is not None:
             add(fit(gutter, 1), row_style + styles.get("log-table--gutter", Style()))
             add(" ", row_style)
-        for place in placed:
+        for place in self.placed:
             key = place.column.key
             if key == "message" and badge is not None:
                 mark = self._badge_text(badge, place.width)
                 add(mark, row_style + styles.get("log-table--storm", Style()))
                 room = place.width - len(mark)
                 text = self._cell_text(record, key, room)
-                for segment in self._message_segments(record.seq, text, fit(text, room), row_style):
+                for segment in self._message_segments(matches, record.seq, text, fit(text, room), row_style):
                     add(*segment[:2])
                 add(" ", row_style)
                 continue
             if key == "time":
                 text = time_cell(
-                    record.stamp_ns, self.time_format, utc=self.utc, origin_ns=relative, previous_ns=relative
+                    record.stamp_ns,
+                    self.time_format,
+                    utc=self.utc,
+                    origin_ns=look.relative,
+                    previous_ns=look.relative,
                 )
             else:
                 text = self._cell_text(record, key, place.width)
@@ -117,18 +188,20 @@ class TableCells(ScrollView):
                 style = row_style + muted
             fitted = fit(text, place.width, place.column.align)
             if key == "message":
-                for segment in self._message_segments(record.seq, text, fitted, style):
+                for segment in self._message_segments(matches, record.seq, text, fitted, style):
                     add(*segment[:2])
             else:
                 add(fitted, style)
             add(" ", row_style)
         return row.strip(width, row_style)
 
-    def _message_segments(self, seq: int, text: str, fitted: str, style: Style) -> list[Segment]:
+    def _message_segments(
+        self, matches: Callable[[int, str], Spans] | None, seq: int, text: str, fitted: str, style: Style
+    ) -> list[Segment]:
         """The message cell, with where a search matches marked."""
-        spans = self.match_spans(seq, text) if self.match_spans else None
+        spans = matches(seq, text) if matches is not None else None
         if spans:
-            return _marked(fitted, spans, len(text), style, style + self._styles.get("log-table--match", Style()))
+            return _marked(fitted, spans, len(text), style, style + self.styles.get("log-table--match", Style()))
         return [Segment(fitted, style)]
 
     def _badge_text(self, badge: StormBadge, width: int) -> str:
