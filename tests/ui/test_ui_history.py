@@ -12,7 +12,7 @@ from console_tui.model.store.spill_file import SpillFiles
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import records
-from support.ui import screen_text, until
+from support.ui import cursor_line, cursor_number, line_with, screen_text, type_text, until
 
 
 def status_line(app) -> str:
@@ -58,3 +58,39 @@ async def test_a_refused_directory_is_said(tmp_path):
     async with app.run_test(size=(200, 24)) as pilot:
         await until(pilot, lambda: "history in memory" in status_line(app), what=lambda: status_line(app))
         assert "can be written by other users" in status_line(app)
+
+
+async def test_the_whole_history_on_disk_is_reached_by_keys_rules_search_and_the_node_panel(tmp_path):
+    """Six chunks on disk (two of them kept in memory), the oldest two dropped at the bound:
+    Home goes to the oldest kept, a level key and a search go over all of it, the node panel
+    counts all of it."""
+    made = records(8 * CHUNK_SIZE + 100)
+    made[2 * CHUNK_SIZE + 5].msg = "the far needle"
+    store = LogStore(6 * CHUNK_SIZE + 100, spill=ChunkSpill(SpillFiles(tmp_path, min_free_bytes=0), warm_chunks=2))
+    store.extend_records(made)
+    assert store.first_seq == 2 * CHUNK_SIZE and store.on_disk >= 5 * CHUNK_SIZE
+    app = ConsoleApp(store=store, utc=True)
+    async with app.run_test(size=(120, 30)) as pilot:
+        await pilot.press("home")
+        await until(pilot, lambda: cursor_number(app) == store.first_seq + 1, what=lambda: status_line(app))
+        assert made[store.first_seq].msg[:30] in (cursor_line(app) or "")
+        await pilot.press("end")
+        await until(pilot, lambda: cursor_number(app) == store.end_seq, what=lambda: status_line(app))
+        await pilot.press("f")
+        await type_text(pilot, "far needle")
+        await pilot.press("enter")
+        await until(pilot, lambda: "match 1 of 1 'far needle'" in status_line(app), what=lambda: status_line(app))
+        line = cursor_line(app) or ""
+        assert "the far needle" in line and str(2 * CHUNK_SIZE + 6) in line.split()[:2]  # (after the match's mark)
+        await pilot.press("escape", "2")  # INFO hidden over the whole history
+        kept = made[store.first_seq :]
+        shown = sum(1 for rec in kept if rec.level != 20)
+        await until(pilot, lambda: f"{shown:,}/{len(kept):,} shown" in status_line(app), what=lambda: status_line(app))
+        await pilot.press("home")
+        first = store.first_seq + next(i for i, rec in enumerate(kept) if rec.level != 20)
+        await until(pilot, lambda: cursor_number(app) == first + 1, what=lambda: status_line(app))
+        await pilot.press("ctrl+n")
+        await until(pilot, lambda: "Nodes: 5" in screen_text(app) and "counting" not in screen_text(app))
+        lidar = sum(1 for rec in kept if rec.node == "sensors.lidar_driver")
+        _, row = line_with(app, "sensors.lidar_driver")
+        assert sum(map(int, row.split("▏")[1].split()[1:6])) == lidar  # its D, I, W, E and F
