@@ -7,6 +7,7 @@ import errno
 import os
 
 from console_tui.model.store.chunk_spill import ChunkSpill
+from console_tui.model.store.history_dir import open_session_spill
 from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
 from console_tui.model.store.spill_file import SpillFiles
 from console_tui.ui.app import ConsoleApp
@@ -51,13 +52,18 @@ async def test_records_dropped_at_the_bound_are_counted_on_the_status_line():
 
 
 async def test_a_refused_directory_is_said(tmp_path):
-    store = LogStore()
-    store.memory_reason = f"{tmp_path} can be written by other users (mode 777)"
+    shared = tmp_path / "history"
+    shared.mkdir()
+    os.chmod(shared, 0o777)  # anyone may write here, and no sticky bit
+    spill, _, why = open_session_spill(shared)
+    assert spill is None
+    store = LogStore(spill=spill)
+    store.memory_reason = why  # as the command makes its store
     store.extend_records(records(10))
     app = ConsoleApp(store=store, utc=True)
     async with app.run_test(size=(200, 24)) as pilot:
         await until(pilot, lambda: "history in memory" in status_line(app), what=lambda: status_line(app))
-        assert "can be written by other users" in status_line(app)
+        assert f"{shared} can be written by other users (mode 777)" in status_line(app)
 
 
 async def test_the_whole_history_on_disk_is_reached_by_keys_rules_search_and_the_node_panel(tmp_path):
