@@ -46,7 +46,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from _probe import StallProbe, count_frames
 from _report import machine_line, table
 from make_big_log import NEEDLE, make
-from startup import launch
+from startup import launch, write_bytecode
 
 from console_tui.model.store.chunk_spill import ChunkSpill
 from console_tui.model.store.log_store import LogStore
@@ -196,6 +196,8 @@ def main() -> None:
     )
     args = parser.parse_args()
     width, height = (int(n) for n in args.size.split("x"))
+    if args.cli:
+        write_bytecode()  # as an installed package has them (else each launch compiles the modules)
     rows = []
     for records in args.records:
         path = args.dir / f"console-tui-big-{records}.log"
@@ -212,7 +214,7 @@ def main() -> None:
             f"{found.get('home, reading', float('nan')):.2f} / {found.get('end, reading', float('nan')):.2f}",
             f"{found['read']:.1f} / {found['counted']:.1f}",
             f"{found['home']:.2f} / {found['end']:.2f}",
-            f"{found['rule first'] * 1000:.0f} ms / {found['rule']:.1f} s",
+            f"{found['rule first'] * 1000:.0f} ms / {found['rule']:.2f} s",
             f"{found['search']:.2f}",
             f"{max(found['rule stall'], found['search stall']) * 1000:.0f} ms",
             f"{found['rss']:.0f} MB",

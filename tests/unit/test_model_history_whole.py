@@ -23,7 +23,10 @@ from console_tui.model.view.search_walk import Search, parse_search
 from console_tui.model.view.seek import Seeker, level_hits
 
 S = 1_000_000_000
-BOUND = 9 * CHUNK_SIZE
+#: 12 chunks and a half, the oldest three beyond the bound (on disk they go whole chunks at a
+#: time: the bound ends where a chunk begins, for both stores to keep the same records).
+RECORDS = 12 * CHUNK_SIZE + 2000
+BOUND = 9 * CHUNK_SIZE + 2000
 
 
 def record(i: int) -> LogRecord:
@@ -39,16 +42,15 @@ def record(i: int) -> LogRecord:
 
 
 def stores(path: Path) -> tuple[LogStore, LogStore]:
-    """The same 12 chunks and a half in a store on disk and in one in memory, both bounded to 9
-    chunks (the oldest three gone)."""
+    """The same records in a store on disk and in one in memory, the oldest three chunks gone."""
     spilled = LogStore(
         BOUND, spill=ChunkSpill(SpillFiles(path, segment_bytes=1 << 20, min_free_bytes=0), warm_chunks=2)
     )
     held = LogStore(BOUND, memory_bound=BOUND)
     for store in (spilled, held):
-        for first in range(0, 12 * CHUNK_SIZE + 2000, 1500):
-            store.extend(RecordColumns.from_records([record(i) for i in range(first, first + 1500)]))
-    assert spilled.evicted == held.evicted > 0
+        for first in range(0, RECORDS, 1500):
+            store.extend(RecordColumns.from_records([record(i) for i in range(first, min(first + 1500, RECORDS))]))
+    assert spilled.first_seq == held.first_seq == 3 * CHUNK_SIZE
     assert spilled.on_disk >= 7 * CHUNK_SIZE and spilled.spill is not None and spilled.spill.warm_count <= 2
     return spilled, held
 

@@ -74,6 +74,20 @@ def test_dropping_the_oldest_removes_their_files(tmp_path):
     assert store.evicted == 36 * CHUNK_SIZE
 
 
+def test_records_on_disk_go_a_whole_chunk_at_a_time_never_beyond_the_bound(tmp_path):
+    """Part of a chunk on disk would be read back only to count what goes: the oldest chunk
+    goes whole, once the bound reaches into it."""
+    store = spilled_store(tmp_path, max_messages=4 * CHUNK_SIZE + 100)
+    fill(store, 4 * CHUNK_SIZE + 100)
+    assert store.evicted == 0
+    fill(store, 1, start=store.end_seq)  # one more than the bound: the oldest chunk goes whole
+    assert (store.first_seq, len(store)) == (CHUNK_SIZE, 3 * CHUNK_SIZE + 101)
+    fill(store, CHUNK_SIZE - 1, start=store.end_seq)  # still within the bound
+    assert (store.first_seq, len(store)) == (CHUNK_SIZE, 4 * CHUNK_SIZE + 100)
+    kept = [record(seq).level for seq in range(store.first_seq, store.end_seq)]
+    assert store.evicted == CHUNK_SIZE and store.counts == {level: kept.count(level) for level in store.counts}
+
+
 def test_a_full_disk_keeps_chunks_in_memory_bounded_and_says_so(tmp_path):
     failing = {"on": False}
 

@@ -14,9 +14,9 @@ Python step per record.
 Full chunks can leave memory for disk (``spill``, a ``ChunkSpill``): the store then keeps a
 ``ColdChunk`` for each (a few dozen bytes) and reads the chunk back when it is read
 (``_chunk``), so a history of tens of millions of records holds a few MB; ``max_messages``
-then bounds the records on disk. Without a spill, or while writing to disk fails (a full
-disk: ``spill_problem``), memory holds at most ``memory_bound`` records, the oldest dropped
-first (those on disk among them).
+then bounds the records on disk, the oldest going a whole chunk at a time. Without a spill, or
+while writing to disk fails (a full disk: ``spill_problem``), memory holds at most
+``memory_bound`` records, the oldest dropped first (those on disk among them).
 
 Every record gets a sequence number (``seq``) in arrival order; a seq never changes and
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record
@@ -139,7 +139,7 @@ class LogStore:
             self._spill_full()
         bound = self.bound
         if len(self) > bound:
-            self._evict_to(self.end_seq - bound)
+            self._drop_beyond(bound)
         elif self.spill is not None and (len(chunks) - self._cold) * CHUNK_SIZE > self.memory_bound:
             # Writing to disk fails: memory keeps the newest records, and all older ones go.
             self._evict_to(max(self.end_seq - self.memory_bound, self.first_seq))
@@ -177,7 +177,7 @@ class LogStore:
         for severity, count in zip(_SEVERITIES, cold.severities, strict=True):
             self.counts[severity] += count
         if len(self) > self.bound:
-            self._evict_to(self.end_seq - self.bound)
+            self._drop_beyond(self.bound)
         return range(max(base, self.first_seq), self.end_seq)
 
     def _ids_of(self, source: int, name: str, column: IdColumn) -> array:
@@ -381,6 +381,16 @@ class LogStore:
         self._base_seq = self.first_seq = self.end_seq
         for key in self.counts:
             self.counts[key] = 0
+
+    def _drop_beyond(self, bound: int) -> None:
+        """Drop the oldest records beyond ``bound``; from the chunks on disk a whole chunk at a
+        time (part of one would be read back only to count what goes), so up to
+        ``CHUNK_SIZE - 1`` more than needed go there."""
+        new_first = self.end_seq - bound
+        number = (new_first - 1 - self._base_seq) // CHUNK_SIZE  # the chunk of the last to go
+        if number < self._cold:
+            new_first = self._base_seq + (number + 1) * CHUNK_SIZE
+        self._evict_to(new_first)
 
     def _evict_to(self, new_first: int) -> None:
         for listener in self.evict_listeners:
