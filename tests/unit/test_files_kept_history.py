@@ -107,3 +107,24 @@ def test_spill_files_begin_a_segment_with_every_string(tmp_path):
     files.make_room(10)
     files.make_room(10)
     assert files.segments() == [1]  # the first went empty: removed
+
+
+def test_keep_history_as_the_command_does_keeps_the_session_for_history(tmp_path, monkeypatch):
+    """``console-tui --keep-history``'s store: on disk, bounded by ``--max-messages``; at the
+    end its records, the newest chunk too, are in the ROS log directory's kept history."""
+    import argparse
+
+    from console_tui.run_app import _history_store
+
+    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path))
+    cleanups: list = []
+    args = argparse.Namespace(max_messages=3 * CHUNK_SIZE + 10, keep_history=True, history_size=100)
+    store = _history_store(args, cleanups)
+    assert store.spill is not None and store.max_messages == 3 * CHUNK_SIZE + 10 and not store.memory_reason
+    store.extend_records(record(i) for i in range(4 * CHUNK_SIZE + 10))
+    assert store.first_seq == CHUNK_SIZE  # the oldest chunk gone at the bound
+    for cleanup in cleanups:
+        cleanup()
+    assert len(kept_sessions(tmp_path / KEPT_HISTORY)) == 1
+    kept = read(tmp_path / KEPT_HISTORY)
+    assert [rec.msg for rec in kept] == [record(i).msg for i in range(CHUNK_SIZE, 4 * CHUNK_SIZE + 10)]

@@ -28,7 +28,7 @@ from collections.abc import Callable, Mapping
 from .chunk import Chunk, StringTable
 from .chunk_blob import ColdChunk, FileTexts, header_size, pack_chunk, unpack_chunk
 from .indexed_chunk import FileChunk, TextSource
-from .spill_file import CHUNK, TABLES, SpillFiles
+from .spill_file import CHUNK, KEPT, TABLES, SpillFiles, pack_kept
 
 #: Chunks kept in memory after being read back or spilled (about 200 KB each).
 WARM_CHUNKS = 48
@@ -97,6 +97,15 @@ class ChunkSpill:
         self._failed_at = None
         self._keep_warm(base, chunk)
         return ColdChunk(segment, offset, len(blob), blob[: header_size(blob)])
+
+    def keep_index(self, chunks: list[ColdChunk], skip: int) -> None:
+        """Say which chunks the store still held as the session ends (its history kept): those
+        it had dropped stay in their segments until the last chunk of each goes, and are not
+        read again; ``skip``: the first one's records it had dropped already."""
+        try:
+            self.files.append(KEPT, pack_kept([(cold.segment, cold.offset) for cold in chunks], skip), hold=False)
+        except OSError as error:
+            self.problem = _describe(error)  # (read again, the session then holds those chunks too)
 
     def warm(self, base: int, cold: ColdChunk) -> Chunk:
         """The chunk ``cold`` stands for (first seq ``base``)."""

@@ -201,10 +201,15 @@ class LogStore:
         if spill is None:
             return
         self._spill_full()
-        for number in range(self._cold, len(self._chunks)):
-            chunk = self._chunks[number]
+        kept, skip = [], 0
+        for number, chunk in enumerate(self._chunks):
+            cold = chunk if isinstance(chunk, ColdChunk) else None
             if isinstance(chunk, Chunk) and len(chunk):
-                spill.spill(self._base_seq + number * CHUNK_SIZE, chunk)
+                cold = spill.spill(self._base_seq + number * CHUNK_SIZE, chunk)
+            if cold is not None:
+                kept.append(cold)
+                skip = skip if number else self.first_seq - self._base_seq  # (the oldest: dropped in part)
+        spill.keep_index(kept, skip)
 
     def _spill_full(self) -> None:
         """Write the full chunks still in memory to disk, oldest first (while that works)."""

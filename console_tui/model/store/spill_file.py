@@ -3,7 +3,8 @@
 Blobs are appended to the newest segment (``append``) and read back from anywhere with
 ``os.pread`` (``read``: from any thread). A segment is a run of records, each a kind and a
 length, then the blob (``CHUNK``: a chunk, ``chunk_blob.py``; ``TABLES``: strings the chunks
-after it name), so a kept history can be read again from its files alone. When the store
+after it name; ``KEPT``: the chunks a kept session held at its end), so a kept history can be
+read again from its files alone. When the store
 drops its last chunk in a segment (``release``), the file goes. Every write goes whole or
 not at all: a failed one (a full disk, a file size limit) is cut off again and raised, so
 that the store can keep that chunk in memory instead and say why. A new segment is begun
@@ -27,6 +28,10 @@ MIN_FREE_BYTES = 256 << 20
 _RECORD = struct.Struct("<4sI")
 CHUNK = b"CTC1"
 TABLES = b"CTT1"
+#: The chunks a kept session's store held at its end (``pack_kept``): written last, when it ends.
+KEPT = b"CTK1"
+_KEPT_HEAD = struct.Struct("<I")
+_KEPT_CHUNK = struct.Struct("<IQ")
 _NAME = "segment-{:06d}.ctc"
 
 
@@ -164,6 +169,19 @@ def records_of(path: Path) -> Iterator[tuple[bytes, int, bytes]]:
             return
         yield kind, start, data[start : start + length]
         at = start + length
+
+
+def pack_kept(chunks: list[tuple[int, int]], skip: int) -> bytes:
+    """A ``KEPT`` record's blob: the segment and blob offset of each chunk the store still
+    held, oldest first, and how many of the first one's records it had dropped already."""
+    return _KEPT_HEAD.pack(skip) + b"".join(_KEPT_CHUNK.pack(segment, offset) for segment, offset in chunks)
+
+
+def unpack_kept(blob: bytes) -> dict[tuple[int, int], int]:
+    """Each chunk ``pack_kept`` names, as (segment, offset), to the records to skip at its start."""
+    (skip,) = _KEPT_HEAD.unpack_from(blob)
+    chunks = list(_KEPT_CHUNK.iter_unpack(blob[_KEPT_HEAD.size :]))
+    return {chunk: skip if number == 0 else 0 for number, chunk in enumerate(chunks)}
 
 
 def _free_bytes(directory: Path) -> int | None:

@@ -20,7 +20,7 @@ from ...model.store.chunk_spill import read_tables
 from ...model.store.history_dir import KEPT_PREFIX, kept_sessions
 from ...model.store.record import LogRecord
 from ...model.store.record_batch import RecordColumns
-from ...model.store.spill_file import CHUNK, TABLES, records_of
+from ...model.store.spill_file import CHUNK, KEPT, TABLES, records_of, unpack_kept
 from ...ros.log_dir import KEPT_HISTORY
 from .log_file import Cancel, LogFile
 
@@ -55,22 +55,23 @@ class KeptHistory(LogFile):
     def batches(self, cancel: Cancel | None = None) -> Iterator[list[LogRecord]]:
         for session in self.sessions:
             tables: dict[str, list[str]] = {}
-            for segment in _segments(session):
+            segments = _segments(session)
+            last = self._read(segments[-1]) if segments else []
+            # The chunks the store held at its end (the rest it had dropped); a session killed before: all.
+            kept = next((unpack_kept(blob) for kind, _, blob in reversed(last) if kind == KEPT), None)
+            for segment in segments:
                 if cancel is not None and cancel.is_set():
                     return
-                try:
-                    records = list(records_of(segment))
-                except OSError as error:
-                    self.problems.add(f"{session.name}/{segment.name}: cannot read: {error.strerror or error}")
-                    continue
-                for kind, _offset, blob in records:
+                number = int(segment.stem.rpartition("-")[2])
+                for kind, offset, blob in last if segment == segments[-1] else self._read(segment):
                     if kind == TABLES:
                         for name, first, strings in read_tables(blob):
                             table = tables.setdefault(name, [])
                             del table[first:]
                             table.extend(strings)
-                    elif kind == CHUNK:
-                        batch = self._records(blob, tables, f"{session.name}/{segment.name}")
+                    elif kind == CHUNK and (kept is None or (number, offset) in kept):
+                        skip = kept[number, offset] if kept is not None else 0
+                        batch = self._records(blob, tables, f"{session.name}/{segment.name}")[skip:]
                         if batch:
                             yield batch
                 self.done += segment.stat().st_size
@@ -80,6 +81,13 @@ class KeptHistory(LogFile):
                 "(their messages stay in those files): open the files again"
             )
         self.done = self.total
+
+    def _read(self, segment: Path) -> list[tuple[bytes, int, bytes]]:
+        try:
+            return list(records_of(segment))
+        except OSError as error:
+            self.problems.add(f"{segment.parent.name}/{segment.name}: cannot read: {error.strerror or error}")
+            return []
 
     def _records(self, blob: bytes, tables: dict[str, list[str]], where: str) -> list[LogRecord]:
         try:
