@@ -77,6 +77,8 @@ async def test_the_whole_history_on_disk_is_reached_by_keys_rules_search_and_the
     assert store.first_seq == 2 * CHUNK_SIZE and store.on_disk >= 5 * CHUNK_SIZE
     app = ConsoleApp(store=store, utc=True)
     async with app.run_test(size=(120, 30)) as pilot:
+        dropped = f"{store.evicted:,} dropped"  # the bound on disk (--max-messages), said
+        await until(pilot, lambda: dropped in status_line(app), what=lambda: status_line(app))
         await pilot.press("home")
         await until(pilot, lambda: cursor_number(app) == store.first_seq + 1, what=lambda: status_line(app))
         assert made[store.first_seq].msg[:30] in (cursor_line(app) or "")
