@@ -36,6 +36,7 @@ import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import ModuleType
+from typing import TypeVar
 
 #: A built loop no start has used for this long is removed from the cache.
 PRUNE_AFTER_S = 30 * 86400.0
@@ -75,6 +76,17 @@ def python_include() -> Path | None:
     """Python's headers, or ``None`` when ``Python.h`` is not there (python3-dev)."""
     include = Path(sysconfig.get_paths()["include"])
     return include if (include / "Python.h").exists() else None
+
+
+_Built = TypeVar("_Built")
+
+
+def noted(load: Callable[[], tuple[_Built | None, str]]) -> tuple[_Built | None, str]:
+    """``load()``, or ``None`` and why when it raised: never worth stopping what would use it."""
+    try:
+        return load()
+    except Exception as error:
+        return None, f"{type(error).__name__}: {error}"
 
 
 def load_or_build(name: str, stem: str, module: str, build: Callable[[Path], str]) -> tuple[ModuleType | None, str]:

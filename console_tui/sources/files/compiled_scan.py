@@ -47,10 +47,7 @@ def load() -> tuple[Scanner | None, str]:
     global _loaded
     with _build_lock:
         if _loaded is None:
-            try:
-                _loaded = _load()
-            except Exception as error:  # never worth stopping a load for
-                _loaded = None, f"{type(error).__name__}: {error}"
+            _loaded = c_build.noted(_load)
         return _loaded
 
 

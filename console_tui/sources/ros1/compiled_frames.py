@@ -40,10 +40,7 @@ def load() -> tuple[FrameLoop | None, str]:
     global _loaded
     with _build_lock:
         if _loaded is None:
-            try:
-                _loaded = _load()
-            except Exception as error:  # never worth stopping the intake for
-                _loaded = None, f"{type(error).__name__}: {error}"
+            _loaded = c_build.noted(_load)
         return _loaded
 
 
