@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import itertools
 import os
 import sys
 from pathlib import Path
@@ -12,9 +11,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).parent))
 
 from support.rosproc import ros_available
-
-_counter = itertools.count()
-
+from support.shares import range_of, taker
 
 #: ``CONSOLE_TUI_TEST_DOMAINS=FIRST-LAST`` picks the ROS_DOMAIN_IDs the tests may use (both
 #: included); the default keeps them in 1-100. On a shared network, pick a range nobody else
@@ -25,34 +22,16 @@ DEFAULT_DOMAINS = (1, 100)
 
 def domain_range() -> tuple[int, int]:
     """The first and last ROS_DOMAIN_ID the tests may use."""
-    text = os.environ.get(DOMAINS_VARIABLE, "").strip()
-    if not text:
-        return DEFAULT_DOMAINS
-    try:
-        first, _, last = text.partition("-")
-        low, high = int(first), int(last or first)
-    except ValueError:
-        raise pytest.UsageError(f"{DOMAINS_VARIABLE}={text!r}: write it as FIRST-LAST, for example 120-160") from None
-    if not 0 <= low <= high <= 232:
-        raise pytest.UsageError(f"{DOMAINS_VARIABLE}={text!r}: domain ids run from 0 to 232, first <= last")
-    return low, high
+    return range_of(DOMAINS_VARIABLE, DEFAULT_DOMAINS, 0, 232, "120-160")
 
 
-def _worker() -> tuple[int, int]:
-    """This xdist worker's number and how many workers there are."""
-    worker = os.environ.get("PYTEST_XDIST_WORKER", "gw0")
-    digits = "".join(ch for ch in worker if ch.isdigit())
-    count = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1)
-    return int(digits or 0) % max(count, 1), max(count, 1)
+_domains = taker(domain_range)
 
 
 def next_domain_id() -> int:
     """A ROS_DOMAIN_ID no other test of this run uses at the same time: each xdist worker
     takes turns through a share of the range of its own."""
-    low, high = domain_range()
-    number, workers = _worker()
-    share = max((high - low + 1) // workers, 1)
-    return low + (number * share + next(_counter) % share) % (high - low + 1)
+    return next(_domains())
 
 
 @pytest.fixture(autouse=True)
@@ -132,14 +111,14 @@ def ros_runtime(ros_env):
 
 @pytest.fixture
 def ros1_env(tmp_path, monkeypatch: pytest.MonkeyPatch) -> dict[str, str]:
-    """A ROS 1 environment of its own for one test: a free port for its master, loopback,
+    """A ROS 1 environment of its own for one test: a port of its own for its master, loopback,
     logs under the test's tmp folder. Set in this process too (for sources run in-process)."""
-    from support.ros1 import free_port, ros1_environment, ros1_missing
+    from support.ros1 import own_port, ros1_environment, ros1_missing
 
     reason = ros1_missing()
     if reason:
         pytest.skip(reason)
-    env = ros1_environment(tmp_path, free_port())
+    env = ros1_environment(tmp_path, own_port())
     for key in [k for k in os.environ if k.startswith("ROS_")]:
         monkeypatch.delenv(key)
     for key, value in env.items():

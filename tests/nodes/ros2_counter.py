@@ -1,5 +1,5 @@
 """A ROS 2 node for the tests of ``console-tui run``: logs ``count N`` (INFO, to its console and
-/rosout), prints ``printed N`` on stdout, and ends with exit status ``--exit`` (a death when not 0).
+/rosout, once something reads /rosout), prints ``printed N`` on stdout, and ends with exit status ``--exit`` (a death when not 0).
 
     python ros2_counter.py NAME [--count N] [--exit CODE]
 """
@@ -21,6 +21,11 @@ def main() -> None:
     args = parser.parse_args()
     rclpy.init()
     node = Node(args.name)
+    # The console's /rosout subscription found first (at most 60 s): a copy that came only
+    # as the late joiner's history, after the merger's hold, would be a row of its own.
+    deadline = time.monotonic() + 60
+    while node.count_subscribers("/rosout") == 0 and time.monotonic() < deadline:
+        time.sleep(0.05)
     for number in range(args.count):
         node.get_logger().info(f"count {number}")
         print(f"printed {number}", flush=True)

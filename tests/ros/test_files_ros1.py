@@ -13,7 +13,7 @@ from console_tui.sources.files import load_records, open_log_file, open_logs
 from console_tui.sources.files.repeats import RepeatMerger
 
 from support.formats import fields
-from support.ros1 import SYSTEM_PYTHON, Ros1Master, free_port, ros1_environment, ros1_missing, stop_group
+from support.ros1 import SYSTEM_PYTHON, Ros1Master, own_port, ros1_environment, ros1_missing, stop_group
 from support.rosproc import NODES
 
 pytestmark = pytest.mark.ros1
@@ -27,7 +27,7 @@ def ros1_run(tmp_path_factory):
     if reason:
         pytest.skip(reason)
     base = tmp_path_factory.mktemp("ros1")
-    port = free_port()
+    port = own_port()
     env = ros1_environment(base, port)
     bag = base / "run.bag"
     master = Ros1Master(base, port, env)

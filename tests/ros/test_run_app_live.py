@@ -129,9 +129,9 @@ def test_the_demo_stays_out_of_the_users_graph(nodes, ros_env, ros_runtime, monk
 
 def test_a_silent_ros1_master_uri_is_said_in_the_status_line(ros_env, monkeypatch):
     """ROS_MASTER_URI set, nothing there: ROS 2 is read, and the status line says why."""
-    from support.ros1 import free_port
+    from support.ros1 import own_port
 
-    uri = f"http://127.0.0.1:{free_port()}/"
+    uri = f"http://127.0.0.1:{own_port()}/"
     monkeypatch.setenv("ROS_MASTER_URI", uri)
     seen: dict[str, str] = {}
 

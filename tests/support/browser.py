@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from support.ros1 import free_port
+from support.ros1 import own_port
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMEDRIVER = "/usr/bin/chromedriver"
@@ -120,7 +120,7 @@ class ServeProcess:
     """``console-tui serve --port P ARGS`` in a process of its own; ``url`` is what it printed."""
 
     def __init__(self, *args: str, env: dict[str, str], host: str | None = None) -> None:
-        self.port = free_port()
+        self.port = own_port()
         command = [sys.executable, "-m", "console_tui", "serve", "--port", str(self.port)]
         if host is not None:
             command += ["--host", host]

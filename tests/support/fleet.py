@@ -11,7 +11,7 @@ from pathlib import Path
 from console_tui.ros.fleet import Robot
 from console_tui.ros.ros_version import ROS1, ROS2
 
-from support.ros1 import SYSTEM_PYTHON, Ros1Master, free_port, ros1_environment
+from support.ros1 import SYSTEM_PYTHON, Ros1Master, own_port, ros1_environment
 from support.rosproc import NodeProcess
 
 #: What every ROS process of a fleet test has: loopback only, UDP (no shared memory left behind).
@@ -54,7 +54,7 @@ class LoopbackFleet:
 
     def add_master(self, name: str, base: Path, node: str) -> FleetRobot:
         base.mkdir(parents=True, exist_ok=True)
-        port = free_port()
+        port = own_port()
         env = ros1_environment(base, port)
         master = Ros1Master(base, port, env)
         master.start(60)

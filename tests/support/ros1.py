@@ -1,4 +1,4 @@
-"""Real ROS 1 for tests: a master on a free port (roscore, or a bare rosmaster without the
+"""Real ROS 1 for tests: a master on a port of the worker's own (roscore, or a bare rosmaster without the
 rosout node), rospy nodes run by the system Python, roscpp nodes built from tests/nodes,
 every process in its own group and every one of them stopped at the end."""
 
@@ -15,6 +15,7 @@ import xmlrpc.client
 from pathlib import Path
 
 from support.rosproc import NODES, PATIENCE_S, NodeProcess, NodeProcesses, wait_until
+from support.shares import range_of, taker
 
 SYSTEM_PYTHON = "/usr/bin/python3"
 ROSCPP_SOURCE = NODES / "roscpp_node.cpp"
@@ -43,10 +44,27 @@ def roscpp_missing() -> str:
     return ""
 
 
-def free_port() -> int:
-    with socket.socket() as sock:
-        sock.bind(("127.0.0.1", 0))
-        return sock.getsockname()[1]
+#: ``CONSOLE_TUI_TEST_ROS1_PORTS=FIRST-LAST``: the ports the tests' ROS 1 masters (and their
+#: ``serve``) listen on, a share for each xdist worker. The default lies below Linux's ephemeral ports (32768 and up):
+#: a port the kernel hands out to any socket bound to port 0 (every ROS 1 node's XML-RPC
+#: server) could be taken between a test's choice and roscore's bind, and the test would ask a
+#: node's slave API for the master's ``getSystemState``.
+PORTS_VARIABLE = "CONSOLE_TUI_TEST_ROS1_PORTS"
+DEFAULT_PORTS = (21100, 22099)
+_ports = taker(lambda: range_of(PORTS_VARIABLE, DEFAULT_PORTS, 1024, 65535, "21100-22099"))
+
+
+def own_port() -> int:
+    """A port for a test's server (a ROS 1 master, serve): this worker's next one that nothing listens on."""
+    for port in _ports():
+        with socket.socket() as sock:
+            try:
+                sock.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return port
+    low, high = range_of(PORTS_VARIABLE, DEFAULT_PORTS, 1024, 65535, "21100-22099")
+    raise RuntimeError(f"no free port for a ROS 1 master in {low}-{high} ({PORTS_VARIABLE})")
 
 
 def ros1_environment(base: Path, port: int) -> dict[str, str]:
@@ -122,6 +140,8 @@ class Ros1Master:
             state = master_call(self.uri, "getSystemState")
         except OSError:
             return False
+        except xmlrpc.client.Fault as fault:  # not a master: another server has the port
+            raise AssertionError(f"{self.uri} answers, but is no ROS 1 master: {fault}") from None
         if self.bare:
             return True
         publishers = dict((topic, nodes) for topic, nodes in state[2][0])

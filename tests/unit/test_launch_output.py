@@ -117,6 +117,25 @@ def test_a_traceback_without_a_death_goes_on_unattributed():
     assert traceback.node == UNATTRIBUTED
 
 
+def test_roslaunch_says_its_errors_and_warnings_at_their_level():
+    """roslaunch's own ``ERROR:`` and ``WARNING:`` lines (launch.py, __init__.py) are records
+    of that level, not INFO."""
+    lines = [
+        "ERROR: cannot launch node of type [nope/nope]: Cannot locate node of type [nope] in package [nope]",
+        None,
+        "WARNING: disk usage in log directory [/root/.ros/log] is over 1GB.",
+        None,
+        "ERRORS are not a prefix",
+        None,
+    ]
+    records = list(live_records(lines, Clock(), source="launch", parser=LaunchLines()))
+    assert [(r.level, r.node, r.msg[:22]) for r in records] == [
+        (40, UNATTRIBUTED, "ERROR: cannot launch n"),
+        (30, UNATTRIBUTED, "WARNING: disk usage in"),
+        (20, UNATTRIBUTED, "ERRORS are not a prefi"),
+    ]
+
+
 def test_the_launchers_and_their_ros():
     assert ros_of(["roslaunch", "pkg", "a.launch"]) == 1 and ros_of(["/opt/ros/bin/ros2", "launch"]) == 2
     assert ros_of(["./my_launch.sh"]) is None and ros_of([]) is None

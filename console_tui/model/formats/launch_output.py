@@ -15,7 +15,8 @@ a process, as ``mixed_output`` assembles them:
   record of that process's node (``/talker``); a node's console line (``[ INFO]
   [<stamp>]: ...``, what a node with ``output="screen"`` prints, and every node's stderr)
   is a record of no known process (``UNATTRIBUTED``): roslaunch prints them unprefixed. So
-  are its own other lines (the summary, ``ROS_MASTER_URI=...``) and what such nodes print.
+  are its own other lines (the summary, ``ROS_MASTER_URI=...``; ``ERROR: ...`` and
+  ``WARNING: ...`` at their level) and what such nodes print.
 
 A line ``Traceback (most recent call last):`` starts an ERROR record that its next lines
 continue (the lines of a process continue its record before them). ``DeathAttribution``
@@ -57,6 +58,10 @@ _ABOUT = re.compile(
 _REQUIRED = re.compile(r"=*REQUIRED process \[(?P<process>[^\]\s]+)\] has died!")
 _FRAME = re.compile(r"={20,}\Z")
 _LOG_FILE = "log file: "
+#: roslaunch's own warnings and errors (``ERROR: cannot launch node of type [pkg/type]: ...``,
+#: ``WARNING: disk usage in log directory ...``): records of their level.
+_SAYS = re.compile(r"(?P<word>ERROR|WARNING): ")
+_SAID_LEVELS = {"ERROR": int(Severity.ERROR), "WARNING": int(Severity.WARN)}
 #: How long a traceback of no known process waits for a death to name its process.
 DEATH_WAIT_NS = 2_000_000_000
 
@@ -113,6 +118,9 @@ class LaunchLines:
             return Plain(text, owner=owner)
         if text == "SUMMARY":  # roslaunch's summary: the lines after it, up to the next record, with it
             return Start(None, int(Severity.INFO), UNATTRIBUTED, text)
+        said = _SAYS.match(text)
+        if said is not None:
+            return Start(None, _SAID_LEVELS[said["word"]], UNATTRIBUTED, text)
         ros1 = self._ros1(text)
         if isinstance(ros1, Start):
             return Start(ros1.stamp_ns, ros1.level, UNATTRIBUTED, ros1.text)

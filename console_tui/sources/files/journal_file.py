@@ -17,9 +17,8 @@ from ...model.formats.journal_entry import JournalEntries
 from ...model.inert_text import plural
 from ...model.store.record import LogRecord
 from ..journal.journalctl import Journalctl, JournalQuery, JournalUnavailable, find_journalctl, local_journal_problem
-from .log_file import Cancel, LogFile
+from .log_file import Cancel, LogFile, in_batches
 
-BATCH_RECORDS = 5_000
 KIND = "journal"
 
 
@@ -59,23 +58,8 @@ class JournalFile(LogFile):
         except JournalUnavailable as error:
             self.problems.add(str(error))
             return
-        batch: list[LogRecord] = []
         try:
-            for line in journalctl.lines():
-                if line is None:
-                    continue
-                record = self.entries.line(line)
-                if record is None:
-                    continue
-                batch.append(record)
-                self.done += 1
-                if len(batch) >= BATCH_RECORDS:
-                    yield batch
-                    batch = []
-                    if cancel is not None and cancel.is_set():
-                        return
-            if batch:
-                yield batch
+            yield from in_batches(self._records(journalctl), cancel)
         finally:
             journalctl.close()
         problem = journalctl.problem()
@@ -85,6 +69,13 @@ class JournalFile(LogFile):
         if unreadable:
             self.problems.add(f"{plural(unreadable, 'line')} of journalctl's output unreadable or too long")
         self.total = max(self.done, 1)
+
+    def _records(self, journalctl: Journalctl) -> Iterator[LogRecord]:
+        for line in journalctl.lines():
+            record = None if line is None else self.entries.line(line)
+            if record is not None:
+                self.done += 1
+                yield record
 
     def notes(self) -> list[str]:
         notes = []

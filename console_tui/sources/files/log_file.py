@@ -6,7 +6,7 @@ import io
 import os
 import threading
 from abc import ABC, abstractmethod
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import BinaryIO, cast
 
@@ -96,6 +96,21 @@ class LogFile(ABC):
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.source!r} {self.kind}>"
+
+
+def in_batches(records: Iterable[LogRecord], cancel: Cancel | None, size: int = 5_000) -> Iterator[list[LogRecord]]:
+    """``records`` in lists of ``size`` (the last one shorter); stops once ``cancel`` is set
+    after a batch."""
+    batch: list[LogRecord] = []
+    for record in records:
+        batch.append(record)
+        if len(batch) >= size:
+            yield batch
+            batch = []
+            if cancel is not None and cancel.is_set():
+                return
+    if batch:
+        yield batch
 
 
 class TextLogFile(LogFile):

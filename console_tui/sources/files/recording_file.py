@@ -15,7 +15,7 @@ from ...model.formats.ros1_log_msg import Ros1LogDecoder
 from ...model.formats.ros2_log_msg import LogDecoder
 from ...model.store.record import LogRecord
 from ..log_topics import ROSOUT, ROSOUT_AGG
-from .log_file import Cancel, LogFile, reading_stopped
+from .log_file import Cancel, LogFile, in_batches, reading_stopped
 
 ROS2_LOG = "rcl_interfaces/msg/Log"
 ROS1_LOG = "rosgraph_msgs/msg/Log"
@@ -110,18 +110,17 @@ class RecordingFile(LogFile):
         """Decode ``(decode, data, where)`` items into batches; a message that cannot be
         decoded becomes a problem (``where`` says which). Counts messages as progress
         unless the caller counts something else."""
-        batch: list[LogRecord] = []
+        yield from in_batches(self._decoded(items, count_messages), cancel, BATCH)
+
+    def _decoded(
+        self, items: Iterable[tuple[Callable[[bytes], LogRecord], bytes, str]], count_messages: bool
+    ) -> Iterator[LogRecord]:
         for decode, data, where in items:
             if count_messages:
                 self.done += 1
             try:
-                batch.append(decode(data))
+                record = decode(data)
             except Exception as error:  # corrupt data must not end the load
                 self.problems.add(f"{where}: cannot decode the log message ({type(error).__name__}: {error})")
-            if len(batch) >= BATCH:
-                yield batch
-                batch = []
-                if cancel is not None and cancel.is_set():
-                    return
-        if batch:
-            yield batch
+                continue
+            yield record
