@@ -136,7 +136,7 @@ def run_console(kind: str) -> None:
     received = 0
     numbers = Numbers()
     while not commands.closed.is_set():
-        batches = queue.drain_batches()  # as the app does
+        batches = queue.drain_columns()  # as the app does
         if batches:
             now = time.monotonic()
             if not first_at:

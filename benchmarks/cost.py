@@ -21,6 +21,9 @@ costs, not how long the machine made it wait); the table shows medians of ``--ro
   the app does once a tick while records arrive, divided among the tick's records (measured
   in the real app, headless: ``--frames`` seconds of frames, their median).
 
+The store keeps its full chunks on disk (in a temporary directory), as the app's does;
+``--memory`` keeps them in memory, as before issue 48.
+
 With ``--full`` the store is full, as in any long session: it keeps a third of the records
 (the first third fills it, untimed), so every batch after that makes it drop as many of the
 oldest, and each stage pays for what it kept about them.
@@ -36,8 +39,10 @@ import argparse
 import asyncio
 import fcntl
 import os
+import shutil
 import statistics
 import sys
+import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -74,7 +79,7 @@ def timed(work: Callable[[], Any]) -> float:
     return time.thread_time() - began
 
 
-def stage_costs(batches: list[RecordColumns], kept: int | None = None) -> dict[str, float]:
+def stage_costs(batches: list[RecordColumns], kept: int | None = None, *, memory: bool = False) -> dict[str, float]:
     """CPU seconds of each stage over ``batches``; with ``kept``, the store keeps that many
     records and the stages after the store are timed only once it is full."""
     from console_tui.model.overview.node_stats import NodeStats
@@ -109,7 +114,13 @@ def stage_costs(batches: list[RecordColumns], kept: int | None = None) -> dict[s
     columns: list[RecordColumns] = []
     costs["unpack"] = timed(lambda: columns.extend(unpacker.unpack(payload) for payload in received))
 
-    store = LogStore() if kept is None else LogStore(max_messages=kept)
+    spill = None
+    if not memory:
+        from console_tui.model.store.chunk_spill import ChunkSpill
+        from console_tui.model.store.spill_file import SpillFiles
+
+        spill = ChunkSpill(SpillFiles(Path(tempfile.mkdtemp(prefix="cost-")), min_free_bytes=0))
+    store = LogStore(spill=spill) if kept is None else LogStore(max_messages=kept, spill=spill)
     view = LogView(store)
     storms, timeline, nodes = StormRows(store, view), Timeline(store, view), NodeStats(store)
     store_s = overview_s = nodes_s = 0.0
@@ -142,6 +153,9 @@ def stage_costs(batches: list[RecordColumns], kept: int | None = None) -> dict[s
     costs["store"] = store_s
     costs["view and overview"] = overview_s
     costs["nodes' counts"] = nodes_s
+    if spill is not None:
+        spill.files.close()
+        shutil.rmtree(spill.files.directory, ignore_errors=True)
     return costs
 
 
@@ -184,6 +198,7 @@ def main() -> int:
     parser.add_argument("--frames", type=float, default=5.0, metavar="S", help="seconds of frames measured (0: none)")
     parser.add_argument("--size", default="160x48")
     parser.add_argument("--full", action="store_true", help="the store full: it keeps a third of the records")
+    parser.add_argument("--memory", action="store_true", help="full chunks kept in memory, not on disk")
     args = parser.parse_args()
     width, height = (int(n) for n in args.size.split("x"))
     print(machine_line(), file=sys.stderr, flush=True)
@@ -196,7 +211,7 @@ def main() -> int:
     per_rate: dict[int, dict[str, float]] = {}
     for rate in args.rates:
         batches = realistic_batches(args.records, rate)
-        rounds = [stage_costs(batches, kept) for _ in range(args.rounds)]
+        rounds = [stage_costs(batches, kept, memory=args.memory) for _ in range(args.rounds)]
         per_rate[rate] = {
             stage: statistics.median(r[stage] for r in rounds) / timed_records[stage] * 1e6 for stage in stages
         }
@@ -214,6 +229,7 @@ def main() -> int:
     print(
         f"{args.records:,} realistic records in the batches the intake sends every {FLUSH_S * 1000:.0f} ms; "
         + (f"the store full (it keeps {kept:,}: the first {kept:,} untimed after packing); " if kept else "")
+        + ("full chunks in memory; " if args.memory else "full chunks on disk; ")
         + f"CPU a message in microseconds, medians of {args.rounds}"
         + (f"; a frame ({args.size}) costs {frame_s * 1000:.1f} ms, {ticks:.0f} a second" if frame_s else "")
         + "\n"

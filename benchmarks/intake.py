@@ -48,6 +48,13 @@ next ones), ``--publishers`` in each, and the console reading all of them as ``c
 rates are the total over every domain. The issue's row, four domains at 5,000/s each:
 
     python benchmarks/intake.py --sustained 60 --domains 4
+
+The app keeps its history on disk as ``console-tui`` does (a temporary directory; ``--memory``:
+in memory, as before issue 48); the app's table says how its RSS went (sampled every 10 s:
+at 1 minute, then the highest and the last) and how long Home took to the oldest record at
+the end. Issue 48's row, 36,000,000 records in 30 minutes:
+
+    python benchmarks/intake.py --sustained 1800 --publisher c
 """
 
 from __future__ import annotations
@@ -91,6 +98,8 @@ ALL_KINDS = (
 )
 BATCHED_COALESCE_S = 0.02
 APP_PREFILL = 10_000
+#: The app's RSS is sampled this often (its history on disk: flat after the first minute?).
+RSS_PERIOD_S = 10.0
 DEFAULT_RATES = ("max", "1000", "5000", "20000", "50000")
 TARGET_VS_RAW_EE = 0.95
 STALL_OVER_FLOOR_MS = 10.0
@@ -361,7 +370,7 @@ def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) ->
 
     def app_drain() -> None:  # what the app's timer does
         while not stop.wait(0.05):
-            for batch in queue.drain_batches():
+            for batch in queue.drain_columns():
                 store.extend(batch)
 
     drain = threading.Thread(target=app_drain, daemon=True)
@@ -390,18 +399,23 @@ def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) ->
     say(event="stopped", seconds=time.monotonic() - began)
 
 
-def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
+def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0, memory: bool = False) -> None:
     """The whole app, headless at 160x48 and drawing, with the console's intake (``app``: in
     its process, as ``console-tui`` runs it; ``app-thread``: in a thread of the app's process,
-    the design before) and the logger levels' rclpy context, as ``console-tui`` has them.
-    Measures event-loop stalls and key-to-effect times between ``mark`` commands."""
+    the design before) and the logger levels' rclpy context, as ``console-tui`` has them; its
+    history on disk in a directory of its own, as ``console-tui``'s (``memory``: in memory).
+    Measures event-loop stalls and key-to-effect times between ``mark`` commands, the RSS
+    every 10 s, and Home to the oldest record (``home``)."""
     import asyncio
     import gc
 
     from _probe import KeyProbe, StallProbe, count_frames, percentile, process_rss_mb
+    from textual import events
 
     from console_tui.control.ros2.logger_control import Ros2LoggerControl
+    from console_tui.model.store.history_dir import close_spill, open_session_spill
     from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
     from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.intake_process.synthetic import synthetic_record
     from console_tui.ui.app import ConsoleApp
@@ -409,23 +423,27 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
     queue = IntakeQueue()
     source, runtime = console_source(kind, queue, domains, first_domain)
     cleanups: list[Any] = []
+    spill, directory, _why = (None, None, "") if memory else open_session_spill(Path(tempfile.mkdtemp()))
+    store = LogStore(spill=spill)
+    if spill is not None and directory is not None:
+        cleanups.append(lambda: close_spill(spill, directory))
     if isinstance(source, FleetSources):  # as console-tui --domain ... has it
         from console_tui.control.fleet_control import open_fleet_loggers
 
         control: Any = open_fleet_loggers(source.robots, cleanups)
-        app = ConsoleApp(queue=queue, sources=source.sources, logger_control=control, robots=source.robots)
+        app = ConsoleApp(store=store, queue=queue, sources=source.sources, logger_control=control, robots=source.robots)
     else:
         runtime = runtime or RosRuntime()
         cleanups.append(runtime.shutdown)
         control = Ros2LoggerControl(runtime)
-        app = ConsoleApp(queue=queue, sources=[source], logger_control=control)
+        app = ConsoleApp(store=store, queue=queue, sources=[source], logger_control=control)
     # Rows for the keys to move over before anything arrives (not counted as received).
     app.main.store.extend_records([synthetic_record(number) for number in range(APP_PREFILL)])
     quit_event = threading.Event()
     state: dict[str, Any] = {}
 
     def stats() -> dict[str, Any]:
-        stalls, keys = state["stalls"].stalls, state["keys"].latencies
+        keys = state["keys"].latencies
         longest, longest_cpu, longest_wait = state["stalls"].longest()
         pids = intake_pids(source)
         return {
@@ -438,7 +456,7 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "stall_max": longest * 1000,
             "stall_max_cpu": longest_cpu * 1000,
             "stall_max_wait": longest_wait * 1000,
-            "stall_p99": percentile(stalls, 0.99) * 1000,
+            "stall_p99": state["stalls"].percentile(0.99) * 1000,
             "key_median": percentile(keys, 0.5) * 1000,
             "key_max": max(keys, default=0.0) * 1000,
             "keys": len(keys),
@@ -446,6 +464,9 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
             "rss_intake": sum(process_rss_mb(each) for each in pids),
             "gc_longest": app.collection_policy.longest * 1000,
             "gc_longest_cpu": app.collection_policy.longest_cpu * 1000,
+            "rss_series": list(state["rss"]),
+            "on_disk": store.on_disk,
+            "evicted": store.evicted,
         }
 
     def mark() -> None:
@@ -456,14 +477,35 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
     async def main() -> None:
         async with app.run_test(size=(160, 48)):
             frames = count_frames(app.main.table)
-            state["stalls"] = StallProbe()
+            state["stalls"] = StallProbe(keep_samples=False)  # its memory is not the app's RSS
             state["keys"] = KeyProbe(app, app.main.table, frames)
             state["stalls"].start()
             state["keys"].start()
             say(event="ready")
+            state["rss"] = []
+            sampled = 0.0
             while not quit_event.is_set():
                 await asyncio.sleep(0.05)
                 del frames[:-100]  # keep the list short
+                if time.monotonic() - sampled >= RSS_PERIOD_S:
+                    sampled = time.monotonic()
+                    state["rss"].append(process_rss_mb(os.getpid()))
+                home = state.pop("home", None)
+                if home is not None:  # Home to the oldest record kept, then End to follow again
+                    state["keys"].stop()
+                    await asyncio.sleep(0.3)
+                    table = app.main.table
+                    pressed = time.perf_counter()
+                    app.post_message(events.Key("home", None))
+                    while table.cursor_seq != store.first_seq and time.perf_counter() - pressed < 10:
+                        await asyncio.sleep(0.001)
+                    while (not frames or frames[-1] < pressed) and time.perf_counter() - pressed < 10:
+                        await asyncio.sleep(0.001)  # the frame that shows it
+                    seconds = (frames[-1] if frames and frames[-1] >= pressed else time.perf_counter()) - pressed
+                    first = store.first_seq
+                    app.post_message(events.Key("end", None))
+                    home.update(ms=seconds * 1000, oldest=first, cursor=table.cursor_seq, evicted=store.evicted)
+                    home["done"].set()
             state["keys"].stop()
             await state["stalls"].stop()
             state["quit_at"] = time.monotonic()
@@ -482,6 +524,11 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
                 say(event="publishers", count=source.status.publishers)
             elif command["cmd"] == "count":
                 say(event="count", count=queue.received, **stats())
+            elif command["cmd"] == "home":
+                asked: dict[str, Any] = {"done": threading.Event()}
+                state["home"] = asked
+                asked["done"].wait(30)
+                say(event="home", **{key: value for key, value in asked.items() if key != "done"})
             elif command["cmd"] == "quit":
                 break
         quit_event.set()
@@ -547,7 +594,7 @@ def run_intake_events_executor() -> None:
         while not stop.wait(0.05):
             batch, pending = pending, []
             queue.put(RecordColumns.from_records(batch))
-            for columns in queue.drain_batches():
+            for columns in queue.drain_columns():
                 store.extend(columns)
 
     spinner = EventsExecutorThread(node)
@@ -732,7 +779,8 @@ def measure(args: argparse.Namespace, env: dict[str, str]) -> list[Row]:
 def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list[Child], kind: str, rate: str) -> Row:
     """One subscriber process, started fresh, measured at one rate."""
     fleet = ["--domains", str(args.domains), "--domain", str(args.domain)]
-    subscriber = Child(["--role", "subscriber", "--kind", kind, *fleet], env)
+    history = ["--memory"] if args.memory else []
+    subscriber = Child(["--role", "subscriber", "--kind", kind, *fleet, *history], env)
     floor = None
     try:
         subscriber.expect("ready")
@@ -758,6 +806,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         threads_after = cpu_by_thread(roles)
         window = subscriber.ask("count", cmd="count")
         after = settle(subscriber)
+        home = subscriber.ask("home", cmd="home") if kind in APP_KINDS else None
         subscriber.send(cmd="quit")
         stopped = subscriber.expect("stopped", 30) if kind in STOP_REPORTING_KINDS else None
     finally:
@@ -776,6 +825,9 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         "rss_intake",
         "gc_longest",
         "gc_longest_cpu",
+        "rss_series",
+        "on_disk",
+        "evicted",
     )
     row = Row(
         publishers=len(publishers),
@@ -790,7 +842,7 @@ def measure_once(args: argparse.Namespace, env: dict[str, str], publishers: list
         lost_reported=after["lost_reported"] - before["lost_reported"] if "lost_reported" in after else None,
         path=after.get("path", ""),
         stop_ms=stopped["seconds"] * 1000 if stopped else None,
-        app={key: window[key] for key in app_keys} if kind in APP_KINDS else None,
+        app={**{key: window[key] for key in app_keys}, "home": home} if kind in APP_KINDS else None,
         floor={key: floor[key] for key in app_keys} if floor else None,
         threads={key: threads_after[key] - threads_before.get(key, 0.0) for key in threads_after},
     )
@@ -891,6 +943,8 @@ def app_table(rows: list[Row]) -> str:
                 int(app["keys"]),
                 f"{app['gc_longest']:.0f} ({app['gc_longest_cpu']:.0f})",
                 f"{app['rss_app']:.0f} + {app['rss_intake']:.0f}",
+                _rss_course(app.get("rss_series") or []),
+                _home(app.get("home")),
                 f"{row.stop_ms:.0f}" if row.stop_ms is not None else "",
             ]
         )
@@ -905,8 +959,25 @@ def app_table(rows: list[Row]) -> str:
         "key median ms",
         "key worst ms",
     ]
-    headers += ["keys", "longest gc ms (its CPU)", "RSS MB app + intake", "quit ms"]
+    headers += ["keys", "longest gc ms (its CPU)", "RSS MB app + intake", "app RSS MB at 1 min, then highest / last"]
+    headers += ["Home to the oldest: ms, seq (dropped)", "quit ms"]
     return table(headers, body)
+
+
+def _rss_course(series: list[float]) -> str:
+    """The app's RSS at 1 minute, then the highest and the last sample after it."""
+    samples_a_minute = int(60 / RSS_PERIOD_S)
+    if len(series) <= samples_a_minute:
+        return f"{max(series, default=0):.0f}"
+    later = series[samples_a_minute:]
+    return f"{series[samples_a_minute - 1]:.0f}, then {max(later):.0f} / {later[-1]:.0f}"
+
+
+def _home(home: dict | None) -> str:
+    if not home:
+        return ""
+    reached = "" if home.get("cursor") == home.get("oldest") else " (not reached)"
+    return f"{home.get('ms', 0):.0f}, #{home.get('oldest', 0) + 1:,} ({home.get('evicted', 0):,}){reached}"
 
 
 def targets(row: Row, by_key: dict) -> list[str]:
@@ -1000,6 +1071,9 @@ def main() -> None:
         "as cheap a publisher as a node in C++",
     )
     parser.add_argument("--pool", choices=POOL_LEVELS, default="mixed", help=argparse.SUPPRESS)  # level_filter.py
+    parser.add_argument(
+        "--memory", action="store_true", help="app kinds: the history in memory (as before issue 48), not on disk"
+    )
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
@@ -1010,7 +1084,7 @@ def main() -> None:
         return run_publisher(args.index, args.topic, args.publisher, args.pool)
     if args.role == "subscriber":
         if args.kind in APP_KINDS:
-            return run_app_subscriber(args.kind, args.domains, args.domain)
+            return run_app_subscriber(args.kind, args.domains, args.domain, args.memory)
         if args.kind in ("intake", "intake-thread", "intake-typed"):
             return run_intake_subscriber(args.kind, args.domains, args.domain)
         if args.kind == "intake-ee":

@@ -12,6 +12,7 @@ records, as the CDR decoder shares them; making them is not timed.
     python benchmarks/store.py --bare             # without the app's Textual loaded first
     python benchmarks/store.py --app              # also: the app headless over the full store
     python benchmarks/store.py --app --loggers    # ... as it is once the logger levels pane opened
+    python benchmarks/store.py --memory           # full chunks kept in memory (as before issue 48), not on disk
 
 By default the process first loads what the app has loaded when records arrive (Textual),
 so the RSS is the app's, not just the store's. With ``--loggers`` also an rclpy context with
@@ -27,8 +28,10 @@ import argparse
 import gc
 import os
 import random
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -36,7 +39,7 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).parent))
 from _report import machine_line, table, verdict
 
-from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
 from console_tui.model.store.record import LogRecord
 
 BATCH = 1_000
@@ -203,6 +206,9 @@ def main() -> None:
     parser.add_argument("--bare", action="store_true", help="measure the store alone (Python and the model only)")
     parser.add_argument("--loggers", action="store_true", help="with rclpy and a node, as after the logger pane opened")
     parser.add_argument("--app", action="store_true", help="also run the app headless over the full store")
+    parser.add_argument(
+        "--memory", action="store_true", help="full chunks in memory, not on disk (a temporary directory)"
+    )
     parser.add_argument("--reference-only", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.reference_only:
@@ -212,7 +218,13 @@ def main() -> None:
     loaded, runtime = ("the model only", None) if args.bare else load_the_apps_libraries(args.loggers)
     gc.collect()
     baseline = rss_mb()
-    store = LogStore(max_messages=args.records)
+    spill = None
+    if not args.memory:
+        from console_tui.model.store.chunk_spill import ChunkSpill
+        from console_tui.model.store.spill_file import SpillFiles
+
+        spill = ChunkSpill(SpillFiles(Path(tempfile.mkdtemp(prefix="store-")), min_free_bytes=0))
+    store = LogStore(max_messages=args.records, spill=spill)
     maker = RecordMaker()
     fill_seconds = fill(store, maker, args.records)
     gc.collect()
@@ -220,7 +232,9 @@ def main() -> None:
     beyond_seconds = fill(store, maker, args.beyond)
     gc.collect()
     after_rss = rss_mb()
-    assert len(store) == args.records and store.evicted == args.beyond
+    # (on disk the oldest go a whole chunk at a time: up to a chunk's more)
+    assert len(store) + store.evicted == args.records + args.beyond
+    assert 0 <= store.evicted - args.beyond < (CHUNK_SIZE if spill is not None else 1)
 
     began = time.perf_counter()
     for seq in range(store.first_seq, store.end_seq, 997):
@@ -252,7 +266,8 @@ def main() -> None:
             f"{fill_seconds / args.records * 1e6:.2f} us / {beyond_seconds / args.beyond * 1e6:.2f} us",
             "the difference is eviction's cost",
         ],
-        ["get(seq) of a stored record", f"{get_us:.2f} us", ""],
+        ["get(seq) of a stored record", f"{get_us:.2f} us", "every 997th: a chunk read back from disk each time"],
+        ["where full chunks are", "in memory" if spill is None else f"on disk ({spill.files.size / 1e6:.0f} MB)", ""],
     ]
     if args.app:
         rows.append(["process RSS with the app running over them", f"{app_rss_mb(store):.0f} MB", "the app's own"])
@@ -272,6 +287,9 @@ def main() -> None:
     print(table(["measure", "value", "target / note"], rows))
     if runtime is not None:
         runtime.shutdown()
+    if spill is not None:
+        spill.files.close()
+        shutil.rmtree(spill.files.directory, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -28,7 +28,8 @@ from .commands.arguments import (
     robots_from_names,
 )
 from .commands.journal_options import add_journal_arguments, apply_journal_arguments
-from .model.store.log_store import DEFAULT_MAX_MESSAGES
+from .model.store.history_dir import KEPT_BYTES
+from .model.store.log_store import DEFAULT_MAX_MESSAGES, MEMORY_BOUND
 
 #: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
 SUBCOMMANDS: dict[str, str] = {
@@ -144,7 +145,30 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         metavar="N",
         type=positive_int,
         default=DEFAULT_MAX_MESSAGES,
-        help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
+        help=(
+            f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,}): all but the "
+            f"newest on disk, in your cache directory; {MEMORY_BOUND:,} at most when they cannot go to disk"
+        ),
+    )
+    parser.add_argument(
+        "--keep-history",
+        action="store_true",
+        help=(
+            "keep this session's history when it ends, in the ROS log directory's console-tui-history "
+            "(--history opens it again), with the sessions kept before, the oldest going first past --history-size"
+        ),
+    )
+    parser.add_argument(
+        "--history-size",
+        metavar="MB",
+        type=positive_int,
+        default=KEPT_BYTES >> 20,
+        help=f"with --keep-history: the most the kept history holds, in MB (default {KEPT_BYTES >> 20})",
+    )
+    parser.add_argument(
+        "--history",
+        action="store_true",
+        help="open the history kept in the ROS log directory (--keep-history), oldest session first",
     )
     parser.add_argument("--utc", action="store_true", help="show times in UTC instead of local time")
     parser.add_argument(
@@ -233,6 +257,18 @@ def check_launch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> N
     args.launch, args.files = command, []
 
 
+def add_kept_history(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """``--history``: the kept history of the ROS log directory joins ``args.files``."""
+    from .ros.log_dir import KEPT_HISTORY, ros_log_dir
+
+    if args.keep_history:
+        parser.error("--history opens the kept history: --keep-history with it would keep it twice")
+    kept = ros_log_dir() / KEPT_HISTORY
+    if not kept.is_dir():
+        parser.error(f"--history: no kept history in {kept.parent} (console-tui --keep-history keeps one)")
+    args.files = [*args.files, str(kept)]
+
+
 #: What ``console-tui`` says, and exits 2 with, when there is no terminal to draw on or read keys from.
 NOT_A_TERMINAL = (
     "console-tui: not a terminal: the console needs one for its screen and keys (standard input and "
@@ -281,6 +317,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error("--demo starts its own nodes: it cannot be used with --domain, --master or --fleet")
     if args.last:
         add_latest_run(parser, args)
+    if args.history:
+        add_kept_history(parser, args)
     if argv is None and not on_a_terminal():
         print(NOT_A_TERMINAL, file=sys.stderr)
         return EXIT_NO_ROS  # the same status as a missing ROS: this environment cannot run it

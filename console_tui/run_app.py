@@ -21,10 +21,10 @@ from .system.native_output import NativeOutput
 def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     """Run the TUI as the arguments say; returns the process exit code. With ``end_process``,
     a live session ends the process when the app is done (``end_now``)."""
-    store = LogStore(max_messages=args.max_messages)
-    queue = IntakeQueue()
     sources: list = []
     cleanups: list = []
+    store = _history_store(args, cleanups)
+    queue = IntakeQueue()
     logger_control = None
     files = list(getattr(args, "files", None) or [])
     robots = getattr(args, "robots", None) or []
@@ -77,6 +77,32 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     if live and end_process:
         end_now(code)
     return code
+
+
+def _history_store(args: argparse.Namespace, cleanups: list) -> LogStore:
+    """The store, its full chunks on disk in a private directory of this session's (removed at
+    the end; with ``--keep-history`` in the ROS log directory's kept history, kept and pruned
+    to its bound); in memory only, saying why, when that directory cannot be had."""
+    from .model.store.history_dir import close_spill, open_kept_spill, open_session_spill
+
+    keep = getattr(args, "history_size", 0) if getattr(args, "keep_history", False) else 0
+    if keep:
+        from .ros.log_dir import KEPT_HISTORY, ros_log_dir
+
+        spill, directory, why = open_kept_spill(ros_log_dir() / KEPT_HISTORY)
+    else:
+        spill, directory, why = open_session_spill()
+    store = LogStore(max_messages=args.max_messages, spill=spill)
+    store.memory_reason = why
+    if spill is not None and directory is not None:
+
+        def close() -> None:
+            if keep:
+                store.keep_rest()
+            close_spill(spill, directory, bound=(keep or 0) << 20)
+
+        cleanups.insert(0, close)  # the last: after the app and its sources
+    return store
 
 
 def run_then_clean_up(app: Any, cleanups: list[Callable[[], object]]) -> int:

@@ -36,11 +36,12 @@ def next_domain_id() -> int:
 
 @pytest.fixture(autouse=True)
 def own_config_folder(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> Path:
-    """Each test reads and writes settings (keys.toml) and state (the last rules, the query
-    history) in folders of its own, never the developer's."""
+    """Each test reads and writes settings (keys.toml), state (the last rules, the query
+    history) and the history on disk in folders of its own, never the developer's."""
     folder = tmp_path / "config"
     monkeypatch.setenv("XDG_CONFIG_HOME", str(folder))
     monkeypatch.setenv("XDG_STATE_HOME", str(tmp_path / "state"))
+    monkeypatch.setenv("CONSOLE_TUI_HISTORY_DIR", str(tmp_path / "history"))
     return folder
 
 

@@ -8,7 +8,8 @@ variables). What they put there differs:
   a directory per launch (``2026-11-22-10-08-41-123456-robot-4242/``);
 - ROS 1 a directory per roscore run (named by its run id, a UUID), with a ``latest``
   symlink to the newest;
-- ``console-tui rosout`` a directory per start (``rosout-2026-11-22-10-08-41-4242/``).
+- ``console-tui rosout`` a directory per start (``rosout-2026-11-22-10-08-41-4242/``);
+- ``console-tui --keep-history`` its kept history (``console-tui-history/``).
 
 What ``purge`` may remove is decided by shape: a ROS 1 run (a UUID-named directory), a
 ``ros2 launch`` directory, a console-tui rosout directory, a ROS 2 node log file, and the
@@ -78,13 +79,17 @@ class LogRun:
             return "ROS 1 run"
         if self.name.startswith("rosout-"):
             return "console-tui rosout"
+        if self.name == KEPT_HISTORY:
+            return "console-tui history"
         if _LAUNCH.match(self.name):
             return "ros2 launch"
         return "directory"
 
 
 #: The kinds of entry that are ROS logs by their shape (``LogRun.kind``).
-ROS_KINDS = frozenset({"ROS 1 run", "ros2 launch", "console-tui rosout", "ROS 2 node log"})
+ROS_KINDS = frozenset({"ROS 1 run", "ros2 launch", "console-tui rosout", "ROS 2 node log", "console-tui history"})
+#: Where ``console-tui --keep-history`` keeps the sessions' history in a log directory.
+KEPT_HISTORY = "console-tui-history"
 #: The link ROS 1 keeps to its newest run.
 LATEST_LINK = "latest"
 

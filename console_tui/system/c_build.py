@@ -20,6 +20,7 @@ The compiler runs in a process group of its own, killed whole at its time limit;
 
 from __future__ import annotations
 
+import hashlib
 import importlib.machinery
 import importlib.util
 import os
@@ -28,12 +29,14 @@ import shutil
 import signal
 import stat
 import subprocess
+import sys
 import sysconfig
 import tempfile
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from types import ModuleType
+from typing import TypeVar
 
 #: A built loop no start has used for this long is removed from the cache.
 PRUNE_AFTER_S = 30 * 86400.0
@@ -45,6 +48,13 @@ _compiling: set[subprocess.Popen] = set()
 def cache_dir() -> Path:
     base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
     return Path(base) / "console-tui"
+
+
+def source_key(source: Path) -> str:
+    """What a loop built from ``source`` alone depends on: its text and this Python (16 hex digits)."""
+    digest = hashlib.sha256(source.read_bytes())
+    digest.update(f"{sys.version}|{suffix()}".encode())
+    return digest.hexdigest()[:16]
 
 
 def suffix() -> str:
@@ -66,6 +76,17 @@ def python_include() -> Path | None:
     """Python's headers, or ``None`` when ``Python.h`` is not there (python3-dev)."""
     include = Path(sysconfig.get_paths()["include"])
     return include if (include / "Python.h").exists() else None
+
+
+_Built = TypeVar("_Built")
+
+
+def noted(load: Callable[[], tuple[_Built | None, str]]) -> tuple[_Built | None, str]:
+    """``load()``, or ``None`` and why when it raised: never worth stopping what would use it."""
+    try:
+        return load()
+    except Exception as error:
+        return None, f"{type(error).__name__}: {error}"
 
 
 def load_or_build(name: str, stem: str, module: str, build: Callable[[Path], str]) -> tuple[ModuleType | None, str]:

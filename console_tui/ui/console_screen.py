@@ -24,6 +24,7 @@ from ..model.overview.storms import StormRows
 from ..model.overview.timeline import Timeline
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
+from ..model.store.history_status import history_state
 from ..model.store.intake_queue import IntakeQueue
 from ..model.store.log_store import LogStore
 from ..model.view.log_view import LogView
@@ -265,6 +266,7 @@ class ConsoleScreen(Screen[None]):
             search=self.searching.search_status(),
             toggles=self.toggles.status(),
             time=self.toggles.time_status(),
+            history=history_state(self.store),
         )
         self.status_bar.show_facts(facts)
         table.show_hint(empty_hint(facts, self.view.refiltering))

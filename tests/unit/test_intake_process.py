@@ -107,7 +107,7 @@ def test_batches_reach_the_queue_as_columns():
     source.start()
     try:
         assert wait_until(lambda: len(queue) >= 100)
-        batches = queue.drain_batches()
+        batches = queue.drain_columns()
     finally:
         source.stop()
     assert batches and all(isinstance(batch, RecordColumns) for batch in batches)

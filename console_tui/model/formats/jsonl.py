@@ -99,6 +99,7 @@ class JsonLinesWriter(TextFormatWriter):
 class JsonLinesFormat(TextFormat):
     name = "jsonl"
     title = "JSON Lines"
+    indexable = True
 
     def looks_like(self, first_line: str) -> bool:
         if not first_line.lstrip().startswith("{"):
@@ -110,6 +111,9 @@ class JsonLinesFormat(TextFormat):
         return isinstance(values, dict) and "stamp_ns" in values and "msg" in values
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        return (record for _line, record in self.numbered_records(lines, source, problems))
+
+    def numbered_records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[tuple[int, LogRecord]]:
         decode = json.loads
         for number, text in lines:
             if not text.strip():
@@ -123,6 +127,6 @@ class JsonLinesFormat(TextFormat):
                 problems.add("JSON nested too deeply to read (not a record of this format)", line=number)
                 continue
             try:
-                yield record_from_json(values, source)
+                yield number, record_from_json(values, source)
             except RecordError as error:
                 problems.add(str(error), line=number)

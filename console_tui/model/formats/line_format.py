@@ -20,6 +20,11 @@ class TextFormat(ABC):
     name: str = ""
     #: What a user would call it.
     title: str = ""
+    #: Its records can be read again from any record's first line on (``numbered_records``
+    #: says where each begins): a file in it is read by an index of byte offsets.
+    indexable: bool = False
+    #: Reading from a record in the middle needs the lines before the first record (a header).
+    needs_header: bool = False
 
     @abstractmethod
     def looks_like(self, first_line: str) -> bool:
@@ -28,6 +33,10 @@ class TextFormat(ABC):
     @abstractmethod
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
         """The records of a file, each with ``source``; bad parts go to ``problems``."""
+
+    def numbered_records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[tuple[int, LogRecord]]:
+        """``records``, each with the number of the line it begins on (``indexable`` formats)."""
+        raise NotImplementedError(f"{self.title} files are not read by index")
 
     def for_file(self, name: str, mtime_ns: int = 0) -> TextFormat:
         """This format for reading one file (``name``: its file name, ``mtime_ns``: when it

@@ -225,11 +225,22 @@ def group_records(
 ) -> Iterator[LogRecord]:
     """The record ``parse`` makes of each group that is one; stray lines, and groups
     ``parse`` refuses with a ``RecordError``, are reported instead."""
+    for _line, record in numbered_group_records(groups, parse, problems, format_name):
+        yield record
+
+
+def numbered_group_records(
+    groups: Iterable[LineGroup],
+    parse: Callable[[LineGroup], LogRecord],
+    problems: Problems,
+    format_name: str,
+) -> Iterator[tuple[int, LogRecord]]:
+    """``group_records``, each record with the number of its first line."""
     for group in groups:
         if not group.is_record:
             stray_text_problem(group, problems, format_name)
             continue
         try:
-            yield parse(group)
+            yield group.line, parse(group)
         except RecordError as error:
             problems.add(str(error), line=group.line)

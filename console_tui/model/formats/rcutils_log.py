@@ -22,7 +22,7 @@ from ..inert_text import strip_colour
 from ..levels import SEVERITY_WORDS, Severity
 from ..store.record import LogRecord
 from .line_format import TextFormat
-from .line_groups import LineGroup, LineKind, TextLines, group_lines, group_records
+from .line_groups import LineGroup, LineKind, TextLines, group_lines, numbered_group_records
 from .problems import Problems, RecordError
 
 DEFAULT_TEMPLATE = "[{severity}] [{time}] [{name}]: {message}"
@@ -168,6 +168,7 @@ class RcutilsLogFormat(TextFormat):
 
     name = "rcutils"
     title = "ROS 2 log file"
+    indexable = True
 
     def __init__(self, template: str = DEFAULT_TEMPLATE) -> None:
         self.template = LogLineTemplate.compile(template)
@@ -178,7 +179,15 @@ class RcutilsLogFormat(TextFormat):
             return self.template.start_re.match(line) is not None
         return self.template.record_re.match(line) is not None
 
+    @property
+    def default_template(self) -> bool:
+        """The template is rcutils' default (the one read at C speed, ``rcutils_scan.c``)."""
+        return self.template.template == DEFAULT_TEMPLATE
+
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        return (record for _line, record in self.numbered_records(lines, source, problems))
+
+    def numbered_records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[tuple[int, LogRecord]]:
         template = self.template
         if template.start_re is None and template.end_re is not None:
             groups = _groups_by_end(lines, template.end_re)
@@ -195,7 +204,7 @@ class RcutilsLogFormat(TextFormat):
                     return LineKind.MORE
 
             groups = group_lines(lines, classify, problems)
-        return group_records(groups, lambda group: self.parse_record(group.text, source), problems, self.title)
+        return numbered_group_records(groups, lambda group: self.parse_record(group.text, source), problems, self.title)
 
     def parse_record(self, text: str, source: str) -> LogRecord:
         """One record's text (its lines joined by ``\\n``) as a record."""

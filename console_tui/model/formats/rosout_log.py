@@ -45,7 +45,7 @@ from urllib.parse import unquote
 from ..levels import SEVERITY_TABLE, SEVERITY_WORDS, from_ros1
 from ..store.record import LogRecord
 from .line_format import TextFormat
-from .line_groups import LineKind, TextLines, group_lines, group_records
+from .line_groups import LineKind, TextLines, group_lines, numbered_group_records
 from .problems import Problems, RecordError
 
 _LEVELS = SEVERITY_WORDS
@@ -78,13 +78,19 @@ def _classify(line: str) -> LineKind:
 class RosoutLogFormat(TextFormat):
     name = "rosout"
     title = "ROS 1 rosout.log"
+    indexable = True
 
     def looks_like(self, first_line: str) -> bool:
         return _classify(first_line) is not LineKind.MORE
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        return (record for _line, record in self.numbered_records(lines, source, problems))
+
+    def numbered_records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[tuple[int, LogRecord]]:
         groups = group_lines(lines, _classify, problems)
-        return group_records(groups, lambda group: parse_rosout_record(group.text, source), problems, self.title)
+        return numbered_group_records(
+            groups, lambda group: parse_rosout_record(group.text, source), problems, self.title
+        )
 
 
 def parse_rosout_record(text: str, source: str) -> LogRecord:
@@ -154,13 +160,19 @@ class Ros2RosoutLogFormat(TextFormat):
 
     name = "rosout2"
     title = "console-tui rosout.log (ROS 2)"
+    indexable = True
 
     def looks_like(self, first_line: str) -> bool:
         return first_line.startswith(_ROS2_HEADER_START)
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        return (record for _line, record in self.numbered_records(lines, source, problems))
+
+    def numbered_records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[tuple[int, LogRecord]]:
         groups = group_lines(lines, _classify_ros2, problems)
-        return group_records(groups, lambda group: parse_ros2_rosout_record(group.lines, source), problems, self.title)
+        return numbered_group_records(
+            groups, lambda group: parse_ros2_rosout_record(group.lines, source), problems, self.title
+        )
 
 
 def parse_ros2_rosout_record(lines: list[str], source: str) -> LogRecord:

@@ -126,11 +126,16 @@ class RqtCsvFormat(TextFormat):
 
     name = "rqt"
     title = "rqt_console CSV"
+    indexable = True
+    needs_header = True
 
     def looks_like(self, first_line: str) -> bool:
         return parse_header(first_line) is not None
 
     def records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[LogRecord]:
+        return (record for _line, record in self.numbered_records(lines, source, problems))
+
+    def numbered_records(self, lines: TextLines, source: str, problems: Problems) -> Iterator[tuple[int, LogRecord]]:
         numbered = iter(lines)
         columns: tuple[str, ...] | None = None
         for number, text in numbered:
@@ -152,9 +157,10 @@ class RqtCsvFormat(TextFormat):
                 stray_text_problem(group, problems, self.title)
                 continue
             try:
-                yield _parse_row(group.text, columns, ros1, source)
+                yield group.line, _parse_row(group.text, columns, ros1, source)
             except RecordError as error:
-                yield from self._row_then_stray_lines(group, columns, ros1, source, problems, error)
+                for record in self._row_then_stray_lines(group, columns, ros1, source, problems, error):
+                    yield group.line, record
 
     def _row_then_stray_lines(
         self,

@@ -16,13 +16,22 @@ from __future__ import annotations
 
 from array import array
 from collections import Counter
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from itertools import compress, filterfalse
 from operator import and_, eq, itemgetter, not_
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from ..store.packed_texts import PackedTexts
 from ..view.shown_rows import ShownPiece
+
+
+class Rows(Protocol):
+    """Where the rows' seqs go, ascending: a ``SeqSet`` (or an ``array`` gathering some)."""
+
+    def append(self, seq: int, /) -> None: ...
+
+    def extend(self, seqs: Iterable[int], /) -> None: ...
+
 
 if TYPE_CHECKING:
     from ..store.log_store import Chunk
@@ -51,7 +60,7 @@ def take_each(
     columns: tuple[Sequence[int], Sequence[int], Sequence[int], Sequence[str]],
     runs: dict[int, Storm],
     storms: dict[int, Storm],
-    rows: array,
+    rows: Rows,
 ) -> None:
     """Take records (``columns``: their nodes, levels, sources, keys) in one by one: runs
     per node in ``runs``, storms by first seq in ``storms``, the rows appended to ``rows``."""
@@ -82,7 +91,7 @@ def take_distinct(
     mask: Callable[[str], str] | None,
     runs: dict[int, Storm],
     storms: dict[int, Storm],
-    rows: array,
+    rows: Rows,
 ) -> None:
     """What ``take_bulk`` does, when no two of the piece's texts (as compared) are the same."""
     chunk, base, offsets = piece.chunk, piece.base, piece.offsets
@@ -127,7 +136,7 @@ def take_bulk(
     mask: Callable[[str], str] | None,
     runs: dict[int, Storm],
     storms: dict[int, Storm],
-    rows: array,
+    rows: Rows,
 ) -> None:
     """What ``take_each`` does, for the records of ``piece`` (``msgs``: its chunk's texts,
     ``mask``: what texts are compared as), when no run is expanded."""
@@ -208,7 +217,7 @@ def take_apart(
     mask: Callable[[str], str] | None,
     runs: dict[int, Storm],
     storms: dict[int, Storm],
-    rows: array,
+    rows: Rows,
 ) -> None:
     """What ``take_bulk`` does, for a piece of a full chunk whose ``repeating_nodes`` are known:
     the records of those nodes by ``take_bulk``, the others by ``take_distinct``."""

@@ -31,6 +31,7 @@ from ..store.find_level import find_node
 from ..store.log_store import Chunk, LogStore
 from ..store.packed_texts import PackedTexts
 from ..view.log_view import LogView
+from ..view.seq_set import SeqSet
 from ..view.shown_rows import ShownPiece, shown_pieces
 from .shown_follower import ShownFollower
 from .storm_runs import Storm, repeating_nodes, take_apart, take_bulk, take_each
@@ -59,8 +60,8 @@ class StormRows(ShownFollower):
     """The rows of ``view`` with storms collapsed (all of them while ``enabled`` is off)."""
 
     def __init__(self, store: LogStore, view: LogView, *, mask_digits: bool = False, enabled: bool = True) -> None:
-        self._rows = array("q")
-        self._start = 0
+        #: The rows' seqs (bitmaps per block: ``seq_set.py``).
+        self._rows = SeqSet()
         #: first seq -> storm, for runs of two messages or more
         self._storms: dict[int, Storm] = {}
         #: node id -> its latest run (which a repeat continues)
@@ -77,15 +78,14 @@ class StormRows(ShownFollower):
     # -- following the view -----------------------------------------------------------------------
 
     def reset(self) -> None:
-        self._rows = array("q")
-        self._start = 0
+        self._rows = SeqSet()
         self._storms, self._runs, self._expanded = {}, {}, []
 
     def state(self) -> object:
-        return self._rows, self._start, self._storms, self._runs, self._expanded
+        return self._rows, self._storms, self._runs, self._expanded
 
     def restore(self, state: object) -> None:
-        self._rows, self._start, self._storms, self._runs, self._expanded = state  # type: ignore[misc]
+        self._rows, self._storms, self._runs, self._expanded = state  # type: ignore[misc]
 
     def set_mask_digits(self, mask: bool) -> None:
         if mask != self.mask_digits:
@@ -181,8 +181,7 @@ class StormRows(ShownFollower):
                 assert members is not None
                 del members[: bisect_left(members, head + 1)]
             else:
-                at = bisect_left(self._rows, head, self._start)
-                self._rows.insert(at, head)
+                self._rows.add((head,))
 
     def _next_of_node(self, node: int, start: int, last: int) -> int | None:
         """The first shown seq of ``node`` in ``start..last``."""
@@ -200,16 +199,10 @@ class StormRows(ShownFollower):
 
     def _fresh(self) -> None:
         self.follow_rules()
-        first = self.store.first_seq
-        rows = self._rows
-        if self._start < len(rows) and rows[self._start] < first:
-            self._start = bisect_left(rows, first, self._start)
-            if self._start > 4096 and self._start * 2 > len(rows):
-                del rows[: self._start]
-                self._start = 0
+        self._rows.drop_below(self.store.first_seq)
 
     def _collapsed(self) -> int:
-        return len(self._rows) - self._start
+        return len(self._rows)
 
     def _raw_from(self) -> int:
         """The view's row of the first record not taken in yet."""
@@ -232,7 +225,7 @@ class StormRows(ShownFollower):
         self._fresh()
         collapsed = self._collapsed()
         if row < collapsed:
-            return self._rows[self._start + row]
+            return self._rows.seq_at(row)
         if self.done_to >= self.store.end_seq:
             raise IndexError(row)
         return self.view.seq_at(self._raw_from() + row - collapsed)
@@ -244,7 +237,7 @@ class StormRows(ShownFollower):
             return self.view.row_of(seq)
         self._fresh()
         if seq < self.done_to or self.done_to >= self.store.end_seq:
-            return bisect_left(self._rows, seq, self._start) - self._start
+            return self._rows.rank(seq)
         return self._collapsed() + self.view.row_of(seq) - self._raw_from()
 
     def count_before(self, seq: int) -> int:
@@ -313,7 +306,7 @@ class StormRows(ShownFollower):
         storm.members = members
         storm.expanded = True
         self._expanded.append(storm)
-        self._merge_rows(storm.head, storm.last, members, add=True)
+        self._rows.add(members)
 
     def collapse(self, storm: Storm) -> None:
         """Show the storm as one row again."""
@@ -324,17 +317,7 @@ class StormRows(ShownFollower):
         storm.members = None
         if storm in self._expanded:
             self._expanded.remove(storm)
-        self._merge_rows(storm.head, storm.last, members, add=False)
-
-    def _merge_rows(self, head: int, last: int, members: array, *, add: bool) -> None:
-        rows = self._rows
-        lo = bisect_left(rows, head + 1, self._start)
-        hi = bisect_left(rows, last + 1, lo)
-        if add:
-            rows[lo:hi] = array("q", sorted([*rows[lo:hi], *members]))
-        else:
-            gone = set(members)
-            rows[lo:hi] = array("q", [seq for seq in rows[lo:hi] if seq not in gone])
+        self._rows.discard(members)
 
     def collapsed_storms(self) -> list[Storm]:
         """The storms shown as one row each, oldest first."""

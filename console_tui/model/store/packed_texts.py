@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from array import array
 from collections import deque
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from itertools import accumulate, repeat
 from operator import add
 from typing import overload
@@ -34,7 +34,7 @@ class PackedTexts(Sequence[str]):
     ``text`` (made from the compressed form when no recent reader made it) and ``starts`` are
     there to be searched directly (all texts at once)."""
 
-    __slots__ = ("_packed", "_text", "_texts", "starts")
+    __slots__ = ("_packed", "_reload", "_text", "_texts", "starts")
 
     def __init__(self, text: str, starts: array, packed: bytes | None = None) -> None:
         #: The joined text's UTF-8 (lone surrogates kept), LZ4-compressed.
@@ -43,14 +43,37 @@ class PackedTexts(Sequence[str]):
         self.starts = starts
         self._text: str | None = text
         self._texts: list[str] | None = None
+        self._reload: Callable[[], str] | None = None
         _remember(self)  # just made: the newest records are read first
+
+    @classmethod
+    def from_packed(cls, packed: bytes, starts: array) -> PackedTexts:
+        """Texts kept as ``packed`` (``_packed``'s form) and ``starts``, made when first read."""
+        texts = cls.__new__(cls)
+        texts._packed, texts.starts, texts._text, texts._texts, texts._reload = packed, starts, None, None, None
+        return texts
+
+    @classmethod
+    def from_source(cls, text: str, starts: array, reload: Callable[[], str]) -> PackedTexts:
+        """Texts kept elsewhere (a log file): ``text`` now, ``reload()`` when it is needed
+        again (nothing compressed is kept)."""
+        texts = cls.__new__(cls)
+        texts._packed, texts.starts, texts._text, texts._texts, texts._reload = b"", starts, text, None, reload
+        _remember(texts)
+        return texts
+
+    @property
+    def packed(self) -> bytes:
+        """The joined text's UTF-8, LZ4-compressed (what is kept for good)."""
+        return self._packed
 
     @property
     def text(self) -> str:
         """Every text, joined by NUL."""
         text = self._text
         if text is None:
-            text = _decompressed(self._packed).decode("utf-8", "surrogatepass")
+            reload = self._reload
+            text = decompress_bytes(self._packed).decode("utf-8", "surrogatepass") if reload is None else reload()
             if self._texts is None:
                 _remember(self)
             self._text = text
@@ -104,19 +127,22 @@ class PackedTexts(Sequence[str]):
 
 
 def _compressed(text: str) -> bytes:
-    return _compress(text.encode("utf-8", "surrogatepass"))
+    return compress_bytes(text.encode("utf-8", "surrogatepass"))
 
 
 # lz4 is imported when first used: the headless commands (``console-tui loggers`` on a robot's
 # Python) import the model without ever packing a chunk.
-def _compress(data: bytes) -> bytes:
+def compress_bytes(data: bytes, acceleration: int = 1) -> bytes:
+    """``data`` LZ4-compressed (a block, its size stored with it); a higher ``acceleration``
+    compresses faster and less."""
     from lz4.block import compress
 
-    packed: bytes = compress(data, store_size=True)
+    packed: bytes = compress(data, mode="fast", acceleration=acceleration, store_size=True)
     return packed
 
 
-def _decompressed(packed: bytes) -> bytes:
+def decompress_bytes(packed: bytes) -> bytes:
+    """What ``compress_bytes`` compressed."""
     from lz4.block import decompress
 
     data: bytes = decompress(packed)
@@ -142,4 +168,4 @@ def pack(texts: list[str]) -> list[str] | PackedTexts:
     if len(encoded) > _SIZE_LIMIT:
         return texts
     starts = array("I", accumulate(map(add, map(len, texts), repeat(1)), initial=0))
-    return PackedTexts(joined, starts, _compress(encoded))
+    return PackedTexts(joined, starts, compress_bytes(encoded))

@@ -23,19 +23,17 @@ goes on under the rules without it and lists it in ``switched_off`` for the call
 from __future__ import annotations
 
 from array import array
-from bisect import bisect_left, bisect_right
 from collections.abc import Callable
-from itertools import compress
-from operator import neg
 from time import perf_counter
 
 from ..inert_text import plural
-from ..rules.rule import Rule, SpanTest
+from ..rules.rule import Rule, SpanTest, mask_and
 from ..rules.ruleset import Decoration, RuleSet
 from ..rules.time_limit import MatchTimeout, alarms, time_limit
 from ..store.consecutive import consecutive
 from ..store.log_store import CHUNK_SIZE, Chunk, ChunkSpan, LogStore
 from .rule_masks import RuleMasks
+from .seq_set import SeqSet
 
 #: Rows filtered synchronously when the rules change (more than a screen).
 FIRST_SCREEN_ROWS = 200
@@ -78,16 +76,15 @@ class LogView:
         store.rewind_listeners.append(self._rewinding)
 
     def _reset_index(self) -> None:
-        # Rows are ``reversed(_front) + _back[_start:]``: the refiltered part (seqs descending,
-        # extended at the end as older records are done) then the part kept since.
-        self._front = array("q")
-        self._front_marks = bytearray()  # 1 where the row is highlighted
-        self._back = array("q")
-        self._back_marks = bytearray()
-        self._start = 0  # first live entry of _back
+        # The rows' seqs (the records decided so far that are shown), and those highlighted:
+        # bitmaps per block of seqs, whatever the number of records (``seq_set.py``).
+        self._rows = SeqSet()
+        self._highlighted = SeqSet()
+        #: Where refiltering began: older records are decided down from here, newer up.
+        self._origin = self.store.end_seq
         self._pending_lo = self._pending_hi = self.store.first_seq  # seqs still to refilter
         self._indexed_to = self.store.end_seq  # seqs below this are in the index (or pending)
-        #: Records from ``_indexed_to`` on are still to refilter (oldest first, into ``_back``).
+        #: Records from ``_indexed_to`` on are still to refilter (oldest first).
         self._rising = False
 
     # -- rules ------------------------------------------------------------------------------
@@ -155,13 +152,14 @@ class LogView:
         self._reset_index()
         if self._indexed:
             origin = store.end_seq if self.around is None else min(max(self.around, store.first_seq), store.end_seq)
+            self._origin = origin
             self._pending_lo, self._pending_hi = store.first_seq, origin
             self._indexed_to, self._rising = origin, origin < store.end_seq
             deadline = self.clock() + budget_s
             pieces = 0  # a piece each way at least (``around``'s own first), then while there is time
             while pieces < 2 or self.clock() < deadline:
-                rise = self._rising_pending and len(self._back) < first_screen
-                fall = self._falling_pending and len(self._front) < first_screen
+                rise = self._rising_pending and self._rows_after(self._origin) < first_screen
+                fall = self._falling_pending and self._rows.rank(self._origin) < first_screen
                 if rise and (pieces % 2 == 0 or not fall):
                     self._rise_piece(self._piece)
                 elif fall:
@@ -235,6 +233,9 @@ class LogView:
                 break
         return not self.refiltering
 
+    def _rows_after(self, seq: int) -> int:
+        return len(self._rows) - self._rows.rank(seq)
+
     def _refilter_piece(self, rows: int) -> int:
         hi = self._pending_hi
         lo = hi - rows
@@ -242,11 +243,8 @@ class LogView:
         if hi - chunk_start <= 4 * rows:  # pieces are a quarter of a step's budget: fits in one
             lo = chunk_start  # the rest of the chunk: rules test whole chunks fastest (packed texts)
         lo = max(self._pending_lo, self.store.first_seq, lo)
-        front, marks = self._front, self._front_marks
         for span in self.store.spans(lo, hi, newest_first=True):
-            seqs, highlighted = self._evaluate(span, descending=True)
-            front.extend(seqs)
-            marks.extend(highlighted)
+            self._take(span)
         self._pending_hi = lo
         return hi - lo
 
@@ -259,9 +257,7 @@ class LogView:
         if chunk_end - lo <= 4 * rows:
             hi = min(max(hi, chunk_end), store.end_seq)
         for span in store.spans(lo, hi):
-            seqs, highlighted = self._evaluate(span)
-            self._back.extend(seqs)
-            self._back_marks.extend(highlighted)
+            self._take(span)
         self._indexed_to = hi
         if hi >= store.end_seq:
             self._rising = False
@@ -286,29 +282,19 @@ class LogView:
         self._trim()
         start = max(self._indexed_to, store.first_seq)
         for span in store.spans(start, store.end_seq):
-            seqs, highlighted = self._evaluate(span)
-            self._back.extend(seqs)
-            self._back_marks.extend(highlighted)
+            self._take(span)
         self._indexed_to = store.end_seq
 
     # -- testing spans ----------------------------------------------------------------------
 
-    def _evaluate(self, span: ChunkSpan, *, descending: bool = False) -> tuple[array, bytes]:
-        """The seqs of ``span`` that are shown, and their highlight marks (newest first when
-        ``descending``)."""
+    def _take(self, span: ChunkSpan) -> None:
+        """Decide ``span``'s records: the shown ones become rows (older or newer than every row)."""
         chunk, lo, hi, seq = span
-        size = hi - lo
-        base = seq - lo
-        masks = {rule: self._masks.mask(base, chunk, rule, lo, hi, self._test) for rule in self._tests}
-        shown, highlighted = self.rules.decide(masks, size)
-        if shown.count(0) == 0:  # every record shown (highlight rules only, say): no per-record work
-            seqs = consecutive(seq, size, descending=descending)
-        else:
-            seqs = array("q", compress(range(seq, seq + size), shown))
-            highlighted = bytes(compress(highlighted, shown))
-            if descending:
-                seqs.reverse()
-        return seqs, highlighted[::-1] if descending else highlighted
+        masks = {rule: self._masks.mask(seq - lo, chunk, rule, lo, hi, self._test) for rule in self._tests}
+        shown, highlighted = self.rules.decide(masks, hi - lo)
+        self._rows.add_mask(seq, shown)
+        if self.rules.highlighting:
+            self._highlighted.add_mask(seq, mask_and(shown, highlighted))
 
     def _test(self, rule: Rule, chunk: Chunk, lo: int, hi: int) -> bytes:
         """The rule's test of ``chunk[lo:hi]``, abandoned past ``rule_limit_s``."""
@@ -334,18 +320,8 @@ class LogView:
 
     def _trim(self) -> None:
         first = self.store.first_seq
-        front = self._front
-        if front and front[-1] < first:
-            keep = bisect_right(front, -first, key=neg)  # entries >= first (descending array)
-            del front[keep:]
-            del self._front_marks[keep:]
-        back = self._back
-        if self._start < len(back) and back[self._start] < first:
-            self._start = bisect_left(back, first, self._start)
-        if self._start > 4096 and self._start * 2 > len(back):
-            del back[: self._start]
-            del self._back_marks[: self._start]
-            self._start = 0
+        self._rows.drop_below(first)
+        self._highlighted.drop_below(first)
         self._masks.drop_evicted(first)
 
     def _rewinding(self, start: int) -> None:
@@ -354,12 +330,11 @@ class LogView:
         self._masks.drop_from(start)
         if not self._indexed:
             return
-        if self.refiltering or (self._front and self._front[0] >= start):
+        if self.refiltering:
             self._stale = True
             return
-        cut = bisect_left(self._back, start, self._start)
-        del self._back[cut:]
-        del self._back_marks[cut:]
+        self._rows.drop_from(start)
+        self._highlighted.drop_from(start)
         self._indexed_to = min(self._indexed_to, start)
 
     # -- rows -------------------------------------------------------------------------------
@@ -368,7 +343,7 @@ class LogView:
         if not self._indexed:
             return len(self.store)
         self._trim()
-        return len(self._front) + len(self._back) - self._start
+        return len(self._rows)
 
     def seq_at(self, row: int) -> int:
         """The seq shown at ``row`` (0 is the oldest row); ``IndexError`` past the end."""
@@ -378,36 +353,24 @@ class LogView:
             if row >= len(self.store):
                 raise IndexError(row)
             return self.store.first_seq + row
-        older = len(self._front)
-        if row < older:
-            return self._front[older - 1 - row]
-        return self._back[self._start + row - older]
+        return self._rows.seq_at(row)
 
     def seqs_of_rows(self, first: int, end: int) -> array:
         """The seqs shown at rows ``first:end`` (clamped to the rows there are), oldest first:
-        one slice of the index each way, no lookup per row."""
+        a slice of each block's members, no lookup per row."""
         first, end = max(first, 0), min(end, len(self))
         if first >= end:
             return array("q")
         if not self._indexed:
             return consecutive(self.store.first_seq + first, end - first)
-        front, older = self._front, len(self._front)
-        seqs = front[older - min(end, older) : older - first] if first < older else array("q")
-        seqs.reverse()
-        if end > older:
-            start = self._start
-            seqs.extend(self._back[start + max(first - older, 0) : start + end - older])
-        return seqs
+        return self._rows.seqs(first, end)
 
     def row_of(self, seq: int) -> int:
         """The row showing ``seq``, or the row of the next shown record after it."""
         if not self._indexed:
             return min(max(seq - self.store.first_seq, 0), len(self.store))
         self._trim()
-        front = self._front
-        if front and seq <= front[0]:
-            return len(front) - bisect_right(front, -seq, key=neg)
-        return len(front) + bisect_left(self._back, seq, self._start) - self._start
+        return self._rows.rank(seq)
 
     def count_before(self, seq: int) -> int:
         """How many rows show records older than ``seq``."""
@@ -415,19 +378,20 @@ class LogView:
 
     def row_shown(self, seq: int) -> int | None:
         """The row showing ``seq``; None when no row does (the rules hide it, or it is gone)."""
-        row = self.row_of(seq)
-        return row if row < len(self) and self.seq_at(row) == seq else None
+        if seq not in self.store:
+            return None
+        if not self._indexed:
+            return seq - self.store.first_seq
+        return self._rows.rank(seq) if seq in self._rows else None
+
+    def shows(self, seq: int) -> bool:
+        """Whether ``seq`` is a row (kept, and shown under the rules as decided so far)."""
+        if seq not in self.store:
+            return False
+        return not self._indexed or seq in self._rows
 
     def decoration_of(self, seq: int) -> Decoration:
         """How the row of ``seq`` is marked: "highlight", "dim", or None (no highlight rules)."""
         if not self._indexed or not self.rules.highlighting:
             return None
-        front = self._front
-        if front and seq <= front[0]:
-            at = bisect_left(front, -seq, key=neg)
-            found = at < len(front) and front[at] == seq and self._front_marks[at]
-        else:
-            back = self._back
-            at = bisect_left(back, seq, self._start)
-            found = at < len(back) and back[at] == seq and self._back_marks[at]
-        return "highlight" if found else "dim"
+        return "highlight" if seq in self._highlighted else "dim"

@@ -22,21 +22,21 @@ span matches, and the test starts at the first message holding it.
 from __future__ import annotations
 
 import re
-from array import array
-from bisect import bisect_left, bisect_right
+from bisect import bisect_right
 from collections.abc import Callable, Iterator, Sequence
 from itertools import compress
-from operator import neg
 
 from ..rules.message import messages_test
 from ..rules.packed_match import lowered
 from ..rules.pattern_match import TextMatch
 from ..rules.regex_shape import required_literal
 from ..rules.time_limit import MatchTimeout, time_limit
+from ..store.indexed_chunk import FileChunk
 from ..store.log_store import Chunk, LogStore
 from ..store.packed_texts import PackedTexts
 from .log_view import LogView
-from .seek import HITS_LIMIT_S, Hits, PieceSize, Walk, view_shows
+from .seek import HITS_LIMIT_S, Hits, PieceSize, Walk
+from .seq_set import SeqSet
 
 
 def parse_search(text: str) -> TextMatch:
@@ -98,6 +98,8 @@ def first_candidate(match: TextMatch) -> FirstCandidate | None:
     find = re.compile(re.escape(text)).search
 
     def first(chunk: Chunk, lo: int, hi: int) -> int:
+        if isinstance(chunk, FileChunk) and not chunk.may_hold(text, lower):
+            return hi  # none of its bytes in the file: its messages need not be read
         texts = chunk.msgs
         if not isinstance(texts, PackedTexts) or lo >= hi:
             return lo
@@ -142,11 +144,13 @@ class Search:
         self.hits = text_hits(match)
         #: Only a regex can run long (plain text is found by ``str.find``).
         self._limit_s = HITS_LIMIT_S if match.regex else None
+        #: The plain text every match holds, looked for in a log file's bytes before its
+        #: chunks are read back (``LogStore.chunk_may_hold``).
+        self._must = must_hold(match)
         self.up = Walk(self.store, anchor, forward=True)
         self.down = Walk(self.store, anchor, forward=False)
-        #: Matches older than the anchor, newest first; then the anchor and newer, oldest first.
-        self._older = array("q")
-        self._newer = array("q")
+        #: The matches found (shown rows only), on both sides of the anchor.
+        self._found = SeqSet()
         #: Why the search stopped (too slow a regex), or "".
         self.failed = ""
         self._piece = PieceSize()
@@ -195,6 +199,13 @@ class Search:
     _last_rows = 0
 
     def _walk_piece(self, walk: Walk) -> bool:
+        text, lower = self._must
+        if text:
+            seq = walk.next_seq()
+            if seq is not None and self.store.chunk_may_hold(seq, text, lower) is False:
+                walk.skip_chunk()  # none of its bytes in the file hold it: not read back
+                self._last_rows = 0
+                return True
         span = walk.next_span(self._piece.rows)
         if span is None:
             return True
@@ -210,48 +221,35 @@ class Search:
             return False
         base = span.seq - span.lo
         view = self.view
-        seqs = [base + offset for offset in offsets]
         if view.filtered:
-            seqs = [seq for seq in seqs if view_shows(view, seq)]
-        if walk.forward:
-            self._newer.extend(seqs)
-        else:
-            seqs.reverse()
-            self._older.extend(seqs)
+            offsets = [offset for offset in offsets if view.shows(base + offset)]
+        if offsets:
+            mask = bytearray(span.hi - span.lo)
+            for offset in offsets:
+                mask[offset - span.lo] = 1
+            self._found.add_mask(span.seq, mask)  # older than every match found, or newer
         return True
 
     def _trim(self) -> None:
         """Forget matches evicted from the store."""
-        first = self.store.first_seq
-        older = self._older
-        if older and older[-1] < first:
-            del older[bisect_right(older, -first, key=neg) :]
-        newer = self._newer
-        if newer and newer[0] < first:
-            del newer[: bisect_left(newer, first)]
+        self._found.drop_below(self.store.first_seq)
 
     # -- answers ------------------------------------------------------------------------------
 
     def seqs(self) -> Iterator[int]:
         """The matches found so far, oldest first."""
         self._trim()
-        yield from reversed(self._older)
-        yield from self._newer
+        yield from self._found
 
     def count(self, limit: int | None = None) -> int:
         """Matches found so far (those before seq ``limit`` only, when given)."""
         self._trim()
-        older, newer = self._older, self._newer
-        if limit is None:
-            return len(older) + len(newer)
-        return len(older) - bisect_right(older, -limit, key=neg) + bisect_left(newer, limit)
+        return len(self._found) if limit is None else self._found.rank(limit)
 
     def between(self, lo: int, hi: int) -> list[int]:
         """The matches found with ``lo <= seq < hi``, oldest first."""
-        older, newer = self._older, self._newer
-        found = list(reversed(older[bisect_right(older, -hi, key=neg) : bisect_right(older, -lo, key=neg)]))
-        found += newer[bisect_left(newer, lo) : bisect_left(newer, hi)]
-        return found
+        found = self._found
+        return found.seqs(found.rank(lo), found.rank(hi)).tolist()
 
     def index(self, seq: int) -> int | None:
         """1-based place of match ``seq`` among all matches, when known (it is a match and
@@ -259,37 +257,23 @@ class Search:
         self._trim()
         if not self.older_done or not self.is_match(seq):
             return None
-        older, newer = self._older, self._newer
-        if newer and seq >= newer[0]:
-            return len(older) + bisect_left(newer, seq) + 1
-        return len(older) - bisect_left(older, -seq, key=neg)
+        return self._found.rank(seq) + 1
 
     def is_match(self, seq: int) -> bool:
         """Whether ``seq`` is among the matches found."""
-        older, newer = self._older, self._newer
-        if newer and seq >= newer[0]:
-            at = bisect_left(newer, seq)
-            return at < len(newer) and newer[at] == seq
-        at = bisect_left(older, -seq, key=neg)
-        return at < len(older) and older[at] == seq
+        return seq in self._found
 
     def _first_from(self, bound: int) -> int | None:
         """The oldest match found at ``bound`` or newer."""
-        older, newer = self._older, self._newer
-        at_least = bisect_right(older, -bound, key=neg)  # older (descending) holds these first
-        if at_least:
-            return older[at_least - 1]
-        at = bisect_left(newer, bound)
-        return newer[at] if at < len(newer) else None
+        found = self._found
+        at = found.rank(bound)
+        return found.seq_at(at) if at < len(found) else None
 
     def _last_before(self, bound: int) -> int | None:
         """The newest match found older than ``bound``."""
-        older, newer = self._older, self._newer
-        at = bisect_left(newer, bound)
-        if at:
-            return newer[at - 1]
-        at_least = bisect_right(older, -bound, key=neg)
-        return older[at_least] if at_least < len(older) else None
+        found = self._found
+        at = found.rank(bound)
+        return found.seq_at(at - 1) if at else None
 
     def nearest(self, seq: int, *, forward: bool, inclusive: bool = False, limit: int | None = None) -> int | None:
         """The match nearest ``seq`` in that direction (``seq`` itself too when

@@ -30,13 +30,7 @@ _MIN_PIECE, _START_PIECE = 64, 1024
 
 def view_shows(view: LogView, seq: int) -> bool:
     """Whether the view shows ``seq`` as a row (under its rules)."""
-    store = view.store
-    if seq not in store:
-        return False
-    if not view.filtered:
-        return True
-    row = view.row_of(seq)
-    return row < len(view) and view.seq_at(row) == seq
+    return view.shows(seq)
 
 
 def level_hits(at_least: int) -> Hits:
@@ -63,6 +57,20 @@ class Walk:
     def done(self) -> bool:
         store = self.store
         return self.at >= store.end_seq if self.forward else self.at <= store.first_seq
+
+    def next_seq(self) -> int | None:
+        """A seq of the chunk the next span is in (None when done)."""
+        if self.done:
+            return None
+        return max(self.at, self.store.first_seq) if self.forward else min(self.at, self.store.end_seq) - 1
+
+    def skip_chunk(self) -> None:
+        """Go past the rest of the chunk the next span would be in, unread."""
+        seq = self.next_seq()
+        if seq is None:
+            return
+        start = self.store.chunk_start(seq)
+        self.at = min(start + CHUNK_SIZE, self.store.end_seq) if self.forward else max(start, self.store.first_seq)
 
     def next_span(self, rows: int) -> ChunkSpan | None:
         """The next span, of at most ``rows`` records and inside one chunk; None when done."""

@@ -22,8 +22,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...model.formats import FormatError
-from ...ros.log_dir import ros_log_dir
+from ...ros.log_dir import KEPT_HISTORY, ros_log_dir
 from ..journal.journal_location import is_journal_folder
+from .kept_history import is_kept_history
 
 #: File names read in a folder.
 _LOG_NAME = re.compile(r".+\.(?:log(?:\.\d+)?|csv|jsonl|ndjson|bag|bag\.active|mcap|db3)\Z")
@@ -119,10 +120,11 @@ def expand_paths(paths: Sequence[str | os.PathLike[str]]) -> Expansion:
 
 
 def is_recording_folder(path: Path) -> bool:
-    """Whether a folder is a rosbag2 recording (one recording, not a folder of logs); a
-    folder that cannot be entered is not (walking it then reports it unreadable)."""
+    """Whether a folder is a rosbag2 recording or console-tui's kept history (one log, not a
+    folder of logs); a folder that cannot be entered is not (walking it then reports it
+    unreadable)."""
     try:
-        return (path / "metadata.yaml").is_file()
+        return (path / "metadata.yaml").is_file() or is_kept_history(path)
     except OSError:
         return False
 
@@ -140,8 +142,8 @@ def _logs_in(folder: Path, expansion: Expansion) -> list[tuple[tuple[Path, ...],
         kept = []
         for name in sorted(subfolders):
             sub = here / name
-            if sub.is_symlink():
-                continue
+            if sub.is_symlink() or name == KEPT_HISTORY:
+                continue  # (console-tui's kept history: opened by --history)
             if is_recording_folder(sub) or is_journal_folder(sub):  # one log
                 found.append(sub)
             else:

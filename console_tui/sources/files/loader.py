@@ -1,4 +1,8 @@
-"""Loading files in the background: merged batches into the UI's queue, with progress."""
+"""Loading files in the background: merged batches into the UI's queue, with progress.
+
+One big text log in a format that allows it is read by its index instead (``file_index.py``):
+chunks of columns and byte ranges, whose messages stay in the file.
+"""
 
 from __future__ import annotations
 
@@ -11,11 +15,13 @@ from pathlib import Path
 
 from ...model.formats import FormatError, Problem
 from ...model.inert_text import plural
+from ...model.store.indexed_chunk import IndexedChunk
 from ...model.store.intake_queue import IntakeQueue
 from ...model.store.record import LogRecord
 from ...model.store.record_batch import RecordColumns
+from .file_index import INDEX_FROM_BYTES, FileIndexer, indexable
 from .folders import Expansion, LogPaths, expand_paths, source_names
-from .log_file import LogFile, describe_error, reading_stopped
+from .log_file import LogFile, TextLogFile, describe_error, reading_stopped
 from .merge import merge_by_time
 from .opener import open_log_paths
 from .repeats import RepeatMerger
@@ -186,11 +192,12 @@ class FileLoad:
     def __init__(
         self,
         paths: Sequence[str | os.PathLike[str]],
-        sink: IntakeQueue | Callable[[RecordColumns], None],
+        sink: IntakeQueue | Callable[[RecordColumns | IndexedChunk], None],
         *,
         log_format: str | None = None,
         on_change: Callable[[], None] | None = None,
         robots: Mapping[str, str] | None = None,
+        index_from_bytes: int | None = INDEX_FROM_BYTES,
     ) -> None:
         self.paths = list(paths)
         #: The robot of the files (and folders) given, by path as given (``--robot NAME``).
@@ -210,6 +217,12 @@ class FileLoad:
         self._finished = False
         self._thread: threading.Thread | None = None
         self.repeats = RepeatMerger()
+        #: One text log at least this big is read by index (None: none is).
+        self.index_from_bytes = index_from_bytes
+        #: The file was read by index (its messages stay in it).
+        self.indexed = False
+        #: How the index was read: "" (the scanner in C), or why the format's reader read it all.
+        self.index_note = ""
 
     def start(self) -> None:
         self._thread = threading.Thread(target=self._run, name="console-tui-file-load", daemon=True)
@@ -279,10 +292,14 @@ class FileLoad:
                     result.robot = robot_of(log, self.robots)
                     self.files.append(result)
                 self._changed()
-            for batch in load_records(self.files, self.cancel_event, repeats=self.repeats):
-                self._deliver(batch)
-                if self.cancel_event.is_set():
-                    break
+            limit = self.index_from_bytes
+            if limit is not None and len(self.files) == 1 and indexable(self.files[0], from_bytes=limit):
+                self._index(self.files[0])
+            else:
+                for batch in load_records(self.files, self.cancel_event, repeats=self.repeats):
+                    self._deliver(batch)
+                    if self.cancel_event.is_set():
+                        break
         except Exception as error:  # the app must learn of it, never die of it
             self.error = f"loading stopped: {describe_error(error)}"
         finally:
@@ -291,8 +308,27 @@ class FileLoad:
             self._finished = True
             self._changed()
 
+    def _index(self, file: LogFile) -> None:
+        """Read ``file`` by its index (the scanner in C when it can: built on first use)."""
+        from . import compiled_scan
+
+        assert isinstance(file, TextLogFile)
+        scanner, note = compiled_scan.load()
+        self.indexed = True
+        self.index_note = note if scanner is None else ""
+        indexer = FileIndexer(file, self._deliver_batch, self.cancel_event, scanner=scanner)
+        try:
+            records = indexer.run()
+        except OSError as error:
+            file.problems.add(f"reading stopped: {error.strerror or error}; what came before was read")
+            return
+        if records == 0 and not len(file.problems) and not self.cancel_event.is_set():
+            file.problems.add(file.empty_reason())
+
     def _deliver(self, records: list[LogRecord]) -> None:
-        batch = RecordColumns.from_records(records)
+        self._deliver_batch(RecordColumns.from_records(records))
+
+    def _deliver_batch(self, batch: RecordColumns | IndexedChunk) -> None:
         sink = self.sink
         if isinstance(sink, IntakeQueue):
             while len(sink) > QUEUE_HIGH_WATER and not self.cancel_event.is_set():

@@ -11,6 +11,7 @@ from ...model.formats.detect import HEAD_SIZE
 from ...model.formats.ros1_console import is_capture_name
 from ..journal.journal_location import JOURNAL_MAGIC, is_journal_folder
 from .folders import LogPaths
+from .kept_history import KeptHistory, is_kept_history
 from .log_file import LogFile, TextLogFile
 
 #: The environment variable rcutils reads its output format from.
@@ -43,6 +44,8 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
         raise FormatError(f"{name}: {_not_regular(mode)}, not a file: only files and folders are read")
     if stat.S_ISDIR(mode) and is_journal_folder(file_path):
         return _journal(file_path, name, log_format)
+    if stat.S_ISDIR(mode) and is_kept_history(file_path):
+        return KeptHistory(file_path, name)
     if stat.S_ISDIR(mode):
         from .recordings import open_recording
 

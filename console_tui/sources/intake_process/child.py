@@ -157,7 +157,7 @@ class Sender:
         the status is read once the part is taken from the queue, so that it tells what came
         before those records (the app learns of a new topic before that topic's history)."""
         while True:
-            batches = self.queue.drain_batches(FRAME_RECORDS)
+            batches = self.queue.drain_columns(FRAME_RECORDS)
             status = source.status
             if self.min_level and not status.min_level:  # a source that does not filter itself
                 status = replace(status, min_level=self.min_level, level_filter_note=self._no_filter)

@@ -14,9 +14,7 @@ whether it is done, and meanwhile the Python decoder reads the frames.
 
 from __future__ import annotations
 
-import hashlib
 import os
-import sys
 import threading
 from pathlib import Path
 
@@ -42,10 +40,7 @@ def load() -> tuple[FrameLoop | None, str]:
     global _loaded
     with _build_lock:
         if _loaded is None:
-            try:
-                _loaded = _load()
-            except Exception as error:  # never worth stopping the intake for
-                _loaded = None, f"{type(error).__name__}: {error}"
+            _loaded = c_build.noted(_load)
         return _loaded
 
 
@@ -73,9 +68,7 @@ def _load() -> tuple[FrameLoop | None, str]:
 
 def build_key() -> str:
     """What the built file depends on: the C source and this Python."""
-    digest = hashlib.sha256(SOURCE.read_bytes())
-    digest.update(f"{sys.version}|{c_build.suffix()}".encode())
-    return digest.hexdigest()[:16]
+    return c_build.source_key(SOURCE)
 
 
 def build(target: Path) -> str:

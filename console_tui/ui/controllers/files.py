@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import asyncio
 import os
+import queue
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, ClassVar
 
 from ...model.inert_text import one_line, plural
 from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record import LogRecord
 from ..command_table import Command
 from ..widgets.load_bar import LoadBar
 from .context import ConsoleContext
@@ -24,8 +26,9 @@ if TYPE_CHECKING:
     from ...sources.files import FileLoad
     from ..screens.file_dialogs import SaveRequest
 
-#: Records gathered per event-loop turn when saving.
+#: Records gathered per event-loop turn when saving, and the most slices waiting for the writer.
 SAVE_SLICE = 20_000
+SAVE_AHEAD = 4
 
 
 class FilesController:
@@ -132,24 +135,46 @@ class FilesController:
         self._host.run_worker(self.write(request), name="save", group="save", exclusive=True)
 
     async def write(self, request: SaveRequest) -> int:
-        """Collect the rows on the UI thread a slice at a time (the store changes only
-        here), then write them in a thread. Returns how many were written."""
+        """Gather the rows on the UI thread a slice at a time (the store changes only here)
+        and hand each slice to the writer's thread as it goes (at most ``SAVE_AHEAD`` slices
+        waiting: a history of millions is never all in memory). Returns how many were written."""
         from ...model.formats.save import save_records  # the file formats load when first used
 
-        seqs: Sequence[int]
-        if request.shown_only:
-            seqs = [self._view.seq_at(row) for row in range(len(self._view))]
-        else:
-            seqs = range(self._store.first_seq, self._store.end_seq)
-        records = []
-        for start in range(0, len(seqs), SAVE_SLICE):
-            for seq in seqs[start : start + SAVE_SLICE]:
-                if seq in self._store:
-                    records.append(self._store.get(seq))
+        store, view = self._store, self._view
+        rows = len(view) if request.shown_only else len(store)
+        first_seq = store.first_seq
+        slices: queue.Queue[list[LogRecord] | None] = queue.Queue(SAVE_AHEAD)
+
+        def records() -> Iterator[LogRecord]:
+            while (batch := slices.get()) is not None:
+                yield from batch
+
+        robots = len(store.robots) > 1  # ("" and a robot's name)
+        writing = asyncio.ensure_future(
+            asyncio.to_thread(save_records, records(), request.path, request.save_format, robots=robots)
+        )
+        lost = 0
+        for start in range(0, rows, SAVE_SLICE):
+            if request.shown_only:
+                seqs: Sequence[int] = view.seqs_of_rows(start, start + SAVE_SLICE)
+            else:
+                seqs = range(first_seq + start, min(first_seq + start + SAVE_SLICE, first_seq + rows))
+            batch = [store.get(seq) for seq in seqs if seq in store]
+            lost += len(seqs) - len(batch)
+            while slices.full() and not writing.done():
+                await asyncio.sleep(0.01)
+            if writing.done():
+                break  # it failed: said below
+            slices.put(batch)
             await asyncio.sleep(0)
-        lost = len(seqs) - len(records)
+        while not writing.done():
+            try:
+                slices.put_nowait(None)
+                break
+            except queue.Full:
+                await asyncio.sleep(0.01)
         try:
-            written = await asyncio.to_thread(save_records, records, request.path, request.save_format)
+            written = await writing
         except (OSError, ValueError) as error:
             self._host.notify(f"Not saved: {error}", severity="error", timeout=15)
             return 0

@@ -15,7 +15,8 @@ from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any, Protocol
 
-from ...model.store.intake_queue import IntakeQueue
+from ...model.store.indexed_chunk import IndexedChunk
+from ...model.store.intake_queue import Batch, IntakeQueue
 from ...model.store.late_records import WINDOW, HistoryWindow, add_in_time_order
 from ...model.store.record import LogRecord
 from ...model.store.record_batch import RecordColumns
@@ -139,13 +140,13 @@ class IntakeController:
             self.histories.note(id(source), status.publishers, status.topic)
         if not self._files_loading():
             room = min(MAX_RECORDS_PER_TICK - sum(map(len, batches)), MAX_LIVE_RECORDS_PER_TICK)
-            live: list[RecordColumns] = self._queue.drain_batches(room)
+            live: list[RecordColumns] = self._queue.drain_columns(room)
             if len(live) > 1 and len(self._robots) > 1:  # a fleet: what its robots sent meanwhile, by time
                 live = [RecordColumns.in_time_order(live)]
         else:
             live = []
         if batches or live:
-            self.add_batches(batches + live, live_from=len(batches))
+            self.add_batches([*batches, *live], live_from=len(batches))
         self.tell_slow_intake()
         self._announce.tick()
         self._changed()
@@ -166,7 +167,7 @@ class IntakeController:
         """Put records made one by one into the store and the view (tests, demos)."""
         self.add_batches([RecordColumns.from_records(list(records))])
 
-    def add_batches(self, batches: Sequence[RecordColumns], *, live_from: int | None = None) -> int:
+    def add_batches(self, batches: Sequence[Batch], *, live_from: int | None = None) -> int:
         """Put batches into the store and the view; how many.
         Batches from ``live_from`` on are live: one that is late is sorted, and while the table
         follows the tail (nobody reads rows that would move) placed among the newest rows by its
@@ -181,7 +182,9 @@ class IntakeController:
         rewritten = False
         with table.keeping_position():
             for index, batch in enumerate(batches):
-                if index >= first_live:
+                if isinstance(batch, IndexedChunk):
+                    added += len(self._store.extend_indexed(batch))
+                elif index >= first_live:
                     placed = add_in_time_order(self._store, batch, window=window)
                     added += len(batch)
                     if placed is not None:

@@ -35,6 +35,11 @@ CATCH_UP_PAUSE_S = 0.001
 REFILTER_POLL_S = 0.01
 #: The strip is redrawn at most this often while records arrive.
 STRIP_PERIOD_S = 0.25
+#: With this many records or more still to count, the storms' and the timeline's counting is
+#: said, with how far it is (a rule changed over a long history, a big file coming in).
+COUNTING_SAID_FROM = 200_000
+#: How often the status line says how far counting is.
+PROGRESS_PERIOD_S = 0.5
 
 
 class OverviewController:
@@ -100,8 +105,12 @@ class OverviewController:
             )
 
     async def _catch_up_in_background(self) -> None:
+        said = self._clock()
         try:
             while self._storms.behind or self._timeline.behind:
+                if self._clock() - said >= PROGRESS_PERIOD_S:
+                    said = self._clock()
+                    self._changed()  # how far counting is (``note``)
                 if self._view.filtered and self._view.refiltering:
                     await asyncio.sleep(REFILTER_POLL_S)  # the view decides the oldest rows first
                     continue
@@ -259,10 +268,25 @@ class OverviewController:
     def note(self) -> str:
         """What the status line says of the storms: ``12 storms`` (or that they are off)."""
         storms = self._storms
+        counting = self._counting_percent()
+        if counting is not None:
+            return f"counting storms {counting}%" if storms.enabled else f"counting {counting}%"
         if not storms.enabled:
             return "storms off"
         number = storms.storm_count
         return f"{number:,} storm{'s' if number != 1 else ''}" if number else ""
+
+    def _counting_percent(self) -> int | None:
+        """How far the storms and the timeline have counted a long history again (after a rule
+        change, or as a big file comes in), when that takes a while; None when they keep up."""
+        store = self._store
+        following = [follower for follower in (self._storms, self._timeline) if follower.enabled]
+        if not following or not len(store):
+            return None
+        done = min(max(follower.done_to, store.first_seq) for follower in following)
+        if store.end_seq - done < COUNTING_SAID_FROM:
+            return None
+        return min(int(100 * (done - store.first_seq) / len(store)), 99)
 
     # -- the summary --------------------------------------------------------------------------------
 

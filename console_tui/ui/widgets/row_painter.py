@@ -112,11 +112,13 @@ class RowPainter:
         cells = GUTTER if gutter else 0
         # A fleet's robots: as wide as the widest name, 5 to 16 cells.
         robot_width = max(min(max(map(cell_len, store.robots), default=5), 16), 5)
-        key = (width, self.shown_columns, node_width, cells, self.time_format, self.utc, robot_width)
+        # The row number's digits, however long the history (8 for 20,000,000).
+        seq_width = max(7, len(str(store.end_seq)))
+        key = (width, self.shown_columns, node_width, cells, self.time_format, self.utc, robot_width, seq_width)
         if key == self._layout_key:
             return False
         self._layout_key = key
-        widths = {"time": format_info(self.time_format).width, "robot": robot_width}
+        widths = {"time": format_info(self.time_format).width, "robot": robot_width, "seq": seq_width}
         self.placed = layout_columns(width - cells, self.shown_columns, node_width, widths)
         return True
 

@@ -14,6 +14,7 @@ from textual.widget import Widget
 
 from ...model.inert_text import one_line, plural
 from ...model.levels import SEVERITY_TABLE
+from ...model.store.history_status import HistoryState
 from ...sources.status import SourceStatus
 from ..severity_styles import severity_classes, severity_css
 from .status_fit import COUNTS, DEMO, DETAIL, RATE, SOURCE, STATE, WHERE, Part, fit
@@ -38,6 +39,8 @@ class StatusFacts:
     toggles: str = ""
     #: What the Time column shows when not the wall clock, and a sim time note, or "".
     time: str = ""
+    #: Records dropped at the bound, the history kept in memory (a full disk), or None.
+    history: HistoryState | None = None
 
 
 class StatusBar(Widget):
@@ -52,7 +55,7 @@ class StatusBar(Widget):
     | `status-bar--toggles` | The level and node toggles in force. |
     | `status-bar--severity-debug` ... `status-bar--severity-fatal` | A severity's count. |
     | `status-bar--topic` | The live topic. |
-    | `status-bar--problem` | Losses and a source's problem. |
+    | `status-bar--problem` | Losses, a source's problem, a history that cannot go to disk. |
     | `status-bar--where` | Where records come from (a file, a log folder). |
     | `status-bar--note` | What the rules and storms do; the time format. |
     """
@@ -183,6 +186,11 @@ def render_status(facts: StatusFacts, styles: Mapping[str, Style] | None = None,
     worse = [span for count in counts[2:] for span in (count, (" ", None))][:-1]  # WARN and worse
     parts.append(Part(styled(*spaced), COUNTS, styled(*worse)))
     parts.append(Part(Text(f"{facts.rate:,.0f}/s"), RATE))
+    if facts.history is not None:
+        history = facts.history
+        style = "problem" if history.problem else "where"
+        priority = SOURCE if history.problem else WHERE
+        parts.append(Part(styled((history.text, style)), priority, styled((history.short, style))))
     robots = [status for status in facts.sources if status.robot]
     if len(robots) > 1:  # a fleet: each robot's state in a mark
         parts += _fleet_parts(robots, styled)
