@@ -35,6 +35,7 @@ SUBCOMMANDS: dict[str, str] = {
     "tail": "prints the live log stream or log files, filtered, on standard output",
     "rosout": "runs the rosout node for ROS 2: /rosout_agg and rosout.log",
     "clean": "checks and purges the ROS log directory (rosclean)",
+    "ship": "sends the log stream to the log warehouse (OTLP, ClickHouse, chDB), spooled on disk",
     "serve": "serves the console to web browsers, one console per tab (the [web] extra)",
 }
 #: Other names of subcommands: ``ros2 log``'s words for them.

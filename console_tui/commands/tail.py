@@ -16,9 +16,7 @@ import argparse
 import os
 import signal
 import sys
-import time
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
 from typing import BinaryIO, cast
 
 from ..model.formats import FormatError
@@ -31,7 +29,7 @@ from ..model.rules.stream import StreamFilter
 from ..model.text import one_line
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
 from ..sources.files.follow import FollowedFile
-from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_live
+from ..sources.live import LiveIntake, RosUnavailable, open_stream
 from ..sources.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
@@ -44,6 +42,7 @@ from .arguments import (
     command_parser,
 )
 from .closed_pipe import quiet_stdout, reader_gone
+from .live_reports import LiveReports
 from .watch_options import add_watch_arguments, apply_watch_arguments
 
 EXIT_OK = 0
@@ -53,8 +52,6 @@ EXIT_USAGE = 2
 #: How often followed files and the live queue are looked at.
 POLL_S = 0.1
 FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
-#: Losses are told on stderr at most this often.
-LOSS_REPORT_S = 5.0
 
 
 EPILOG = f"""--format tokens, mixed as you like (\\n and \\t are decoded):
@@ -229,11 +226,9 @@ class _Run:
 
     def main(self, args: argparse.Namespace) -> int:
         lives: list[LiveIntake] = []
-        if args.robots:  # a fleet: an intake process per robot
-            lives = open_fleet(self.queue, args.robots, topic=args.topic)
-        elif args.live or not args.files:
+        if args.robots or args.live or not args.files:  # a fleet: an intake process per robot
             try:
-                lives = [open_live(self.queue, topic=args.topic, ros=args.ros)]
+                lives = open_stream(self.queue, args.robots, topic=args.topic, ros=args.ros)
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
@@ -277,8 +272,7 @@ class _Run:
         return followed
 
     def keep_reading(self, followed: list[FollowedFile], lives: Sequence[LiveIntake]) -> None:
-        told = [_Told() for _ in lives]
-        slow_told = False
+        reports = LiveReports(lives, _complain)
         try:
             while not self.stop.wait(POLL_S):
                 self.printer.check_reader()
@@ -289,19 +283,7 @@ class _Run:
                     self._problems(followed)
                 if lives:
                     self.print(self.queue.drain())
-                for live, said in zip(lives, told, strict=True):
-                    status = live.source.status
-                    robot = f"{status.robot}: " if status.robot else ""  # a fleet's robot
-                    if status.problem and status.problem != said.problem:
-                        _complain(robot + status.problem)
-                    said.problem = status.problem
-                    if status.path_note and not slow_told:
-                        _complain(status.slow_path_text())
-                        slow_told = True
-                    now = time.monotonic()
-                    if status.lost > said.lost and now - said.lost_at >= LOSS_REPORT_S:
-                        _complain(robot + status.loss_text())
-                        said.lost, said.lost_at = status.lost, now
+                reports.tell()
         finally:
             for f in followed:
                 f.close()
@@ -312,15 +294,6 @@ class _Run:
             for problem in items[self._told.get(id(file), 0) :]:
                 _complain(str(problem))
             self._told[id(file)] = len(items)
-
-
-@dataclass
-class _Told:
-    """What was said of a live source on stderr: its problem, its losses and when."""
-
-    problem: str = ""
-    lost: int = 0
-    lost_at: float = 0.0
 
 
 def _stamp(record: LogRecord) -> int:

@@ -33,7 +33,15 @@ HOW_TO_USE_ROS1 = (
     "      console-tui --ros1"
 )
 
-__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_fleet_loggers", "open_live", "start_ros2"]
+__all__ = [
+    "LiveIntake",
+    "RosUnavailable",
+    "open_fleet",
+    "open_fleet_loggers",
+    "open_live",
+    "open_stream",
+    "start_ros2",
+]
 
 
 @dataclass
@@ -119,6 +127,17 @@ def open_fleet(queue: IntakeQueue, robots: Sequence[Robot], *, topic: str | None
         )
         for robot in robots
     ]
+
+
+def open_stream(
+    queue: IntakeQueue, robots: Sequence[Robot] | None, *, topic: str | None = None, ros: int | None = None
+) -> list[LiveIntake]:
+    """The log stream the headless commands read (``tail``, ``ship``): each robot of a fleet
+    when ``robots`` are given (``--domain``, ``--master``, ``--fleet``), else the one source of
+    the environment (``--ros1``/``--ros2``); none started yet. ``RosUnavailable`` as ``open_live``."""
+    if robots:
+        return open_fleet(queue, robots, topic=topic)
+    return [open_live(queue, topic=topic, ros=ros)]
 
 
 def open_fleet_loggers(robots: Sequence[Robot], cleanups: list[Callable[[], object]], **options: Any) -> Any:
