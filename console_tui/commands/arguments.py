@@ -302,3 +302,47 @@ def check_fleet_arguments(parser: argparse.ArgumentParser, args: argparse.Namesp
         check_fleet(getattr(args, "robots", None) or [])
     except FleetError as error:
         parser.error(str(error))
+
+
+def add_window_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--since`` and ``--until``: the window read from the log warehouse."""
+    group = parser.add_argument_group("the log warehouse (clickhouse://, clickhouses://, chdb:// arguments)")
+    group.add_argument(
+        "--since",
+        metavar="TIME",
+        help="the window's start: an age (2h, 30m), a time today (02:50), a date and time "
+        "('2026-12-05 02:50') or an ISO time (default: the newest records, up to --max-messages)",
+    )
+    group.add_argument("--until", metavar="TIME", help="the window's end, written as --since (default: now, and on)")
+
+
+def check_window_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace, name: str) -> None:
+    """Sort ``args.<name>`` into files (left in it) and the log warehouse's addresses
+    (``args.warehouses``), and read ``--since``/``--until`` into ``args.since_ns``/``args.until_ns``.
+    A bad address or time exits 2 saying which."""
+    from ..model.rules.query import QueryError, parse_time
+    from ..sources.locations import FILE, WAREHOUSE, split_locations
+    from ..warehouse.address import AddressError, parse_address
+
+    kinds = split_locations(getattr(args, name) or [])
+    setattr(args, name, kinds[FILE])
+    args.warehouses = []
+    for text in kinds.get(WAREHOUSE, []):
+        try:
+            args.warehouses.append(parse_address(text))
+        except AddressError as error:
+            parser.error(str(error))
+    utc = bool(getattr(args, "utc", False))
+    for option in ("since", "until"):
+        text = getattr(args, option, None)
+        value = None
+        if text:
+            try:
+                value = parse_time(text, utc=utc)
+            except QueryError:
+                parser.error(f"--{option}: not a time: {text!r} (2h, 02:50, '2026-12-05 02:50', an ISO time)")
+        setattr(args, f"{option}_ns", value)
+    if args.since_ns is not None and args.until_ns is not None and args.since_ns > args.until_ns:
+        parser.error("--since is after --until")
+    if (args.since_ns is not None or args.until_ns is not None) and not args.warehouses:
+        parser.error("--since and --until choose the window of a log warehouse (clickhouse://, chdb://): give one")

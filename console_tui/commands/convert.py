@@ -16,9 +16,17 @@ from collections.abc import Iterable, Sequence
 from ..model.formats import SAVE_FORMATS, FormatError, Problem, save_records
 from ..model.formats.save import save_format_for
 from ..model.record import LogRecord
+from ..model.store import DEFAULT_MAX_MESSAGES
 from ..model.text import one_line, plural
 from ..sources.files import LogFile, latest_run, load_records, open_logs
-from .arguments import add_last_argument, add_log_format_argument
+from .arguments import (
+    add_last_argument,
+    add_log_format_argument,
+    add_window_arguments,
+    check_window_arguments,
+    positive_int,
+)
+from .warehouse_windows import Windows, merged
 
 CLEAN, PROBLEMS, NOTHING_WRITTEN = 0, 1, 2
 #: Longest problem text printed (a file's own text may be quoted in it).
@@ -41,7 +49,8 @@ def build_parser() -> argparse.ArgumentParser:
         "inputs",
         nargs="*",
         metavar="IN",
-        help="log files, recordings, or folders of them (a ROS run folder, the whole log directory)",
+        help="log files, recordings, or folders of them (a ROS run folder, the whole log directory), or a "
+        "log warehouse: clickhouse://host:8123/db, clickhouses://..., chdb:///directory (?table=NAME)",
     )
     add_last_argument(parser)
     parser.add_argument("-o", "--output", required=True, metavar="OUT", help="file to write ('-': standard output)")
@@ -52,6 +61,14 @@ def build_parser() -> argparse.ArgumentParser:
         "(default: jsonl for .jsonl/.ndjson/.json, else rqt)",
     )
     add_log_format_argument(parser)
+    add_window_arguments(parser)
+    parser.add_argument(
+        "--max-messages",
+        metavar="N",
+        type=positive_int,
+        default=DEFAULT_MAX_MESSAGES,
+        help=f"of a log warehouse: the newest N records of the window at most (default {DEFAULT_MAX_MESSAGES:,})",
+    )
     return parser
 
 
@@ -64,6 +81,7 @@ def main(argv: Sequence[str]) -> int:
     """Convert as the arguments say; returns the exit status (see the module's text)."""
     parser = build_parser()
     args = parser.parse_args(list(argv))
+    check_window_arguments(parser, args, "inputs")
     inputs = list(args.inputs)
     if args.last:
         try:
@@ -71,17 +89,18 @@ def main(argv: Sequence[str]) -> int:
         except FormatError as error:
             say(str(error))
             return NOTHING_WRITTEN
-    if not inputs:
+    if not inputs and not args.warehouses:
         parser.error("give the files to convert, or --last")
     opened = open_logs(inputs, log_format=args.log_format)
+    windows = Windows(args, None, say, max_rows=args.max_messages)
     files, failures = opened.files, opened.failures
     save_format = args.format or ("rqt" if args.output == "-" else save_format_for(args.output))
     try:
-        records = (record for batch in load_records(files) for record in batch)
+        records = (record for batch in merged([load_records(files), *windows.streams()]) for record in batch)
         first = next(records, None)  # nothing is written before there is something to write
         if first is None:
             _report(failures, files)
-            say(f"nothing written: no record could be read from {_inputs(inputs)}")
+            say(f"nothing written: no record could be read from {_inputs(inputs + [a.text for a in args.warehouses])}")
             return NOTHING_WRITTEN
         everything = itertools.chain((first,), records)
         if args.output == "-":
@@ -93,9 +112,10 @@ def main(argv: Sequence[str]) -> int:
         say(f"cannot write {args.output}: {error.strerror or error}")
         return NOTHING_WRITTEN
     finally:
+        windows.close()
         for file in files:
             file.close()
-    found = _report(failures, files)
+    found = _report(failures, files) + windows.failed
     for file in files:
         for note in file.notes():
             say(f"{file.source}: note: {note}")
@@ -105,7 +125,10 @@ def main(argv: Sequence[str]) -> int:
             f"note: {plural(len(opened.skipped), 'file')} in the folders were not read (empty, or not logs by name): {shown}"
         )
     if args.output != "-":
-        say(f"{plural(count, 'record')} from {plural(len(files), 'file')} written to {args.output} ({save_format})")
+        read_from = plural(len(files), "file") + (
+            f" and {plural(len(args.warehouses), 'log warehouse')}" if args.warehouses else ""
+        )
+        say(f"{plural(count, 'record')} from {read_from} written to {args.output} ({save_format})")
     return PROBLEMS if found else CLEAN
 
 

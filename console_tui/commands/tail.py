@@ -26,8 +26,9 @@ from ..model.intake_queue import IntakeQueue
 from ..model.record import LogRecord
 from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
+from ..model.store import DEFAULT_MAX_MESSAGES
 from ..model.text import one_line
-from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
+from ..sources.files import LogFile, TextLogFile, latest_run, load_records, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.live import LiveIntake, RosUnavailable, open_stream
 from ..sources.signal_stop import SignalStop
@@ -37,12 +38,16 @@ from .arguments import (
     add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
+    add_window_arguments,
     check_fleet_arguments,
     check_rule_arguments,
+    check_window_arguments,
     command_parser,
+    positive_int,
 )
 from .closed_pipe import quiet_stdout, reader_gone
 from .live_reports import LiveReports
+from .warehouse_windows import Windows, merged
 from .watch_options import add_watch_arguments, apply_watch_arguments
 
 EXIT_OK = 0
@@ -80,7 +85,8 @@ def build_parser() -> argparse.ArgumentParser:
         "files",
         nargs="*",
         metavar="FILE",
-        help="log files, recordings, or folders of them (any format the app opens; a folder: every log in it)",
+        help="log files, recordings, or folders of them (any format the app opens; a folder: every log in it), "
+        "or a log warehouse: clickhouse://host:8123/db, clickhouses://..., chdb:///directory (?table=NAME)",
     )
     add_last_argument(parser)
     parser.add_argument("--live", action="store_true", help="with FILEs: the live stream too, after them")
@@ -119,6 +125,14 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
     add_log_format_argument(parser)
     add_watch_arguments(parser)
+    add_window_arguments(parser)
+    parser.add_argument(
+        "--max-messages",
+        metavar="N",
+        type=positive_int,
+        default=DEFAULT_MAX_MESSAGES,
+        help=f"of a log warehouse: the newest N records of the window at most (default {DEFAULT_MAX_MESSAGES:,})",
+    )
     return parser
 
 
@@ -182,13 +196,14 @@ def main(argv: Sequence[str]) -> int:
             args.files = [*args.files, *(str(path) for path in latest_run())]
         except FormatError as error:
             parser.error(f"--last: {one_line(str(error))}")
-    if args.follow and not args.files:
+    check_window_arguments(parser, args, "files")
+    if args.follow and not (args.files or args.warehouses):
         parser.error("--follow needs FILEs to follow (the live stream is followed anyway)")
     rules = (args.rule_set or RuleSet()).with_query(args.query_entries)
     line: PrintFormat | None = None
     if not args.json:
         template = args.format if args.format is not None else (os.environ.get(FORMAT_VARIABLE) or None)
-        if args.robots and "{robot}" not in (template or ""):  # a fleet's lines say their robot
+        if (args.robots or args.warehouses) and "{robot}" not in (template or ""):  # a fleet's lines say their robot
             template = ROBOT_PREFIX + (template or DEFAULT_TEMPLATE)
         try:
             color = use_color(args.color, sys.stdout, os.environ)
@@ -196,7 +211,7 @@ def main(argv: Sequence[str]) -> int:
         except TemplateError as error:
             parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
     stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))
-    run = _Run(Printer(stream, line), StreamFilter(rules))
+    run = _Run(Printer(stream, line), StreamFilter(rules), rules)
     previous = {sig: signal.signal(sig, run.stop.on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         return run.main(args)
@@ -209,8 +224,9 @@ def main(argv: Sequence[str]) -> int:
 
 
 class _Run:
-    def __init__(self, printer: Printer, stream_filter: StreamFilter) -> None:
+    def __init__(self, printer: Printer, stream_filter: StreamFilter, rules: RuleSet) -> None:
         self.printer = printer
+        self.rules = rules
         self.filter = stream_filter
         self.stop = SignalStop()
         self.status = EXIT_OK
@@ -226,27 +242,32 @@ class _Run:
 
     def main(self, args: argparse.Namespace) -> int:
         lives: list[LiveIntake] = []
-        if args.robots or args.live or not args.files:  # a fleet: an intake process per robot
+        if args.robots or args.live or not (args.files or args.warehouses):  # a fleet: a process per robot
             try:
                 lives = open_stream(self.queue, args.robots, topic=args.topic, ros=args.ros)
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
+        windows = Windows(args, self.rules, _complain, max_rows=args.max_messages)
         try:
             followed: list[FollowedFile] = []
-            if args.files:
-                followed = self.files(args)
+            if args.files or args.warehouses:
+                followed = self.files(args, windows)
             for live in lives:
                 live.source.start()
-            if lives or followed:
-                self.keep_reading(followed, lives)
+            if lives or followed or (args.follow and windows.readers):
+                self.keep_reading(followed, lives, windows if args.follow else None)
         finally:
+            windows.close()
             for live in lives:
                 live.close()
+        if windows.failed:
+            self.status = EXIT_FILES
         return self.status
 
-    def files(self, args: argparse.Namespace) -> list[FollowedFile]:
-        """Print the files merged by time; the text files to go on following, if asked."""
+    def files(self, args: argparse.Namespace, windows: Windows) -> list[FollowedFile]:
+        """Print the files and the warehouse's windows merged by time; the text files to go on
+        following, if asked."""
         opened = open_logs(args.files, log_format=args.log_format)
         files = opened.files
         for problem in opened.failures:
@@ -258,9 +279,9 @@ class _Run:
                 followed = [FollowedFile(f) for f in files if isinstance(f, TextLogFile)]
                 once: list[LogFile] = [f for f in files if not isinstance(f, TextLogFile)]
                 streams = [f.records_so_far() for f in followed] + [f.batches(self.stop) for f in once]
-                batches = merge_by_time(streams) if streams else iter(())
+                batches = merged([*streams, *windows.streams()])
             else:
-                batches = load_records(files, self.stop)
+                batches = merged([load_records(files, self.stop), *windows.streams()])
             for batch in batches:
                 self.print(batch)
                 if self.stop.is_set():
@@ -271,7 +292,9 @@ class _Run:
         self._problems(files)
         return followed
 
-    def keep_reading(self, followed: list[FollowedFile], lives: Sequence[LiveIntake]) -> None:
+    def keep_reading(
+        self, followed: list[FollowedFile], lives: Sequence[LiveIntake], windows: Windows | None = None
+    ) -> None:
         reports = LiveReports(lives, _complain)
         try:
             while not self.stop.wait(POLL_S):
@@ -283,6 +306,8 @@ class _Run:
                     self._problems(followed)
                 if lives:
                     self.print(self.queue.drain())
+                if windows is not None:
+                    self.print(windows.newer())
                 reports.tell()
         finally:
             for f in followed:

@@ -9,7 +9,9 @@ lets one process at a time open a directory: a second one is told so in words.
 
 from __future__ import annotations
 
+import logging
 import os
+import re
 from collections.abc import Sequence
 from typing import Any
 from urllib.parse import urlsplit
@@ -31,6 +33,10 @@ class WarehouseError(Exception):
 
 
 def _driver() -> Any:
+    # The driver logs what it also raises, on standard error: under the console's screen.
+    quiet = logging.getLogger("clickhouse_connect")
+    quiet.propagate = False
+    quiet.addHandler(logging.NullHandler())
     try:
         import clickhouse_connect
     except ImportError as error:
@@ -43,6 +49,12 @@ def _driver() -> Any:
 def describe(error: BaseException) -> str:
     """An error of the driver or the engine in one line, without its stack or version trailer."""
     text = " ".join(str(error).split())
+    if "UNKNOWN_TABLE" in text or "UNKNOWN_DATABASE" in text:
+        return "no such table (nothing was shipped there yet?)"
+    system = re.search(r"\[Errno -?\d+\] ([^\"')]+)", text)
+    if system:
+        return system.group(1).strip()
+    text = text.split(" In scope ", 1)[0].split(" Stack trace", 1)[0]
     if "another server instance" in text.lower() or "cannot lock file" in text.lower():
         return "the directory is in use by another process (chDB opens a directory in one process at a time)"
     return f"{type(error).__name__}: {text}"[:300]
@@ -51,7 +63,8 @@ def describe(error: BaseException) -> str:
 class TableClient:
     """One connection to the warehouse's table (not shared between threads)."""
 
-    def __init__(self, address: Address, *, timeout: float = QUERY_TIMEOUT_S) -> None:
+    def __init__(self, address: Address, *, timeout: float = QUERY_TIMEOUT_S, create: bool = False) -> None:
+        """``create``: a chDB directory is made when missing (for shipping; reading needs one)."""
         self.address = address
         self.timeout = timeout
         self.table = f"{quoted(address.database)}.{quoted(address.table)}"
@@ -60,7 +73,10 @@ class TableClient:
         driver = _driver()
         try:
             if address.kind == CHDB:
-                os.makedirs(address.target, exist_ok=True)
+                if create:
+                    os.makedirs(address.target, exist_ok=True)
+                elif not os.path.isdir(address.target):
+                    raise WarehouseError(f"no such directory: {address.target}")
                 self._client = driver.get_client(dsn=f"chdb://{address.target}", settings=settings)
             else:
                 parts = urlsplit(address.target)
@@ -75,6 +91,8 @@ class TableClient:
                     send_receive_timeout=timeout,
                     settings=settings,
                 )
+        except WarehouseError:
+            raise
         except Exception as error:  # the driver's and the engine's, of every kind
             raise WarehouseError(describe(error)) from None
 

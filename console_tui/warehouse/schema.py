@@ -176,17 +176,38 @@ LINE = (
 TOPICS = _attribute("LogAttributes", TOPICS_KEY)
 MSG = "Body"
 
-#: A record's fields as SQL over a row: (field, expression), in the order they are selected.
+#: The longest message read (characters); longer ones are cut, with ``…`` after.
+MAX_MESSAGE_CHARS = 100_000
+_READ_MSG = (
+    f"if(lengthUTF8(Body) > {MAX_MESSAGE_CHARS}, concat(substringUTF8(toValidUTF8(Body), 1, {MAX_MESSAGE_CHARS}), '…'), "
+    "toValidUTF8(Body))"
+)
+
+
+def _read_text(expression: str) -> str:
+    """A short text read: valid UTF-8 (a bad byte becomes U+FFFD), at most 1,000 characters, repeated ones shared."""
+    return f"toLowCardinality(substringUTF8(toValidUTF8({expression}), 1, 1000))"
+
+
+#: A record's fields as SQL over a row: (field, expression), in the order they are selected;
+#: then ``identity`` (a hash of what the row says: its time, severity, node, message, robot and
+#: line; a row stored twice is one record) and
+#: ``valid`` (0 for a row whose message was not UTF-8, repaired).
 RECORD_COLUMNS: tuple[tuple[str, str], ...] = (
     ("stamp", STAMP),
     ("level", LEVEL),
-    ("node", f"toLowCardinality({NODE})"),
-    ("msg", MSG),
-    ("file", f"toLowCardinality({FILE})"),
-    ("function", f"toLowCardinality({FUNCTION})"),
+    ("node", _read_text(NODE)),
+    ("msg", _READ_MSG),
+    ("file", _read_text(FILE)),
+    ("function", _read_text(FUNCTION)),
     ("line", LINE),
-    ("topics", f"toLowCardinality({TOPICS})"),
-    ("robot", f"toLowCardinality({ROBOT})"),
+    ("topics", _read_text(TOPICS)),
+    ("robot", _read_text(ROBOT)),
+    (
+        "identity",
+        f"cityHash64(Timestamp, SeverityNumber, SeverityText, ServiceName, Body, {ROBOT}, {LINE})",
+    ),
+    ("valid", "isValidUTF8(Body)"),
 )
 #: What the rules test, by field: the same expressions without the reading's conversions.
 FIELDS = {"stamp": STAMP, "level": LEVEL, "node": NODE, "msg": MSG, "file": FILE, "function": FUNCTION}

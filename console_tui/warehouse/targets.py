@@ -50,7 +50,7 @@ class TableTarget:
             return Outcome(False, problem=f"a spooled batch is unreadable: {error}")
         try:
             if self._client is None:
-                client = TableClient(self._address)
+                client = TableClient(self._address, create=True)
                 try:
                     client.create_table()
                 except WarehouseError:
