@@ -19,8 +19,10 @@ from .commands.arguments import (
     add_log_format_argument,
     add_robot_argument,
     add_ros_version_arguments,
+    add_window_arguments,
     check_fleet_arguments,
     check_rule_arguments,
+    check_window_arguments,
     domain_id,
     positive_int,
     robot_files,
@@ -96,7 +98,8 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
             help=(
                 "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
                 "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
-                "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it"
+                "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it; "
+                "or a log warehouse: clickhouse://host:8123/db, clickhouses://..., chdb:///directory (?table=NAME)"
             ),
         )
     add_log_format_argument(parser)
@@ -139,6 +142,7 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
     )
     parser.add_argument("--utc", action="store_true", help="show times in UTC instead of local time")
+    add_window_arguments(parser)
     parser.add_argument(
         "--query",
         metavar="QUERY",
@@ -232,6 +236,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(args_list)
     args.file_robots = robots_from_names(args.files, file_robots) if args.robots_from_names else file_robots
     check_rule_arguments(parser, args)
+    check_window_arguments(parser, args, "files")
     if args.demo_domain is not None and not args.demo:
         parser.error("--demo-domain goes with --demo")
     check_fleet_arguments(parser, args)

@@ -334,13 +334,13 @@ def check_window_arguments(parser: argparse.ArgumentParser, args: argparse.Names
             parser.error(str(error))
     utc = bool(getattr(args, "utc", False))
     for option in ("since", "until"):
-        text = getattr(args, option, None)
+        given = getattr(args, option, None)
         value = None
-        if text:
+        if given:
             try:
-                value = parse_time(text, utc=utc)
+                value = parse_time(given, utc=utc)
             except QueryError:
-                parser.error(f"--{option}: not a time: {text!r} (2h, 02:50, '2026-12-05 02:50', an ISO time)")
+                parser.error(f"--{option}: not a time: {given!r} (2h, 02:50, '2026-12-05 02:50', an ISO time)")
         setattr(args, f"{option}_ns", value)
     if args.since_ns is not None and args.until_ns is not None and args.since_ns > args.until_ns:
         parser.error("--since is after --until")

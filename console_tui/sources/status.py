@@ -43,6 +43,9 @@ class SourceStatus:
     running: bool = False
     #: The robot this source reads, when the console reads a fleet (``sources.fleet``), else "".
     robot: str = ""
+    #: What the empty table says while this source has given nothing, when not a live
+    #: source's words ("waiting for publishers"): for example a log warehouse's "no rows".
+    empty_text: str = ""
 
     @property
     def state(self) -> str:

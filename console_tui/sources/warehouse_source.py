@@ -91,6 +91,7 @@ class WarehouseSource:
         self._thread: threading.Thread | None = None
         self._deliveries: list[Delivery] = []
         self._condition = window_condition(since_ns, until_ns, rules)
+        self._window = window_condition(since_ns, until_ns, None)
         self.generation = 0
         self._asked_generation = 1
         self._older_asked = False
@@ -157,6 +158,12 @@ class WarehouseSource:
             path += f", {doing}"
         elif self.follow:
             path += ", following"
+        if not self.generation:
+            empty = f"asking the log warehouse {self.name}…"
+        else:
+            empty = f"no rows in {self.name} in this window" + (
+                " under these rules" if self._condition != self._window else ""
+            )
         return SourceStatus(
             topic="",
             publishers=1 if self.generation else 0,
@@ -164,7 +171,7 @@ class WarehouseSource:
             path=path,
             problem=problem,
             running=self._running,
-            lost=0,
+            empty_text=empty,
         )
 
     # -- the thread ------------------------------------------------------------------------------

@@ -39,6 +39,7 @@ from .controllers.rules import RulesController
 from .controllers.search import SearchController
 from .controllers.table import TableController
 from .controllers.toggles import TogglesController
+from .controllers.warehouse import WarehouseController
 from .focus import focus_now
 from .gc_policy import CollectionPolicy
 from .widgets.key_footer import KeyFooter
@@ -194,6 +195,10 @@ class ConsoleScreen(Screen[None]):
             clock=clock,
             update_status=status,
         )
+        self.warehouse = WarehouseController(
+            store, table, self.marks, self.intake, sources=self.sources, update_status=status
+        )
+        self.filtering.listeners.append(self.warehouse.rules_changed)
         self.jumps = JumpsController(
             host,
             store,
@@ -243,6 +248,8 @@ class ConsoleScreen(Screen[None]):
         self.ready_for_keys = True
         self.overview.start()
         self.app.set_interval(self._drain_interval, self.intake.drain_intake)
+        if self.warehouse.warehouses:
+            self.app.set_interval(self._drain_interval, self.warehouse.tick)
         self.filtering.apply_initial(self._initial_rules, self._initial_query)
         self.update_status()
         if self._initial_files:
@@ -308,6 +315,10 @@ class ConsoleScreen(Screen[None]):
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.update_status()  # the footer's Pause or Resume too
         self.overview.show(force=True)
+
+    def on_log_table_top_reached(self, _message: LogTable.TopReached) -> None:
+        if self.warehouse.top_reached():
+            self.update_status()
 
     def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
         self.table_control.open_detail(message.seq)

@@ -68,7 +68,7 @@ class TableClient:
         self.address = address
         self.timeout = timeout
         self.table = f"{quoted(address.database)}.{quoted(address.table)}"
-        settings = {"max_execution_time": int(max(timeout, 1)), "max_result_rows": MAX_RESULT_ROWS}
+        settings: dict[str, Any] = {"max_execution_time": int(max(timeout, 1)), "max_result_rows": MAX_RESULT_ROWS}
         settings["result_overflow_mode"] = "break"
         driver = _driver()
         try:

@@ -30,13 +30,13 @@ def encode(logs: Sequence[OtelLog]) -> bytes:
     request = _proto().ExportLogsServiceRequest()
     groups: dict[tuple[tuple[str, str], ...], dict[str, list[OtelLog]]] = {}
     for log in logs:
-        key = tuple(sorted(log.resource.items()))
-        groups.setdefault(key, {}).setdefault(log.scope_name, []).append(log)
+        group = tuple(sorted(log.resource.items()))
+        groups.setdefault(group, {}).setdefault(log.scope_name, []).append(log)
     for resource, scopes in groups.items():
         resource_logs = request.resource_logs.add()
         attributes = resource_logs.resource.attributes
-        for key, value in resource:
-            attributes.add(key=key).value.string_value = value
+        for name, text in resource:
+            attributes.add(key=name).value.string_value = text
         for scope_name, members in scopes.items():
             scope_logs = resource_logs.scope_logs.add()
             scope_logs.scope.name = scope_name
@@ -116,4 +116,5 @@ def decode_error() -> type[Exception]:
     """The exception ``decode`` raises for bytes that are no request."""
     from google.protobuf.message import DecodeError
 
-    return DecodeError
+    error: type[Exception] = DecodeError
+    return error

@@ -198,10 +198,10 @@ class Shipper:
             return 0.0
         with self._lock:
             self._failures += 1
-            pause = min(self.backoff_s * 2 ** (self._failures - 1), self.max_backoff_s)
+            pause = float(min(self.backoff_s * 2.0 ** (self._failures - 1), self.max_backoff_s))
             pause *= random.uniform(0.8, 1.2)
             if outcome.retry_after is not None:
-                pause = outcome.retry_after
+                pause = float(outcome.retry_after)
             self._problem = outcome.problem or "the warehouse did not take the batch"
             self._retry_at = self.clock() + pause
         return pause

@@ -15,7 +15,7 @@ from collections.abc import Callable, Iterable, Sequence
 from typing import Any, Protocol
 
 from ...model.intake_queue import IntakeQueue
-from ...model.late_records import WINDOW, HistoryWindow, add_in_time_order
+from ...model.late_records import WINDOW, HistoryWindow, Placed, add_in_time_order
 from ...model.marks import Marks
 from ...model.record import LogRecord
 from ...model.record_batch import RecordColumns
@@ -222,16 +222,35 @@ class IntakeController:
                     added += len(self._store.extend(batch))
             self._view.update()
             self._overview.follow()
+        self._followed(added, rewritten)
+        return added
+
+    def add_placed(self, place: Callable[[], Placed | None]) -> None:
+        """Records put into the store by ``place`` where they belong, which may write it
+        again (a log warehouse's older rows, a source's rows taken out): followed as
+        ``add_batches`` follows a late history, the rows on the screen kept in place."""
+        table = self._table
+        before = len(self._store)
+        with table.keeping_position():
+            placed = place()
+            if placed is not None:
+                self._marks.move(placed.moved)
+            self._view.update()
+            self._overview.follow()
+        self._followed(max(len(self._store) - before, 0), placed is not None)
+
+    def _followed(self, added: int, rewritten: bool) -> None:
+        """What follows records put into the store: the rules' switch-offs, the Robot column,
+        the rate, the rows drawn again after a rewrite, the search."""
         if self._view.switched_off:
             self._filtering.rules_changed()
         if not self._robots_shown and len(self._store.robots) > 2:  # "" and two robots or more
             self._robots_shown = True
-            table.set_column_shown("robot", True)
+            self._table.set_column_shown("robot", True)
         self._arrivals.append((self._clock(), added))
         if rewritten:
-            table.restyle()  # rows drawn before show other records now
+            self._table.restyle()  # rows drawn before show other records now
         self._searching.after_records(rewritten=rewritten)
-        return added
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second

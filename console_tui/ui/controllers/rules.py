@@ -68,6 +68,8 @@ class RulesController:
         #: The rules in force; a new set replaces it whole (rule sets are values).
         self.rules = RuleSet()
         self._counts_at = 0.0
+        #: Called with the rules put in force, each time (a log warehouse hands them down to SQL).
+        self.listeners: list[Callable[[RuleSet], None]] = []
 
     def apply_rules(self, rules: RuleSet) -> None:
         """Put ``rules`` in force: the screenful around the selected row (the newest while
@@ -97,6 +99,8 @@ class RulesController:
             )
         self.show_counts()
         self._update_status()
+        for listener in self.listeners:
+            listener(rules)
 
     def stop_filtering(self) -> None:
         """Esc while rules are being applied: switch off the rules not applied yet."""

@@ -124,6 +124,12 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
 
         seq: int
 
+    class TopReached(Message):
+        """The cursor was asked to go above the oldest row (up, page up or home on it)."""
+
+        def can_replace(self, message: Message) -> bool:
+            return isinstance(message, LogTable.TopReached)
+
     class StateChanged(Message):
         """Following, pause or cursor changed (for the status bar)."""
 

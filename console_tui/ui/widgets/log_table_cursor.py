@@ -32,6 +32,7 @@ class TableCursor(ScrollView):
     selection_anchor: int | None
     _stop_following: Callable[[], None]
     StateChanged: type[Message]
+    TopReached: type[Message]
     action_activate: Callable[[], None]
 
     if TYPE_CHECKING:  # ``LogTable``'s properties
@@ -46,6 +47,8 @@ class TableCursor(ScrollView):
     def move_cursor(self, row: int, *, extend: bool = False) -> None:
         """Move the cursor to ``row``; ``extend`` selects the rows from where it was."""
         rows = self.row_count
+        if row < 0 and self.cursor_row == 0:
+            self.post_message(self.TopReached())  # older rows may be asked for
         if rows == 0:
             return
         if not extend:
@@ -136,7 +139,7 @@ class TableCursor(ScrollView):
         self.move_cursor(self.cursor_row + self._body_height)
 
     def action_first_row(self) -> None:
-        self.move_cursor(0)
+        self.move_cursor(-1 if self.cursor_row == 0 else 0)
 
     def _row_at(self, y: int) -> int | None:
         if y < 1:

@@ -142,6 +142,8 @@ def empty_hint(facts: StatusFacts, filtering: bool = False) -> str:
         topic = one_line(status.topic, 120) or "/rosout or /rosout_agg"
         if status.problem:
             return one_line(status.problem, 300)
+        if status.empty_text:
+            return one_line(status.empty_text, 300)
         if status.path == "starting":
             return f"starting{where}…"
         if not status.publishers:
