@@ -91,7 +91,7 @@ def otel_number(level: int) -> int:
 
 def otel_severity(level: int) -> tuple[int, str]:
     """(SeverityNumber, SeverityText) of a ROS level: ``WARN`` for 30, ``25`` for 25."""
-    return otel_number(level), severity_name(level)
+    return otel_number(level), severity_name(level) if level in OTEL_BASE else str(level)
 
 
 def _decimal(text: str) -> int | None:
