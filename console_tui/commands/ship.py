@@ -146,7 +146,7 @@ def status_line(state: ShipState, sources: str = "") -> str:
     """``sent 1,200, spooled 0 (0), lost 0`` and what it waits for."""
     spool = state.spool
     text = (
-        f"sent {state.sent:,}, spooled {spool.records:,} ({size_text(spool.size)} in "
+        f"sent {state.sent:,}, spooled {spool.records:,} ({_bytes(spool.size)} in "
         f"{plural(spool.batches, 'batch', 'batches')}), lost {state.lost:,}"
     )
     reasons = []
@@ -161,6 +161,10 @@ def status_line(state: ShipState, sources: str = "") -> str:
     if sources:
         text += f"; {sources}"
     return text
+
+
+def _bytes(size: int) -> str:
+    return f"{size} bytes" if size < 1024 else f"{size_text(size)}B"
 
 
 def main(argv: Sequence[str]) -> int:
@@ -228,12 +232,23 @@ def _run(shipper: Shipper, lives: Sequence[LiveIntake], stop: SignalStop, args: 
         reports.tell()
         state = shipper.state()
         kind = (bool(state.problem), bool(state.lost))
-        line = status_line(state, shipper.spool_problem)
+        line = status_line(state, "; ".join(filter(None, [shipper.spool_problem, sources_text(lives)])))
         now = time.monotonic()
         changed = _counts(line) != _counts(last_line)
         if kind != last_kind or (changed and now - last_at >= args.status_every):
             _report(shipper, args.status, line=line)
             last_line, last_kind, last_at = line, kind, now
+
+
+def sources_text(lives: Sequence[LiveIntake]) -> str:
+    """What the live sources read: ``reading /rosout (2 publishers)``, a fleet's robots each."""
+    parts = []
+    for live in lives:
+        status = live.source.status
+        robot = f"{status.robot} " if status.robot else ""
+        topic = status.topic or "the log topic"
+        parts.append(f"{robot}reading {topic} ({plural(status.publishers, 'publisher')})")
+    return ", ".join(parts)
 
 
 def _counts(line: str) -> str:
