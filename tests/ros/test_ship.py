@@ -22,7 +22,13 @@ from support.warehouse import STORE_MISSING
 
 pytestmark = [pytest.mark.ros2, pytest.mark.ros1]
 
-LEVELS = {"debug": (5, "DEBUG"), "info": (9, "INFO"), "warn": (13, "WARN"), "error": (17, "ERROR"), "fatal": (21, "FATAL")}
+LEVELS = {
+    "debug": (5, "DEBUG"),
+    "info": (9, "INFO"),
+    "warn": (13, "WARN"),
+    "error": (17, "ERROR"),
+    "fatal": (21, "FATAL"),
+}
 
 
 @pytest.fixture
@@ -87,7 +93,14 @@ def test_three_robots_through_a_collector_each_message_once_with_every_field(fle
         for robot in fleet.robots:
             extra = ("--ros1",) if robot.master is not None else ("--ros2",)
             ships.append(
-                ShipProcess(robot_env(robot), collector.url, tmp_path / f"spool-{robot.robot.name}", "--robot", robot.robot.name, *extra)
+                ShipProcess(
+                    robot_env(robot),
+                    collector.url,
+                    tmp_path / f"spool-{robot.robot.name}",
+                    "--robot",
+                    robot.robot.name,
+                    *extra,
+                )
             )
         for ship in ships:
             ship.wait_for(reading, what="the shipper reading /rosout")

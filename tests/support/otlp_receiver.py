@@ -64,6 +64,11 @@ class OtlpReceiver:
         with self._lock:
             self._refuse.extend([(status, retry_after)] * count)
 
+    def accept(self) -> None:
+        """Take every request from now on."""
+        with self._lock:
+            self._refuse.clear()
+
     def _serve(self) -> None:
         asyncio.set_event_loop(self._loop)
         app = web.Application(client_max_size=64 << 20)
@@ -105,9 +110,7 @@ class OtlpReceiver:
         with self._lock:
             self.records.extend(arrived)
             self.requests.append((time.monotonic(), 200))
-        return web.Response(
-            body=ExportLogsServiceResponse().SerializeToString(), content_type="application/x-protobuf"
-        )
+        return web.Response(body=ExportLogsServiceResponse().SerializeToString(), content_type="application/x-protobuf")
 
     def count(self) -> int:
         with self._lock:

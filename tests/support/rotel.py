@@ -60,7 +60,9 @@ class Rotel:
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             if self.process.poll() is not None:
-                raise RuntimeError(f"rotel-agent ended: {(self.directory / f'rotel-{self.port}.log').read_text()[-2000:]}")
+                raise RuntimeError(
+                    f"rotel-agent ended: {(self.directory / f'rotel-{self.port}.log').read_text()[-2000:]}"
+                )
             try:
                 with socket.create_connection(("127.0.0.1", self.port), timeout=0.5):
                     return

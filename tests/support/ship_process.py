@@ -4,6 +4,7 @@ stopped with SIGTERM (as systemd does), or killed with SIGKILL."""
 from __future__ import annotations
 
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -71,7 +72,7 @@ class ShipProcess:
 def number_after(line: str, word: str) -> int:
     """The number written after ``word`` in a status line (``sent 1,200,`` -> 1200); -1 in a
     line that is no status line."""
-    for part in line.split("ship: ", 1)[-1].replace(";", ",").split(","):
+    for part in re.split(r"[;,] ", line.split("ship: ", 1)[-1]):
         part = part.strip()
         if part.startswith(word + " "):
             return int(part.split()[1].replace(",", ""))

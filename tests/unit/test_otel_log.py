@@ -63,7 +63,11 @@ def test_a_ros2_record_and_back():
     log = to_otel(record, host="robot7", robot="picker", observed_ns=5)
     assert log.resource == {"service.name": "nav.planner", "host.name": "robot7", "service.namespace": "picker"}
     assert log.scope_name == "nav.planner"
-    assert log.attributes == {"code.file.path": "/src/planner.cpp", "code.function.name": "plan", "code.line.number": 120}
+    assert log.attributes == {
+        "code.file.path": "/src/planner.cpp",
+        "code.function.name": "plan",
+        "code.line.number": 120,
+    }
     assert (log.time_unix_nano, log.observed_unix_nano, log.severity_number, log.severity_text) == (
         1_765_000_000_123_456_789,
         5,
@@ -72,7 +76,15 @@ def test_a_ros2_record_and_back():
     )
     back = from_otel(log, source="chdb:///x")
     assert back == LogRecord(
-        record.stamp_ns, 30, "nav.planner", "no path\nat all", "/src/planner.cpp", "plan", 120, "chdb:///x", robot="picker"
+        record.stamp_ns,
+        30,
+        "nav.planner",
+        "no path\nat all",
+        "/src/planner.cpp",
+        "plan",
+        120,
+        "chdb:///x",
+        robot="picker",
     )
 
 
@@ -96,7 +108,12 @@ def test_another_sources_record():
         {"code.filepath": "/srv/app.py", "code.function": "write", "code.lineno": 42},
     )
     record = from_otel(log)
-    assert (record.stamp_ns, record.level, record.node, record.robot) == (1_700_000_000_000_000_000, 30, "app.storage", "db-3")
+    assert (record.stamp_ns, record.level, record.node, record.robot) == (
+        1_700_000_000_000_000_000,
+        30,
+        "app.storage",
+        "db-3",
+    )
     assert (record.file, record.function, record.line) == ("/srv/app.py", "write", 42)
 
 
@@ -109,7 +126,9 @@ def test_line_numbers(value, line):
 
 def test_a_batch_in_columns_maps_as_its_records_do():
     records = [
-        LogRecord(10 + i, [10, 25, 50][i % 3], f"n{i % 2}", f"m{i}", "f.py" if i % 2 else "", "fn", i, robot="r" if i else "")
+        LogRecord(
+            10 + i, [10, 25, 50][i % 3], f"n{i % 2}", f"m{i}", "f.py" if i % 2 else "", "fn", i, robot="r" if i else ""
+        )
         for i in range(6)
     ]
     columns = RecordColumns.from_records(records)

@@ -53,7 +53,8 @@ def test_sql_reads_the_level_as_python_does(tmp_path):
     with table_client(address) as client:
         client.create_table()
         values = ", ".join(
-            f"(fromUnixTimestamp64Nano(toInt64({T0 + i})), {number}, '{text}')" for i, (number, text) in enumerate(pairs)
+            f"(fromUnixTimestamp64Nano(toInt64({T0 + i})), {number}, '{text}')"
+            for i, (number, text) in enumerate(pairs)
         )
         client._client.command(
             f"INSERT INTO default.otel_logs (Timestamp, SeverityNumber, SeverityText) VALUES {values}"
@@ -76,7 +77,13 @@ def test_another_collectors_rows_read_sensibly(tmp_path):
     with table_client(address) as client:
         pages = TablePages(client)
         first, second = pages.newest(10).records()
-    assert (first.level, first.node, first.robot, first.file, first.line) == (30, "checkout", "web-3", "/srv/pay.py", 88)
+    assert (first.level, first.node, first.robot, first.file, first.line) == (
+        30,
+        "checkout",
+        "web-3",
+        "/srv/pay.py",
+        88,
+    )
     assert (second.level, second.node, second.robot, second.msg) == (20, "lib", "", "\ufffdA")
     assert pages.repaired == 1
 
