@@ -151,8 +151,9 @@ class WarehouseSource:
         """What the warehouse is doing, for the status line (made at each call)."""
         doing, since, problem = self._doing, self._since, self._problem
         seconds = self._clock() - since
-        if doing.startswith("asking") and seconds >= SLOW_S:
-            doing = f"{doing} {seconds:.0f} s"
+        slow = ""
+        if doing.startswith("asking") and seconds >= SLOW_S:  # said where the line keeps it
+            slow = doing = f"{doing}: {seconds:.0f} s so far"
         path = f"{self.loaded:,} rows read"
         if doing:
             path += f", {doing}"
@@ -167,7 +168,8 @@ class WarehouseSource:
         return SourceStatus(
             topic="",
             publishers=1 if self.generation else 0,
-            origin=self.name,
+            origin=self.address.short_text(),
+            remark=slow,
             path=path,
             problem=problem,
             running=self._running,

@@ -51,6 +51,13 @@ class Address:
     def readable(self) -> bool:
         return self.kind != OTLP
 
+    def short_text(self, limit: int = 48) -> str:
+        """``text`` in at most ``limit`` characters: a long directory's end kept."""
+        if len(self.text) <= limit:
+            return self.text
+        scheme, _, rest = self.text.partition("://")
+        return f"{scheme}://…{rest[-(limit - len(scheme) - 4) :]}"
+
 
 def is_warehouse(text: str) -> bool:
     """Whether a positional argument names the warehouse (``clickhouse://``, ``chdb://``...)."""
@@ -94,7 +101,12 @@ def _chdb(text: str) -> Address:
         raise AddressError("chdb:// needs a directory: chdb:///var/lib/logs (or chdb://./logs)")
     database, table = _options(query, "chdb")
     directory = os.path.abspath(os.path.expanduser(unquote(path)))
-    shown = f"chdb://{directory}" + (f"?{query}" if query else "")
+    options = [
+        f"{name}={value}"
+        for name, value in (("database", database), ("table", table))
+        if value and value not in (DEFAULT_DATABASE, DEFAULT_TABLE)
+    ]
+    shown = f"chdb://{directory}" + (f"?{'&'.join(options)}" if options else "")
     return Address(CHDB, directory, database or DEFAULT_DATABASE, table, text=shown)
 
 

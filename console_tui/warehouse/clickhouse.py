@@ -33,10 +33,12 @@ class WarehouseError(Exception):
 
 
 def _driver() -> Any:
-    # The driver logs what it also raises, on standard error: under the console's screen.
-    quiet = logging.getLogger("clickhouse_connect")
-    quiet.propagate = False
-    quiet.addHandler(logging.NullHandler())
+    # The driver (and urllib3 under it) logs what it also raises, on standard error: under
+    # the console's screen.
+    for name in ("clickhouse_connect", "urllib3.connectionpool"):
+        quiet = logging.getLogger(name)
+        quiet.propagate = False
+        quiet.addHandler(logging.NullHandler())
     try:
         import clickhouse_connect
     except ImportError as error:

@@ -107,8 +107,7 @@ class TablePages:
         stamps = columns[0] if columns else []
         if stamps:
             first = int(stamps[0])
-            if self.newest_ns is None:
-                self._remember_recent(columns)
+            self._remember_recent(columns)  # what is read is never late (``newer``)
             if self.oldest_ns is None or first < self.oldest_ns:
                 self._oldest_ids = set()
             self.oldest_ns = first
@@ -123,6 +122,8 @@ class TablePages:
         if self.newest_ns is None:
             return self.newest(count)
         newest, since = self.newest_ns, self.newest_ns - LOOKBACK_NS
+        if self.oldest_ns is not None:  # rows before the oldest read are older, not late
+            since = max(since, self.oldest_ns)
         span = f"Timestamp >= {_ns(since)} AND Timestamp <= {_ns(newest)}"
         identities = self.client.columns(f"SELECT {IDENTITY} FROM {self.client.table} WHERE {self._where(span)}")
         late = sorted({int(i) for i in (identities[0] if identities else [])} - self._recent.keys())
@@ -142,7 +143,7 @@ class TablePages:
     def first(self, count: int, within: int | None = None) -> RecordColumns:
         """The window's first page for reading it forward (``forward``): from its start, or with
         ``within`` from the ``within``-th newest row (``--max-messages``)."""
-        self.newest_ns, self._recent = None, {}
+        self.newest_ns, self.oldest_ns, self._recent = None, None, {}
         if within is not None:
             bound = self._bound("1", "DESC", max(within, 1) - 1)
             if bound is not None:
@@ -161,6 +162,8 @@ class TablePages:
         page = self._page(columns, edge)
         stamps = columns[0] if columns else []
         if stamps:
+            if self.oldest_ns is None:
+                self.oldest_ns = int(stamps[0])
             last = int(stamps[-1])
             self._recent = {i: s for i, s in self._recent.items() if s == last}
             self.newest_ns = last

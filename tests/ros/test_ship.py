@@ -121,8 +121,8 @@ def test_three_robots_through_a_collector_each_message_once_with_every_field(fle
         robot = record.body.split()[1]
         assert record.resource["service.namespace"] == robot
         assert record.resource["host.name"]
-    for name, messages in logged.items():
-        by_body = {record.body: record for record in arrived}
+    by_body = {record.body: record for record in arrived}
+    for messages in logged.values():
         for message in messages:
             record = by_body[message["msg"]]
             if "level_name" in message:  # ROS 1: rospy's node name, its file, function and line

@@ -49,7 +49,7 @@ def test_the_table_is_the_exporters_and_records_come_back_exactly(tmp_path):
 def test_sql_reads_the_level_as_python_does(tmp_path):
     address = chdb_address(tmp_path)
     texts = ["", "TRACE", "debug", "Info", "WARNING", "err", "critical", "25", "31", "255", "256", "x", "ınfo", "0"]
-    pairs = list(itertools.product(range(0, 27), texts))
+    pairs = list(itertools.product(range(27), texts))
     with table_client(address) as client:
         client.create_table()
         values = ", ".join(

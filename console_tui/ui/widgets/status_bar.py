@@ -220,7 +220,9 @@ def _source_parts(status: SourceStatus, styled: Callable[..., Text]) -> list[Par
     if status.path:
         path = one_line(status.path, 200)
         demo = path.startswith("demo")
-        priority = DETAIL if status.take_path else DEMO if demo else WHERE
+        # How messages are taken, and what a log warehouse has read (a source with words of its
+        # own for the empty table), are details; a demo's and a file's are where it reads.
+        priority = DETAIL if status.take_path or status.empty_text else DEMO if demo else WHERE
         parts.append(Part(styled((path, "where")), priority, styled(("demo", "where")) if demo else None))
     return parts
 
@@ -241,7 +243,8 @@ def _short_origin(origin: str) -> str:
     """``ROS 2 domain 11`` as ``domain 11``; ``ROS 1 http://robot:11311/`` as ``ROS 1 robot:11311``."""
     if origin.startswith("ROS 2 domain "):
         return origin.removeprefix("ROS 2 ")
-    return origin.replace("http://", "").rstrip("/")
+    short = origin.replace("http://", "").rstrip("/")
+    return short if len(short) <= 28 else "…" + short[-27:]  # a log warehouse's long address: its end
 
 
 #: A fleet's robot's state in one mark (``SourceStatus.state``): the status line's legend.
