@@ -142,14 +142,15 @@ def default_spool(url_text: str) -> str:
     return str(state_dir() / "spool" / digest)
 
 
-def status_line(state: ShipState, sources: str = "") -> str:
-    """``sent 1,200, spooled 0 (0), lost 0`` and what it waits for."""
+def status_line(state: ShipState, sources: str = "", *, intake_lost: int = 0) -> str:
+    """``sent 1,200, spooled 0 (0), lost 0`` and what it waits for; ``intake_lost``: what the
+    live sources lost before the spool (in the middleware, unreadable)."""
     spool = state.spool
     text = (
         f"sent {state.sent:,}, spooled {spool.records:,} ({_bytes(spool.size)} in "
-        f"{plural(spool.batches, 'batch', 'batches')}), lost {state.lost:,}"
+        f"{plural(spool.batches, 'batch', 'batches')}), lost {state.lost + intake_lost:,}"
     )
-    reasons = []
+    reasons = [f"{intake_lost:,} before the spool, by the live source"] if intake_lost else []
     if spool.dropped_records:
         reasons.append(f"{spool.dropped_records:,} dropped from the full spool")
     if state.refused:
@@ -213,10 +214,11 @@ def main(argv: Sequence[str]) -> int:
             live.source.start()
         _run(shipper, lives, stop, args)
     finally:
+        lost = intake_lost(lives)
         for live in lives:
             live.close()
         shipper.stop(STOP_TIMEOUT_S)
-        _report(shipper, args.status, final=True)
+        _report(shipper, args.status, final=True, lost=lost)
         spool.close()
         for sig, handler in previous.items():
             signal.signal(sig, handler)
@@ -231,13 +233,24 @@ def _run(shipper: Shipper, lives: Sequence[LiveIntake], stop: SignalStop, args: 
     while not stop.wait(0.25):
         reports.tell()
         state = shipper.state()
-        kind = (bool(state.problem), bool(state.lost))
-        line = status_line(state, "; ".join(filter(None, [shipper.spool_problem, sources_text(lives)])))
+        lost = intake_lost(lives)
+        kind = (bool(state.problem), bool(state.lost + lost))
+        line = status_line(
+            state, "; ".join(filter(None, [shipper.spool_problem, sources_text(lives)])), intake_lost=lost
+        )
         now = time.monotonic()
         changed = _counts(line) != _counts(last_line)
         if kind != last_kind or (changed and now - last_at >= args.status_every):
             _report(shipper, args.status, line=line)
             last_line, last_kind, last_at = line, kind, now
+
+
+def intake_lost(lives: Sequence[LiveIntake]) -> int:
+    """What the live sources lost before anything reached the spool (their queue shared: once)."""
+    statuses = [live.source.status for live in lives]
+    if not statuses:
+        return 0
+    return int(sum(s.lost - s.lost_queue for s in statuses) + max(s.lost_queue for s in statuses))
 
 
 def sources_text(lives: Sequence[LiveIntake]) -> str:
@@ -256,8 +269,8 @@ def _counts(line: str) -> str:
     return line.split("; retrying in", 1)[0]
 
 
-def _report(shipper: Shipper, status_file: str | None, *, line: str = "", final: bool = False) -> None:
-    text = line or status_line(shipper.state(), shipper.spool_problem)
+def _report(shipper: Shipper, status_file: str | None, *, line: str = "", final: bool = False, lost: int = 0) -> None:
+    text = line or status_line(shipper.state(), shipper.spool_problem, intake_lost=lost)
     if final:
         text = f"stopped: {text}"
     _say(text)
