@@ -76,8 +76,21 @@ def main() -> None:
         url = collector.url
     publisher = Child(["--role", "publisher", "--index", "0"], env)
     ship = subprocess.Popen(
-        [sys.executable, "-m", "console_tui", "ship", url, "--topic", TOPIC, "--spool", str(folder / "spool")]
-        + ["--robot", "bench", "--status-every", "1"],
+        [
+            sys.executable,
+            "-m",
+            "console_tui",
+            "ship",
+            url,
+            "--topic",
+            TOPIC,
+            "--spool",
+            str(folder / "spool"),
+            "--robot",
+            "bench",
+            "--status-every",
+            "1",
+        ],
         stdin=subprocess.DEVNULL,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
@@ -114,7 +127,9 @@ def main() -> None:
     last = [line for line in stderr.splitlines() if "sent" in line][-1:]
     print(machine_line())
     print()
-    print("| rate offered | seconds | published | received | lost | shipper CPU (cores, while sending) | CPU per message |")
+    print(
+        "| rate offered | seconds | published | received | lost | shipper CPU (cores, while sending) | CPU per message |"
+    )
     print("|---|---|---|---|---|---|---|")
     seconds = float(done["elapsed"])
     print(

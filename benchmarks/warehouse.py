@@ -23,6 +23,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import gc
+import os
 import subprocess
 import sys
 import time
@@ -124,7 +125,9 @@ async def in_the_app(directory: Path, queries: list[tuple[str, str]]) -> dict:
             probe.clear()
             changed = time.perf_counter()
             await pilot.press("enter")
-            await until(pilot, lambda g=generation, q=query: source.generation > g and expected[q][:60] in screen_text(app))
+            await until(
+                pilot, lambda g=generation, q=query: source.generation > g and expected[q][:60] in screen_text(app)
+            )
             results[f"rule change: {query}"] = (time.perf_counter() - changed, probe.longest()[0])
         await pilot.press("slash")
         await pilot.press("ctrl+u")
@@ -142,7 +145,7 @@ async def in_the_app(directory: Path, queries: list[tuple[str, str]]) -> dict:
         results["paged back to"] = (len(app.main.store), time.perf_counter() - paged, longest_page, probe.longest()[0])
         await probe.stop()
         gc.collect()
-        results["rss"] = process_rss_mb(None)
+        results["rss"] = process_rss_mb(os.getpid())
     source.stop()
     return results
 
@@ -151,7 +154,8 @@ def rss_of_a_million_in_memory() -> float:
     """The app's RSS over 1,000,000 records made in memory (another process: a clean start)."""
     code = f"""
 import asyncio, sys
-sys.path[:0] = [{str(HERE)!r}, {str(HERE.parent / 'tests')!r}]
+sys.path[:0] = [{str(HERE)!r}, {str(HERE.parent / "tests")!r}]
+import os
 from _probe import process_rss_mb
 from console_tui.model.store import LogStore
 from console_tui.sources.intake_process.synthetic import synthetic_record
@@ -164,7 +168,7 @@ async def main():
     async with app.run_test(size=(160, 48)) as pilot:
         await pilot.pause(1)
         import gc; gc.collect()
-        print(process_rss_mb(None))
+        print(process_rss_mb(os.getpid()))
 asyncio.run(main())
 """
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
@@ -209,7 +213,9 @@ def main() -> None:
     printed = [line for line in tail.stdout.splitlines() if line.strip()]
     print(f"| `tail --query '\"{RARE}\"'`: {len(printed)} rows printed | {tail_s:.2f} | |")
     print()
-    print(f"RSS of the app with {rows:,} warehouse rows: {results['rss']:.0f} MB; over 1,000,000 records made in memory: {memory:.0f} MB")
+    print(
+        f"RSS of the app with {rows:,} warehouse rows: {results['rss']:.0f} MB; over 1,000,000 records made in memory: {memory:.0f} MB"
+    )
     for line in printed:
         print("   ", line)
 

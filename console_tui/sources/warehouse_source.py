@@ -2,8 +2,8 @@
 
 ``WarehouseSource`` asks the table for the newest rows of its window (``--since``/``--until``
 and the rules' SQL, ``warehouse.pushdown``) and hands them over as ``Delivery``s, which the
-app takes on its own clock (``take``); then, while it follows, the newer rows every
-``poll_s``, and older ones when asked (``ask_older``: the person scrolled past the oldest
+app takes on its own clock (``take``), a small first page and then older ones up to
+``prefetch_rows``; then, while it follows, the newer rows every ``poll_s``, and older ones when asked (``ask_older``: the person scrolled past the oldest
 row). New rules (``ask``) that change what SQL can leave out start a new generation: the app
 drops the rows of the old one and takes the new one's. Nothing here waits for the app, and
 the app never waits for the warehouse: a slow or absent warehouse shows in ``status`` (what it
@@ -26,8 +26,11 @@ from ..warehouse.pages import TablePages
 from ..warehouse.pushdown import where, window_sql
 from .status import SourceStatus
 
-#: Rows of the first page: the first screen, and what a rule change shows at once.
-FIRST_ROWS = 20_000
+#: Rows of the first page: the first screen, and what a rule change shows at once (few, so
+#: that they are found in the table's newest part).
+FIRST_ROWS = 1_000
+#: Rows read after the first page without being asked (older pages, placed before it).
+PREFETCH_ROWS = 50_000
 #: Rows of each older page, and of each poll while following.
 PAGE_ROWS = 50_000
 POLL_S = 2.0
@@ -69,6 +72,7 @@ class WarehouseSource:
         max_rows: int = 1_000_000,
         first_rows: int = FIRST_ROWS,
         page_rows: int = PAGE_ROWS,
+        prefetch_rows: int = PREFETCH_ROWS,
         follow: bool = True,
         poll_s: float = POLL_S,
         client: Callable[[Address], TableClient] = TableClient,
@@ -79,6 +83,7 @@ class WarehouseSource:
         self.max_rows = max_rows
         self.first_rows = min(first_rows, max_rows)
         self.page_rows = page_rows
+        self.prefetch_rows = min(prefetch_rows, max_rows)
         #: Following: the newer rows are asked for (not with ``--until``).
         self.follow = follow and until_ns is None
         self.poll_s = poll_s
@@ -205,12 +210,13 @@ class WarehouseSource:
                     page = pages.newest(self.first_rows)
                     self.generation, self.loaded, self._older_asked = generation, len(page), False
                     self._deliver(generation, NEWEST, page)
-                elif self._older_asked:
-                    self._older_asked = False
+                elif self._older_asked or (self.loaded < self.prefetch_rows and not pages.at_start):
+                    asked, self._older_asked = self._older_asked, False
                     room = self.max_rows - self.loaded
                     if room > 0 and not pages.at_start:
                         self._set("asking for older rows")
-                        page = pages.older(min(self.page_rows, room))
+                        size = self.page_rows if asked else self.prefetch_rows - self.loaded
+                        page = pages.older(min(size, room))
                         self.loaded += len(page)
                         self._deliver(generation, OLDER, page)
                 elif self.follow:
@@ -232,6 +238,8 @@ class WarehouseSource:
                 retry = min(retry * 2, MAX_RETRY_S)
                 continue
             if self._asked_generation != self.generation or self._older_asked:
+                continue
+            if self.loaded < self.prefetch_rows and not self.at_start:
                 continue
             self._wake.wait(self.poll_s if self.follow else None)
             self._wake.clear()

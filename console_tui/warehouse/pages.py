@@ -27,6 +27,8 @@ from .schema import RECORD_COLUMNS
 MAX_PAGE_ROWS = 200_000
 #: How far behind the newest row a row may reach the table and still be found by ``newer``.
 LOOKBACK_NS = 15_000_000_000
+#: The spans of time, back from the newest row, in which a page's bound is looked for in turn.
+SPANS_S = (600, 3_600, 6 * 3_600, 86_400, 7 * 86_400)
 #: Rows at one ``Timestamp`` beyond a page's count read to keep a group whole.
 TIE_ROOM = 1_000
 _SELECT = ", ".join(expression for _, expression in RECORD_COLUMNS)
@@ -95,11 +97,29 @@ class TablePages:
             return self.newest(count)
         return self._backward(f"Timestamp <= {_ns(self.oldest_ns)}", count)
 
+    def _newest_bound(self, where: str, offset: int, top_ns: int | None) -> int | None:
+        """``_bound`` going back from ``top_ns`` (the newest row: None) in growing spans of time
+        (``SPANS_S``), so that a page of recent rows reads only the recent part of the table
+        (the partitions, and the primary key's ``TimestampTime``, leave the rest unread)."""
+        if top_ns is None:
+            newest = self.client.value(
+                f"SELECT toUnixTimestamp64Nano(max(Timestamp)) FROM {self.client.table} WHERE {self._where(where)}"
+            )
+            if newest is None or not int(newest):
+                return None
+            top_ns = int(newest)
+        for span in SPANS_S:
+            floor_s = top_ns // 1_000_000_000 - span
+            bound = self._bound(f"({where}) AND TimestampTime >= toDateTime({max(floor_s, 0)})", "DESC", offset)
+            if bound is not None:
+                return bound
+        return self._bound(where, "DESC", offset)
+
     def _backward(self, where: str, count: int) -> RecordColumns:
         count = min(max(count, 1), MAX_PAGE_ROWS)
-        bound = self._bound(where, "DESC", count - 1)
+        bound = self._newest_bound(where, count - 1, self.oldest_ns)
         if bound is not None:
-            where = f"({where}) AND Timestamp >= {_ns(bound)}"
+            where = f"({where}) AND Timestamp >= {_ns(bound)} AND TimestampTime >= toDateTime({bound // 1_000_000_000})"
         columns = [column[::-1] for column in self._rows(where, "DESC", count + TIE_ROOM + len(self._oldest_ids))]
         page = self._page(columns, self._oldest_ids)
         if bound is None or not len(page):

@@ -39,7 +39,7 @@ def fleet_records(count: int, start: int = 0) -> list[LogRecord]:
 
 
 def warehouse_app(address, **options) -> tuple[ConsoleApp, WarehouseSource]:
-    source = WarehouseSource(address, first_rows=60, page_rows=60, poll_s=0.2, **options)
+    source = WarehouseSource(address, first_rows=60, page_rows=60, prefetch_rows=0, poll_s=0.2, **options)
     return ConsoleApp(store=LogStore(), sources=[source], utc=True), source
 
 
