@@ -29,8 +29,10 @@ from .status import SourceStatus
 #: Rows of the first page: the first screen, and what a rule change shows at once (few, so
 #: that they are found in the table's newest part).
 FIRST_ROWS = 1_000
-#: Rows read after the first page without being asked (older pages, placed before it).
+#: Rows read after the first page without being asked (older pages, placed before it), and
+#: at most this many a query.
 PREFETCH_ROWS = 50_000
+PREFETCH_PIECE = 10_000
 #: Rows of each older page, and of each poll while following.
 PAGE_ROWS = 50_000
 POLL_S = 2.0
@@ -215,7 +217,8 @@ class WarehouseSource:
                     room = self.max_rows - self.loaded
                     if room > 0 and not pages.at_start:
                         self._set("asking for older rows")
-                        size = self.page_rows if asked else self.prefetch_rows - self.loaded
+                        # Prefetched a piece at a time: new rules wait for one piece at most.
+                        size = self.page_rows if asked else min(self.prefetch_rows - self.loaded, PREFETCH_PIECE)
                         page = pages.older(min(size, room))
                         self.loaded += len(page)
                         self._deliver(generation, OLDER, page)

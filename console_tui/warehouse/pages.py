@@ -117,12 +117,13 @@ class TablePages:
 
     def _backward(self, where: str, count: int) -> RecordColumns:
         count = min(max(count, 1), MAX_PAGE_ROWS)
-        bound = self._newest_bound(where, count - 1, self.oldest_ns)
+        # Past the rows read at the oldest time (they are asked again: ``<=``), ``count`` more.
+        bound = self._newest_bound(where, count - 1 + len(self._oldest_ids), self.oldest_ns)
         if bound is not None:
             where = f"({where}) AND Timestamp >= {_ns(bound)} AND TimestampTime >= toDateTime({bound // 1_000_000_000})"
         columns = [column[::-1] for column in self._rows(where, "DESC", count + TIE_ROOM + len(self._oldest_ids))]
         page = self._page(columns, self._oldest_ids)
-        if bound is None or not len(page):
+        if bound is None:  # fewer rows than asked for: these were the oldest
             self.at_start = True
         stamps = columns[0] if columns else []
         if stamps:
