@@ -98,6 +98,17 @@ class TableClient:
         except Exception as error:  # the driver's and the engine's, of every kind
             raise WarehouseError(describe(error)) from None
 
+    def lazy_rows(self, limit: int) -> str:
+        """The SETTINGS clause that reads a row's heavy columns only for the ``limit`` rows an
+        ``ORDER BY ... LIMIT`` keeps, on an engine that can (ClickHouse 25.5 and later); else ""."""
+        try:
+            major, minor = (int(part) for part in str(self._client.server_version).split(".")[:2])
+        except (AttributeError, ValueError):
+            return ""
+        if (major, minor) < (25, 5):
+            return ""
+        return f" SETTINGS query_plan_max_limit_for_lazy_materialization = {int(limit)}"
+
     def close(self) -> None:
         try:
             self._client.close()

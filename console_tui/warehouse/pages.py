@@ -69,10 +69,14 @@ class TablePages:
     def _where(self, where: str) -> str:
         return f"({self.condition}) AND ({where})"
 
-    def _rows(self, where: str, order: str, limit: int) -> list[list[Any]]:
+    def _rows(self, where: str, order: str, limit: int, *, span: str = "") -> list[list[Any]]:
+        """Rows, ``span`` (a condition on the time) read first (``PREWHERE``): the rest of a row,
+        its maps and message, only where it holds; on an engine that can, only for the rows
+        the ``LIMIT`` keeps (lazy materialization)."""
+        prewhere = f"PREWHERE {span} " if span else ""
         sql = (
-            f"SELECT {_SELECT} FROM {self.client.table} WHERE {self._where(where)} "
-            f"ORDER BY Timestamp {order} LIMIT {int(limit)}"
+            f"SELECT {_SELECT} FROM {self.client.table} {prewhere}WHERE {self._where(where)} "
+            f"ORDER BY Timestamp {order} LIMIT {int(limit)}{self.client.lazy_rows(limit)}"
         )
         return [list(column) for column in self.client.columns(sql)]
 
@@ -101,10 +105,8 @@ class TablePages:
         """``_bound`` going back from ``top_ns`` (the newest row: None) in growing spans of time
         (``SPANS_S``), so that a page of recent rows reads only the recent part of the table
         (the partitions, and the primary key's ``TimestampTime``, leave the rest unread)."""
-        if top_ns is None:
-            newest = self.client.value(
-                f"SELECT toUnixTimestamp64Nano(max(Timestamp)) FROM {self.client.table} WHERE {self._where(where)}"
-            )
+        if top_ns is None:  # the table's newest row (the table's, not the window's: one cheap column)
+            newest = self.client.value(f"SELECT toUnixTimestamp64Nano(max(Timestamp)) FROM {self.client.table}")
             if newest is None or not int(newest):
                 return None
             top_ns = int(newest)
@@ -119,9 +121,11 @@ class TablePages:
         count = min(max(count, 1), MAX_PAGE_ROWS)
         # Past the rows read at the oldest time (they are asked again: ``<=``), ``count`` more.
         bound = self._newest_bound(where, count - 1 + len(self._oldest_ids), self.oldest_ns)
+        span = ""
         if bound is not None:
-            where = f"({where}) AND Timestamp >= {_ns(bound)} AND TimestampTime >= toDateTime({bound // 1_000_000_000})"
-        columns = [column[::-1] for column in self._rows(where, "DESC", count + TIE_ROOM + len(self._oldest_ids))]
+            span = f"Timestamp >= {_ns(bound)} AND TimestampTime >= toDateTime({bound // 1_000_000_000})"
+        limit = count + TIE_ROOM + len(self._oldest_ids)
+        columns = [column[::-1] for column in self._rows(where, "DESC", limit, span=span)]
         page = self._page(columns, self._oldest_ids)
         if bound is None:  # fewer rows than asked for: these were the oldest
             self.at_start = True
@@ -152,7 +156,8 @@ class TablePages:
         for start in range(0, len(late), LATE_IDS_A_QUERY):
             ids = ", ".join(str(i) for i in late[start : start + LATE_IDS_A_QUERY])
             parts.append(self._rows(f"{span} AND {IDENTITY} IN ({ids})", "ASC", LATE_IDS_A_QUERY * 2))
-        parts.append(self._rows(f"Timestamp > {_ns(newest)}", "ASC", min(count, MAX_PAGE_ROWS)))
+        newer = f"Timestamp > {_ns(newest)} AND TimestampTime >= toDateTime({newest // 1_000_000_000})"
+        parts.append(self._rows("1", "ASC", min(count, MAX_PAGE_ROWS), span=newer))
         columns = [list(chain.from_iterable(part[i] for part in parts if part)) for i in range(len(RECORD_COLUMNS))]
         if columns[0]:
             order = sorted(range(len(columns[0])), key=columns[0].__getitem__)
@@ -176,10 +181,11 @@ class TablePages:
         count = min(max(count, 1), MAX_PAGE_ROWS)
         where = "1" if self.newest_ns is None else f"Timestamp >= {_ns(self.newest_ns)}"
         bound = self._bound(where, "ASC", count - 1)
+        span = where if where != "1" else ""
         if bound is not None:
-            where = f"({where}) AND Timestamp <= {_ns(bound)}"
+            span = f"{span} AND Timestamp <= {_ns(bound)}" if span else f"Timestamp <= {_ns(bound)}"
         edge = {i for i, s in self._recent.items() if s == self.newest_ns}
-        columns = self._rows(where, "ASC", count + TIE_ROOM + len(edge))
+        columns = self._rows("1", "ASC", count + TIE_ROOM + len(edge), span=span)
         page = self._page(columns, edge)
         stamps = columns[0] if columns else []
         if stamps:
