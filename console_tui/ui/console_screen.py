@@ -196,7 +196,13 @@ class ConsoleScreen(Screen[None]):
             update_status=status,
         )
         self.warehouse = WarehouseController(
-            store, table, self.marks, self.intake, sources=self.sources, update_status=status
+            store,
+            table,
+            self.marks,
+            self.intake,
+            sources=self.sources,
+            reapply_rules=lambda: self.filtering.apply_rules(self.filtering.rules),
+            update_status=status,
         )
         self.filtering.listeners.append(self.warehouse.rules_changed)
         self.jumps = JumpsController(

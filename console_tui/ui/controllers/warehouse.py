@@ -56,6 +56,7 @@ class WarehouseController:
         intake: IntakeController,
         *,
         sources: Sequence[object],
+        reapply_rules: Callable[[], None],
         update_status: Callable[[], None],
     ) -> None:
         self._store = store
@@ -64,6 +65,9 @@ class WarehouseController:
         self._intake = intake
         self.warehouses = warehouses_of(sources)
         self._update_status = update_status
+        #: The rules applied again to what the store holds (after a generation's rows went: the
+        #: view's filtering of them, in the background, would hold the new rows back).
+        self._reapply_rules = reapply_rules
         #: The generation each warehouse's rows in the store belong to.
         self._shown: dict[int, int] = {}
 
@@ -76,13 +80,16 @@ class WarehouseController:
     def _take(self, warehouse: Warehouse, kind: str, generation: int, columns: RecordColumns) -> None:
         key = id(warehouse)
         if kind == NEWEST:
-            if key in self._shown:  # read again: the rows of the generation before go
+            again = key in self._shown
+            if again:  # read again: the rows of the generation before go
                 self._drop(warehouse.name)
             self._shown[key] = generation
             if not len(self._store):
                 self._intake.add_batches([columns])
             else:
                 self._older(columns)
+            if again:
+                self._reapply_rules()
         elif self._shown.get(key) != generation:
             return
         elif kind == NEWER:
