@@ -233,7 +233,8 @@ class WarehouseSource:
                 self._set("", "")
                 retry = RETRY_S
             except WarehouseError as error:
-                self._set("", f"the log warehouse did not answer: {error} (asking again in {retry:.0f} s)")
+                where = self.address.short_text(32)
+                self._set("", f"{where} did not answer: {error} (asking again in {retry:.0f} s)")
                 if client is not None:
                     client.close()
                 client, pages = None, None
