@@ -85,8 +85,8 @@ def run_console(kind: str) -> None:
     sys.path.insert(0, str(Path(__file__).parent))
     from _probe import process_cpu
 
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
     from console_tui.sources.intake_process.parent import ProcessSource
     from console_tui.sources.ros1.live_source import Ros1LiveSource
 

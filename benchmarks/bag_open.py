@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from _report import machine_line
 
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files import open_log_file
 
 from support.recordings import write_ros1_bag, write_rosbag2

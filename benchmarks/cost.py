@@ -49,8 +49,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from _report import machine_line, table
 from store import RecordMaker
 
-from console_tui.model.record_batch import BatchPacker, BatchUnpacker, RecordColumns
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record_batch import BatchPacker, BatchUnpacker, RecordColumns
 from console_tui.sources.intake_process.frames import BATCH, read_frames, write_frame
 
 #: The intake process sends what it took every this many seconds (``child.FLUSH_S``).
@@ -77,10 +77,10 @@ def timed(work: Callable[[], Any]) -> float:
 def stage_costs(batches: list[RecordColumns], kept: int | None = None) -> dict[str, float]:
     """CPU seconds of each stage over ``batches``; with ``kept``, the store keeps that many
     records and the stages after the store are timed only once it is full."""
-    from console_tui.model.node_stats import NodeStats
-    from console_tui.model.storms import StormRows
-    from console_tui.model.timeline import Timeline
-    from console_tui.model.view import LogView
+    from console_tui.model.overview.node_stats import NodeStats
+    from console_tui.model.overview.storms import StormRows
+    from console_tui.model.overview.timeline import Timeline
+    from console_tui.model.view.log_view import LogView
 
     packer = BatchPacker()
     payloads: list[bytes] = []
@@ -148,7 +148,7 @@ def stage_costs(batches: list[RecordColumns], kept: int | None = None) -> dict[s
 def frame_cost(size: tuple[int, int], seconds: float) -> float:
     """CPU seconds a frame of the app takes: the table (last rows changed), its scroll bar,
     the timeline strip and the status line drawn anew, in the real app, headless."""
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.ui.app import ConsoleApp
 
     app = ConsoleApp(queue=IntakeQueue(), sources=[])

@@ -33,10 +33,10 @@ TARGET_MB = 120.0
 
 
 async def run(minutes: float, every: float, loggers: bool) -> list[list[object]]:
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
     from console_tui.demo.launcher import DEMO_ENVIRONMENT, DemoNodes
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.live import open_live
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
     from console_tui.ui.app import ConsoleApp
 
     os.environ.update(DEMO_ENVIRONMENT)

@@ -108,7 +108,12 @@ def say(**fields: Any) -> None:
 # -- the publisher process ---------------------------------------------------------------------
 
 
-def message_pool(index: int, size: int = 512) -> list[bytes]:
+#: The levels of a pool's messages: ``mixed`` (every level, INFO most), or ``debug`` (a robot
+#: logging at DEBUG: every message DEBUG but the pool's first, an ERROR; ``level_filter.py``).
+POOL_LEVELS = ("mixed", "debug")
+
+
+def message_pool(index: int, size: int = 512, levels: str = "mixed") -> list[bytes]:
     """Realistic serialized Log messages: a few nodes, files and functions, 60-120 char texts."""
     from rcl_interfaces.msg import Log
     from rclpy.serialization import serialize_message
@@ -137,6 +142,8 @@ def message_pool(index: int, size: int = 512) -> list[bytes]:
         now = time.time_ns()
         message.stamp.sec, message.stamp.nanosec = divmod(now, 1_000_000_000)
         message.level = rng.choice([10, 20, 20, 20, 30, 40, 50])
+        if levels == "debug":
+            message.level = 40 if number == 0 else 10
         message.name = f"bench.publisher{index}.{rng.choice(['planner', 'controller', 'driver', 'camera'])}"
         text = f"[{number}] " + " ".join(rng.choice(words) for _ in range(30))
         message.msg = text[: rng.randint(60, 120)]
@@ -171,8 +178,9 @@ def subscriber_qos():
     )
 
 
-def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
-    """A publisher process; ``loop`` "c" publishes from ``c_flood.c`` (see there), else from Python."""
+def run_publisher(index: int, topic: str = TOPIC, loop: str = "python", levels: str = "mixed") -> None:
+    """A publisher process; ``loop`` "c" publishes from ``c_flood.c`` (see there), else from
+    Python; ``levels``: the pool's (``message_pool``)."""
     import rclpy
     from rcl_interfaces.msg import Log
     from rclpy.node import Node
@@ -181,7 +189,7 @@ def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node(f"bench_publisher_{index}")
     publisher = node.create_publisher(Log, topic, rosout_qos())
-    pool = message_pool(index)
+    pool = message_pool(index, levels=levels)
     mask = len(pool) - 1
     publish = publisher.publish
     flood = load_c_flood() if loop == "c" else None
@@ -223,8 +231,8 @@ def run_publisher(index: int, topic: str = TOPIC, loop: str = "python") -> None:
 def load_c_flood() -> Callable[..., tuple[int, int, float]]:
     """``c_flood.c``'s ``flood``, built against the rcl rclpy loaded, in a temporary directory
     that is gone once the built module is loaded."""
-    from console_tui.sources import c_build
     from console_tui.sources.ros2.compiled_take import loaded_rcl, rcl_flags
+    from console_tui.system import c_build
 
     library = loaded_rcl()
     flags = rcl_flags(library) if library is not None else "rclpy's librcl.so is not loaded"
@@ -270,9 +278,9 @@ class FleetSources:
     """A fleet's intake processes, one a domain, counted as one source by this benchmark."""
 
     def __init__(self, queue: Any, domains: int, first_domain: int) -> None:
-        from console_tui.sources.fleet import Robot
+        from console_tui.ros.fleet import Robot
+        from console_tui.ros.ros_version import ROS2
         from console_tui.sources.live import open_fleet
-        from console_tui.sources.ros_version import ROS2
 
         self.robots = [Robot(f"d{first_domain + i}", ROS2, domain=first_domain + i) for i in range(domains)]
         self.sources = [live.source for live in open_fleet(queue, self.robots, topic=TOPIC)]
@@ -315,9 +323,9 @@ def console_source(kind: str, queue: Any, domains: int = 1, first_domain: int = 
 
         args = ["--typed"] if kind == "intake-typed" else []
         return ProcessSource(queue, "ros2", topic=TOPIC, args=args), None
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources import coalesce
     from console_tui.sources.ros2 import live_source
-    from console_tui.sources.ros2.runtime import RosRuntime
 
     if kind == "app-thread-batched":  # fewer wake-ups of the intake thread, bigger batches
         coalesce.BELOW = live_source.MAX_BATCH
@@ -343,8 +351,8 @@ def intake_cpu_seconds(source: Any) -> float:
 
 
 def run_intake_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> None:
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
 
     queue = IntakeQueue()
     store = LogStore()
@@ -392,17 +400,17 @@ def run_app_subscriber(kind: str, domains: int = 1, first_domain: int = 0) -> No
 
     from _probe import KeyProbe, StallProbe, count_frames, percentile, process_rss_mb
 
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.intake_process.synthetic import synthetic_record
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
     queue = IntakeQueue()
     source, runtime = console_source(kind, queue, domains, first_domain)
     cleanups: list[Any] = []
     if isinstance(source, FleetSources):  # as console-tui --domain ... has it
-        from console_tui.sources.live import open_fleet_loggers
+        from console_tui.control.fleet_control import open_fleet_loggers
 
         control: Any = open_fleet_loggers(source.robots, cleanups)
         app = ConsoleApp(queue=queue, sources=source.sources, logger_control=control, robots=source.robots)
@@ -519,9 +527,9 @@ def run_intake_events_executor() -> None:
     from rclpy.signals import SignalHandlerOptions
 
     from console_tui.model.formats.ros2_log_msg import LogDecoder
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.record_batch import RecordColumns
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.log_store import LogStore
+    from console_tui.model.store.record_batch import RecordColumns
 
     rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     node = Node("bench_intake_ee")
@@ -991,6 +999,7 @@ def main() -> None:
         help="the publishers' loop: rclpy's publish from Python (default), or rcl's from C (c_flood.c), "
         "as cheap a publisher as a node in C++",
     )
+    parser.add_argument("--pool", choices=POOL_LEVELS, default="mixed", help=argparse.SUPPRESS)  # level_filter.py
     parser.add_argument("--role", choices=["publisher", "subscriber"], help=argparse.SUPPRESS)
     parser.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--kind", choices=ALL_KINDS, help=argparse.SUPPRESS)
@@ -998,7 +1007,7 @@ def main() -> None:
     args = parser.parse_args()
 
     if args.role == "publisher":
-        return run_publisher(args.index, args.topic, args.publisher)
+        return run_publisher(args.index, args.topic, args.publisher, args.pool)
     if args.role == "subscriber":
         if args.kind in APP_KINDS:
             return run_app_subscriber(args.kind, args.domains, args.domain)

@@ -30,11 +30,11 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _report import machine_line, table  # noqa: E402
 
 from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder, encode_log  # noqa: E402
-from console_tui.model.record_batch import ColumnsBuilder  # noqa: E402
+from console_tui.model.store.record_batch import ColumnsBuilder  # noqa: E402
 from console_tui.sources.intake_process.child import YOUNG_COLLECTION_THRESHOLD  # noqa: E402
 from console_tui.sources.ros1 import compiled_frames  # noqa: E402
 from console_tui.sources.ros1.dedupe import Deduplicator  # noqa: E402
-from console_tui.sources.ros1.intake import RECV_BYTES  # noqa: E402
+from console_tui.sources.ros1.socket_reader import RECV_BYTES  # noqa: E402
 
 STAGES = ("decode", "columns", "dedupe")
 

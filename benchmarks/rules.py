@@ -33,7 +33,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from _report import machine_line
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules import (
     CustomRule,
     LocationRule,
@@ -46,8 +45,9 @@ from console_tui.model.rules import (
     highlight,
 )
 from console_tui.model.rules.query import parse_query
-from console_tui.model.store import LogStore
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 
 FIRST_SCREEN_TARGET_MS = 100
 COMPLETE_TARGET_MS = 1000

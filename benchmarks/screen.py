@@ -42,9 +42,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from _probe import KeyProbe, StallProbe, count_frames, percentile, process_cpu, process_rss_mb
 from _report import machine_line, table, verdict
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.sources.intake_process.parent import ProcessSource
 from console_tui.sources.intake_process.synthetic import PERIOD_S, START_NS, synthetic_record
 from console_tui.sources.status import SourceStatus

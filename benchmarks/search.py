@@ -42,7 +42,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from _probe import StallProbe, count_frames
 from _report import machine_line, table, verdict
 
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
 from console_tui.sources.intake_process.synthetic import synthetic_record
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.controllers.search import SEARCH_BUDGET_S
@@ -154,8 +154,8 @@ async def run(count: int, text: str, message: str) -> dict[str, float]:
 
 def walk_alone(count: int, text: str, message: str) -> dict[str, float]:
     """The model's ``Search`` over the same records, from the first to the last, without the app."""
-    from console_tui.model.search import Search, parse_search
-    from console_tui.model.view import LogView
+    from console_tui.model.view.log_view import LogView
+    from console_tui.model.view.search_walk import Search, parse_search
 
     records = [synthetic_record(number) for number in range(count)]
     records[NEAR].msg = message

@@ -36,8 +36,8 @@ from typing import Any
 sys.path.insert(0, str(Path(__file__).parent))
 from _report import machine_line, table, verdict
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 
 BATCH = 1_000
 TARGET_MB = 150
@@ -185,7 +185,7 @@ def load_the_apps_libraries(loggers: bool) -> tuple[str, Any]:
         return loaded, runtime
     os.environ.update(ROS_AUTOMATIC_DISCOVERY_RANGE="LOCALHOST", ROS_DOMAIN_ID=str(150 + os.getpid() % 80))
     try:
-        from console_tui.sources.ros2.runtime import RosRuntime
+        from console_tui.ros.ros2.runtime import RosRuntime
 
         runtime = RosRuntime()
         runtime.create_node("store_benchmark")

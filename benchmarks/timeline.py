@@ -34,11 +34,11 @@ from rich.console import Console
 from textual.app import App, ComposeResult
 from textual.renderables.sparkline import Sparkline
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
-from console_tui.model.storms import StormRows
-from console_tui.model.timeline import Timeline
-from console_tui.model.view import LogView
+from console_tui.model.overview.storms import StormRows
+from console_tui.model.overview.timeline import Timeline
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 from console_tui.sources.intake_process.synthetic import START_NS, synthetic_record
 from console_tui.ui.widgets.timeline_strip import TimelineStrip
 

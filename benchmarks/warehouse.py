@@ -35,7 +35,7 @@ sys.path[:0] = [str(HERE), str(HERE.parent / "tests")]
 from _probe import StallProbe, process_rss_mb  # noqa: E402
 from _report import machine_line  # noqa: E402
 
-from console_tui.model.store import LogStore  # noqa: E402
+from console_tui.model.store.log_store import LogStore  # noqa: E402
 from console_tui.sources.warehouse_source import WarehouseSource  # noqa: E402
 from console_tui.ui.app import ConsoleApp  # noqa: E402
 from console_tui.warehouse.address import parse_address  # noqa: E402
@@ -157,7 +157,7 @@ import asyncio, sys
 sys.path[:0] = [{str(HERE)!r}, {str(HERE.parent / "tests")!r}]
 import os
 from _probe import process_rss_mb
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
 from console_tui.sources.intake_process.synthetic import synthetic_record
 from console_tui.ui.app import ConsoleApp
 async def main():

@@ -8,6 +8,7 @@ import gc
 import importlib
 import os
 import sys
+import textwrap
 from collections.abc import Sequence
 
 from . import __version__
@@ -19,16 +20,15 @@ from .commands.arguments import (
     add_log_format_argument,
     add_robot_argument,
     add_ros_version_arguments,
-    add_window_arguments,
     check_fleet_arguments,
     check_rule_arguments,
-    check_window_arguments,
     domain_id,
     positive_int,
     robot_files,
     robots_from_names,
 )
-from .model.store import DEFAULT_MAX_MESSAGES
+from .commands.location_options import add_location_arguments, apply_location_arguments
+from .model.store.log_store import DEFAULT_MAX_MESSAGES
 
 #: ``console-tui VERB ...`` runs ``console_tui.commands.VERB.main``; what each does.
 SUBCOMMANDS: dict[str, str] = {
@@ -44,10 +44,14 @@ SUBCOMMANDS: dict[str, str] = {
 ALIASES: dict[str, str] = {"watch": "tail"}
 
 
+#: ``console-tui run -- COMMAND``: the app, reading a launch it starts (``launch_parser``).
+RUN = "run"
+
 EPILOG = "\n".join(
     [
         "subcommands (each has --help):",
         *(f"  {name:9} {what}" for name, what in SUBCOMMANDS.items()),
+        f"  {RUN:9} runs a launch (ros2 launch, roslaunch) and shows what it prints with the live log stream",
         *(f"  {alias:9} the same as '{verb}' (as in 'ros2 log {alias}')" for alias, verb in ALIASES.items()),
         "",
         "exit status:",
@@ -98,8 +102,10 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
             help=(
                 "log files, recordings or folders of them to open, merged by time: rqt_console .csv, .jsonl, "
                 "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
-                "directory; a folder (a ROS 1 run, a ROS 2 launch, the whole log directory) opens every log in it; "
-                "or a log warehouse: clickhouse://host:8123/db, clickhouses://..., chdb:///directory (?table=NAME)"
+                "directory, the systemd journal (*.journal, a journal directory); a folder (a ROS 1 run, a ROS 2 "
+                "launch, the whole log directory) opens every log in it; journal:, journal:UNIT, journal:PATH "
+                "follow the journal live; clickhouse://host:8123/db, clickhouses://..., chdb:///directory "
+                "(?table=NAME) read a log warehouse"
             ),
         )
     add_log_format_argument(parser)
@@ -129,6 +135,7 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     add_ros_version_arguments(parser)
     add_fleet_arguments(parser)
     add_robot_argument(parser)
+    add_location_arguments(parser)
     parser.add_argument(
         "--topic",
         metavar="NAME",
@@ -142,7 +149,6 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
         help=f"messages kept before the oldest are dropped (default {DEFAULT_MAX_MESSAGES:,})",
     )
     parser.add_argument("--utc", action="store_true", help="show times in UTC instead of local time")
-    add_window_arguments(parser)
     parser.add_argument(
         "--query",
         metavar="QUERY",
@@ -162,6 +168,22 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     return parser
 
 
+def launch_parser() -> argparse.ArgumentParser:
+    """``console-tui run [OPTIONS] [--] COMMAND [ARG...]``: the app's options, and a command."""
+    parser = build_parser(files=False)
+    parser.prog = f"console-tui {RUN}"
+    parser.usage = f"console-tui {RUN} [OPTIONS] -- COMMAND [ARG...]"
+    parser.description = textwrap.fill(
+        "Run a launch (ros2 launch PKG FILE, roslaunch PKG FILE, or any command) in a process group of its own "
+        "and show what each of its processes prints, its deaths as errors, with the live log stream (ROS 1 for "
+        "roslaunch, ROS 2 for ros2, else as the environment says): a message that arrives both ways shows once. "
+        "q or Ctrl+C stops the launch as its terminal's Ctrl+C would (SIGINT, then SIGTERM and SIGKILL).",
+        100,
+    )
+    parser.add_argument("command", nargs=argparse.REMAINDER, metavar="COMMAND", help="the command and its arguments")
+    return parser
+
+
 def completion_parser() -> argparse.ArgumentParser:
     """The app's parser with every subcommand's own parser under it, for shell completion
     (argcomplete); running ``console-tui VERB`` hands the words to the verb's parser instead."""
@@ -173,6 +195,8 @@ def completion_parser() -> argparse.ArgumentParser:
     for alias, verb in ALIASES.items():
         commands.add_parser(alias, help=f"the same as {verb}")
         commands.choices[alias] = commands.choices[verb]
+    commands.add_parser(RUN, help="runs a launch and shows what it prints")
+    commands.choices[RUN] = launch_parser()
     return parser
 
 
@@ -190,13 +214,25 @@ def add_latest_run(parser: argparse.ArgumentParser, args: argparse.Namespace) ->
     """``--last``: the newest run's folder (and its ROS 2 nodes' logs) joins ``args.files``;
     no run found exits 2 saying where it looked."""
     from .model.formats import FormatError
-    from .model.text import one_line
+    from .model.inert_text import one_line
     from .sources.files import latest_run
 
     try:
         args.files = [*args.files, *(str(path) for path in latest_run())]
     except FormatError as error:
         parser.error(f"--last: {one_line(str(error))}")
+
+
+def check_launch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """``run``'s command into ``args.launch`` (no files); what cannot go with it exits 2."""
+    command = list(args.command)
+    if command[:1] == ["--"]:
+        command = command[1:]
+    if not command:
+        parser.error("give the command to run after --, for example: console-tui run -- ros2 launch PKG FILE")
+    if args.demo or args.robots:
+        parser.error("run starts a launch of its own: it cannot be used with --demo, --domain, --master or --fleet")
+    args.launch, args.files = command, []
 
 
 #: What ``console-tui`` says, and exits 2 with, when there is no terminal to draw on or read keys from.
@@ -231,12 +267,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         module = importlib.import_module(f"{__package__}.commands.{verb}")
         status: int = module.main(args_list[1:])
         return status
-    parser = build_parser()
-    args_list, file_robots = robot_files(parser, args_list)
+    launching = bool(args_list) and args_list[0] == RUN
+    parser = launch_parser() if launching else build_parser()
+    args_list, file_robots = robot_files(parser, args_list[1:] if launching else args_list)
     args = parser.parse_args(args_list)
+    if launching:
+        check_launch(parser, args)
+    apply_location_arguments(parser, args, follow=True)
     args.file_robots = robots_from_names(args.files, file_robots) if args.robots_from_names else file_robots
     check_rule_arguments(parser, args)
-    check_window_arguments(parser, args, "files")
     if args.demo_domain is not None and not args.demo:
         parser.error("--demo-domain goes with --demo")
     check_fleet_arguments(parser, args)

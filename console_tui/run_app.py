@@ -10,11 +10,12 @@ from collections.abc import Callable
 from typing import Any
 
 from .commands.arguments import EXIT_NO_ROS
-from .model.intake_queue import IntakeQueue
-from .model.store import LogStore
-from .sources.live import RosUnavailable, open_fleet, open_fleet_loggers, open_live
-from .sources.native_output import NativeOutput
-from .sources.ros_version import ROS1, choose_ros
+from .control.fleet_control import open_fleet_loggers
+from .model.store.intake_queue import IntakeQueue
+from .model.store.log_store import LogStore
+from .ros.ros_version import ROS1, choose_ros
+from .sources.live import RosUnavailable, open_fleet, open_journal, open_live
+from .system.native_output import NativeOutput
 
 
 def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
@@ -28,7 +29,15 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     files = list(getattr(args, "files", None) or [])
     robots = getattr(args, "robots", None) or []
     warehouses = getattr(args, "warehouses", None) or []
-    live = args.demo or getattr(args, "live", False) or not (files or warehouses) or bool(robots)
+    journals = getattr(args, "journals", None) or []
+    launch = getattr(args, "launch", None) or []
+    live = (
+        args.demo
+        or getattr(args, "live", False)
+        or not (files or journals or warehouses)
+        or bool(robots)
+        or bool(launch)
+    )
     # Native code (rcl, Fast DDS) prints to the terminal below Textual: caught as records.
     native = NativeOutput(queue) if live and end_process and NativeOutput.possible() else None
     if native is not None:
@@ -36,8 +45,14 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     try:
         if robots:
             logger_control = _start_fleet(args, queue, sources, cleanups)
+        elif launch:
+            logger_control = _start_launch(args, queue, sources, cleanups)
         elif live:
             logger_control = _start_live(args, queue, sources, cleanups)
+        for query in journals:  # the journal followed, each query by an intake process
+            journal = open_journal(queue, query, log_format=getattr(args, "log_format", None) or "")
+            cleanups.append(journal.close)
+            sources.append(journal.source)
         if warehouses:
             sources.extend(_warehouses(args, warehouses))
         from .ui.app import ConsoleApp
@@ -136,6 +151,26 @@ def _start_fleet(args: argparse.Namespace, queue: IntakeQueue, sources: list, cl
     return control
 
 
+def _start_launch(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
+    """``console-tui run -- COMMAND``: the launch started, the live source of the ROS it runs
+    feeding it (``sources/launch/launch_source.py``); returns the logger control."""
+    from .sources.launch.launch_source import LaunchSource, ros_of
+
+    launch = LaunchSource(queue, args.launch, say=lambda text: print(f"console-tui: {text}", file=sys.stderr))
+    args.ros = getattr(args, "ros", None) or ros_of(args.launch)
+    control = _start_live(args, launch.ros_queue, sources, cleanups)
+    launch.start()  # before the app is made, as the live intake: its first lines come sooner
+    sources.insert(0, launch)
+
+    def stop_launch() -> None:
+        if launch.status.running:
+            print(f"console-tui: stopping the launch ({launch.name}: SIGINT sent)…", file=sys.stderr, flush=True)
+        launch.stop()
+
+    cleanups.append(stop_launch)  # the first cleanup: the launch's nodes go before ROS does
+    return control
+
+
 def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:
     """The live source for ROS 1 or ROS 2 (as ``--ros1``/``--ros2`` or the environment say),
     the demo nodes when asked; returns the logger control (or None)."""
@@ -171,12 +206,12 @@ def _start_live(args: argparse.Namespace, queue: IntakeQueue, sources: list, cle
         live.source.start()
         cleanups.append(live.source.stop)
     if live.runtime is None:  # ROS 1
-        from .sources.ros1.logger_control import Ros1LoggerControl
+        from .control.ros1.logger_control import Ros1LoggerControl
 
         ros1_control = Ros1LoggerControl()  # the app starts it after its first frame
         cleanups.append(ros1_control.close)  # puts temporary levels back
         return ros1_control
-    from .sources.ros2.logger_control import Ros2LoggerControl
+    from .control.ros2.logger_control import Ros2LoggerControl
 
     logger_control = Ros2LoggerControl(live.runtime)  # the app starts it after its first frame
     cleanups.append(logger_control.close)  # before the runtime goes: puts temporary levels back

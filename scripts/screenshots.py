@@ -33,11 +33,11 @@ class Frozen:
 
 
 async def capture(out: Path, seconds: float) -> list[Path]:
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
     from console_tui.demo.launcher import DemoNodes
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.ui.app import ConsoleApp
 
     demo = DemoNodes(domain=int(os.environ["ROS_DOMAIN_ID"]))  # as --demo shows it
@@ -145,7 +145,7 @@ def overview_records() -> list:
     tf_listener repeating one warning 3,000 times. Fixed, so the shots are the same each time."""
     import random
 
-    from console_tui.model.record import LogRecord
+    from console_tui.model.store.record import LogRecord
 
     second = 1_000_000_000
     start = 1_795_000_000 * second  # 11:06:40 UTC
@@ -211,7 +211,7 @@ def overview_records() -> list:
 async def capture_overview(out: Path) -> list[Path]:
     """The overview on ``overview_records``: the timeline with its ERROR burst and the storm
     collapsed, a jump from the burst's column, the summary. No ROS."""
-    from console_tui.model.store import LogStore
+    from console_tui.model.store.log_store import LogStore
     from console_tui.ui.app import ConsoleApp
 
     store = LogStore()
@@ -250,7 +250,7 @@ def fleet_records() -> list:
     with a node called talker, the picker handing a tote over to the cart."""
     import time
 
-    from console_tui.model.record import LogRecord
+    from console_tui.model.store.record import LogRecord
 
     second = 1_000_000_000
     start = (time.time_ns() // (60 * second) - 1) * 60 * second  # live stamps: the minute before this one
@@ -282,10 +282,10 @@ def fleet_records() -> list:
 async def capture_fleet(out: Path) -> list[Path]:
     """A fleet in one console (no ROS): the Robot column in each robot's colour, the robots'
     states on the status line."""
-    from console_tui.model.record_batch import RecordColumns
-    from console_tui.model.store import LogStore
-    from console_tui.sources.fleet import Robot
-    from console_tui.sources.ros_version import ROS1, ROS2
+    from console_tui.model.store.log_store import LogStore
+    from console_tui.model.store.record_batch import RecordColumns
+    from console_tui.ros.fleet import Robot
+    from console_tui.ros.ros_version import ROS1, ROS2
     from console_tui.sources.status import SourceStatus
     from console_tui.ui.app import ConsoleApp
 

@@ -118,7 +118,7 @@ def ros_runtime(ros_env):
     context's last node is destroyed, and parts that come and go (a logger control, a
     command run in-process) would otherwise each wait for discovery again.
     """
-    from console_tui.sources.ros2.runtime import RosRuntime
+    from console_tui.ros.ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
     runtime.create_node("test_keeper")

@@ -6,7 +6,7 @@ import argparse
 import textwrap
 from collections.abc import Callable, Sequence
 
-from ..sources.ros_version import ROS1, ROS2
+from ..ros.ros_version import ROS1, ROS2
 
 #: "ROS is not available" (no rclpy in this Python, no ROS 1 master answers, no roscore for
 #: the ROS 1 demo): one exit status for the app and every subcommand, argparse's for a bad
@@ -98,10 +98,10 @@ def check_rule_arguments(parser: argparse.ArgumentParser, args: argparse.Namespa
     Sets ``args.query_entries`` (the query's rule entries, or ``()``) and ``args.rule_set``
     (the file's ``RuleSet``, or None).
     """
+    from ..model.inert_text import one_line
     from ..model.rules.query import QueryError, caret_line, parse_query
     from ..model.rules.rule import RuleError
     from ..model.rules.rulesfile import last_rules_path, load_rules
-    from ..model.text import one_line
 
     args.query_entries = ()
     args.rule_set = None
@@ -185,7 +185,7 @@ class _AddRobots(argparse.Action):
 
 
 def _robots_type(read: Callable[[str], object]) -> Callable[[str], object]:
-    from ..sources.fleet import FleetError
+    from ..ros.fleet import FleetError
 
     def parse(text: str) -> object:
         try:
@@ -198,8 +198,8 @@ def _robots_type(read: Callable[[str], object]) -> Callable[[str], object]:
 
 def add_fleet_arguments(parser: argparse.ArgumentParser) -> None:
     """``--domain N[=NAME]``, ``--master URI[=NAME]``, ``--fleet FILE``, repeatable and mixed:
-    the robots land in ``args.robots`` (``sources.fleet.Robot``, in order; None when none given)."""
-    from ..sources.fleet import load_fleet, parse_domain, parse_master
+    the robots land in ``args.robots`` (``ros.fleet.Robot``, in order; None when none given)."""
+    from ..ros.fleet import load_fleet, parse_domain, parse_master
 
     group = parser.add_argument_group(
         "a fleet (several robots at once; each option may be given more than once, and mixed)"
@@ -245,7 +245,7 @@ def add_robot_argument(parser: argparse.ArgumentParser) -> None:
 
 def robots_from_names(files: Sequence[str], robots: dict[str, str]) -> dict[str, str]:
     """``robots`` with each file that has none named for its own name (``--robots-from-names``)."""
-    from ..sources.fleet import robot_name_for
+    from ..ros.fleet import robot_name_for
 
     return {**{file: robot_name_for(file) for file in files}, **robots}
 
@@ -254,7 +254,7 @@ def robot_files(parser: argparse.ArgumentParser, argv: Sequence[str]) -> tuple[l
     """``argv`` without its ``--robot NAME`` options, and the robot of each file given after one
     (by the file's text as given). With a ``--robot``, the files come last in the ``argv``
     returned (after ``--``), so that files between options parse. A bad name exits 2."""
-    from ..sources.fleet import FleetError, check_robot_name
+    from ..ros.fleet import FleetError, check_robot_name
 
     takes_value = {name for action in parser._actions for name in action.option_strings if action.nargs != 0}
     kept: list[str] = []
@@ -296,53 +296,9 @@ def robot_files(parser: argparse.ArgumentParser, argv: Sequence[str]) -> tuple[l
 
 def check_fleet_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
     """Two robots with one name, domain or master exit 2 saying which."""
-    from ..sources.fleet import FleetError, check_fleet
+    from ..ros.fleet import FleetError, check_fleet
 
     try:
         check_fleet(getattr(args, "robots", None) or [])
     except FleetError as error:
         parser.error(str(error))
-
-
-def add_window_arguments(parser: argparse.ArgumentParser) -> None:
-    """``--since`` and ``--until``: the window read from the log warehouse."""
-    group = parser.add_argument_group("the log warehouse (clickhouse://, clickhouses://, chdb:// arguments)")
-    group.add_argument(
-        "--since",
-        metavar="TIME",
-        help="the window's start: an age (2h, 30m), a time today (02:50), a date and time "
-        "('2026-12-05 02:50') or an ISO time (default: the newest records, up to --max-messages)",
-    )
-    group.add_argument("--until", metavar="TIME", help="the window's end, written as --since (default: now, and on)")
-
-
-def check_window_arguments(parser: argparse.ArgumentParser, args: argparse.Namespace, name: str) -> None:
-    """Sort ``args.<name>`` into files (left in it) and the log warehouse's addresses
-    (``args.warehouses``), and read ``--since``/``--until`` into ``args.since_ns``/``args.until_ns``.
-    A bad address or time exits 2 saying which."""
-    from ..model.rules.query import QueryError, parse_time
-    from ..sources.locations import FILE, WAREHOUSE, split_locations
-    from ..warehouse.address import AddressError, parse_address
-
-    kinds = split_locations(getattr(args, name) or [])
-    setattr(args, name, kinds[FILE])
-    args.warehouses = []
-    for text in kinds.get(WAREHOUSE, []):
-        try:
-            args.warehouses.append(parse_address(text))
-        except AddressError as error:
-            parser.error(str(error))
-    utc = bool(getattr(args, "utc", False))
-    for option in ("since", "until"):
-        given = getattr(args, option, None)
-        value = None
-        if given:
-            try:
-                value = parse_time(given, utc=utc)
-            except QueryError:
-                parser.error(f"--{option}: not a time: {given!r} (2h, 02:50, '2026-12-05 02:50', an ISO time)")
-        setattr(args, f"{option}_ns", value)
-    if args.since_ns is not None and args.until_ns is not None and args.since_ns > args.until_ns:
-        parser.error("--since is after --until")
-    if (args.since_ns is not None or args.until_ns is not None) and not args.warehouses:
-        parser.error("--since and --until choose the window of a log warehouse (clickhouse://, chdb://): give one")

@@ -3,7 +3,7 @@
 ``check`` prints the size of the log directory and its largest runs; ``purge`` removes
 runs (all of them, those older than an age, or the oldest until the rest fits a size)
 after asking, unless ``--yes``. What counts as a run, and how removal stays inside the
-directory, is in ``console_tui.sources.log_dir``.
+directory, is in ``console_tui.ros.log_dir``.
 """
 
 from __future__ import annotations
@@ -16,9 +16,9 @@ from collections.abc import Sequence
 from datetime import datetime
 from pathlib import Path
 
+from ..model.inert_text import one_line, plural
 from ..model.rules.query import QueryError, parse_time
-from ..model.text import one_line, plural
-from ..sources.log_dir import (
+from ..ros.log_dir import (
     LogRun,
     UnsafeRemoval,
     dangling_links,

@@ -15,17 +15,13 @@ from collections.abc import Iterable, Sequence
 
 from ..model.formats import SAVE_FORMATS, FormatError, Problem, save_records
 from ..model.formats.save import save_format_for
-from ..model.record import LogRecord
-from ..model.store import DEFAULT_MAX_MESSAGES
-from ..model.text import one_line, plural
+from ..model.inert_text import one_line, plural
+from ..model.store.log_store import DEFAULT_MAX_MESSAGES
+from ..model.store.record import LogRecord
 from ..sources.files import LogFile, latest_run, load_records, open_logs
-from .arguments import (
-    add_last_argument,
-    add_log_format_argument,
-    add_window_arguments,
-    check_window_arguments,
-    positive_int,
-)
+from ..sources.files.journal_file import journal_file
+from .arguments import add_last_argument, add_log_format_argument, positive_int
+from .location_options import add_location_arguments, apply_location_arguments
 from .warehouse_windows import Windows, merged
 
 CLEAN, PROBLEMS, NOTHING_WRITTEN = 0, 1, 2
@@ -61,7 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(default: jsonl for .jsonl/.ndjson/.json, else rqt)",
     )
     add_log_format_argument(parser)
-    add_window_arguments(parser)
+    add_location_arguments(parser)
     parser.add_argument(
         "--max-messages",
         metavar="N",
@@ -81,17 +77,21 @@ def main(argv: Sequence[str]) -> int:
     """Convert as the arguments say; returns the exit status (see the module's text)."""
     parser = build_parser()
     args = parser.parse_args(list(argv))
-    check_window_arguments(parser, args, "inputs")
-    inputs = list(args.inputs)
+    apply_location_arguments(parser, args, follow=False, name="inputs")  # journal: read to its end, as a file
+    inputs = list(args.files)
+    named = list(args.inputs)  # as given: files, journal:, warehouses
     if args.last:
         try:
-            inputs += [str(path) for path in latest_run()]
+            latest = [str(path) for path in latest_run()]
         except FormatError as error:
             say(str(error))
             return NOTHING_WRITTEN
-    if not inputs and not args.warehouses:
+        inputs += latest
+        named += latest
+    if not inputs and not args.journals and not args.warehouses:
         parser.error("give the files to convert, or --last")
     opened = open_logs(inputs, log_format=args.log_format)
+    opened.files += [journal_file(query, log_format=args.log_format or "") for query in args.journals]
     windows = Windows(args, None, say, max_rows=args.max_messages)
     files, failures = opened.files, opened.failures
     save_format = args.format or ("rqt" if args.output == "-" else save_format_for(args.output))
@@ -100,7 +100,7 @@ def main(argv: Sequence[str]) -> int:
         first = next(records, None)  # nothing is written before there is something to write
         if first is None:
             _report(failures, files)
-            say(f"nothing written: no record could be read from {_inputs(inputs + [a.text for a in args.warehouses])}")
+            say(f"nothing written: no record could be read from {_inputs(named)}")
             return NOTHING_WRITTEN
         everything = itertools.chain((first,), records)
         if args.output == "-":

@@ -1,6 +1,7 @@
 """What the live sources of a headless command (``tail``, ``ship``) say on standard error:
 each source's problem when it changes, its losses at most every ``LOSS_REPORT_S``, and once
-that the slower intake path is in use. A fleet's robot is named before what it says."""
+that the slower intake path is in use and that the middleware does not filter by ``--level``.
+A fleet's robot is named before what it says."""
 
 from __future__ import annotations
 
@@ -24,6 +25,8 @@ class _Told:
 
 
 class LiveReports:
+    """What the live sources said, told once (``tell``, called every turn of the loop)."""
+
     def __init__(
         self, lives: Sequence[LiveIntake], complain: Callable[[str], None], clock: Callable[[], float] = time.monotonic
     ) -> None:
@@ -31,7 +34,7 @@ class LiveReports:
         self._complain = complain
         self._clock = clock
         self._told = [_Told() for _ in self._lives]
-        self._slow_told = False
+        self._slow_told = self._filter_told = False
 
     def tell(self) -> None:
         """Say what changed since the last call."""
@@ -41,9 +44,13 @@ class LiveReports:
             if status.problem and status.problem != said.problem:
                 self._complain(robot + status.problem)
             said.problem = status.problem
-            if status.path_note and not self._slow_told:
-                self._complain(status.slow_path_text())
+            slow = status.slow_path_text() if status.path_note and not self._slow_told else ""
+            if slow:  # (nothing while the loop in C is being built)
+                self._complain(slow)
                 self._slow_told = True
+            if status.level_filter_note and not self._filter_told:  # the middleware does not filter
+                self._complain(f"--level: {status.level_filter_text()}")
+                self._filter_told = True
             now = self._clock()
             if status.lost > said.lost and now - said.lost_at >= LOSS_REPORT_S:
                 self._complain(robot + status.loss_text())

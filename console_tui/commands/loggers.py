@@ -15,9 +15,9 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from typing import Any
 
+from ..model.inert_text import plural
 from ..model.levels import SEVERITY_TABLE, Severity, severity_name
-from ..model.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
-from ..model.text import plural
+from ..model.loggers.logger_levels import DEFAULT_LOGGER, GraphNode, NodeLoggers, TemporaryLevel, level_text
 from .arguments import EXIT_NO_ROS
 from .closed_pipe import quiet_on_closed_pipe
 from .loggers_arguments import (
@@ -116,14 +116,14 @@ def _set_request(words: list[str], every_node: bool, duration: float | None) -> 
 
 @contextmanager
 def _ros_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
-    from ..sources.ros_version import ROS1, choose_ros
+    from ..ros.ros_version import ROS1, choose_ros
 
     if getattr(args, "robots", None):
         with _fleet_control(args) as fleet:
             yield fleet
         return
     if runtime is None and choose_ros(getattr(args, "ros", None)).version == ROS1:
-        from ..sources.ros1.logger_control import Ros1LoggerControl
+        from ..control.ros1.logger_control import Ros1LoggerControl
 
         control = Ros1LoggerControl(
             call_timeout=getattr(args, "timeout", DEFAULT_TIMEOUT_S), include_hidden=getattr(args, "all", False)
@@ -141,8 +141,9 @@ def _ros_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
 @contextmanager
 def _fleet_control(args: argparse.Namespace) -> Iterator[Any]:
     """Every robot's nodes (``--domain``, ``--master``, ``--fleet``), named ``ROBOT:/node``."""
-    from ..sources.fleet import FleetError, check_fleet
-    from ..sources.live import RosUnavailable, open_fleet_loggers
+    from ..control.fleet_control import open_fleet_loggers
+    from ..ros.fleet import FleetError, check_fleet
+    from ..ros.ros2.rclpy_loader import RosUnavailable
 
     try:
         check_fleet(args.robots)
@@ -172,9 +173,9 @@ def _fleet_control(args: argparse.Namespace) -> Iterator[Any]:
 
 @contextmanager
 def _ros2_control(args: argparse.Namespace, runtime: Any) -> Iterator[Any]:
-    from ..sources.ros2.logger_control import Ros2LoggerControl
-    from ..sources.ros2.rclpy_loader import RosUnavailable
-    from ..sources.ros2.runtime import RosRuntime
+    from ..control.ros2.logger_control import Ros2LoggerControl
+    from ..ros.ros2.rclpy_loader import RosUnavailable
+    from ..ros.ros2.runtime import RosRuntime
 
     own_runtime = runtime is None
     if own_runtime:
@@ -376,7 +377,7 @@ def _set(control: Any, node: GraphNode, logger: str | None, level: int, duration
 
 def _result(future: Any) -> Any:
     """Wait for a control call; its failure becomes a ``CommandError`` with the matching status."""
-    from ..sources.loggers.errors import LoggerCallError, NodeNotFound, NoLoggerServices
+    from ..control.errors import LoggerCallError, NodeNotFound, NoLoggerServices
 
     try:
         return future.result()

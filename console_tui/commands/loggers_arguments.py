@@ -6,9 +6,9 @@ from __future__ import annotations
 import argparse
 import textwrap
 
+from ..control.graph import GRAPH_MIN_S, GRAPH_QUIET_S
 from ..model.levels import Severity, parse_severity
-from ..model.logger_levels import DEFAULT_LOGGER
-from ..sources.loggers.graph import GRAPH_MIN_S, GRAPH_QUIET_S
+from ..model.loggers.logger_levels import DEFAULT_LOGGER
 from .arguments import add_fleet_arguments, add_ros_version_arguments, add_subcommand, command_parser
 
 EXIT_OK = 0

@@ -16,10 +16,11 @@ from pathlib import Path
 
 from ..model.formats.rosout_log import ROS2_HEADER
 from ..model.formats.rotating_file import RotatingFile
-from ..model.text import plural
-from ..sources.live import RosUnavailable, start_ros2
-from ..sources.log_dir import ros_log_dir
-from ..sources.signal_stop import SignalStop
+from ..model.inert_text import plural
+from ..ros.log_dir import ros_log_dir
+from ..ros.ros2.rclpy_loader import RosUnavailable
+from ..ros.ros2.runtime import start_ros2
+from ..system.signal_stop import SignalStop
 from .arguments import DOCS_URL, EXIT_NO_ROS, command_parser, domain_id, parse_size, positive_int, size_text
 
 EXIT_OK = 0

@@ -25,12 +25,12 @@ from dataclasses import dataclass
 from ..model.formats.ros2_log_msg import LogEncoder
 from ..model.formats.rosout_log import rosout_log_text
 from ..model.formats.rotating_file import RotatingFile
-from ..model.intake_queue import IntakeQueue
-from ..model.record import LogRecord
-from ..model.text import plural
+from ..model.inert_text import plural
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.record import LogRecord
+from ..ros.ros2.runtime import RosRuntime
 from ..sources.log_topics import ROSOUT, ROSOUT_AGG
 from ..sources.ros2.live_source import LiveLogSource
-from ..sources.ros2.runtime import RosRuntime
 
 DEFAULT_DEPTH = 10_000
 DEFAULT_NODE_NAME = "rosout"

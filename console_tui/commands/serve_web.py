@@ -13,9 +13,8 @@ textual-serve has no public handle on a tab's process nor on its message loop: t
 names used here (``Server._make_app``, ``Server._process_messages``, ``AppService._process``)
 are checked by ``check_upstream`` when the server is made, so another textual-serve release
 fails at once with a clear message instead of serving something unchecked (the ``[web]``
-extra pins the tested range). A public process handle and an access hook in textual-serve
-would let this module drop all three (where that stands upstream: docs/architecture.md, "The
-web server on textual-serve").
+extra pins the tested range). What each is for, and the upstream issue that would let this
+module drop them: docs/textual-fixes.md, "textual-serve: private names".
 """
 
 from __future__ import annotations
@@ -32,7 +31,7 @@ from aiohttp import web
 from textual_serve.app_service import AppService
 from textual_serve.server import Server
 
-from ..model.text import one_line
+from ..model.inert_text import one_line
 from .serve_access import TOKEN_PARAMETER, Access
 
 #: Where the page's template is (textual-serve renders ``app_index.html`` from it).

@@ -20,12 +20,12 @@ import time
 from collections.abc import Sequence
 
 from ..model.atomic_file import atomic_output
-from ..model.intake_queue import IntakeQueue
+from ..model.inert_text import one_line, plural
 from ..model.rules.rulesfile import state_dir
-from ..model.text import one_line, plural
-from ..sources.fleet import FleetError, check_robot_name, robot_name_for
+from ..model.store.intake_queue import IntakeQueue
+from ..ros.fleet import FleetError, check_robot_name, robot_name_for
 from ..sources.live import LiveIntake, RosUnavailable, open_stream
-from ..sources.signal_stop import SignalStop
+from ..system.signal_stop import SignalStop
 from ..warehouse.address import SHIPPABLE_SCHEMES, AddressError, parse_address
 from ..warehouse.otlp_http import environment_headers
 from ..warehouse.shipper import BATCH_RECORDS, Shipper, ShipState

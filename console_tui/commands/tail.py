@@ -22,31 +22,33 @@ from typing import BinaryIO, cast
 from ..model.formats import FormatError
 from ..model.formats.print_format import ROBOT_PREFIX, PrintFormat, TemplateError, json_text
 from ..model.formats.rcutils_log import DEFAULT_TEMPLATE
-from ..model.intake_queue import IntakeQueue
-from ..model.record import LogRecord
+from ..model.inert_text import one_line
+from ..model.levels import parse_severity
 from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
-from ..model.store import DEFAULT_MAX_MESSAGES
-from ..model.text import one_line
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.log_store import DEFAULT_MAX_MESSAGES
+from ..model.store.record import LogRecord
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, open_logs
 from ..sources.files.follow import FollowedFile
-from ..sources.live import LiveIntake, RosUnavailable, open_stream
-from ..sources.signal_stop import SignalStop
+from ..sources.journal.journal_location import journal_location
+from ..sources.journal.journalctl import JournalUnavailable, find_journalctl, local_journal_problem
+from ..sources.live import LiveIntake, RosUnavailable, open_journal, open_stream
+from ..system.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
     add_fleet_arguments,
     add_last_argument,
     add_log_format_argument,
     add_ros_version_arguments,
-    add_window_arguments,
     check_fleet_arguments,
     check_rule_arguments,
-    check_window_arguments,
     command_parser,
     positive_int,
 )
 from .closed_pipe import quiet_stdout, reader_gone
 from .live_reports import LiveReports
+from .location_options import add_location_arguments, apply_location_arguments
 from .warehouse_windows import Windows, merged
 from .watch_options import add_watch_arguments, apply_watch_arguments
 
@@ -125,7 +127,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
     add_log_format_argument(parser)
     add_watch_arguments(parser)
-    add_window_arguments(parser)
+    add_location_arguments(parser)
     parser.add_argument(
         "--max-messages",
         metavar="N",
@@ -196,9 +198,17 @@ def main(argv: Sequence[str]) -> int:
             args.files = [*args.files, *(str(path) for path in latest_run())]
         except FormatError as error:
             parser.error(f"--last: {one_line(str(error))}")
-    check_window_arguments(parser, args, "files")
-    if args.follow and not (args.files or args.warehouses):
+    apply_location_arguments(parser, args, follow=True)
+    if args.follow:  # a journal file or directory is followed by journalctl itself
+        journals = [(path, journal_location(path)) for path in args.files]
+        args.journals += [found.query(follow=True) for _, found in journals if found is not None]
+        args.files = [path for path, found in journals if found is None]
+    if args.follow and not (args.files or args.journals or args.warehouses):
         parser.error("--follow needs FILEs to follow (the live stream is followed anyway)")
+    problem = _journal_problem(args.journals)
+    if problem:
+        print(f"console-tui tail: {problem}", file=sys.stderr)
+        return EXIT_NO_ROS  # not available here, as a missing ROS is
     rules = (args.rule_set or RuleSet()).with_query(args.query_entries)
     line: PrintFormat | None = None
     if not args.json:
@@ -242,12 +252,15 @@ class _Run:
 
     def main(self, args: argparse.Namespace) -> int:
         lives: list[LiveIntake] = []
-        if args.robots or args.live or not (args.files or args.warehouses):  # a fleet: a process per robot
+        # --level is asked of the middleware too (a DDS content filter, as ros2 log watch asks).
+        min_level = int(parse_severity(args.level)) if args.level is not None else 0
+        if args.robots or args.live or not (args.files or args.journals or args.warehouses):
             try:
-                lives = open_stream(self.queue, args.robots, topic=args.topic, ros=args.ros)
+                lives = open_stream(self.queue, args.robots, topic=args.topic, ros=args.ros, min_level=min_level)
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
+        lives += [open_journal(self.queue, query, log_format=args.log_format or "") for query in args.journals]
         windows = Windows(args, self.rules, _complain, max_rows=args.max_messages)
         try:
             followed: list[FollowedFile] = []
@@ -309,6 +322,9 @@ class _Run:
                 if windows is not None:
                     self.print(windows.newer())
                 reports.tell()
+                if lives and not followed and windows is None and all(_ended(live) for live in lives):
+                    self.status = EXIT_FILES  # the journal could not be read (said above)
+                    break
         finally:
             for f in followed:
                 f.close()
@@ -319,6 +335,23 @@ class _Run:
             for problem in items[self._told.get(id(file), 0) :]:
                 _complain(str(problem))
             self._told[id(file)] = len(items)
+
+
+def _journal_problem(queries: Sequence) -> str:
+    """Why the journal asked for cannot be read here (no journalctl, no journal), or ""."""
+    if not queries:
+        return ""
+    try:
+        find_journalctl()
+    except JournalUnavailable as error:
+        return str(error)
+    return next((local_journal_problem() for query in queries if query.local and local_journal_problem()), "")
+
+
+def _ended(live: LiveIntake) -> bool:
+    """A journal source whose journalctl ended with a problem (a ROS source never ends)."""
+    status = live.source.status
+    return getattr(live.source, "kind", "") == "journal" and bool(status.problem) and not status.running
 
 
 def _stamp(record: LogRecord) -> int:

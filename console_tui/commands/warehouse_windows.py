@@ -8,15 +8,15 @@ import argparse
 import time
 from collections.abc import Callable, Iterator, Sequence
 
-from ..model.record import LogRecord
 from ..model.rules.ruleset import RuleSet
+from ..model.store.record import LogRecord
 from ..sources.warehouse_source import POLL_S, WindowReader
 from ..warehouse.clickhouse import WarehouseError
 
 
 class Windows:
-    """The windows of ``args.warehouses`` (``check_window_arguments``), read with ``rules``
-    going down into SQL; ``failed`` once one could not be read."""
+    """The windows of ``args.warehouses`` (``location_options.apply_location_arguments``),
+    read with ``rules`` going down into SQL; ``failed`` once one could not be read."""
 
     def __init__(
         self,

@@ -8,7 +8,7 @@ import sys
 import threading
 import time
 
-from ..model.text import plural
+from ..model.inert_text import plural
 from ..sources.status import SourceStatus
 from .behaviours import DEMO_NODES
 

@@ -21,7 +21,7 @@ import threading
 import time
 from pathlib import Path
 
-from ..sources.ros1.master import Ros1CallError, probe_master, xmlrpc_call
+from ..ros.ros1.master import Ros1CallError, probe_master, xmlrpc_call
 from ..sources.status import SourceStatus
 from .behaviours import DEMO_NODES
 from .launcher import close_stdin, stop_children

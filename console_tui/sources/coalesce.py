@@ -8,7 +8,7 @@ next turn and lets messages gather:
 - a full turn (``BELOW`` messages or more): no pause, the loop keeps up;
 - a trickle while messages come at ``FAST_PER_S`` or more: ``FAST_S``, short, so what waits
   in the middleware's queue stays short (Fast DDS loses messages from a long one: see
-  docs/architecture.md, "Taking messages: no executor, serialized, decoded directly");
+  docs/decisions/0003-take-without-executor.md);
 - a trickle slower than that (a fleet's robots each at a few thousand a second, a quiet
   robot): ``SLOW_S``. The intake process hands its batches to the app every 20 ms anyway
   (``intake_process.child.FLUSH_S``), so nothing shows later for it.

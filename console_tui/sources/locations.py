@@ -1,9 +1,13 @@
-"""What a positional argument names: a file or folder (as always), or a source with a scheme.
+"""What a positional argument names: a file or folder (as always), or a source of another kind.
 
-``location_kind(text)`` asks each row of ``KINDS`` in turn; the first that recognises the text
-names its kind, and anything no row takes is a file (or folder), read as before. A new kind of
-source adds one row (a name and a function that recognises its text). ``split_locations``
-sorts a command line's arguments by kind, keeping their order within each.
+The one dispatch of the command line's positional arguments (the app, ``tail``, ``convert``,
+``serve``'s consoles): ``location_kind(text)`` asks each row of ``KINDS`` in turn; the first
+that recognises the text names its kind, and anything no row takes is a file (or folder),
+read as before (a ``*.journal`` file or a journal directory among them: the files' opener
+knows those). A new kind of source adds one row: a name and a function that recognises its
+text. ``split_locations`` sorts a command line's arguments by kind, keeping their order
+within each; what each kind then means is its own module's (``warehouse/address.py``,
+``journal/journal_location.py``).
 """
 
 from __future__ import annotations
@@ -11,14 +15,19 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 
 from ..warehouse.address import is_warehouse
+from .journal.journal_location import follows_journal
 
 FILE = "file"
+#: ``clickhouse://``, ``clickhouses://``, ``chdb://``: a log warehouse's table, read back.
 WAREHOUSE = "warehouse"
+#: ``journal:``, ``journal:UNIT``, ``journal:PATH``: the systemd journal, followed.
+JOURNAL = "journal"
 
 #: (kind, recognises its text): the first that says yes names the argument's kind.
-KINDS: list[tuple[str, Callable[[str], bool]]] = [
-    (WAREHOUSE, is_warehouse),  # clickhouse://, clickhouses://, chdb://
-]
+KINDS: tuple[tuple[str, Callable[[str], bool]], ...] = (
+    (WAREHOUSE, is_warehouse),
+    (JOURNAL, follows_journal),
+)
 
 
 def location_kind(text: str) -> str:
@@ -30,8 +39,8 @@ def location_kind(text: str) -> str:
 
 
 def split_locations(arguments: Sequence[str]) -> dict[str, list[str]]:
-    """The arguments by kind, in their order (``FILE`` always present)."""
-    found: dict[str, list[str]] = {FILE: []}
+    """The arguments by kind, in their order (every kind present, maybe empty)."""
+    found: dict[str, list[str]] = {FILE: [], **{kind: [] for kind, _ in KINDS}}
     for text in arguments:
-        found.setdefault(location_kind(text), []).append(text)
+        found[location_kind(text)].append(text)
     return found

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..model.levels import severity_name
+
 #: ``path_note`` while the take loop in C is being built (rclpy takes meanwhile).
 PATH_NOTE_BUILDING = "being built (taken through rclpy meanwhile)"
 
@@ -41,11 +43,19 @@ class SourceStatus:
     #: A one-line problem the user should see, or "".
     problem: str = ""
     running: bool = False
-    #: The robot this source reads, when the console reads a fleet (``sources.fleet``), else "".
+    #: The robot this source reads, when the console reads a fleet (``ros.fleet``), else "".
     robot: str = ""
-    #: What the empty table says while this source has given nothing, when not a live
-    #: source's words ("waiting for publishers"): for example a log warehouse's "no rows".
-    empty_text: str = ""
+    #: What the table says while this source has given nothing, for a source that reads no ROS
+    #: topic (the journal, a launch's output): ``following this machine's journal: no entries yet…``.
+    hint: str = ""
+    #: Whether ``path`` is progress (a log warehouse's ``1,000 rows read, following``): a detail
+    #: the status line gives up first, as it does a take path.
+    path_is_progress: bool = False
+    #: The lowest severity taken (``tail --level``; 0: every message).
+    min_level: int = 0
+    #: Why the middleware does not drop what is below ``min_level`` (the intake then drops it
+    #: itself), or "" (a DDS content filter drops it before it is sent).
+    level_filter_note: str = ""
 
     @property
     def state(self) -> str:
@@ -72,6 +82,15 @@ class SourceStatus:
             "message, so high rates are kept up with less well. The fast path needs a C compiler "
             "(cc) and Python's headers (python3-dev)."
         )
+
+    def level_filter_text(self) -> str:
+        """Where messages below ``min_level`` are dropped, in words; "" without a lowest severity."""
+        if not self.min_level:
+            return ""
+        words = f"level >= {severity_name(self.min_level)}"
+        if not self.level_filter_note:
+            return f"{words}: asked of DDS (a content filter: what is below is never sent here)"
+        return f"{words}: filtered by the intake, not by the middleware ({self.level_filter_note})"
 
     def loop_name(self) -> str:
         """The loop in C of this source's intake: ``the take loop in C`` (ROS 2) or ``the frame

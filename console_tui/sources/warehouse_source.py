@@ -18,8 +18,8 @@ import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from ..model.record_batch import RecordColumns
 from ..model.rules.ruleset import RuleSet
+from ..model.store.record_batch import RecordColumns
 from ..warehouse.address import Address
 from ..warehouse.clickhouse import TableClient, WarehouseError
 from ..warehouse.pages import TablePages
@@ -180,7 +180,8 @@ class WarehouseSource:
             path=path,
             problem=problem,
             running=self._running,
-            empty_text=empty,
+            hint=empty,
+            path_is_progress=True,
         )
 
     # -- the thread ------------------------------------------------------------------------------

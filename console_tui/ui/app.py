@@ -1,15 +1,15 @@
 """The console-tui Textual app: the keys, and what holds for every screen.
 
-``ConsoleApp`` holds the keys (``BINDINGS``, from ``app_bindings``: they work and show in the
-footer wherever no dialog is open, the keymap remaps them, the help screen and the palette list
-them) and its actions, each a line handing over to a controller of the main screen,
-``console_screen.ConsoleScreen``: it composes the widgets and owns one controller a concern
-(``controllers``: intake, table, rules, files, panes, search, jumps, toggles, overview). The app
-also keeps what holds for every screen: text from outside never markup and never raw
-(notifications, the clipboard), keys typed ahead going where they were meant (``focus``), the
-user's keymap, the exit on SIGTERM / SIGHUP, the help screen and the command palette
-(``palette``). A feature adds its keys to ``app_bindings``, its action here, its work in a
-controller of its own. (docs/architecture.md, "The app as controllers", says why.)
+``ConsoleApp`` binds the keys of every command (``command_table``: each controller declares its
+own, ``CONTROLLERS`` lists them; the app's own are help and quit): they work and show in the
+footer wherever no dialog is open, the keymap remaps them by id, the help screen and the palette
+list them, and a key runs its command's row (``action_command``) when the row applies
+(``check_action``). The main screen, ``console_screen.ConsoleScreen``, composes the widgets and
+owns one controller a concern. The app also keeps what holds for every screen: text from
+outside never markup and never raw (notifications, the clipboard), keys typed ahead going where
+they were meant (``focus``), the user's keymap, the exit on SIGTERM / SIGHUP, the help screen
+and the command palette (``palette``). A new command is a row in its controller's
+``COMMANDS``. (docs/decisions/0029-commands-as-data.md says why.)
 """
 
 from __future__ import annotations
@@ -20,34 +20,43 @@ import time
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 from textual import events
 from textual.app import App, SystemCommand
-from textual.binding import Binding
+from textual.binding import Binding, BindingType
 from textual.notifications import SeverityLevel
 from textual.screen import Screen
 
-from ..model.intake_queue import IntakeQueue
+from ..model.inert_text import multi_line, one_line
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
 from ..model.rules.rulesfile import query_history_path
-from ..model.store import LogStore
-from ..model.text import multi_line, one_line
-from ..sources.fleet import Robot
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.log_store import LogStore
+from ..ros.fleet import Robot
 from . import textual_fixes
-from .app_bindings import APP_BINDINGS, NAV_KEYS, bindings_of, key_groups
+from .command_table import Command, commands_of, key_bindings
 from .console_screen import ConsoleScreen
+from .controllers.files import FilesController
 from .controllers.intake import DRAIN_INTERVAL, Source
+from .controllers.jumps import JumpsController
+from .controllers.overview import OverviewController
+from .controllers.panes import PanesController
+from .controllers.rules import RulesController
+from .controllers.search import SearchController
+from .controllers.table import TableController
+from .controllers.toggles import TogglesController
 from .exit_signals import ExitSignals, terminal_gone
 from .focus import KeyGate, run_bindings_now
 from .gc_policy import CollectionPolicy
+from .key_groups import key_groups
 from .keys import binding_ids, keymap_path, load_keymap
 from .palette import PaletteProvider
 from .screens.help import HelpScreen
 
 if TYPE_CHECKING:
-    from ..sources.loggers.control import LoggerControl
+    from ..control.control_thread import LoggerControl
 
 textual_fixes.apply()
 
@@ -60,16 +69,39 @@ class TerminalGuard(Protocol):
     def resume(self) -> None: ...
 
 
-class ConsoleApp(App[None]):
+def console_bindings(controllers: Iterable[type], own: Iterable[Command[Any]]) -> list[BindingType]:
+    """Every key of the app: Textual's own (Ctrl+Q), the controllers' commands' and the app's,
+    the footer's in its order (``key_bindings``)."""
+    commands = [*(command for owner in controllers for command in commands_of(owner)), *own]
+    textual = [binding for binding in App.BINDINGS if not isinstance(binding, Binding) or binding.key != "ctrl+c"]
+    # Ctrl+C quits too, as a terminal's interrupt (not in the footer, not remapped).
+    return [*textual, *key_bindings(commands), Binding("ctrl+c", "quit", "Quit", show=False)]
+
+
+# Not inherited: BINDINGS is every key, in order (a console with other controllers binds them
+# all again, its new ones in their places).
+class ConsoleApp(App[None], inherit_bindings=False):
     """Every log message in one table, fed by sources through an ``IntakeQueue``."""
 
     TITLE = "console-tui"
-    CSS_PATH = "app.tcss"
+    #: By its whole path: a console with other controllers (a subclass elsewhere) finds it too.
+    CSS_PATH = str(Path(__file__).with_name("app.tcss"))
     #: Textual's own palette entries (theme, quit, screenshot...) and ours.
     COMMANDS = App.COMMANDS | {PaletteProvider}
 
-    #: Every key of the console (``app_bindings``; the help screen groups them).
-    BINDINGS = APP_BINDINGS
+    #: The controllers whose commands the keys, the footer, the help screen and the palette
+    #: show, in the order the help screen and the palette list them; the main screen makes
+    #: each (one that needs only the ``ConsoleContext`` is made as ``Controller(context)``).
+    CONTROLLERS: ClassVar[tuple[type, ...]] = (
+        TableController,
+        FilesController,
+        RulesController,
+        SearchController,
+        PanesController,
+        OverviewController,
+        JumpsController,
+        TogglesController,
+    )
 
     def __init__(
         self,
@@ -99,11 +131,11 @@ class ConsoleApp(App[None]):
         self.exit_signals = ExitSignals(self._exit_on_signal)
         #: Binding id -> keys, from the user's keys.toml (the keys the screen names follow it).
         self.keymap: dict[str, str] = {}
-        self._keymap_problems = self._load_keymap(keymap_file)
         self.key_gate = KeyGate(self)
-        #: The screen of the log table, with the controllers the actions below hand over to.
+        #: The screen of the log table, with the controllers the commands run on.
         self.main = ConsoleScreen(
             self,
+            controllers=self.CONTROLLERS,
             store=store if store is not None else LogStore(),
             queue=queue if queue is not None else IntakeQueue(),
             sources=sources,
@@ -120,6 +152,10 @@ class ConsoleApp(App[None]):
             robots=robots,
             file_robots=file_robots,
         )
+        #: Every command (``command_table``): the controllers', then the app's own.
+        self.commands = self.main.commands
+        self.commands.add(self, self.APP_COMMANDS)
+        self._keymap_problems = self._load_keymap(keymap_file)
 
     def get_default_screen(self) -> Screen:
         return self.main
@@ -139,7 +175,7 @@ class ConsoleApp(App[None]):
         name files, nodes and errors from outside, which may hold markup or escapes."""
         super().notify(multi_line(message), title=one_line(title), severity=severity, timeout=timeout, markup=False)
 
-    #: What catches native code's output while the app draws (``sources.native_output``): put
+    #: What catches native code's output while the app draws (``system.native_output``): put
     #: aside while the app is suspended (an editor has the terminal). Set by ``run_app``.
     native_output: TerminalGuard | None = None
 
@@ -200,9 +236,13 @@ class ConsoleApp(App[None]):
         self.main.intake.begin_stopping_sources()
         self.exit(return_code=128 + signum)
 
-    async def action_quit(self) -> None:
+    def begin_quitting(self) -> None:
+        """``q``: the sources stop while Textual takes the screens down."""
         self.main.intake.begin_stopping_sources()
         self.exit()
+
+    async def action_quit(self) -> None:  # Ctrl+C, and the palette's Quit (Textual's)
+        self.begin_quitting()
 
     async def on_event(self, event: events.Event) -> None:
         # Keys typed ahead go where they were meant (see focus.py): they wait while the screen
@@ -215,207 +255,47 @@ class ConsoleApp(App[None]):
                 return
         await super().on_event(event)
 
+    # -- the commands (``command_table``): every key, the footer, the help screen, the palette ------
+
+    def action_command(self, command_id: str) -> None:
+        """Run a command of the command table (its key's action, its palette entry's)."""
+        self.commands.run(command_id)
+
     def check_action(self, action: str, parameters: tuple[object, ...]) -> bool | None:
-        return self.main.key_applies(action)
-
-    # -- the table (``controllers.table``) -------------------------------------------------------
-
-    def action_pause(self) -> None:
-        self.main.table.set_paused(True)
-
-    def action_resume(self) -> None:
-        self.main.table.set_paused(False)
-
-    def action_toggle_pause(self) -> None:
-        self.main.table.set_paused(self.main.table.paused_end is None)
-
-    def action_follow(self) -> None:
-        self.main.table.follow()
-
-    def action_clear(self) -> None:
-        self.main.table_control.clear()
-
-    def action_columns(self) -> None:
-        self.main.table_control.ask_columns()
-
-    def action_toggle_column(self, key: str) -> None:
-        self.main.table_control.toggle_column(key)
-
-    def action_details(self) -> None:
-        self.main.table.action_activate()
-
-    # -- rules (``controllers.rules``) -----------------------------------------------------------
-
-    def action_query(self) -> None:
-        self.main.query_bar.open()
-
-    def action_toggle_rules(self) -> None:
-        self.main.filtering.toggle_pane()
-
-    def action_stop_filtering(self) -> None:
-        self.main.filtering.stop_filtering()
-
-    def action_toggle_highlighted_only(self) -> None:
-        self.main.filtering.toggle_highlighted_only()
-
-    def action_add_rule(self) -> None:
-        self.main.filtering.edit_rule(None)
-
-    def action_quick_rule(self, role: str) -> None:
-        self.main.filtering.quick_rule(role)
-
-    def action_clear_rules(self) -> None:
-        self.main.filtering.clear_rules()
-
-    def action_save_rules(self) -> None:
-        self.main.filtering.ask_save()
-
-    def action_load_rules(self, path: str | None = None) -> None:
-        self.main.filtering.open_rules(path)
-
-    def action_restore_rules(self) -> None:
-        self.main.filtering.restore_rules()
-
-    # -- files (``controllers.files``) -----------------------------------------------------------
-
-    def action_open(self) -> None:
-        self.main.files.ask_open()
-
-    def action_cancel_load(self) -> None:
-        self.main.files.cancel_loads()
-
-    def action_problems(self) -> None:
-        self.main.files.show_problems()
-
-    def action_save(self) -> None:
-        self.main.files.ask_save()
-
-    # -- toggles (``controllers.toggles``) and the side panes (``controllers.panes``) ---------------
-
-    def action_toggle_level(self, level: int) -> None:
-        self.main.toggles.toggle_level(level)
-
-    def action_raise_minimum(self) -> None:
-        self.main.toggles.raise_minimum()
-
-    def action_lower_minimum(self) -> None:
-        self.main.toggles.lower_minimum()
-
-    def action_all_levels(self) -> None:
-        self.main.toggles.all_levels()
-
-    def action_minimum_level(self, level: int) -> None:
-        self.main.toggles.minimum_level(level)
-
-    def action_solo_row_node(self) -> None:
-        self.main.toggles.solo_row_node()
-
-    def action_mute_row_node(self) -> None:
-        self.main.toggles.mute_row_node()
-
-    def action_clear_node_toggles(self) -> None:
-        self.main.toggles.clear_node_toggles()
-
-    def action_next_time_format(self) -> None:
-        self.main.toggles.next_time_format()
-
-    def action_time_format(self, name: str) -> None:
-        self.main.toggles.time_format(name)
-
-    def action_toggle_utc(self) -> None:
-        self.main.toggles.toggle_utc()
-
-    def action_toggle_loggers(self) -> None:
-        self.main.panes.toggle_loggers()
-
-    def action_toggle_nodes(self) -> None:
-        self.main.panes.toggle_nodes()
-
-    def action_loggers_for_row(self) -> None:
-        self.main.panes.loggers_for_row()
-
-    # -- the overview (``controllers.overview``) -------------------------------------------------
-
-    def action_toggle_timeline(self) -> None:
-        self.main.overview.toggle_timeline()
-
-    def action_timeline(self) -> None:
-        self.main.overview.pick_time()
-
-    def action_toggle_storm(self) -> None:
-        self.main.overview.toggle_storm()
-
-    def action_toggle_storms(self) -> None:
-        self.main.overview.toggle_storms()
-
-    def action_toggle_mask_digits(self) -> None:
-        self.main.overview.toggle_mask_digits()
-
-    def action_summary(self) -> None:
-        from .screens.summary import SummaryScreen  # loaded when first opened
-
-        if not isinstance(self.screen, SummaryScreen):
-            self.main.overview.summary()
-
-    # -- search (``controllers.search``) --------------------------------------------------------
-
-    def action_search(self) -> None:
-        self.main.searching.open_search_line()
-
-    def action_clear_search(self) -> None:
-        if self.main.searching.search is not None:
-            self.main.searching.clear_search()
-
-    def action_next_match(self) -> None:
-        self.main.searching.jump_to_match(forward=True)
-
-    def action_previous_match(self) -> None:
-        self.main.searching.jump_to_match(forward=False)
-
-    # -- jumps (``controllers.jumps``) ---------------------------------------------------------
-
-    def action_next_level(self, level: int) -> None:
-        self.main.jumps.next_level(level)
-
-    def action_previous_level(self, level: int) -> None:
-        self.main.jumps.previous_level(level)
-
-    def action_first_row(self) -> None:
-        self.main.table.action_first_row()
-
-    def action_last_row(self) -> None:
-        self.main.table.follow()
-
-    def action_toggle_mark(self) -> None:
-        self.main.jumps.toggle_mark()
-
-    def action_next_mark(self) -> None:
-        self.main.jumps.to_mark(forward=True)
-
-    def action_previous_mark(self) -> None:
-        self.main.jumps.to_mark(forward=False)
-
-    def action_marks(self) -> None:
-        self.main.jumps.list_marks()
-
-    def action_open_source(self) -> None:
-        self.main.jumps.open_source()
-
-    # -- help and the command palette -------------------------------------------------------------
-
-    def action_help(self) -> None:
-        if isinstance(self.screen, HelpScreen):
-            return
-        self.push_screen(HelpScreen(self.binding_groups()))
+        if action == "command" and parameters:
+            return self.commands.applies(str(parameters[0]))
+        return True
+
+    def show_help(self) -> None:
+        # Not an ``applies``: the footer under the help screen keeps its key, as it always did.
+        if not isinstance(self.screen, HelpScreen):
+            self.push_screen(HelpScreen(self.binding_groups()))
 
     def binding_groups(self) -> list[tuple[str, list[Binding]]]:
         """Every key, by where it works: the help screen, the keymap and the palette read these."""
-        return key_groups()
+        return key_groups(self.commands)
 
-    def nav_bindings(self) -> list[Binding]:
-        """The keys that find your way: search, jumps, marks, levels, nodes, time (the search
-        line's hint names them)."""
-        return bindings_of(NAV_KEYS)
+    #: The app's own commands (the controllers' are theirs: ``CONTROLLERS``).
+    APP_COMMANDS: ClassVar[tuple[Command[ConsoleApp], ...]] = (
+        Command(
+            "console.help",
+            show_help,
+            "question_mark,f1",
+            "Help",
+            footer=120,
+            title="Help: every key",
+            about="What console-tui shows, and every key (remap them in keys.toml)",
+        ),
+        Command("console.quit", lambda app: app.begin_quitting(), "q", "Quit", footer=130),
+    )
+
+    #: Every command's keys, read from the rows.
+    BINDINGS = console_bindings(CONTROLLERS, APP_COMMANDS)
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        # A console with other controllers (``CONTROLLERS``) binds their keys.
+        cls.BINDINGS = console_bindings(cls.CONTROLLERS, cls.APP_COMMANDS)
+        super().__init_subclass__(**{"inherit_bindings": False, **kwargs})
 
     def get_system_commands(self, screen: Screen) -> Iterable[SystemCommand]:
         # Textual's "Keys" opens its key panel; "Help: every key" (ours) says more.

@@ -3,9 +3,9 @@
 ``ConsoleScreen`` composes the widgets (the timeline strip, the rules pane, the table, the
 logger levels pane and the node panel, the query and search lines, the load bar, the status
 line, the footer), owns one controller a concern (``controllers``: intake, table, rules, files,
-panes, search, jumps, toggles, overview), each made with the few things it works on, and hands
-the widgets' messages to them. The keys are the app's (``ConsoleApp.BINDINGS``): its actions
-hand over to the controllers here, and ask ``key_applies`` which keys apply now.
+panes, search, jumps, toggles, overview, warehouse), each made with the few things it works on, and hands
+the widgets' messages to them. Their commands (``command_table``) are gathered here in
+``commands``; the app binds their keys.
 """
 
 from __future__ import annotations
@@ -19,16 +19,19 @@ from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.screen import Screen
 
-from ..model.intake_queue import IntakeQueue
-from ..model.marks import Marks
-from ..model.node_stats import NodeStats
+from ..model.overview.node_stats import NodeStats
+from ..model.overview.storms import StormRows
+from ..model.overview.timeline import Timeline
 from ..model.rules.history import QueryHistory
 from ..model.rules.ruleset import RuleSet
-from ..model.store import LogStore
-from ..model.storms import StormRows
-from ..model.timeline import Timeline
-from ..model.view import LogView
-from ..sources.fleet import Robot
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.log_store import LogStore
+from ..model.view.log_view import LogView
+from ..model.view.marks import Marks
+from ..ros.fleet import Robot
+from .command_table import CommandTable
+from .controllers.announcements import Announcements
+from .controllers.context import ConsoleContext
 from .controllers.files import FilesController
 from .controllers.host import TerminalHost
 from .controllers.intake import IntakeController, Source
@@ -55,7 +58,7 @@ from .widgets.status_bar import StatusBar, StatusFacts, empty_hint
 from .widgets.timeline_strip import TimelineStrip
 
 if TYPE_CHECKING:
-    from ..sources.loggers.control import LoggerControl
+    from ..control.control_thread import LoggerControl
 
 
 class ConsoleScreen(Screen[None]):
@@ -65,6 +68,7 @@ class ConsoleScreen(Screen[None]):
         self,
         host: TerminalHost,
         *,
+        controllers: Sequence[type],
         store: LogStore,
         queue: IntakeQueue,
         sources: Sequence[Source],
@@ -95,9 +99,9 @@ class ConsoleScreen(Screen[None]):
         self.table = LogTable(self.store, self.storms, utc=utc, id="log-table")
         #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self.robots = list(robots)
-        self.table.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
+        self.table.painter.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
         if len(self.robots) > 1:
-            self.table.shown_columns |= {"robot"}
+            self.table.painter.set_column_shown("robot", True)
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
         self._initial_query = query
@@ -116,105 +120,82 @@ class ConsoleScreen(Screen[None]):
         #: Messages per node and severity, and rates: the node panel shows them.
         self.node_stats = NodeStats(self.store)
         self.node_pane = NodePane(self.node_stats, lambda: self.toggles.node_toggles())
-        self.files = FilesController(
-            host, self.store, self.view, self.table, self.load_bar, self.file_queue, log_format=log_format
+        #: What every controller works on (``controllers.context``).
+        self.context = ConsoleContext(
+            host=host,
+            store=self.store,
+            view=self.view,
+            table=self.table,
+            marks=self.marks,
+            clock=clock,
+            utc=utc,
+            changed=self.state_changed,
+            announce=Announcements(),
         )
-        self._make_controllers(host, utc, clock)
+        made = {type(controller): controller for controller in self._make_controllers(log_format)}
+        #: Every controller's commands, in the order of ``controllers`` (those not made by
+        #: ``_make_controllers`` need only the context: made here).
+        self.commands = CommandTable()
+        for kind in controllers:
+            self.commands.add(made[kind] if kind in made else kind(self.context))
+        # The collector's turn comes with the intake's tick, after everything else it does.
+        self.context.announce.tick.subscribe(collection_policy.tick)
 
-    def _make_controllers(self, host: TerminalHost, utc: bool, clock: Callable[[], float]) -> None:
-        """Each controller with what it works on (the store, the view, the table, widgets, the
-        controllers it hands on to), the app as its ``Host``, and the status line to update."""
-        store, view, table, status = self.store, self.view, self.table, self.update_status
+    def _make_controllers(self, log_format: str | None) -> list[object]:
+        """Each controller with the context and the few things only it drives. They subscribe
+        to what they follow as they are made: the order here is the order they hear news in
+        (the rules before the table, the table before the search: a late history's rows are
+        drawn again before the search starts again over them)."""
+        context = self.context
+        self.files = FilesController(context, self.load_bar, self.file_queue, log_format=log_format)
         self.overview = OverviewController(
-            host,
-            store,
-            view,
-            table,
+            context,
             self.timeline,
             self.storms,
             self.timeline_strip,
             self.node_stats,
             sources=lambda: [source.status for source in self.sources],
-            utc=utc,
-            clock=clock,
-            update_status=status,
         )
-        self.filtering = RulesController(
-            host,
-            store,
-            view,
-            table,
-            self.query_bar,
-            self.rules_pane,
-            self.query_history,
-            self.overview,
-            utc=utc,
-            clock=clock,
-            update_status=status,
-        )
+        self.filtering = RulesController(context, self.query_bar, self.rules_pane, self.query_history)
         self.table_control = TableController(
-            host,
-            store,
-            view,
-            table,
-            self.marks,
-            self.node_stats,
-            self.overview,
-            source_notes=self.files.source_notes,
-            utc=utc,
-            update_status=status,
+            context, source_notes=self.files.source_notes, robot_column=len(self.robots) > 1
         )
         self.toggles = TogglesController(
-            store,
-            table,
+            context,
             self.node_pane,
             rules=lambda: self.filtering.rules,
             apply_rules=self.filtering.apply_rules,
             live=lambda: bool(self.sources),
-            update_status=status,
         )
-        self.panes = PanesController(host, store, table, self.logger_pane, self.node_pane)
-        self.searching = SearchController(
-            host, store, view, table, self.search_bar, self.marks, self.storms, clock=clock, update_status=status
-        )
+        self.panes = PanesController(context, self.logger_pane, self.node_pane)
+        self.searching = SearchController(context, self.search_bar, self.storms)
         self.intake = IntakeController(
-            host,
-            store,
-            view,
-            table,
-            self.marks,
+            context,
             sources=self.sources,
             queue=self.queue,
             file_queue=self.file_queue,
+            files_loading=lambda: self.files.loading,
             robots=self.robots,
-            collection_policy=self.collection_policy,
-            files=self.files,
-            filtering=self.filtering,
-            overview=self.overview,
-            searching=self.searching,
-            clock=clock,
-            update_status=status,
         )
+        self.jumps = JumpsController(context, opened_paths=self.files.opened_paths)
         self.warehouse = WarehouseController(
-            store,
-            table,
-            self.marks,
+            context,
             self.intake,
             sources=self.sources,
             reapply_rules=lambda: self.filtering.apply_rules(self.filtering.rules),
-            update_status=status,
         )
-        self.filtering.listeners.append(self.warehouse.rules_changed)
-        self.jumps = JumpsController(
-            host,
-            store,
-            view,
-            table,
-            self.marks,
-            opened_paths=self.files.opened_paths,
-            show_marks=self.searching.show_marks,
-            update_status=status,
-        )
+        return [
+            self.files,
+            self.overview,
+            self.filtering,
+            self.table_control,
+            self.toggles,
+            self.panes,
+            self.searching,
+            self.intake,
+            self.jumps,
+            self.warehouse,
+        ]
 
     #: Whether the panes and lines hidden at start are mounted (``_mount_hidden``): until
     #: then keys wait (``focus.KeyGate``) and nothing is drained into the table.
@@ -254,14 +235,27 @@ class ConsoleScreen(Screen[None]):
         self.ready_for_keys = True
         self.overview.start()
         self.app.set_interval(self._drain_interval, self.intake.drain_intake)
-        if self.warehouse.warehouses:
-            self.app.set_interval(self._drain_interval, self.warehouse.tick)
         self.filtering.apply_initial(self._initial_rules, self._initial_query)
         self.update_status()
         if self._initial_files:
             self.files.open_files(self._initial_files, robots=self._file_robots)
 
+    _state_due = False
+
+    def state_changed(self) -> None:
+        """The console's state changed (``ConsoleContext.changed``): the status line, the
+        table's hint and the footer's keys are drawn again once this turn of the event loop
+        is over, however many changes it brings."""
+        if not self._state_due:
+            self._state_due = True
+            self.context.host.call_later(self._state_drawn)
+
+    def _state_drawn(self) -> None:
+        self._state_due = False
+        self.update_status()
+
     def update_status(self) -> None:
+        """The status line, the table's hint and the footer's keys drawn now."""
         table = self.table
         statuses = [source.status for source in self.sources]
         paused_end = table.paused_end
@@ -284,30 +278,22 @@ class ConsoleScreen(Screen[None]):
         table.show_hint(empty_hint(facts, self.view.refiltering))
         self._refresh_footer()
 
-    _footer_state: tuple[bool | None, ...] = ()
+    _footer_state: tuple[bool, ...] | None = None
 
     def _refresh_footer(self) -> None:
-        """The footer's keys that come and go (``key_applies``) follow the console's state when
-        it changes (paused, a load ends, filtering is done), not only when the focus moves."""
-        state = tuple(self.key_applies(action) for action in ("pause", "cancel_load", "stop_filtering", "clear_search"))
-        if state != self._footer_state:
-            self._footer_state = state
+        """The footer's keys that come and go (the commands' ``applies``) follow the console's
+        state when it changes (paused, a load ends, filtering is done), not only when the
+        focus moves."""
+        if self.commands.state() != self._footer_state:
             self.refresh_bindings()
 
-    def key_applies(self, action: str) -> bool | None:
-        """Whether the app's key for ``action`` applies now (``ConsoleApp.check_action``): space
-        is Pause or Resume, the keys that end a load, a filtering, a search only while there is one."""
-        if action == "pause":
-            return self.table.paused_end is None
-        if action == "resume":
-            return self.table.paused_end is not None
-        if action == "cancel_load":
-            return self.files.loading
-        if action == "stop_filtering":
-            return self.view.refiltering
-        if action == "clear_search":
-            return self.searching.search is not None and not self.view.refiltering
-        return True
+    def refresh_bindings(self) -> None:
+        # Whoever asks (this screen, or Textual when the focus moves), the footer is drawn
+        # from the commands' states of now: a change after it is one to draw again.
+        commands: CommandTable | None = getattr(self, "commands", None)
+        if commands is not None:
+            self._footer_state = commands.state()
+        super().refresh_bindings()
 
     # -- what the widgets say -----------------------------------------------------------------------
 
@@ -319,12 +305,11 @@ class ConsoleScreen(Screen[None]):
         focus_now(self.table)
 
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
-        self.update_status()  # the footer's Pause or Resume too
+        self.state_changed()  # the footer's Pause or Resume too
         self.overview.show(force=True)
 
     def on_log_table_top_reached(self, _message: LogTable.TopReached) -> None:
-        if self.warehouse.top_reached():
-            self.update_status()
+        self.warehouse.top_reached()
 
     def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
         self.table_control.open_detail(message.seq)

@@ -7,7 +7,7 @@ drain asks for, where it would lengthen the longest pause by its own length. Wha
 made is frozen out of collections (``gc.freeze``), so a full collection visits only what the
 app made since: mostly Textual's strips and their caches, and the cycles of widgets removed
 and screens closed. Why collections are scheduled this way, and what was measured:
-docs/architecture.md, "Garbage collection on our schedule".
+docs/decisions/0017-garbage-collection-schedule.md.
 """
 
 from __future__ import annotations

@@ -108,9 +108,15 @@ Hint = tuple[str | tuple[str, ...], str]
 def hint_line(app: KeyDisplay, bindings: Iterable[BindingType], hints: Sequence[Hint]) -> str:
     """``⏎ applies · esc closes · ↑/↓ history``: each action's first key, then what it does.
 
-    Actions are looked up in ``bindings``; an action with no binding there is left out (a key
-    is never written by hand)."""
-    by_action = {binding.action: binding for binding in bindings if isinstance(binding, Binding)}
+    Actions are named by the action or the id of their binding in ``bindings`` (a command's
+    by its id: ``console.cancel_load``); one with no binding there is left out (a key is
+    never written by hand)."""
+    by_action: dict[str, Binding] = {}
+    for binding in bindings:
+        if isinstance(binding, Binding):
+            by_action.setdefault(binding.action, binding)
+            if binding.id:
+                by_action.setdefault(binding.id, binding)
     keymap = keymap_of(app)
     parts = []
     for actions, words in hints:

@@ -3,7 +3,7 @@ for widgets: never read as markup, never sent to the terminal raw.
 
 Textual reads a ``str`` given to a Label, a Static or an Option as markup, so ``[/]`` in a
 file name is a crash and ``[@click=...]`` an action; Rich passes ESC through to the
-terminal. ``plain`` gives a ``Text`` (not markup) of the inert form (``model.text``).
+terminal. ``plain`` gives a ``Text`` (not markup) of the inert form (``model.inert_text``).
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from typing import Any
 
 from rich.text import Text
 
-from ..model.text import multi_line, one_line
+from ..model.inert_text import multi_line, one_line
 
 
 def plain(text: str, *, limit: int | None = 1000, lines: bool = False, **options: Any) -> Text:

@@ -6,8 +6,7 @@ turn after the one in which its time came; when a frame held the loop meanwhile,
 would run at once after it, before a key pressed during the frame or anything else that came
 due later in that frame. So a pause that ends ``LATE_S`` late is followed by a short one
 (``YIELD_S``), up to ``YIELDS`` in a row, so that what waited goes first; the pause asked for
-is not taken again. The measurements behind it: docs/architecture.md, "Background work in
-slices".
+is not taken again. The measurements behind it: docs/decisions/0016-background-work-in-slices.md.
 """
 
 from __future__ import annotations

@@ -5,38 +5,10 @@ what it was written against (the function's qualified name and a hash of its sou
 the Textual release tested); one that does not match is not installed, and
 ``console-tui --version`` says which (``fixes_text``). The Textual releases pyproject.toml
 admits are the ones tested; moving that range means checking each fix again (its test
-fails on a new hash) and updating ``source_hash`` below. What each costs unpatched, as
-measured: docs/architecture.md, "Work-arounds in Textual".
+fails on a new hash) and updating ``source_hash`` below.
 
-- ``OptionList._move_page`` (PageUp/PageDown) looks up the highlighted option's line in a
-  table that is only built once the list has a size: on a list with options, one
-  highlighted, but no size yet (the command palette's while its results come in), it ends
-  in ``KeyError: 0`` and the app exits. Here such a page move goes to the first or last
-  option instead. Seen with Textual 8.2.8 (Ctrl+P, then PageUp).
-- ``BindingsMap.apply_keymap`` moves every binding a keymap gives a new key to the end of
-  the map, so the footer, which follows that order, shows it last, and cut off on most
-  terminals (``console.pause = "p"``: no Pause in the footer at 120 columns). Here a rebound
-  binding keeps the place its old key had. Seen with Textual 8.2.8.
-- When the terminal goes away (an SSH session dropping), the kernel sends SIGHUP and then
-  SIGCONT. Textual's output thread dies on the first write that fails (``EIO``) and the
-  writes after it fill its queue of 30, so the app's exit blocks for ever on the 31st; and
-  SIGCONT resumes the application mode of a driver that was never suspended (a second output
-  thread, the terminal's modes written again). Here the output thread drops what it cannot
-  write and goes on emptying its queue, and SIGCONT resumes only a suspended driver. Seen
-  with Textual 8.2.8.
-- ``Strip.crop_extend`` and ``Strip.divide`` keep their result in the strip's own cache even
-  when the result is the strip itself (a crop to the whole strip, one cut at its end): the
-  strip then refers to itself, so no strip drawn that way is freed when it is dropped, only
-  by a full garbage collection. That is most strips Textual draws: while messages arrive,
-  thousands of objects a second (a strip, its seven caches, its segments) wait for the
-  collector, and each full collection has them to find and free. Here a strip is not cached
-  in itself, and a dropped strip is freed at once. Seen with Textual 8.2.8.
-- ``Screen.focused`` is a reactive that repaints the whole screen when it changes, though
-  the widgets that gain and lose the focus repaint themselves (``Widget._on_focus`` and
-  ``_on_blur``) and those styled by it (``:focus-within``) are restyled. So every change of
-  focus draws every widget again: closing the search line with Enter (the focus back to the
-  table) costs a frame of the whole screen, with part of the search in the same turn of the
-  event loop. Here a change of focus repaints only what it changes. Seen with Textual 8.2.8.
+What each fix is for, what Textual 8.2.8 does wrong, a reproduction and the upstream issue
+ready to file: docs/textual-fixes.md (a section per fix, titled by what it patches).
 """
 
 from __future__ import annotations
@@ -166,7 +138,8 @@ class Fix:
     #: release tested.
     source_hash: str
     install: Callable[[], None]
-    #: The upstream issue or pull request, or "not yet reported — <the bug in one line>".
+    #: The upstream issue or pull request, or "not yet reported — <the bug in one line>" (the
+    #: issue's text, ready to file: docs/textual-fixes.md).
     upstream: str
 
 

@@ -20,7 +20,7 @@ from __future__ import annotations
 from itertools import chain, compress
 from typing import Any
 
-from ..model.record_batch import RecordColumns
+from ..model.store.record_batch import RecordColumns
 from .clickhouse import TableClient
 from .schema import RECORD_COLUMNS
 

@@ -27,17 +27,17 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ..model.levels import MESSAGE_SEVERITIES
-from ..model.logger_levels import split_robot
+from ..model.loggers.logger_levels import split_robot
 from ..model.rules.custom import CustomRule
 from ..model.rules.location import LocationRule
 from ..model.rules.message import MessageRule
 from ..model.rules.node import is_glob, logger_name
+from ..model.rules.pattern_match import TextMatch
 from ..model.rules.regex_shape import required_literal
 from ..model.rules.robot import RobotRule
 from ..model.rules.rule import Rule, RuleError
 from ..model.rules.ruleset import Entry, Role, RuleSet
 from ..model.rules.severity import SeverityRule
-from ..model.rules.text_match import TextMatch
 from ..model.rules.time_range import TimeRangeRule
 from .schema import FIELDS, sql_text
 

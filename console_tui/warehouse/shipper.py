@@ -21,8 +21,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..model.formats.otel_log import otel_logs_of
-from ..model.intake_queue import IntakeQueue
-from ..model.record_batch import RecordColumns
+from ..model.store.intake_queue import IntakeQueue
+from ..model.store.record_batch import RecordColumns
 from .otlp_encode import decode, encode
 from .outcome import Outcome
 from .spool import Batch, Spool, SpoolState, batch_token

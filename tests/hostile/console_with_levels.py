@@ -15,9 +15,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
 from console_tui.run_app import run_then_clean_up
-from console_tui.ui import app as app_module
 from console_tui.ui.app import ConsoleApp
 
 from support.memory_control import MemoryControl, MemoryNode
@@ -30,10 +29,8 @@ control = MemoryControl([node], call_timeout=0.5)
 
 
 class Console(ConsoleApp):
-    CSS_PATH = str(Path(app_module.__file__).with_name("app.tcss"))
-
     def on_ready(self) -> None:
-        self.action_toggle_loggers()  # the logger levels pane: its first opening starts the control
+        self.commands.run("console.loggers")  # the logger levels pane: its first opening starts the control
         self.set_timer(0.3, self.set_level)
 
     def set_level(self) -> None:

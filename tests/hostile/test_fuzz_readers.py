@@ -23,7 +23,7 @@ from console_tui.model.formats.jsonl import JsonLinesWriter
 from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError, encode_log
 from console_tui.model.formats.ros2_log_msg import CdrError, LogDecoder, LogEncoder
 from console_tui.model.formats.rqt_csv import RqtCsvWriter
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 from support.formats import DATA, hostile_records
 

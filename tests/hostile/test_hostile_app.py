@@ -11,8 +11,8 @@ import re
 from textual.command import CommandList, CommandPalette
 from textual.widgets import Checkbox, Input
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files.loader import FileProgress, LoadProgress
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.detail import DetailScreen
@@ -20,7 +20,7 @@ from console_tui.ui.screens.load_problems import ProblemsScreen
 from console_tui.ui.screens.quick_rule import QuickRuleScreen
 from console_tui.ui.screens.rule_editor import RuleEditor
 
-from support.ui import foreign_controls, screen_text, terminal_output, type_text, until
+from support.ui import foreign_controls, screen_text, terminal_output, type_text, until, until_shown
 
 TITLE = "\x1b]0;PWNED\x07"
 CLIPBOARD = "\x1b]52;c;cm0gLXJmIH4=\x07"  # sets the clipboard to "rm -rf ~"
@@ -79,7 +79,7 @@ async def test_markup_in_file_content_and_problems_is_shown_as_text(tmp_path):
         await pilot.press("exclamation_mark")
         await until(pilot, lambda: isinstance(app.screen, ProblemsScreen), what="the problems screen")
         app.notify("[/] a [@click=app.quit]markup[/] notification")
-        await pilot.pause(0.3)
+        await until_shown(pilot, "[/] a [@click=app.quit]markup[/] notification")
         assert "[/] a [@click=app.quit]markup[/] notification" in screen_text(app)
         assert app.is_running
 

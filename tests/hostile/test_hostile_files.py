@@ -91,10 +91,10 @@ def test_a_fifo_is_refused_at_once(tmp_path):
 
 
 def test_an_endless_line_costs_a_bounded_amount(tmp_path, monkeypatch):
-    from console_tui.model.formats import textlines
+    from console_tui.model.formats import line_groups
 
-    monkeypatch.setattr(textlines, "MAX_LINE", 4 << 20)
-    monkeypatch.setattr(textlines, "MAX_RECORD_CHARS", 4 << 20)
+    monkeypatch.setattr(line_groups, "MAX_LINE", 4 << 20)
+    monkeypatch.setattr(line_groups, "MAX_RECORD_CHARS", 4 << 20)
     path = tmp_path / "one-line.log"
     with open(path, "wb") as out:
         out.write(b"[INFO] [1.000000000] [n]: ")

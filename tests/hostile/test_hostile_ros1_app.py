@@ -5,10 +5,10 @@ the logger pane is open."""
 
 from __future__ import annotations
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.control.ros1.logger_control import Ros1LoggerControl
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.ros.ros1.environment import Ros1Environment
 from console_tui.sources.live import open_live
-from console_tui.sources.ros1.environment import Ros1Environment
-from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 from console_tui.ui.app import ConsoleApp
 
 from support.hostile_ros1 import FakeMaster, FakePublisher, huge_system_state, reset_rss_peak, rss_peak_mb

@@ -9,9 +9,9 @@ import sys
 
 import pytest
 
-from console_tui.sources.ros1.environment import Ros1Environment
-from console_tui.sources.ros1.logger_control import Ros1LoggerControl
-from console_tui.sources.ros1.master import Ros1CallError, xmlrpc_call
+from console_tui.control.ros1.logger_control import Ros1LoggerControl
+from console_tui.ros.ros1.environment import Ros1Environment
+from console_tui.ros.ros1.master import Ros1CallError, xmlrpc_call
 
 from support.hostile_ros1 import (
     FakeMaster,

@@ -11,8 +11,8 @@ import time
 import pytest
 
 from console_tui.model.formats.ros1_log_msg import encode_log
+from console_tui.ros.ros1.tcpros import encode_header
 from console_tui.sources.ros1 import subscribed_topic
-from console_tui.sources.ros1.tcpros import encode_header
 
 from support.hostile_ros1 import FakeMaster, FakePublisher, RunningSource
 from support.ros1 import wait_for

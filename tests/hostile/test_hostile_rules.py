@@ -8,12 +8,13 @@ import sys
 import time
 
 import pytest
+from textual.widgets import Input
 
-from console_tui.model.record import LogRecord
-from console_tui.model.rules import MessageRule, RuleSet, exclude
+from console_tui.model.rules import MessageRule
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.rulesfile import load_rules
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.controllers import rules as rule_control
 from console_tui.ui.screens.help import HelpScreen
@@ -52,8 +53,10 @@ async def test_a_catastrophic_regex_never_freezes_the_app(how, tmp_path):
         else:
             path = tmp_path / "rules.toml"
             path.write_text('[[rules]]\nkind = "message"\ntext = "(a+)+$"\nregex = true\n')
-            app.action_load_rules(str(path))
-            await pilot.press("up")
+            await pilot.press("r", "O")  # the rules pane's Open rule set
+            app.screen.query_one("#path", Input).value = str(path)
+            began = time.process_time()
+            await pilot.press("enter", "escape", "up")  # loaded, back to the table, a key
         await until(pilot, lambda: app.main.table.cursor_row == row - 1, timeout=10, what="the key's effect")
         # Under 1 s of CPU run alone; the suite's coverage tracing doubles that. Before the fix:
         # minutes (the timeout above ended it).
@@ -76,9 +79,11 @@ async def test_esc_stops_a_long_filtering(monkeypatch):
     app = ConsoleApp(store=store, utc=True)
     app.main.view.clock = TickingClock(0.001)
     async with app.run_test(size=(120, 30), notifications=True) as pilot:
-        await pilot.pause()
-        app.main.filtering.apply_rules(RuleSet((exclude(MessageRule("message 1")),)))
+        await pilot.press("slash")
+        await type_text(pilot, '-"message 1"')
+        await pilot.press("enter")
         await until(pilot, lambda: "filtering" in screen_text(app), timeout=30, what="the filtering shown")
+        assert app.main.filtering.rules.entries[0].rule == MessageRule("message 1", ignore_case=True)
         assert app.main.view.refiltering
         await pilot.press("escape")
         await until(pilot, lambda: not app.main.view.refiltering, timeout=5, what="filtering to stop")

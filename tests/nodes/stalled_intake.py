@@ -19,9 +19,9 @@ import sys
 import threading
 import time
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.ros.ros2.runtime import RosRuntime
 from console_tui.sources.ros2.live_source import LiveLogSource
-from console_tui.sources.ros2.runtime import RosRuntime
 
 #: Nothing more arrived or was counted lost for this long: the middleware holds no more.
 QUIET_S = 5.0

@@ -191,8 +191,8 @@ def test_a_busy_node_times_out_with_status_4(nodes, ros_env):
 
 
 def test_without_rclpy_exit_2_with_advice(capsys, monkeypatch):
-    from console_tui.sources.ros2 import runtime
-    from console_tui.sources.ros2.rclpy_loader import HOW_TO_GET_ROS2, RosUnavailable
+    from console_tui.ros.ros2 import runtime
+    from console_tui.ros.ros2.rclpy_loader import HOW_TO_GET_ROS2, RosUnavailable
 
     def unavailable():
         raise RosUnavailable(HOW_TO_GET_ROS2)

@@ -124,6 +124,23 @@ def test_ros1_live_through_the_same_source_choice(roscore, ros1_nodes, ros1_env)
     assert {line.split()[0] for line in lines} <= {"WARN", "ERROR", "FATAL"}
 
 
+@pytest.mark.ros1
+def test_ros1_level_is_filtered_by_the_intake_and_said_once(roscore, ros1_nodes, ros1_env):
+    """ROS 1 has no content filter: ``--level error`` drops the rest in the intake process."""
+    ros1_nodes.rospy("rospy_node.py", "py_leveled", "--period", "0.1", "--debug").expect("ready")
+    tail = TailProcess(ros1_env, "--ros1", "--level", "error", "--format", "${severity} ${node}")
+    try:
+        lines = tail.take_text(6)
+    finally:
+        assert tail.stop() == 0, b"".join(tail.stderr)[-2000:]
+    assert len(lines) == 6 and set(lines) == {"ERROR /py_leveled", "FATAL /py_leveled"}, lines
+    said = [line for line in b"".join(tail.stderr).decode().splitlines() if "--level" in line]
+    assert said == [
+        "console-tui tail: --level: level >= ERROR: filtered by the intake, not by the middleware "
+        "(ROS 1 has no content filter)"
+    ]
+
+
 def test_the_slower_intake_path_is_said_once_on_stderr(nodes, ros_env):
     """Without the take loop in C (here switched off, as on a machine without cc or
     python3-dev) tail says so once, with what it costs, and prints as ever."""
@@ -173,3 +190,41 @@ def test_a_hanging_compiler_does_not_blind_the_intake(nodes, ros_env, ros_runtim
         tail.stop()
     group = int(group_file.read_text())
     assert wait_until(lambda: not group_alive(group), 20), "the compiler outlived the console"
+
+
+@pytest.mark.parametrize("content_filter", ["1", "0"])
+def test_level_prints_that_severity_and_worse_and_says_when_the_middleware_does_not_filter(
+    nodes, ros_env, ros_runtime, content_filter
+):
+    """``tail --level error`` (ros2 log watch's option): asked of DDS as a content filter, or
+    with it switched off filtered in the intake process, said once on stderr; the same lines."""
+    talker = nodes.start("talker.py", "--name", "leveled", "--debug")
+    talker.expect("ready")
+    env = {**ros_env, "CONSOLE_TUI_CONTENT_FILTER": content_filter}
+    tail = TailProcess(env, "--topic", "/rosout", "--level", "error", "--format", "{severity} {message}")
+    try:
+        probe = ros_runtime.create_node("level_probe")
+        assert wait_until(lambda: subscribed(probe, 1), 60)
+        for number in range(2):
+            talker.send({"cmd": "log_all", "tag": f"r{number}"})
+            talker.expect_next("logged")
+        lines = [line.decode() for line in tail.take(4)]
+        assert tail.stop() == 0
+    finally:
+        tail.stop()
+    assert lines == [f"{level} r{n} {level.lower()} message\n" for n in range(2) for level in ("ERROR", "FATAL")]
+    said = [line for line in b"".join(tail.stderr).decode().splitlines() if "--level" in line]
+    from rclpy.subscription import Subscription
+
+    if content_filter == "1" and not hasattr(Subscription, "set_content_filter"):  # Jazzy's rclpy
+        assert said == [
+            "console-tui tail: --level: level >= ERROR: filtered by the intake, not by the middleware "
+            "(this rclpy has no content filters (Jazzy's has none))"
+        ]
+    elif content_filter == "1":
+        assert said == []
+    else:
+        assert said == [
+            "console-tui tail: --level: level >= ERROR: filtered by the intake, not by the middleware "
+            "(the content filter is switched off: CONSOLE_TUI_CONTENT_FILTER=0)"
+        ]

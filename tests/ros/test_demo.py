@@ -8,13 +8,12 @@ import textwrap
 import time
 
 import pytest
-from test_e2e_live import until
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 
 from support.rosproc import pid_alive, wait_until
-from support.ui import screen_text
+from support.ui import until, until_shown
 
 pytestmark = pytest.mark.ros2
 
@@ -52,8 +51,7 @@ async def test_demo_nodes_log_into_the_app_and_stop_with_it(ros_env):
             assert all(r.file.endswith("behaviours.py") and r.line > 0 for r in app.main.store)
 
             await pilot.press("G")
-            await pilot.pause(0.3)
-            shown = screen_text(app)
+            shown = await until_shown(pilot, "FOLLOW", f"{fatal.source} 4 pubs", "count_and_log", "is divisible by")
             assert "FOLLOW" in shown and f"{fatal.source} 4 pubs" in shown, shown.splitlines()[-2]
             assert "count_and_log" in shown and "is divisible by" in shown
     finally:

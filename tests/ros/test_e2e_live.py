@@ -3,18 +3,25 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import subprocess
 import sys
+import time
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import LiveIntake, open_live
 from console_tui.ui.app import ConsoleApp
 
-from support.ui import line_with, screen_text, until
+from support.rosproc import PATIENCE_S
+from support.ui import line_with, screen_text, until, until_shown, widget_lines
 
 pytestmark = pytest.mark.ros2
+
+#: How long messages to a subscription not matched yet are awaited before more are sent (those
+#: logged before the match are lost): the pace of the tries, not a deadline (``PATIENCE_S``).
+RESEND_S = 1.0
 
 
 def live_app(topic: str | None = None) -> tuple[ConsoleApp, LiveIntake]:
@@ -56,16 +63,22 @@ async def test_every_severity_with_every_field_in_order_late_join_and_volatile(n
             volatile = nodes.start("talker.py", "--name", "volatile_talker", "--volatile", "--debug")
             await asyncio.to_thread(volatile.expect, "ready")
             sent: dict[str, list] = {}
-            for attempt in range(40):
-                tag = f"volatile {attempt}"
+            deadline = time.monotonic() + PATIENCE_S
+            while not records_of(app, "volatile_talker"):  # until the subscription matched
+                assert time.monotonic() < deadline, "nothing received from a VOLATILE publisher"
+                tag = f"volatile {len(sent)}"
                 volatile.send({"cmd": "log_all", "tag": tag})
                 sent[tag] = (await asyncio.to_thread(volatile.expect_next, "logged"))["messages"]
-                await pilot.pause(0.3)
-                if any(r.msg.startswith(tag) for r in records_of(app, "volatile_talker")):
-                    break
-            await pilot.pause(0.5)
-            received = [fields(r) for r in records_of(app, "volatile_talker")]
+                with contextlib.suppress(AssertionError):  # lost before the match: send again
+                    await until(pilot, lambda: records_of(app, "volatile_talker"), timeout=RESEND_S)
             all_sent = [message for batch in sent.values() for message in batch]
+            # The rest of the batch that matched comes after its first message.
+            await until(
+                pilot,
+                lambda: [fields(r) for r in records_of(app, "volatile_talker")][-1:] == all_sent[-1:],
+                what="the last batch's last message",
+            )
+            received = [fields(r) for r in records_of(app, "volatile_talker")]
             assert received and received == all_sent[-len(received) :]  # nothing lost or doubled once matched
 
             # Still the live stream of the first node, in order, shown in the table.
@@ -73,9 +86,8 @@ async def test_every_severity_with_every_field_in_order_late_join_and_volatile(n
             logged_live = (await asyncio.to_thread(early.expect_next, "logged"))["messages"]
             await until(pilot, lambda: len(records_of(app, "e2e.early")) >= 10)
             assert [fields(r) for r in records_of(app, "e2e.early")[5:]] == logged_live
-            await pilot.pause(0.2)
-            table = app.main.table
-            shown = [table.render_line(y).text for y in range(1, table.size.height)]
+            await until_shown(pilot, *(message["msg"] for message in logged_live))
+            shown = widget_lines(app, app.main.table)[1:]  # the rows, below the header
             for message in logged_live:
                 line = next(text for text in shown if message["msg"] in text)
                 assert "e2e.early" in line and "talker.py" in line and str(message["line"]) in line

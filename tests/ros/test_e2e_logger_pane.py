@@ -12,11 +12,11 @@ import asyncio
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 
-from support.ui import until
+from support.ui import option_lines, pick_node, until
 
 pytestmark = pytest.mark.ros2
 
@@ -26,8 +26,8 @@ TALKER = "/ns/talker"
 @pytest.fixture
 def live(ros_runtime):
     """A ConsoleApp reading /rosout with a LoggerControl on the test's runtime; closed after."""
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
 
     queue = IntakeQueue()
     control = Ros2LoggerControl(ros_runtime, call_timeout=2.0)
@@ -38,17 +38,12 @@ def live(ros_runtime):
     control.close()
 
 
-def lines(option_list) -> list[str]:
-    """What an option list shows, line by line."""
-    return [option_list.render_line(y).text.rstrip() for y in range(option_list.option_count)]
-
-
 def row_of(pane, logger_label: str) -> str:
-    return next((line for line in lines(pane.logger_list) if line.split()[0:1] == [logger_label]), "")
+    return next((line for line in option_lines(pane.logger_list) if line.split()[0:1] == [logger_label]), "")
 
 
 def notice(pane) -> str:
-    return pane.view.notice_text()[0]
+    return pane.state.notice_text()[0]
 
 
 def messages(app, node: str) -> list:
@@ -99,12 +94,12 @@ async def test_pane_lists_nodes_marks_one_without_services_and_debug_on_then_off
         await until(pilot, lambda: pane.highlighted_logger == "ns.talker", what="the row's logger highlighted")
         assert pane.logger_list.has_focus
         await until(pilot, lambda: "inherited (INFO)" in row_of(pane, "ns.talker"), what="levels read")
-        assert '"" (default)' in " ".join(lines(pane.logger_list))
+        assert '"" (default)' in " ".join(option_lines(pane.logger_list))
 
         # The node without logger services: "checking" at first, then marked, with the hint.
         await until(
             pilot,
-            lambda: any("/plain" in line and "no logger services" in line for line in lines(pane.node_list)),
+            lambda: any("/plain" in line and "no logger services" in line for line in option_lines(pane.node_list)),
             what="the mark",
         )
         await pilot.press("left")
@@ -200,12 +195,12 @@ async def test_node_killed_during_a_call_gives_a_clear_message_and_the_app_carri
             ),
             what="the nodes",
         )
-        pane.select_node(TALKER)
+        await pick_node(pilot, TALKER)
         await until(pilot, lambda: "inherited" in row_of(pane, "ns.talker"), what="the talker's levels")
         talker.send({"cmd": "block", "seconds": 30})
         await asyncio.to_thread(talker.expect, "blocking")
         await pilot.press("right", "d")
-        assert pane.view.pending.get(TALKER)
+        assert pane.state.pending.get(TALKER)
         talker.kill()
         await until(pilot, lambda: "Could not set ns.talker to DEBUG" in notice(pane), timeout=10, what="the failure")
         assert TALKER in notice(pane)

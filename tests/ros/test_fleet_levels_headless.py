@@ -11,13 +11,14 @@ import time
 import pytest
 from conftest import next_domain_id
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.sources.live import open_fleet, open_fleet_loggers
+from console_tui.control.fleet_control import open_fleet_loggers
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.sources.live import open_fleet
 from console_tui.ui.app import ConsoleApp
 
 from support.fleet import ROS2_VALUES, LoopbackFleet
 from support.rosproc import ros_available
-from support.ui import until
+from support.ui import option_lines, pick_node, until
 
 pytestmark = pytest.mark.ros2
 
@@ -43,10 +44,6 @@ def two_domains(monkeypatch):
         yield made
     finally:
         made.stop()
-
-
-def lines(option_list) -> list[str]:
-    return [option_list.render_line(y).text.rstrip() for y in range(option_list.option_count)]
 
 
 def debug_ticks(app: ConsoleApp, robot: str, after: int) -> list:
@@ -79,16 +76,20 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
             await until(
                 pilot,
                 lambda: all(
-                    any(fqn in line for line in lines(pane.node_list)) for fqn in ("left:/talker", "right:/talker")
+                    any(fqn in line for line in option_lines(pane.node_list))
+                    for fqn in ("left:/talker", "right:/talker")
                 ),
                 timeout=DEADLINE_S,
                 what="both robots' talkers shown in the pane",
             )
-            pane.select_node("left:/talker", "talker")
-            pane.logger_list.focus()
+            await pick_node(pilot, "left:/talker")
+            await pilot.press("right")  # to its loggers, its own ("talker") highlighted
+            assert pane.logger_list.has_focus and pane.highlighted_logger == "talker"
             await until(
                 pilot,
-                lambda: any(line.split()[:1] == ["talker"] and "INFO" in line for line in lines(pane.logger_list)),
+                lambda: any(
+                    line.split()[:1] == ["talker"] and "INFO" in line for line in option_lines(pane.logger_list)
+                ),
                 timeout=DEADLINE_S,
                 what="the left talker's levels read",
             )
@@ -97,7 +98,7 @@ async def test_debug_on_one_robots_node_and_not_the_same_name_on_another(two_dom
             await until(
                 pilot,
                 lambda: any(
-                    line.split()[:1] == ["talker"] and line.endswith("DEBUG") for line in lines(pane.logger_list)
+                    line.split()[:1] == ["talker"] and line.endswith("DEBUG") for line in option_lines(pane.logger_list)
                 ),
                 timeout=DEADLINE_S,
                 what="DEBUG shown",

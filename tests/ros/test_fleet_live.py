@@ -10,7 +10,7 @@ import asyncio
 import pytest
 from conftest import next_domain_id
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import open_fleet
 from console_tui.ui.app import ConsoleApp
 
@@ -89,7 +89,12 @@ async def test_five_robots_in_one_console(fleet):
         async with app.run_test(size=(140, 45)) as pilot:
             for member in fleet.robots:
                 await logged_and_seen(pilot, app, member, f"hello from {member.robot.name}")
-            await pilot.pause(0.2)
+
+            def every_hello() -> bool:
+                rows = [line for _, line in table_rows(app).values()]
+                return all(any(f"hello from {m.robot.name}" in line for line in rows) for m in fleet.robots)
+
+            await until(pilot, every_hello, what="each robot's hello in a row on the screen")
             rows = [line for _, line in table_rows(app).values()]
             for member in fleet.robots:
                 name = member.robot.name

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.intake_process.parent import ProcessSource
 from console_tui.sources.live import open_live
 from console_tui.sources.log_topics import ROSOUT_AGG

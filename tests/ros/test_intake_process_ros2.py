@@ -7,7 +7,7 @@ import pytest
 from conftest import next_domain_id
 from test_ros2_live_source import serialized_log
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.intake_process.parent import ProcessSource
 
 from support.quit import run_and_quit

@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import LiveIntake, open_live
 from console_tui.ui.app import ConsoleApp
 

@@ -62,7 +62,7 @@ def test_demo_roscore_and_nodes_end_when_the_console_dies(ros1_env):
         """
         import time
         from console_tui.demo.ros1_launcher import Ros1Demo
-        from console_tui.sources.ros1.master import probe_master
+        from console_tui.ros.ros1.master import probe_master
         demo = Ros1Demo(["battery_monitor"])
         demo.start()
         while not demo.processes:

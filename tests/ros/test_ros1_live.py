@@ -210,7 +210,7 @@ def test_a_publisher_of_another_type_is_reported(roscore, ros1_nodes):
 async def test_files_and_live_ros1_in_one_timeline(roscore, ros1_nodes, tmp_path):
     """--live with files, on ROS 1: the recording comes first, the live rows follow in time order."""
     pytest.importorskip("rosbags")
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.ros1.live_source import Ros1LiveSource
     from console_tui.ui.app import ConsoleApp
 
@@ -235,10 +235,10 @@ async def test_files_and_live_ros1_in_one_timeline(roscore, ros1_nodes, tmp_path
 def test_the_launch_picks_ros1_when_a_master_answers(roscore, monkeypatch):
     import argparse
 
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.control.ros1.logger_control import Ros1LoggerControl
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.run_app import _start_live
     from console_tui.sources.intake_process.parent import ProcessSource
-    from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 
     monkeypatch.setenv("ROS_VERSION", "2")  # a sourced ROS 2 says so; an answering master still wins
     args = argparse.Namespace(ros=None, demo=False, topic=None)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.ui.app import ConsoleApp
 
 from support.ros1 import ROSCPP_LOGGER
@@ -17,8 +17,8 @@ pytestmark = pytest.mark.ros1
 
 @pytest.fixture
 def live(roscore):
+    from console_tui.control.ros1.logger_control import Ros1LoggerControl
     from console_tui.sources.ros1.live_source import Ros1LiveSource
-    from console_tui.sources.ros1.logger_control import Ros1LoggerControl
 
     queue = IntakeQueue()
     control = Ros1LoggerControl(call_timeout=3.0)

@@ -9,8 +9,8 @@ import pytest
 from test_cli_loggers import closed_pipe
 
 from console_tui.commands.loggers import main as loggers_main
-from console_tui.sources.loggers.calls import SET
-from console_tui.sources.loggers.errors import LevelRefused
+from console_tui.control.calls import SET
+from console_tui.control.errors import LevelRefused
 
 from support.ros1 import ROSCPP_LOGGER
 from support.ros1_source import Collected
@@ -106,7 +106,7 @@ def test_ros1_refusals_are_explicit(roscore, ros1_nodes, capsys):
 
 
 def test_roscpp_answers_a_bad_level_with_ok_0_and_no_reason(roscore, ros1_nodes, roscpp_binary):
-    from console_tui.sources.ros1.logger_control import Ros1LoggerControl
+    from console_tui.control.ros1.logger_control import Ros1LoggerControl
 
     ros1_nodes.roscpp("talk", "cpp_bad", "200").expect("ready")
     control = Ros1LoggerControl()

@@ -10,9 +10,9 @@ import time
 import pytest
 from nodes.stalled_intake import StalledQueue
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.sources.ros2.runtime import uses_fast_dds_2
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.ros.ros2.runtime import uses_fast_dds_2
 
 from support.rosproc import PATIENCE_S, wait_until
 
@@ -38,12 +38,12 @@ def take_by(path: str, monkeypatch) -> bool:
 
 
 @contextlib.contextmanager
-def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue | None = None):
+def live_source(topic: str = "/rosout", *, raw: bool = True, queue: IntakeQueue | None = None, min_level: int = 0):
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.live_source import LiveLogSource
-    from console_tui.sources.ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
-    source = LiveLogSource(runtime, IntakeQueue() if queue is None else queue, topic, raw=raw)
+    source = LiveLogSource(runtime, IntakeQueue() if queue is None else queue, topic, raw=raw, min_level=min_level)
     source.start()
     try:
         yield source
@@ -182,8 +182,8 @@ def test_an_rclpy_without_serialized_take_falls_back_to_typed(ros_env, monkeypat
 
     from rcl_interfaces.msg import Log
 
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.loss_counts import LossCounts
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.topic_reader import TopicReader
 
     take_by("raw+cdr", monkeypatch)
@@ -268,8 +268,8 @@ def topic_reader(topic: str = "/rosout"):
     """A ``TopicReader`` on ``topic`` with a node of its own, and its loss counts."""
     from rcl_interfaces.msg import Log
 
+    from console_tui.ros.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.loss_counts import LossCounts
-    from console_tui.sources.ros2.runtime import RosRuntime
     from console_tui.sources.ros2.topic_reader import TopicReader
 
     runtime = RosRuntime()
@@ -351,3 +351,56 @@ def test_middleware_losses_count_on_the_main_subscription_and_on_the_second_only
         assert (counts.incompatible, counts.last_policy) == (1, "durability")
         reader._on_incompatible_main(None)
         assert reader.graph_changed
+
+
+@pytest.mark.parametrize("path", ["c+cdr", "raw+cdr"])
+def test_a_lowest_severity_is_asked_of_dds_and_what_it_skips_is_no_loss(nodes, monkeypatch, path):
+    """``tail --level error``: the subscriptions carry the content filter ``level >= 40``
+    (Fast DDS filters on the writer's side), so DEBUG to WARN never arrive here, and the gaps
+    they leave in the talker's sequence numbers are not counted as lost."""
+    from rclpy.subscription import Subscription
+
+    from console_tui.sources.ros2.level_filter import NO_RCLPY_FILTER
+
+    content_filters = hasattr(Subscription, "set_content_filter")  # not in Jazzy's rclpy
+    raw = take_by(path, monkeypatch)
+    talker = nodes.start("talker.py", "--name", "filtered", "--debug")
+    talker.expect("ready")
+    with live_source(raw=raw, min_level=40) as source:
+        logged = []
+        for number in range(3):  # each round DEBUG, INFO, WARN, ERROR, FATAL
+            talker.send({"cmd": "log_all", "tag": f"round{number}"})
+            logged += talker.expect_next("logged")["messages"]
+        expected = 6 if content_filters else 15
+        records = collect(source, lambda got: sum(r.node == "filtered" for r in got) >= expected)
+        time.sleep(0.3)  # what else would come
+        records += source.queue.drain()
+        status = source.status
+    got = [(r.level, r.msg) for r in records if r.node == "filtered"]
+    if not content_filters:  # Jazzy: everything comes (the intake process drops)
+        assert status.level_filter_note == NO_RCLPY_FILTER
+        assert sorted(got) == sorted((m["level"], m["msg"]) for m in logged)
+        return
+    assert got == [(m["level"], m["msg"]) for m in logged if m["level"] >= 40]
+    assert status.min_level == 40 and status.level_filter_note == "", status.level_filter_text()
+    assert status.lost == 0 and status.path == path
+
+
+def test_without_a_content_filter_the_source_says_why(nodes, monkeypatch):
+    """Switched off (as on a middleware without content filters): every message arrives,
+    and the status says the filter is not the middleware's (the intake process drops them)."""
+    from console_tui.sources.ros2.level_filter import SWITCH
+
+    monkeypatch.setenv(SWITCH, "0")
+    talker = nodes.start("talker.py", "--name", "unfiltered", "--debug")
+    talker.expect("ready")
+    with live_source(min_level=40) as source:
+        talker.send({"cmd": "log_all", "tag": "all"})
+        talker.expect_next("logged")
+        records = collect(source, lambda got: sum(r.node == "unfiltered" for r in got) >= 5)
+        status = source.status
+    assert sorted(r.level for r in records if r.node == "unfiltered") == [10, 20, 30, 40, 50]
+    assert status.level_filter_text() == (
+        "level >= ERROR: filtered by the intake, not by the middleware "
+        f"(the content filter is switched off: {SWITCH}=0)"
+    )

@@ -16,7 +16,7 @@ ALPHA = "/ns/alpha"
 
 @pytest.fixture
 def control(ros_runtime):
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
 
     yield from running(Ros2LoggerControl(ros_runtime, call_timeout=1.5))
 
@@ -25,7 +25,7 @@ class Rosout:
     """Records read from /rosout by the project's live source."""
 
     def __init__(self, runtime) -> None:
-        from console_tui.model.intake_queue import IntakeQueue
+        from console_tui.model.store.intake_queue import IntakeQueue
         from console_tui.sources.ros2.live_source import LiveLogSource
 
         self.queue = IntakeQueue()
@@ -71,8 +71,8 @@ def log_all(process, tag, **extra):
 
 
 def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
-    from console_tui.sources.loggers.errors import NoLoggerServices
-    from console_tui.sources.loggers.events import NodesChanged
+    from console_tui.control.errors import NoLoggerServices
+    from console_tui.control.events import NodesChanged
 
     start_alpha(nodes, ["--name", "beta", "--no-logger-service"])
     ready(control)
@@ -90,7 +90,7 @@ def test_graph_lists_nodes_and_marks_the_one_without_services(nodes, control):
 
 
 def test_get_and_set_round_trip_and_a_refused_level(nodes, control):
-    from console_tui.sources.loggers.errors import LevelRefused, NodeNotFound
+    from console_tui.control.errors import LevelRefused, NodeNotFound
 
     start_alpha(nodes)
     ready(control)
@@ -114,7 +114,7 @@ def test_get_and_set_round_trip_and_a_refused_level(nodes, control):
 
 
 def test_debug_level_lets_debug_messages_through_and_info_stops_them(nodes, control, rosout):
-    from console_tui.model.logger_levels import NodeLoggers
+    from console_tui.model.loggers.logger_levels import NodeLoggers
 
     alpha = start_alpha(nodes)
     node = ready(control)
@@ -136,7 +136,7 @@ def test_debug_level_lets_debug_messages_through_and_info_stops_them(nodes, cont
 
 
 def test_temporary_debug_reverts_on_time(nodes, control, rosout):
-    from console_tui.sources.loggers.events import TemporaryEnded
+    from console_tui.control.events import TemporaryEnded
 
     alpha = start_alpha(nodes)
     ready(control)
@@ -156,7 +156,7 @@ def test_temporary_debug_reverts_on_time(nodes, control, rosout):
 
 
 def test_close_puts_temporary_levels_back(nodes, ros_runtime):
-    from console_tui.sources.ros2.logger_control import Ros2LoggerControl
+    from console_tui.control.ros2.logger_control import Ros2LoggerControl
 
     start_alpha(nodes)
     first = Ros2LoggerControl(ros_runtime)
@@ -180,7 +180,7 @@ def test_close_puts_temporary_levels_back(nodes, ros_runtime):
 
 
 def test_a_node_killed_during_a_call_gives_a_clear_failure(nodes, control):
-    from console_tui.sources.loggers.errors import CallTimedOut, NodeGone
+    from console_tui.control.errors import CallTimedOut, NodeGone
 
     alpha = start_alpha(nodes, ["--name", "gamma"])
     ready(control)
@@ -198,7 +198,7 @@ def test_a_node_killed_during_a_call_gives_a_clear_failure(nodes, control):
 
 
 def test_a_node_that_exits_leaves_the_list(nodes, control):
-    from console_tui.sources.loggers.errors import NodeNotFound
+    from console_tui.control.errors import NodeNotFound
 
     alpha = start_alpha(nodes)
     ready(control)

@@ -2,8 +2,8 @@
 
 import pytest
 
-from console_tui.sources.ros2.rclpy_loader import RosUnavailable
-from console_tui.sources.ros2.runtime import FASTDDS_PROFILE, check_domain_id, reader_profile_environment
+from console_tui.ros.ros2.rclpy_loader import RosUnavailable
+from console_tui.ros.ros2.runtime import FASTDDS_PROFILE, check_domain_id, reader_profile_environment
 
 from support.rosproc import NODES, PATIENCE_S, NodeProcess, wait_until
 
@@ -114,7 +114,7 @@ def test_the_fast_dds_of_this_rclpy_is_told_without_importing_it():
     import importlib.metadata
     import os
 
-    from console_tui.sources.ros2.runtime import uses_fast_dds_2
+    from console_tui.ros.ros2.runtime import uses_fast_dds_2
 
     environ = {key: value for key, value in os.environ.items() if key != "ROS_DISTRO"}
     major = int(importlib.metadata.version("rclpy").split(".")[0])
@@ -126,7 +126,7 @@ def test_a_deferred_runtime_starts_rclpy_at_its_first_use_and_the_app_imports_no
     own context is made when the logger levels start, after the first frame."""
     code = (
         "import sys\n"
-        "from console_tui.model.intake_queue import IntakeQueue\n"
+        "from console_tui.model.store.intake_queue import IntakeQueue\n"
         "from console_tui.sources.live import open_live\n"
         "live = open_live(IntakeQueue(), ros=2)\n"
         "assert 'rclpy' not in sys.modules and 'importlib.metadata' not in sys.modules, 'imported'\n"

@@ -81,11 +81,11 @@ def counted(ticks: range) -> list[tuple[int, str]]:
 
 
 async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches(aggregators, ros_env, tmp_path):
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.live import open_live
     from console_tui.ui.app import ConsoleApp
 
-    from support.ui import until
+    from support.ui import frame_drawn, until
 
     aggregator = aggregators()
     await asyncio.to_thread(aggregator.wait_running)
@@ -114,10 +114,21 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
                     what=lambda: f"the first message (status {live.source.status}, {len(app.main.store)} records)",
                 )
                 await until(pilot, lambda: live.source.status.topic == "/rosout_agg", what="the switch")
-                await pilot.pause(1.0)
+
                 # The console shows /rosout at once: when discovery finds the aggregator after
                 # the first rows, its older history is placed among them by its stamps.
-                shown = [r for r in app.main.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
+                def before_start() -> list:
+                    return [r for r in app.main.store if r.node == "count_and_log" and r.stamp_ns < started_ns]
+
+                def from_the_first_tick() -> bool:  # /rosout alone has only the last 10 s
+                    got = before_start()
+                    return bool(got) and [(r.level, r.msg) for r in got] == counted(
+                        range(1, int(got[-1].msg.split()[0]) + 1)
+                    )
+
+                await until(pilot, from_the_first_tick, what=lambda: f"the history: {len(before_start())} records")
+                await frame_drawn(pilot)
+                shown = before_start()
                 assert_in_time_order_on_screen(app)
         finally:
             live.close()
@@ -141,7 +152,7 @@ async def test_a_console_started_late_shows_the_whole_run_and_rosout_log_matches
 def in_time_order(stamps: list[int]) -> bool:
     """In the order of their stamps, but for what came less than ``LATE_NS`` out of order
     (two nodes' messages of one moment, which the app leaves as they came)."""
-    from console_tui.model.late_records import LATE_NS
+    from console_tui.model.store.late_records import LATE_NS
 
     return all(
         stamp >= newest - LATE_NS for stamp, newest in zip(stamps[1:], itertools.accumulate(stamps, max), strict=False)
@@ -161,11 +172,11 @@ def assert_in_time_order_on_screen(app) -> None:
 async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_nothing_twice(aggregators, nodes):
     """The console shows /rosout at once; when an aggregator starts later it switches to
     /rosout_agg: every message of a node logging all along comes once, in order."""
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
     from console_tui.sources.live import open_live
     from console_tui.ui.app import ConsoleApp
 
-    from support.ui import screen_text, until
+    from support.ui import frame_drawn, screen_text, until
 
     talker = nodes.start("talker.py", "--name", "switching")
     await asyncio.to_thread(talker.expect, "ready")
@@ -191,7 +202,7 @@ async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_n
             got = ticks()
             assert got == list(range(1, got[-1] + 1))
             assert len({(r.node, r.stamp_ns, r.msg) for r in app.main.store}) == len(app.main.store)
-            await pilot.pause(0.3)
+            await frame_drawn(pilot)
             assert_in_time_order_on_screen(app)
     finally:
         live.close()
@@ -200,7 +211,7 @@ async def test_an_aggregator_started_after_the_console_loses_nothing_and_shows_n
 async def test_the_rosout_log_opens_in_the_app(aggregators, nodes):
     from console_tui.ui.app import ConsoleApp
 
-    from support.ui import screen_text, until
+    from support.ui import screen_text, until, until_shown
 
     aggregator = aggregators()
     await asyncio.to_thread(aggregator.wait_running)
@@ -217,7 +228,7 @@ async def test_the_rosout_log_opens_in_the_app(aggregators, nodes):
         assert [(r.level, r.msg, r.file, r.function, r.line) for r in got] == [
             (m["level"], m["msg"], m["file"], m["function"], m["line"]) for m in logged
         ]
-        await pilot.pause(0.3)
+        await until_shown(pilot, "multi↵line fatal")
         assert "multi↵line fatal" in screen_text(app)
 
 

@@ -7,7 +7,7 @@ import asyncio
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.live import open_live
 from console_tui.ui.app import ConsoleApp
 

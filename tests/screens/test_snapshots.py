@@ -4,17 +4,17 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.logger_levels import TemporaryLevel
-from console_tui.model.store import LogStore
+from console_tui.model.loggers.logger_levels import TemporaryLevel
+from console_tui.model.store.log_store import LogStore
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import PLANNER, feed_logger_pane, records
 
 
-def feed_app(count: int = 200) -> ConsoleApp:
+def feed_app(count: int = 200, **options) -> ConsoleApp:
     store = LogStore()
     store.extend_records(records(count))
-    return ConsoleApp(store=store, utc=True, clock=lambda: 0.0)  # a still clock: the rate reads 0/s
+    return ConsoleApp(store=store, utc=True, clock=lambda: 0.0, **options)  # a still clock: the rate reads 0/s
 
 
 @pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])
@@ -65,8 +65,7 @@ def test_empty_table_shows_its_header(snap_compare):
 @pytest.mark.parametrize("size", [(80, 24), (160, 48)], ids=["80x24", "160x48"])
 def test_highlighted_and_dimmed_rows(snap_compare, size):
     """Highlight rules on: matching rows marked, the others dimmed; an exclude rule hides some."""
-    app = feed_app()
-    app.main._initial_query = "+level:error,fatal +node:navigation.planner -msg:scan"
+    app = feed_app(query="+level:error,fatal +node:navigation.planner -msg:scan")  # as --query gives it
     assert snap_compare(app, terminal_size=size)
 
 

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from console_tui.model.logger_levels import GraphNode
-from console_tui.model.record import LogRecord
+from console_tui.model.loggers.logger_levels import GraphNode
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.status import SourceStatus
 
 BASE_NS = 1_795_000_000_000_000_000  # a fixed moment; snapshot tests show it in UTC

@@ -8,8 +8,8 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from console_tui.sources.fleet import Robot
-from console_tui.sources.ros_version import ROS1, ROS2
+from console_tui.ros.fleet import Robot
+from console_tui.ros.ros_version import ROS1, ROS2
 
 from support.ros1 import SYSTEM_PYTHON, Ros1Master, free_port, ros1_environment
 from support.rosproc import NodeProcess

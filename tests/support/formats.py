@@ -7,7 +7,7 @@ import random
 from pathlib import Path
 
 from console_tui.model.formats import Problems, TextFormat, read_batches
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 DATA = Path(__file__).parent.parent / "data"
 

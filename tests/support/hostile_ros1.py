@@ -22,10 +22,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from console_tui.model.formats.ros1_log_msg import encode_log
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.sources.ros1.environment import Ros1Environment
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.ros.ros1.environment import Ros1Environment
+from console_tui.ros.ros1.tcpros import decode_header, encode_header
 from console_tui.sources.ros1.live_source import Ros1LiveSource
-from console_tui.sources.ros1.tcpros import decode_header, encode_header
 
 
 @dataclass

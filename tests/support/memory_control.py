@@ -9,11 +9,11 @@ import threading
 from collections.abc import Iterator
 from concurrent.futures import Future
 
-from console_tui.model.logger_levels import GraphNode, split_fqn
-from console_tui.sources.loggers.calls import GET, SET
-from console_tui.sources.loggers.control import LoggerControl
-from console_tui.sources.loggers.errors import LevelRefused
-from console_tui.sources.loggers.futures import done_future, failed_future, then
+from console_tui.control.calls import GET, SET
+from console_tui.control.control_thread import LoggerControl
+from console_tui.control.errors import LevelRefused
+from console_tui.control.futures import done_future, failed_future, then
+from console_tui.model.loggers.logger_levels import GraphNode, split_fqn
 
 
 class MemoryNode:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from pathlib import Path
 
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 
 def ros2_log_message(typestore, record: LogRecord):

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import time
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.ros1.live_source import Ros1LiveSource
 
 from support.rosproc import PATIENCE_S

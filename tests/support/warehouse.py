@@ -12,7 +12,7 @@ from contextlib import contextmanager
 import pytest
 
 from console_tui.model.formats.otel_log import to_otel
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 from console_tui.warehouse.address import Address, parse_address
 from console_tui.warehouse.clickhouse import TableClient
 from console_tui.warehouse.otlp_encode import encode

@@ -7,12 +7,12 @@ from __future__ import annotations
 
 import re
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import BASE_NS
-from support.ui import make_app, screen_text, until
+from support.ui import frame_drawn, make_app, screen_text, until, until_shown
 
 ROS1_NODES = ["/navigation/planner", "/sensors/lidar_driver", "/count_and_log"]
 
@@ -70,11 +70,17 @@ def floating_glyphs(app) -> list[str]:
 async def test_the_help_and_summary_scrollbars_sit_at_their_boxs_edge():
     app = ros1_app(400)
     async with app.run_test(size=(80, 24)) as pilot:
-        for key in ("question_mark", "S"):
+        await until_shown(pilot, "# Time")
+        for key, first in (("question_mark", "console-tui shows every node's"), ("S", "Summary: 400 messages")):
             await pilot.press(key)
-            await pilot.pause(0.3)
+            await until_shown(pilot, first)
+            assert "# Time" not in screen_text(app), "the box covers the table's header"
+            top = screen_text(app).splitlines()[4]
             await pilot.press("pagedown", "down")
-            await pilot.pause(0.3)
+            await pilot.wait_for_scheduled_animations()  # a page scrolled, if there is one below
+            await frame_drawn(pilot)
+            if key == "question_mark":
+                assert screen_text(app).splitlines()[4] != top, "the help did not scroll"
             assert not floating_glyphs(app), "\n".join(screen_text(app).splitlines())
             await pilot.press("escape")
-            await pilot.pause(0.2)
+            await until_shown(pilot, "# Time")  # the table again, where the box was

@@ -6,10 +6,10 @@ import json
 from pathlib import Path
 
 from console_tui.model.formats.save import save_records
-from console_tui.model.record_batch import RecordColumns
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.ui.app import ConsoleApp
-from console_tui.ui.screens.files import OpenScreen, SaveScreen
+from console_tui.ui.screens.file_dialogs import OpenScreen, SaveScreen
 from console_tui.ui.screens.load_problems import ProblemsScreen
 
 from support.feed import records
@@ -196,7 +196,7 @@ async def test_save_to_a_missing_folder_is_refused_in_the_dialog(tmp_path):
 
 async def test_with_live_records_waiting_the_files_come_first(tmp_path):
     """--live with files: live records wait until the files are in, so time order holds."""
-    from console_tui.model.intake_queue import IntakeQueue
+    from console_tui.model.store.intake_queue import IntakeQueue
 
     write_jsonl(tmp_path / "old.jsonl", 500)
     live = IntakeQueue()
@@ -244,7 +244,7 @@ async def test_a_run_folder_opens_merged_with_each_file_a_source(tmp_path, monke
     import time as clock
 
     from support.formats import DATA
-    from support.ui import screen_text
+    from support.ui import screen_text, toasts
 
     run = tmp_path / "run"
     shutil.copytree(DATA / "ros_log" / "c0ffee00-d4b2-11eb-9c3e-0242ac110002", run)
@@ -254,9 +254,9 @@ async def test_a_run_folder_opens_merged_with_each_file_a_source(tmp_path, monke
     clock.tzset()
     app = ConsoleApp(files=[str(run)], utc=True)
     try:
-        async with app.run_test(size=(200, 40)) as pilot:
+        async with app.run_test(size=(200, 40), notifications=True) as pilot:
             await until(pilot, lambda: len(app.main.store) == 20 and not app.main.files.loading)
-            await pilot.pause(0.2)
+            await until(pilot, lambda: len(table_rows(app)) == 20, what="the 20 rows on the screen")
             text = screen_text(app)
             lines = text.splitlines()
             first = next(i for i, line in enumerate(lines) if "Checking log directory" in line)
@@ -269,7 +269,9 @@ async def test_a_run_folder_opens_merged_with_each_file_a_source(tmp_path, monke
             assert len(hello) == 2, "\n".join(hello)
             assert "rosout.log + talker" in hello[0] and "talker-2-stdout.log" in hello[1]
             skipped = "Loaded 20 records from 6 files, 2 repeats merged (1 other file in the folders passed over"
-            await until(pilot, lambda: any(str(n.message).startswith(skipped) for n in app._notifications))
+            await until(
+                pilot, lambda: any(toast.startswith(skipped) for toast in toasts(app)), what=lambda: toasts(app)
+            )
     finally:
         monkeypatch.undo()
         clock.tzset()

@@ -8,17 +8,17 @@ import re
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
-from console_tui.model.store import LogStore
-from console_tui.sources.fleet import Robot
-from console_tui.sources.ros_version import ROS1, ROS2
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
+from console_tui.ros.fleet import Robot
+from console_tui.ros.ros_version import ROS1, ROS2
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import StaticSource
-from support.ui import line_with, screen_text, table_rows, type_text, until
+from support.ui import cursor_line, line_with, run_command, screen_text, table_rows, type_text, until
 
 ROBOTS = [Robot("picker", ROS2, domain=3, colour="cyan"), Robot("forklift", ROS1, master="http://127.0.0.1:1/")]
 
@@ -84,9 +84,9 @@ async def test_a_robots_colour_paints_its_name():
         put(queue, "picker", 1)
         put(queue, "forklift", 1, start=5)
         await until(pilot, lambda: "forklift says 0" in screen_text(app), what="the rows")
-        picker = app.main.table.robot_styles["picker"]
+        picker = app.main.table.painter.robot_styles["picker"]
         assert picker.color is not None and picker.color.name == "cyan"
-        assert "forklift" not in app.main.table.robot_styles
+        assert "forklift" not in app.main.table.painter.robot_styles
 
 
 async def test_the_node_panel_and_the_summary_count_per_robot():
@@ -142,10 +142,12 @@ async def test_solo_and_mute_act_on_one_robots_node():
         assert re.search(r"▏ +forklift: /talker", screen_text(app))
         await pilot.press("x", "escape")
         await until(pilot, lambda: "forklift says 3" in screen_text(app), what="every node again")
-        app.main.table.jump_to_seq(
-            next(s for s in range(app.main.store.end_seq) if app.main.store.get(s).robot == "forklift")
-        )
-        app.action_mute_row_node()
+        await until(pilot, lambda: cursor_line(app) is not None, what="the table's cursor")
+        for _ in range(8):
+            if "forklift" in cursor_line(app):
+                break
+            await pilot.press("up")  # to a row of forklift's
+        await run_command(pilot, "Mute this row's node")
         await until(pilot, lambda: "forklift says" not in screen_text(app), what="the mute")
         assert "picker says 3" in screen_text(app)
-        assert "muted forklift:/talker" in screen_text(app)
+        await until(pilot, lambda: "muted forklift:/talker" in screen_text(app), what="the status line")

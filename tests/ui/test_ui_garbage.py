@@ -63,10 +63,17 @@ async def test_a_full_collection_runs_in_a_turn_of_its_own_after_the_drain():
     policy.tick()
     policy.tick()
     assert policy.full_collections == 0, "collected in the drain's turn"
-    await asyncio.sleep(0.05)
+
+    async def after_the_delay() -> None:
+        """Until a callback the event loop runs after one the policy scheduled now would."""
+        later = asyncio.Event()
+        asyncio.get_running_loop().call_later(2 * policy.delay, later.set)
+        await later.wait()
+
+    await after_the_delay()
     assert policy.full_collections == 1, "not collected once, after the delay"
     policy.tick()
-    await asyncio.sleep(0.05)
+    await after_the_delay()
     assert policy.full_collections == 1, "collected again before the next period"
 
 

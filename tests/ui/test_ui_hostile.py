@@ -6,11 +6,13 @@ import re
 
 import pytest
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
-from console_tui.model.text import multi_line
+from console_tui.model.inert_text import multi_line
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 from console_tui.ui.screens.detail import DetailScreen
+
+from support.ui import foreign_controls, table_rows, terminal_output, until, widget_lines
 
 HOSTILE = {
     "ansi": "red \x1b[31mRED\x1b[0m then \x1b[2J\x1b[H cleared \x1b[?1049h alt screen",
@@ -45,12 +47,13 @@ def hostile_app() -> ConsoleApp:
 async def test_table_rows_render_inert():
     app = hostile_app()
     async with app.run_test(size=(160, 30)) as pilot:
-        await pilot.pause()
+        await until(pilot, lambda: len(table_rows(app)) == len(HOSTILE), what="every row on the screen")
         table = app.main.table
-        for y in range(table.size.height):
-            for segment in table.render_line(y):
-                assert not CONTROL.search(segment.text), f"line {y} leaks {segment.text!r}"
-        text = "".join(table.render_line(y).text for y in range(1, len(HOSTILE) + 1))
+        lines = widget_lines(app, table)  # the header, then a row a record
+        for y, line in enumerate(lines):
+            assert not CONTROL.search(line), f"line {y} leaks {line!r}"
+        assert foreign_controls(terminal_output(app)) == []
+        text = "".join(lines[1 : len(HOSTILE) + 1])
         assert "[bold red]not markup[/]" in text
         assert "漢字テスト" in text
         # the app is still alive and answering keys
@@ -63,9 +66,9 @@ async def test_detail_view_shows_every_message_intact(name):
     app = hostile_app()
     index = list(HOSTILE).index(name)
     async with app.run_test(size=(120, 40)) as pilot:
-        await pilot.pause()
-        app.main.table_control.open_detail(index)
-        await pilot.pause()
+        await until(pilot, lambda: len(table_rows(app)) == len(HOSTILE), what="every row on the screen")
+        await pilot.press("home", *["down"] * index, "enter")  # the record's row, its details
+        await until(pilot, lambda: isinstance(app.screen, DetailScreen), what="the detail view")
         screen = app.screen
         assert isinstance(screen, DetailScreen)
         area = screen.query_one("#message")

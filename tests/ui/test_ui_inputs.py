@@ -15,7 +15,7 @@ from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 
 from support import ui
 from support.feed import feed_logger_pane
-from support.ui import cursor_after, line_with, screen_text, steady_cursors, type_text, until
+from support.ui import cursor_after, frame_drawn, line_with, screen_text, steady_cursors, type_text, until, until_shown
 
 make_app = partial(ui.make_app, count=300)
 
@@ -174,11 +174,14 @@ async def test_typing_in_the_search_line_shows_the_text_without_laying_out_the_s
     async with app.run_test(size=(100, 24)) as pilot:
         await pilot.press("f")
         await until(pilot, lambda: app.main.search_bar.is_open, what="the search line")
-        await pilot.pause(0.2)
+        await until_shown(pilot, "esc cancels")  # the line laid out and drawn
+        await frame_drawn(pilot)
         screen = app.screen
         layouts = []
-        layout = screen._refresh_layout
-        screen._refresh_layout = lambda *a, **k: layouts.append(1) or layout(*a, **k)
+        screen.screen_layout_refresh_signal.subscribe(app, layouts.append, immediate=True)
         await pilot.press(*"divisible")
         await until(pilot, lambda: "divisible" in screen_text(app), what="the typed text")
+        await frame_drawn(pilot)
         assert layouts == [], f"{len(layouts)} layouts of the screen while typing"
+        await pilot.press("escape")  # a layout, to show the count is the screen's own
+        await until(pilot, lambda: layouts, what="the layout closing the search line asks")

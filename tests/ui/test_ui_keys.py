@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 from console_tui.ui.keys import load_keymap
-from console_tui.ui.palette import palette_commands
 from console_tui.ui.widgets.key_footer import KeyFooter
 
 from support.feed import feed_logger_pane
-from support.ui import make_app, screen_text, until
+from support.ui import frame_drawn, make_app, screen_text, toasts, until, until_shown
 
 
 def write_keys(config, text: str):
@@ -57,22 +56,21 @@ async def test_a_remapped_key_works_and_the_screen_names_it(own_config_folder):
 async def test_a_bad_keymap_is_reported_and_the_default_keys_stay(own_config_folder):
     write_keys(own_config_folder, 'console.pause = "p"\nconsole.nothing = "n"\n')
     app = make_app(5)
-    async with app.run_test(size=(120, 30)) as pilot:
-        # The warning is a toast, which screen_text does not draw (yet): read from the app.
-        await until(pilot, lambda: any(n.severity == "warning" for n in app._notifications), what="the warning")
-        warnings = [str(n.message) for n in app._notifications if n.severity == "warning"]
+    async with app.run_test(size=(120, 30), notifications=True) as pilot:
+        await until(pilot, lambda: toasts(app, "warning"), what="the warning")
+        warnings = toasts(app, "warning")
         assert "no key is named 'console.nothing'" in warnings[0]
         await pilot.press("p")
         await until(pilot, lambda: "PAUSED" in screen_text(app).splitlines()[-2], what="the good entries applying")
 
 
 async def test_palette_entries_have_distinct_names_and_show_their_keys():
-    titles = [command.title for command in palette_commands()]
-    assert len(titles) == len(set(titles))
     app = make_app(5)
+    titles = [command.palette_title for command in app.commands.palette()]
+    assert len(titles) == len(set(titles))
     async with app.run_test(size=(120, 30)) as pilot:
         await pilot.press("ctrl+p", *"pause")
-        await pilot.pause(0.3)
+        await until_shown(pilot, "(space)")
         assert "(space)" in screen_text(app)
         system = [command.title for command in app.get_system_commands(app.screen)]
         assert "Keys" not in system, "Textual's key panel gives way to the help screen"
@@ -99,7 +97,9 @@ async def test_the_footer_draws_its_keys_again_only_when_they_change_and_asks_no
         await until(pilot, lambda: "f1 Help" in screen_text(app).splitlines()[-1], what="the search line's keys")
         await pilot.press("escape")
         await until(pilot, lambda: app.focused is app.main.table, what="the table focused again")
-        await pilot.pause(0.2)
+        # The table's keys back in the footer: the frame after the close's changes.
+        await until(pilot, lambda: screen_text(app).splitlines()[-1] == keys_before, what="the table's keys again")
+        await frame_drawn(pilot)
         assert footer.changes - before <= 2, f"{footer.changes - before} changes for open and close"
         assert True not in layouts, "the footer asked for a layout"
         assert screen_text(app).splitlines()[-1] == keys_before
@@ -117,3 +117,20 @@ async def test_a_click_on_a_key_in_the_footer_presses_it():
         await until(pilot, lambda: "Resume" in screen_text(app).splitlines()[-1], what="Resume in the footer")
         await pilot.click(offset=(screen_text(app).splitlines()[-1].index("space"), bottom))
         await until(pilot, lambda: "FOLLOW" in screen_text(app), what="resumed by the click")
+
+
+async def test_a_key_that_stops_applying_leaves_the_footer_whoever_drew_it_last():
+    """The footer drawn again by Textual (a focus move) while a load ran showed Cancel load; when
+    the load ended, the console's check saw no change from what it had drawn itself and left
+    the key there."""
+    from console_tui.model.store.record_batch import RecordColumns
+
+    from support.feed import records
+
+    app = make_app(5)
+    async with app.run_test(size=(160, 30)) as pilot:
+        app.main.file_queue.put(RecordColumns.from_records(records(10, start=5)))  # a load's last records
+        app.main.refresh_bindings()  # as Textual does when the focus moves
+        await until(pilot, lambda: len(app.main.store) == 15, what="the load's records taken in")
+        await until(pilot, lambda: "Cancel load" not in screen_text(app).splitlines()[-1], what="the key gone")
+        assert " q Quit " in screen_text(app).splitlines()[-1]

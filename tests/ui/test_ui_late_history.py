@@ -9,12 +9,12 @@ import re
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
-from console_tui.model.store import LogStore
-from console_tui.sources.fleet import Robot
-from console_tui.sources.ros_version import ROS2
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
+from console_tui.ros.fleet import Robot
+from console_tui.ros.ros_version import ROS2
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
 

@@ -13,15 +13,14 @@ from functools import partial
 
 from textual.pilot import Pilot
 
-from console_tui.model.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
-from console_tui.model.logger_view import NO_ROS_TEXT
-from console_tui.ui.palette import palette_commands
+from console_tui.model.loggers.logger_levels import ENABLE_LOGGER_SERVICE_HINT, TemporaryLevel
+from console_tui.model.loggers.logger_pane_state import NO_ROS_TEXT
 from console_tui.ui.screens.temporary_level import TemporaryLevelScreen
 from console_tui.ui.widgets.logger_pane import LoggerPane
 
 from support import ui
 from support.feed import GRAPH, PLANNER, feed_logger_pane, records
-from support.ui import cursor_number, screen_text, table_rows, type_text, until
+from support.ui import cursor_number, frame_drawn, option_lines, pick_node, screen_text, table_rows, type_text, until
 
 make_app = partial(ui.make_app, clock=lambda: 100.0)  # nodes include navigation.planner and its costmap
 
@@ -37,10 +36,6 @@ async def fed_pane() -> AsyncIterator[tuple[Pilot, LoggerPane]]:
         feed_logger_pane(pane)
         await pilot.pause()
         yield pilot, pane
-
-
-def lines(option_list) -> list[str]:
-    return [option_list.render_line(y).text.rstrip() for y in range(option_list.option_count)]
 
 
 def notice(pane: LoggerPane) -> str:
@@ -86,7 +81,7 @@ async def test_without_ros_the_pane_says_so_and_keys_do_no_harm():
         await pilot.press("L")
         await until(pilot, lambda: pane_says(app, "No node in the ROS graph logs as"), what="the pane's answer to L")
         assert "Temporary level for" not in screen_text(app), "t opened no dialog"
-        assert app.main.logger_pane.view.notice_is_error
+        assert app.main.logger_pane.state.notice_is_error
 
 
 async def test_nodes_marks_loggers_and_levels_as_shown():
@@ -104,10 +99,12 @@ async def test_nodes_marks_loggers_and_levels_as_shown():
         assert rows['""'].endswith("INFO") and '"" (default)' in rows['""']
         assert pane.highlighted_logger == "navigation.planner"
         # A node without the services: the hint; a node still being checked: says so.
-        pane.select_node("/power/battery_monitor")
+        assert pane.node_list.has_focus and pane.selected == PLANNER
+        await pilot.press("down")  # /power/battery_monitor
         await until(pilot, lambda: pane_says(app, ENABLE_LOGGER_SERVICE_HINT), what="the hint on the screen")
+        assert pane.selected == "/power/battery_monitor"
         assert pane.rows() == [] and not pane_says(app, "navigation.planner DEBUG")
-        pane.select_node("/sensors/lidar_driver")
+        await pilot.press("down")  # /sensors/lidar_driver
         await until(
             pilot,
             lambda: pane_says(app, "Checking whether /sensors/lidar_driver offers logger services"),
@@ -141,9 +138,11 @@ async def test_a_typed_logger_name_is_offered_and_highlighted():
         assert pane.name_input.has_focus
         await pilot.press(*"navigation.planner.extra", "enter")
         assert pane.logger_list.has_focus and pane.highlighted_logger == "navigation.planner.extra"
-        assert next(line for line in lines(pane.logger_list) if "extra" in line).endswith("?"), "not read yet"
+        await frame_drawn(pilot)
+        assert next(line for line in option_lines(pane.logger_list) if "extra" in line).endswith("?"), "not read yet"
         pane.show_levels(PLANNER, {"navigation.planner.extra": 0})
-        assert next(line for line in lines(pane.logger_list) if "extra" in line).endswith("inherited (DEBUG)")
+        await frame_drawn(pilot)
+        assert next(line for line in option_lines(pane.logger_list) if "extra" in line).endswith("inherited (DEBUG)")
         await pilot.press("a", "x", "escape")  # Escape in the box drops the text, back to the loggers
         assert pane.logger_list.has_focus and pane.name_input.value == ""
 
@@ -151,8 +150,8 @@ async def test_a_typed_logger_name_is_offered_and_highlighted():
 async def test_temporary_level_shows_its_countdown():
     async with fed_pane() as (pilot, pane):
         pane.show_temporaries([TemporaryLevel(PLANNER, "navigation.planner.costmap", 10, 0, deadline=165.2)])
-        await pilot.pause()
-        row = next(line for line in lines(pane.logger_list) if ".costmap" in line)
+        await frame_drawn(pilot)
+        row = next(line for line in option_lines(pane.logger_list) if ".costmap" in line)
         assert row.endswith("DEBUG for 1:06")  # 65.2 s left on the app's clock, rounded up
 
 
@@ -162,7 +161,8 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
         pane = app.main.logger_pane
         pane.show_nodes(GRAPH)
         row = next(i for i in range(10) if app.main.store.get(i).node == "navigation.planner.costmap")
-        app.main.table.move_cursor(row)
+        await pilot.press("home", *["down"] * row)
+        await until(pilot, lambda: cursor_number(app) == row + 1, what="the cursor on the costmap's row")
         await pilot.press("L")
         await until(pilot, lambda: pane_says(app, f"Loggers of {PLANNER}"), what="the pane on the row's node")
         assert pane.highlighted_logger == "navigation.planner.costmap" and pane.logger_list.has_focus
@@ -171,7 +171,7 @@ async def test_key_on_a_table_row_opens_the_pane_on_its_node_and_logger():
 async def test_help_and_command_palette_offer_the_pane():
     app = make_app(5)
     async with app.run_test(size=(100, 40)) as pilot:
-        titles = [command.title for command in palette_commands()]
+        titles = [command.palette_title for command in app.commands.palette()]
         assert "Logger levels" in titles and "Logger levels of this row's node" in titles
         groups = dict(app.binding_groups())
         assert any(b.action == "set_level(10)" for b in groups["Logger levels pane"])
@@ -237,7 +237,7 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
     try:
         async with app.run_test(size=(140, 30)) as pilot:
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
-            assert not control.graph_watched and not app.main.logger_pane.view.nodes
+            assert not control.graph_watched and not app.main.logger_pane.state.nodes
             await pilot.press("L")
             await until(
                 pilot, lambda: app.main.logger_pane.selected == "/power/battery_monitor", what="the row's node selected"
@@ -248,7 +248,7 @@ async def test_a_rows_node_asked_for_before_the_graph_is_known_is_shown_when_it_
 
 
 async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_robots_when_asked():
-    from console_tui.sources.loggers.fleet_control import FleetLoggerControl
+    from console_tui.control.fleet_control import FleetLoggerControl
 
     from support.memory_control import MemoryControl, MemoryNode
 
@@ -262,14 +262,14 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
             await until(pilot, lambda: cursor_number(app) == 100, what="the table")
             await pilot.press("l")
             await until(pilot, lambda: pane_says(app, "cart:/cart_driver"), what="both robots' nodes")
-            app.main.logger_pane.select_node("arm:/arm_driver")
+            await pick_node(pilot, "arm:/arm_driver")
             default_is = partial(re.search, r'^"" \(default\) +(\S+)$', flags=re.M)
             await until(
                 pilot,
                 lambda: (found := default_is("\n".join(pane_text(app)))) and found[1] == "INFO",
                 what="the ROS 2 robot's levels, read at once",
             )
-            app.main.logger_pane.select_node("cart:/cart_driver")
+            await pick_node(pilot, "cart:/cart_driver")
             await until(pilot, lambda: pane_says(app, "Loggers of cart:/cart_driver"), what="the ROS 1 robot's node")
             assert pane_says(app, "read its loggers")
             assert default_is("\n".join(pane_text(app)))[1] == "?", "not read until asked"
@@ -282,8 +282,8 @@ async def test_a_mixed_fleet_reads_a_ros2_robots_levels_on_highlight_and_a_ros1_
 async def test_the_logger_control_starts_when_the_pane_first_opens():
     """The app joins the ROS graph for logger levels (rclpy, a DDS participant: 44 MB) only
     once they are wanted: live records and time passing do not start it, opening the pane does."""
-    from console_tui.model.intake_queue import IntakeQueue
-    from console_tui.model.record_batch import RecordColumns
+    from console_tui.model.store.intake_queue import IntakeQueue
+    from console_tui.model.store.record_batch import RecordColumns
     from console_tui.sources.status import SourceStatus
 
     from support.feed import StaticSource
@@ -300,7 +300,9 @@ async def test_the_logger_control_starts_when_the_pane_first_opens():
             queue.put(RecordColumns.from_records(records(1, start=500)))
             await until(pilot, lambda: cursor_number(app) == 101, what="the live record")
             now[0] += 3600.0
-            await pilot.pause(0.2)
+            queue.put(RecordColumns.from_records(records(1, start=501)))  # a drain an hour later, shown
+            await until(pilot, lambda: cursor_number(app) == 102, what="the live record an hour later")
+            await frame_drawn(pilot)
             assert control._thread is None, "started before the pane opened"
             await pilot.press("l")
             await until(pilot, lambda: pane_says(app, "talker"), what="the node listed")

@@ -12,8 +12,8 @@ import sys
 import pytest
 from textual.binding import Binding
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import BASE_NS, records
@@ -317,7 +317,7 @@ async def test_node_panel_with_80_nodes_filters_and_sorts():
 async def test_node_panel_counts_what_came_while_closed_a_budget_at_a_time(monkeypatch):
     """Nothing is counted while the panel is closed; opened, it counts a budget's worth at a
     time and says so until done."""
-    from console_tui.model.store import CHUNK_SIZE
+    from console_tui.model.store.log_store import CHUNK_SIZE
     from console_tui.ui.widgets import node_pane
 
     monkeypatch.setattr(node_pane, "COUNT_BUDGET_S", 0.0)  # one chunk a refresh
@@ -499,15 +499,12 @@ async def test_a_bare_file_name_opens_under_the_run_folder(tmp_path, monkeypatch
 
 
 async def test_every_palette_entry_names_an_action_and_a_key_that_exist():
-    from console_tui.ui.palette import palette_commands
-
     app = make_app(5)
     async with app.run_test(size=(100, 30)):
         ids = {b.id for _title, group in app.binding_groups() for b in group if b.id}
-        for command in palette_commands():
-            name = command.action.split("(")[0]
-            assert callable(getattr(app, f"action_{name}", None)), command.action
-            assert command.key is None or command.key in ids, command.key
+        for command in app.commands.palette():
+            assert command.action == f"command({command.id!r})" and command.id in app.commands, command.id
+            assert not command.key_id or command.key_id in ids, command.key_id
 
 
 async def test_a_time_format_from_the_palette():

@@ -2,9 +2,9 @@
 from a column by key and by click, the table's place), storms collapsed (10,000 identical
 messages as one ``×10000`` row, expanded and collapsed again, collapsing off), the summary."""
 
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.ui.app import ConsoleApp
 
 from support.ui import line_with, screen_text, until
@@ -200,7 +200,7 @@ async def test_the_timeline_hides_and_the_summary_jumps():
 async def test_the_summary_counts_the_nodes_first_in_slices(monkeypatch):
     """Nobody counted the nodes while their panel was closed: S counts them a slice at a time
     (the loop free between slices), then opens the summary with every message counted."""
-    from console_tui.model.store import CHUNK_SIZE
+    from console_tui.model.store.log_store import CHUNK_SIZE
     from console_tui.ui.controllers import overview
 
     monkeypatch.setattr(overview, "CATCH_UP_BUDGET_S", 0.0)  # one chunk a slice

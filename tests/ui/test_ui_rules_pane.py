@@ -41,11 +41,17 @@ async def test_each_rule_has_its_count_on_its_first_line(size):
         await pilot.press("r")
         await until(pilot, lambda: "● mark" in screen_text(app), what="the rules in the pane")
         await until(pilot, lambda: not app.main.view.refiltering, what="the counts")
-        await pilot.pause(0.6)
-        firsts = [line for line in pane_lines(app) if re.search(r"● (hide|mark) ", line)]
-        assert len(firsts) == 3, pane_lines(app)
-        for line in firsts:
-            assert re.search(r" \d[\d,]*\s*[▎▌│]?\s*$", line), f"no count at the end of {line!r}"
+
+        def firsts() -> list[str]:
+            return [line for line in pane_lines(app) if re.search(r"● (hide|mark) ", line)]
+
+        def counted(line: str) -> bool:
+            return re.search(r" \d[\d,]*\s*[▎▌│]?\s*$", line) is not None
+
+        await until(pilot, lambda: len(firsts()) == 3 and all(map(counted, firsts())), what=lambda: pane_lines(app))
+        assert len(firsts()) == 3, pane_lines(app)
+        for line in firsts():
+            assert counted(line), f"no count at the end of {line!r}"
         # The long regex is shown whole, over several lines, rather than cut.
         joined = "".join(line.strip(" ▊▎") for line in pane_lines(app))
         assert "transform" in joined and r"\w+)/" in joined

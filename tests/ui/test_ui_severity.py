@@ -1,39 +1,43 @@
 """Severity reads at a glance in every colour mode: by its word and its weight, not only its hue.
 
 The table's severity words and the status line's counts are read from the screen at 80x24;
-their styles are read from what the table draws, and checked as a truecolor, a 16-colour and
+their styles are read from the screen's cells too, and checked as a truecolor, a 16-colour and
 a ``NO_COLOR`` terminal would show them.
 """
 
 from __future__ import annotations
 
+import re
+
 from rich.color import ColorSystem
-from rich.segment import Segment
+from rich.style import Style
 from textual.color import Color
 
 from console_tui.model.levels import SEVERITY_TABLE
 
-from support.ui import make_app, screen_text, until
+from support.ui import make_app, screen_text, style_at, until
 
 WORDS = [level.name for level in SEVERITY_TABLE]
 
 
-def severity_cells(app) -> dict[str, Segment]:
-    """The segment of each severity word as the table draws it, on rows away from the cursor."""
+def severity_cells(app) -> dict[str, Style]:
+    """The style of each severity word as the screen shows it, on the table's rows away from
+    the cursor's (its first letter's cell: a word is drawn in one style)."""
     table = app.main.table
-    found: dict[str, Segment] = {}
-    for y in range(1, table.size.height):
-        if int(table.scroll_y) + y - 1 == table.cursor_row:
+    found: dict[str, Style] = {}
+    lines = screen_text(app).splitlines()
+    for y in range(table.region.y + 1, table.region.bottom):  # below the header
+        if int(table.scroll_y) + (y - table.region.y) - 1 == table.cursor_row:
             continue
-        for segment in table.render_line(y):  # a word may share its segment with cells of its style
-            for word in WORDS:
-                if f" {word} " in f" {segment.text} " and word not in found:
-                    found[word] = segment
+        for word in WORDS:
+            at = f" {lines[y]} ".find(f" {word} ")
+            if at >= 0 and word not in found:
+                found[word] = style_at(app, at, y)
     return found
 
 
-def brightness(segment: Segment, default: str) -> float:
-    color = segment.style.color if segment.style and segment.style.color else None
+def brightness(style: Style, default: str) -> float:
+    color = style.color
     return Color.parse(color.triplet.hex if color and color.triplet else default).brightness
 
 
@@ -50,10 +54,10 @@ async def test_the_severity_words_and_counts_show_at_80x24():
         cells = severity_cells(app)
         assert set(cells) == set(WORDS)
         for word in ("WARN", "ERROR", "FATAL"):
-            assert cells[word].style.bold, f"{word} is drawn bold"
-        assert not cells["INFO"].style.bold and not cells["DEBUG"].style.bold
+            assert cells[word].bold, f"{word} is drawn bold"
+        assert not cells["INFO"].bold and not cells["DEBUG"].bold
         # A 16-colour terminal gets WARN and ERROR in different colours (they were both red).
-        standard = {word: cells[word].style.color.downgrade(ColorSystem.STANDARD).number for word in ("WARN", "ERROR")}
+        standard = {word: cells[word].color.downgrade(ColorSystem.STANDARD).number for word in ("WARN", "ERROR")}
         assert standard["WARN"] != standard["ERROR"], standard
 
 
@@ -66,11 +70,11 @@ async def test_without_colour_error_is_never_darker_than_info_and_weights_tell_t
         cells = severity_cells(app)
         foreground = app.main.table.rich_style.color.triplet.hex
         assert brightness(cells["ERROR"], foreground) >= brightness(cells["INFO"], foreground)
-        error, fatal, warn = cells["ERROR"].style, cells["FATAL"].style, cells["WARN"].style
+        error, fatal, warn = cells["ERROR"], cells["FATAL"], cells["WARN"]
         assert warn.bold and error.bold and error.underline and fatal.bold and fatal.reverse
-        status = app.main.status_bar.content
-        error_count = next(span for span in status.spans if status.plain[span.start : span.end].startswith("E"))
-        style = error_count.style
+        lines = screen_text(app).splitlines()
+        status_y = len(lines) - 2
+        style = style_at(app, re.search(r" E\d", lines[status_y]).start() + 1, status_y)  # the status line's E count
         assert style.bold and style.color is not None and Color.parse(style.color.triplet.hex).brightness > 0.6, (
             "the E count stands out on the status line"
         )

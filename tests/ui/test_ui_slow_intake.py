@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record_batch import RecordColumns
-from console_tui.model.store import LogStore
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.app import ConsoleApp
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from rich.text import Text
 
-from console_tui.model.text import one_line
+from console_tui.model.inert_text import one_line
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.widgets.status_bar import StatusFacts, render_status, short_problem
 from console_tui.ui.widgets.status_fit import COUNTS, DETAIL, SOURCE, STATE, Part, fit

@@ -5,11 +5,20 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.ui.palette import palette_commands
 from console_tui.ui.widgets.log_table import LogTable
 
 from support.feed import records
-from support.ui import cursor_number, line_with, make_app, screen_text, style_at, table_rows, type_text, until
+from support.ui import (
+    cursor_number,
+    frame_drawn,
+    line_with,
+    make_app,
+    screen_text,
+    style_at,
+    table_rows,
+    type_text,
+    until,
+)
 
 
 def status_line(app) -> str:
@@ -57,10 +66,15 @@ async def test_rows_arriving_below_the_screen_redraw_only_the_scrollbar():
         draw = table.render_line
         table.render_line = lambda y: drawn.append(y) or draw(y)
         rows_before = {number: line[:-2] for number, (_, line) in table_rows(app).items()}  # less the scrollbar
+        thumb_before = thumb_rows(app)
         drawn.clear()
         app.main.intake.add_records(records(500, start=100))
         await until(pilot, lambda: "600/600 shown" in status_line(app), what="the new records counted")
-        await pilot.pause(0.3)  # the scrollbar follows within a tenth of a second
+        # The scrollbar follows within a tenth of a second: its thumb drawn smaller and higher
+        # is the frame that would draw the rows again, had they changed.
+        await until(pilot, lambda: thumb_rows(app) != thumb_before, what="the scrollbar following the new rows")
+        await frame_drawn(pilot, table.vertical_scrollbar)
+        assert len(thumb_rows(app)) < len(thumb_before) and min(thumb_rows(app)) < min(thumb_before)
         assert drawn == []  # no row drawn again: the same rows, the same strips
         assert {number: line[:-2] for number, (_, line) in table_rows(app).items()} == rows_before
         await pilot.press("end")
@@ -88,13 +102,18 @@ async def test_the_scrollbar_stays_at_the_bottom_while_following_and_is_not_redr
             app.main.intake.add_records(records(1000, start=start))
             await pilot.pause()
         await until(pilot, lambda: "20,000/20,000 shown" in status_line(app), what="the new records shown")
-        await pilot.pause(0.3)
+        # The scrollbar given the 20,000 rows (within a tenth of a second), then the frame
+        # after its check whether the thumb moved: a repaint would have come by then.
+        table = app.main.table
+        await until(pilot, lambda: bar.window_virtual_size == table.virtual_size.height, what="the scrollbar's size")
+        assert table.virtual_size.height == 20_001
+        await frame_drawn(pilot, bar)
         assert thumb_rows(app) == [bottom], "the thumb left the bottom while the table follows the tail"
         assert painted == [], "the scrollbar was drawn again with its thumb in the same place"
         await pilot.press("home")
         await until(pilot, lambda: cursor_number(app) == 1, what="the first row")
-        await pilot.pause(0.3)
-        assert thumb_rows(app) == [app.main.table.region.y + 1] or thumb_rows(app) == [app.main.table.region.y]
+        top = [[table.region.y + 1], [table.region.y]]
+        await until(pilot, lambda: thumb_rows(app) in top, what=lambda: f"the thumb at the top, not {thumb_rows(app)}")
 
 
 async def test_position_survives_eviction_at_the_bound():
@@ -252,7 +271,7 @@ async def test_narrow_terminals_keep_severity_node_and_message(width):
 async def test_command_palette_offers_the_actions():
     app = make_app(5)
     async with app.run_test(size=(100, 30)) as pilot:
-        titles = [command.title for command in palette_commands()]
+        titles = [command.palette_title for command in app.commands.palette()]
         for title in ("Pause / resume", "Follow tail", "Clear", "Details", "Columns"):
             assert title in titles
         await pilot.press("ctrl+p")
@@ -272,10 +291,13 @@ async def test_a_change_of_focus_redraws_only_the_cursor_row():
         other_y = table_rows(app)[99][0]
         other = style_at(app, 10, other_y)
         drawn = []
-        draw = table._render_row
-        table._render_row = lambda record, *args: drawn.append(record.seq + 1) or draw(record, *args)
+        draw = table.painter.row
+        table.painter.row = lambda record, *args: drawn.append(record.seq + 1) or draw(record, *args)
         await pilot.press("f")
         await until(pilot, lambda: app.main.search_bar.is_open, what="the search line")
-        await pilot.pause(0.2)
+        # The cursor's row drawn in the blurred colours is the frame of the change of focus.
+        await until(pilot, lambda: cursor_number(app) is None, what="the cursor's row drawn blurred")
+        await frame_drawn(pilot)
+        assert 100 in drawn, "the cursor's row was drawn again"
         assert style_at(app, 10, table_rows(app)[99][0]) == other
         assert set(drawn) <= {100}, f"rows drawn again: {sorted(set(drawn))}"

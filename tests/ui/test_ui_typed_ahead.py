@@ -6,11 +6,8 @@ typed right after ``/`` went to the table (issue 11, item 16: "the first / did n
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
-from console_tui.ui import app as app_module
 from console_tui.ui.app import ConsoleApp
 
 from support.feed import records
@@ -50,8 +47,6 @@ def _starts_a_line(app: ConsoleApp, text: str) -> bool:
 
 class StartingApp(ConsoleApp):
     """Keys that arrived while the app was starting: queued before it mounted."""
-
-    CSS_PATH = Path(app_module.__file__).with_name(ConsoleApp.CSS_PATH)
 
     def on_mount(self) -> None:
         type_ahead(self, "/warn", keys=("up", "up"))

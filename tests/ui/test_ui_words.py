@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from console_tui.cli import build_parser
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 from support.ui import line_with, make_app, screen_text, type_text, until
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from console_tui.cli import main
-from console_tui.sources.log_dir import LogRun, UnsafeRemoval, remove_run, ros_log_dir, scan_runs
+from console_tui.ros.log_dir import LogRun, UnsafeRemoval, remove_run, ros_log_dir, scan_runs
 
 DAY = 86400.0
 

@@ -19,12 +19,12 @@ from console_tui.commands.tail import use_color
 from console_tui.model.formats.print_format import PrintFormat
 from console_tui.model.formats.rosout_log import ROS2_HEADER, rosout_log_text
 from console_tui.model.formats.rotating_file import RotatingFile
-from console_tui.model.record import LogRecord
 from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import RuleSet
 from console_tui.model.rules.stream import StreamFilter
-from console_tui.model.store import LogStore
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 
 from support.feed import records as feed_records
 from support.formats import hostile_records

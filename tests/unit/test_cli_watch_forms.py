@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from console_tui.model.formats.rosout_log import ROS2_HEADER, rosout_log_text
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 ENV = {**os.environ, "PYTHONPATH": str(Path(__file__).parents[2])}
 ENV.pop("NO_COLOR", None)

@@ -13,7 +13,7 @@ import pytest
 
 from console_tui.cli import main
 from console_tui.model.formats import FormatError
-from console_tui.model.intake_queue import IntakeQueue
+from console_tui.model.store.intake_queue import IntakeQueue
 from console_tui.sources.files import FileLoad, latest_run, load_records, open_logs
 from console_tui.sources.files.merge import merge_by_time
 
@@ -265,7 +265,7 @@ def _files_open_in(folder: Path) -> int:
 
 
 def test_the_merge_starts_a_stream_when_its_time_comes():
-    from console_tui.model.record import LogRecord
+    from console_tui.model.store.record import LogRecord
 
     started: list[int] = []
 

@@ -11,8 +11,8 @@ import pytest
 pytest.importorskip("rosbags")
 pytest.importorskip("mcap")
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files import FileLoad, FormatError, load_records, open_log_file
 
 from support.formats import fields, hostile_records

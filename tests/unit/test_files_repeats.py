@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files.repeats import TOLERANCE_NS, RepeatMerger
 
 T = 1_700_000_000_000_000_000

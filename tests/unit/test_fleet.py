@@ -7,13 +7,13 @@ import pytest
 
 from console_tui.cli import build_parser
 from console_tui.commands.arguments import check_fleet_arguments
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import BatchPacker, BatchUnpacker, RecordColumns
-from console_tui.model.store import CHUNK_SIZE, LogStore
-from console_tui.sources.fleet import FleetError, Robot, load_fleet, parse_domain, parse_master
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import BatchPacker, BatchUnpacker, RecordColumns
+from console_tui.ros.fleet import FleetError, Robot, load_fleet, parse_domain, parse_master
+from console_tui.ros.ros_version import ROS1, ROS2
 from console_tui.sources.intake_process.parent import ProcessSource
-from console_tui.sources.ros_version import ROS1, ROS2
 
 from support.rosproc import wait_until
 

@@ -11,8 +11,8 @@ from console_tui.commands.arguments import robot_files
 from console_tui.model.formats.jsonl import JsonLinesFormat
 from console_tui.model.formats.rqt_csv import RqtCsvFormat
 from console_tui.model.formats.save import save_records
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files import FileLoad
 
 from support.formats import read_cleanly
@@ -102,7 +102,7 @@ def test_tail_prints_a_fleets_robot(tmp_path):
 def test_robots_from_names_names_each_file_for_itself(tmp_path, monkeypatch):
     from console_tui import run_app
     from console_tui.cli import main
-    from console_tui.sources.fleet import robot_name_for
+    from console_tui.ros.fleet import robot_name_for
 
     assert robot_name_for("logs/picker/") == "picker"
     assert robot_name_for("/x/cart.rosout.log") == "cart"

@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.logger_levels import GraphNode, node_of_logger
-from console_tui.sources.loggers.errors import LoggerCallError
-from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
-from console_tui.sources.loggers.fleet_control import FleetLoggerControl, split_node
+from console_tui.control.errors import LoggerCallError
+from console_tui.control.events import NodesChanged, TemporaryEnded
+from console_tui.control.fleet_control import FleetLoggerControl, split_node
+from console_tui.model.loggers.logger_levels import GraphNode, node_of_logger
 
 from support.memory_control import MemoryControl, MemoryNode, running
 from support.rosproc import wait_until

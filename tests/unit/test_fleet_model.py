@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model.node_stats import NodeStats, robot_counts
-from console_tui.model.record import LogRecord
+from console_tui.model.overview.node_stats import NodeStats, robot_counts
 from console_tui.model.rules.query import QueryError, parse_query
 from console_tui.model.rules.robot import RobotRule
 from console_tui.model.rules.ruleset import RuleSet
 from console_tui.model.rules.rulesfile import load_rules, save_rules
-from console_tui.model.store import LogStore
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 from console_tui.sources.status import SourceStatus
 from console_tui.ui.widgets.status_bar import StatusFacts, empty_hint, render_status
 
@@ -88,7 +88,7 @@ def test_counts_per_robot_follow_the_store_dropping_the_oldest():
 
 
 def test_a_message_repeated_by_two_robots_is_no_storm():
-    from console_tui.model.storms import StormRows
+    from console_tui.model.overview.storms import StormRows
 
     store = LogStore()
     store.extend_records([LogRecord(i, 20, "/talker", "same", robot="ab"[i % 2]) for i in range(6)])

@@ -8,7 +8,7 @@ import struct
 import pytest
 
 from console_tui.model.formats.ros2_log_msg import CdrError, LogDecoder
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 FIELDS = ("stamp_ns", "level", "node", "msg", "file", "function", "line", "source")
 ALPHABET = "abcXYZ_./:0 é日本語🤖\t\"';\\"
@@ -56,7 +56,7 @@ def rclpy_log():
     from rcl_interfaces.msg import Log
     from rclpy.serialization import deserialize_message, serialize_message
 
-    from console_tui.sources.log_message import log_to_record
+    from console_tui.sources.ros2.log_message import log_to_record
 
     def make(sec, nanosec, level, name, msg, file, function, line):
         message = Log()

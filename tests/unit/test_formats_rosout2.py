@@ -16,7 +16,7 @@ from console_tui.model.formats import Ros2RosoutLogFormat, RosoutLogFormat, rota
 from console_tui.model.formats.ros2_log_msg import LogDecoder, LogEncoder
 from console_tui.model.formats.rosout_log import ROS2_HEADER, rosout_log_text
 from console_tui.model.formats.rotating_file import RotatingFile
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 from console_tui.sources.files import open_log_file
 
 from support.formats import fields, hostile_records, read_cleanly, read_text

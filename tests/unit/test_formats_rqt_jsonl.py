@@ -10,7 +10,7 @@ import pytest
 from console_tui.model.formats import JsonLinesFormat, RqtCsvFormat, save_records
 from console_tui.model.formats.jsonl import JsonLinesWriter
 from console_tui.model.formats.rqt_csv import RqtCsvWriter, split_location
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 
 from support.formats import DATA, fields, hostile_records, read_cleanly, read_text
 

@@ -272,9 +272,9 @@ def test_names_from_file_names():
 
 
 def test_a_record_too_long_is_cut_and_the_rest_kept(monkeypatch):
-    from console_tui.model.formats import textlines
+    from console_tui.model.formats import line_groups
 
-    monkeypatch.setattr(textlines, "MAX_RECORD_LINES", 3)
+    monkeypatch.setattr(line_groups, "MAX_RECORD_LINES", 3)
     data = b"[INFO] [1.000000000]: start\n" + b"".join(b"line %d\n" % i for i in range(5))
     records, problems = read_text(data, Ros1ConsoleFormat().for_file("a-1-stdout.log"), "x")
     assert [r.msg for r in records] == ["start\nline 0\nline 1", "line 2", "line 3", "line 4"]

@@ -12,8 +12,8 @@ import threading
 
 import pytest
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.sources.intake_process.child import Sender
 from console_tui.sources.intake_process.frames import BATCH, STATUS, read_frames, status_from, write_frame
 from console_tui.sources.intake_process.parent import ProcessSource
@@ -76,7 +76,7 @@ def test_a_status_that_changed_before_records_were_taken_is_sent_before_them():
 def test_the_batches_queued_between_two_flushes_cross_as_one_frame():
     """The source queues a batch a turn of its loop; the app pays for each batch it takes in,
     so what a flush finds goes as one, in order."""
-    from console_tui.model.record_batch import BatchUnpacker
+    from console_tui.model.store.record_batch import BatchUnpacker
     from console_tui.sources.intake_process.child import FRAME_RECORDS
 
     class Steady:
@@ -205,7 +205,7 @@ def test_the_process_ends_when_the_app_ends_however_it_ends(how):
     script = textwrap.dedent(
         f"""
         import os, signal, sys, time
-        from console_tui.model.intake_queue import IntakeQueue
+        from console_tui.model.store.intake_queue import IntakeQueue
         from console_tui.sources.intake_process.parent import ProcessSource
         source = ProcessSource(IntakeQueue(), "synthetic", args=["--rate", "1000"])
         source.start()

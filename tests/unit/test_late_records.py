@@ -4,17 +4,17 @@ read as if the records had come in time order."""
 
 from __future__ import annotations
 
-from console_tui.model.late_records import LATE_NS, add_in_time_order
-from console_tui.model.marks import Marks
-from console_tui.model.node_stats import NodeStats
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.overview.node_stats import NodeStats
+from console_tui.model.overview.storms import StormRows
+from console_tui.model.overview.timeline import Timeline
 from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import RuleSet
-from console_tui.model.store import CHUNK_SIZE, LogStore
-from console_tui.model.storms import StormRows
-from console_tui.model.timeline import Timeline
-from console_tui.model.view import LogView
+from console_tui.model.store.late_records import LATE_NS, add_in_time_order
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
+from console_tui.model.view.log_view import LogView
+from console_tui.model.view.marks import Marks
 
 INFO, WARN, ERROR = 20, 30, 40
 S = 1_000_000_000
@@ -126,7 +126,7 @@ def test_views_storms_timeline_and_counts_follow_a_late_history():
 
 
 def test_histories_are_due_for_a_while_after_a_source_starts_gains_a_publisher_or_changes_topic():
-    from console_tui.model.late_records import HistoryWindow
+    from console_tui.model.store.late_records import HistoryWindow
 
     now = [0.0]
     window = HistoryWindow(lambda: now[0], seconds=3.0)

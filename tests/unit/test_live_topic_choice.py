@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.sources.ros2.topic_choice import DISCOVERY_S, SWITCH_DEDUPE_S, TopicChoice
 
 

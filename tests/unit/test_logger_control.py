@@ -10,8 +10,8 @@ import threading
 
 import pytest
 
-from console_tui.sources.loggers.errors import CallTimedOut, ControlClosed, LevelRefused, NodeNotFound, NoLoggerServices
-from console_tui.sources.loggers.events import NodesChanged, TemporaryEnded
+from console_tui.control.errors import CallTimedOut, ControlClosed, LevelRefused, NodeNotFound, NoLoggerServices
+from console_tui.control.events import NodesChanged, TemporaryEnded
 
 from support.memory_control import MemoryControl, MemoryNode, StepClock, running
 from support.rosproc import wait_until

@@ -5,9 +5,9 @@ from __future__ import annotations
 import threading
 import time
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
 
 
 def batch(first: int, count: int) -> list[LogRecord]:

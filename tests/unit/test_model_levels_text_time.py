@@ -2,7 +2,7 @@
 
 import pytest
 
-from console_tui.model import levels, text, timefmt
+from console_tui.model import inert_text, levels, timefmt
 from console_tui.model.levels import Severity
 
 
@@ -61,7 +61,7 @@ def test_severity_names():
 
 def test_one_line_makes_controls_visible():
     hostile = "a\x1b[31mred\x1b]0;title\x07\x00b\nc\td\u202eevil\x9b"
-    out = text.one_line(hostile)
+    out = inert_text.one_line(hostile)
     assert "\x1b" not in out and "\x00" not in out and "\n" not in out and "\u202e" not in out
     assert "\x9b" not in out and "\x07" not in out
     assert out.startswith("a\u241b[31mred")
@@ -72,33 +72,33 @@ def test_one_line_makes_controls_visible():
     "char", ["\u200b", "\u2028", "\u2029", "\u2060", "\ufeff", "\u00ad", "\u180e", "\U000e0041", "\u3164"]
 )
 def test_invisible_and_line_breaking_characters_show_as_stand_ins(char):
-    for render in (text.one_line, text.multi_line):
+    for render in (inert_text.one_line, inert_text.multi_line):
         out = render(f"a{char}b")
         assert out == f"a<U+{ord(char):04X}>b" and char not in out
 
 
 def test_joiners_that_text_needs_are_kept():
     family = "\U0001f469\u200d\U0001f469\u200d\U0001f467 \u0645\u200c\u06cc \u2764\ufe0f"
-    assert text.one_line(family) == family
+    assert inert_text.one_line(family) == family
 
 
 def test_one_line_cuts_before_work():
-    assert len(text.one_line("x" * 1_000_000, limit=50)) == 50
+    assert len(inert_text.one_line("x" * 1_000_000, limit=50)) == 50
 
 
 def test_multi_line_keeps_newlines_and_cjk():
-    out = text.multi_line("漢字 🚀 שלום\r\nline2\x1b[0m")
+    out = inert_text.multi_line("漢字 🚀 שלום\r\nline2\x1b[0m")
     assert out == "漢字 🚀 שלום\nline2\u241b[0m"
 
 
 def test_surrogates_become_replacement():
-    assert text.one_line("bad\udcff") == "bad\ufffd"
+    assert inert_text.one_line("bad\udcff") == "bad\ufffd"
 
 
 def test_first_line():
-    assert text.first_line("one\ntwo", 100) == ("one", True)
-    assert text.first_line("abcdef", 3) == ("abc", True)
-    assert text.first_line("abc", 3) == ("abc", False)
+    assert inert_text.first_line("one\ntwo", 100) == ("one", True)
+    assert inert_text.first_line("abcdef", 3) == ("abc", True)
+    assert inert_text.first_line("abc", 3) == ("abc", False)
 
 
 def test_stamp_text_pads_nanoseconds():
@@ -122,7 +122,7 @@ def test_clock_text_utc():
     ],
 )
 def test_plural_agrees_with_the_count(count, words, expected):
-    assert text.plural(count, *words) == expected
+    assert inert_text.plural(count, *words) == expected
 
 
 @pytest.mark.parametrize(
@@ -139,5 +139,5 @@ def test_plural_agrees_with_the_count(count, words, expected):
     ],
 )
 def test_shorten_name_keeps_the_distinguishing_end(name, width, shown):
-    assert text.shorten_name(name, width) == shown
-    assert len(text.shorten_name(name, width)) <= width
+    assert inert_text.shorten_name(name, width) == shown
+    assert len(inert_text.shorten_name(name, width)) <= width

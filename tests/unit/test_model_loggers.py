@@ -2,7 +2,7 @@
 
 import pytest
 
-from console_tui.model.logger_levels import (
+from console_tui.model.loggers.logger_levels import (
     GraphNode,
     LoggerSource,
     NodeLoggers,
@@ -186,10 +186,10 @@ def test_cancel_retry_and_take_all():
 
 
 def test_an_empty_graph_is_looked_for_then_has_no_nodes_yet_and_files_have_no_ros():
-    from console_tui.model.logger_view import LOOKING_TEXT, NO_ROS_TEXT, LoggerView
+    from console_tui.model.loggers.logger_pane_state import LOOKING_TEXT, NO_ROS_TEXT, LoggerPaneState
 
-    view = LoggerView()
+    view = LoggerPaneState()
     assert view.notice_text(looking=True) == (LOOKING_TEXT, False)
     assert view.notice_text() == ("No nodes in the ROS graph yet.", False)
     assert view.notice_text("the master is gone", looking=True) == ("the master is gone", True)
-    assert LoggerView(has_ros=False).notice_text(looking=True) == (NO_ROS_TEXT, False)
+    assert LoggerPaneState(has_ros=False).notice_text(looking=True) == (NO_ROS_TEXT, False)

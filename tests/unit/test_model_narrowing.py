@@ -13,14 +13,14 @@ from pathlib import Path
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from console_tui.model import toggles
 from console_tui.model.formats.rosout_log import parse_rosout_record
+from console_tui.model.overview.storms import StormRows
+from console_tui.model.overview.timeline import Timeline
+from console_tui.model.rules import key_rules
 from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import RuleSet
-from console_tui.model.store import LogStore
-from console_tui.model.storms import StormRows
-from console_tui.model.timeline import Timeline
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.view.log_view import LogView
 
 from support.storm_log import write_storm_log
 
@@ -59,15 +59,15 @@ def from_scratch(store: LogStore, rules: RuleSet, storms_on: bool):
 def apply(rules: RuleSet, op: tuple) -> RuleSet:
     kind, arg = op
     if kind == "level":
-        return toggles.toggle_level(rules, arg)
+        return key_rules.toggle_level(rules, arg)
     if kind == "raise":
-        return toggles.raise_minimum(rules)
+        return key_rules.raise_minimum(rules)
     if kind == "lower":
-        return toggles.lower_minimum(rules)
+        return key_rules.lower_minimum(rules)
     if kind == "solo":
-        return toggles.toggle_solo(rules, arg)
+        return key_rules.toggle_solo(rules, arg)
     if kind == "mute":
-        return toggles.toggle_mute(rules, arg)
+        return key_rules.toggle_mute(rules, arg)
     if kind == "query":
         return rules.with_query(parse_query(arg, utc=True))
     return rules
@@ -144,7 +144,7 @@ def test_back_to_every_record_shown_takes_back_the_counts_and_counts_only_what_a
     view = LogView(store)
     storms, timeline = StormRows(store, view), Timeline(store, view)
     assert storms.sync() and timeline.sync()
-    hidden = toggles.toggle_level(RuleSet(), 20)
+    hidden = key_rules.toggle_level(RuleSet(), 20)
     for arrive in (0, 300):
         view.set_rules(hidden)
         while not view.refilter_step(1.0):
@@ -169,7 +169,7 @@ def test_highlight_rules_count_nothing_again_and_records_dropped_meanwhile_mean_
     assert storms.sync() and timeline.sync()
     view.set_rules(RuleSet().with_query(parse_query("+burst", utc=True)))  # highlights only
     assert storms.sync(0.0) and timeline.sync(0.0) and not storms.rebuilding
-    view.set_rules(toggles.toggle_level(view.rules, 20))
+    view.set_rules(key_rules.toggle_level(view.rules, 20))
     while not view.refilter_step(1.0):
         pass
     assert storms.sync() and timeline.sync()

@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import pytest
 
-from console_tui.model import toggles
-from console_tui.model.marks import Marks
-from console_tui.model.record import LogRecord
+from console_tui.model.rules import key_rules
 from console_tui.model.rules.message import MessageRule
 from console_tui.model.rules.ruleset import RuleSet, exclude
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 from console_tui.model.time_column import TimeFormat, offset_text, sim_time_note, time_cell
-from console_tui.model.view import LogView
+from console_tui.model.view.log_view import LogView
+from console_tui.model.view.marks import Marks
 
 # -- marks ------------------------------------------------------------------------------------
 
@@ -43,59 +43,59 @@ def shown_levels(rules: RuleSet) -> list[int]:
 
 def test_level_toggles_are_one_rule_in_the_rule_set():
     rules = RuleSet((exclude(MessageRule("noise")),))
-    rules = toggles.toggle_level(rules, 20)
+    rules = key_rules.toggle_level(rules, 20)
     assert shown_levels(rules) == [10, 30, 40, 50]
-    assert toggles.levels_text(rules) == "hiding INFO"
-    rules = toggles.raise_minimum(rules)  # above DEBUG, the lowest shown: INFO stays hidden
-    assert shown_levels(rules) == [30, 40, 50] and toggles.levels_text(rules) == "level≥WARN"
-    assert len(rules.entries) == 2 and rules.entries[1].toggle == toggles.LEVELS
+    assert key_rules.levels_text(rules) == "hiding INFO"
+    rules = key_rules.raise_minimum(rules)  # above DEBUG, the lowest shown: INFO stays hidden
+    assert shown_levels(rules) == [30, 40, 50] and key_rules.levels_text(rules) == "level≥WARN"
+    assert len(rules.entries) == 2 and rules.entries[1].toggle == key_rules.LEVELS
     assert rules.entries[1].describe() == "severity DEBUG, INFO"
-    rules = toggles.lower_minimum(rules)
-    assert toggles.levels_text(rules) == "level≥INFO"
+    rules = key_rules.lower_minimum(rules)
+    assert key_rules.levels_text(rules) == "level≥INFO"
     for _ in range(6):
-        rules = toggles.raise_minimum(rules)
+        rules = key_rules.raise_minimum(rules)
     assert shown_levels(rules) == [50]
-    rules = toggles.with_hidden_levels(rules, frozenset())
-    assert toggles.levels_text(rules) == "" and len(rules.entries) == 1
+    rules = key_rules.with_hidden_levels(rules, frozenset())
+    assert key_rules.levels_text(rules) == "" and len(rules.entries) == 1
     # The rules pane switches the levels rule off: every level shows, and the keys go on from there.
-    rules = toggles.with_minimum(rules, 40)
+    rules = key_rules.with_minimum(rules, 40)
     rules = rules.with_enabled(1, False)
-    assert toggles.hidden_levels(rules) == frozenset() and shown_levels(rules) == [10, 20, 30, 40, 50]
-    rules = toggles.toggle_level(rules, 10)
+    assert key_rules.hidden_levels(rules) == frozenset() and shown_levels(rules) == [10, 20, 30, 40, 50]
+    rules = key_rules.toggle_level(rules, 10)
     assert shown_levels(rules) == [20, 30, 40, 50] and len(rules.entries) == 2
 
 
 def test_the_minimum_level_and_the_level_toggles_compose():
-    rules = toggles.toggle_level(RuleSet(), 30)  # WARN hidden on its own
-    rules = toggles.raise_minimum(rules)
-    assert shown_levels(rules) == [20, 40, 50] and toggles.levels_text(rules) == "level≥INFO, hiding WARN"
-    rules = toggles.raise_minimum(rules)  # past WARN, hidden already: to ERROR
-    assert shown_levels(rules) == [40, 50] and toggles.levels_text(rules) == "level≥ERROR"
-    rules = toggles.lower_minimum(rules)
+    rules = key_rules.toggle_level(RuleSet(), 30)  # WARN hidden on its own
+    rules = key_rules.raise_minimum(rules)
+    assert shown_levels(rules) == [20, 40, 50] and key_rules.levels_text(rules) == "level≥INFO, hiding WARN"
+    rules = key_rules.raise_minimum(rules)  # past WARN, hidden already: to ERROR
+    assert shown_levels(rules) == [40, 50] and key_rules.levels_text(rules) == "level≥ERROR"
+    rules = key_rules.lower_minimum(rules)
     assert shown_levels(rules) == [30, 40, 50]
-    rules = toggles.toggle_level(toggles.toggle_level(RuleSet(), 40), 10)
-    assert toggles.levels_text(rules) == "level≥INFO, hiding ERROR"
-    rules = toggles.lower_minimum(rules)  # DEBUG again, ERROR still hidden
-    assert shown_levels(rules) == [10, 20, 30, 50] and toggles.levels_text(rules) == "hiding ERROR"
-    rules = toggles.with_hidden_levels(RuleSet(), frozenset({10, 20, 30, 40}))
-    assert toggles.raise_minimum(rules) == rules  # FATAL, the last shown, stays
+    rules = key_rules.toggle_level(key_rules.toggle_level(RuleSet(), 40), 10)
+    assert key_rules.levels_text(rules) == "level≥INFO, hiding ERROR"
+    rules = key_rules.lower_minimum(rules)  # DEBUG again, ERROR still hidden
+    assert shown_levels(rules) == [10, 20, 30, 50] and key_rules.levels_text(rules) == "hiding ERROR"
+    rules = key_rules.with_hidden_levels(RuleSet(), frozenset({10, 20, 30, 40}))
+    assert key_rules.raise_minimum(rules) == rules  # FATAL, the last shown, stays
 
 
 def test_solo_and_mute_are_exact_and_exclusive():
     rules = RuleSet()
-    rules = toggles.toggle_solo(rules, "nav.plan[1]*")
+    rules = key_rules.toggle_solo(rules, "nav.plan[1]*")
     assert rules.verdict(record(20, "nav.plan[1]*"))[0]
     assert not rules.verdict(record(20, "nav.plan1x"))[0]
-    assert toggles.nodes_text(rules) == "solo nav.plan[1]*"
-    rules = toggles.toggle_solo(rules, "/talker")  # a ROS 1 node name
-    assert rules.verdict(record(20, "/talker"))[0] and toggles.nodes_text(rules) == "solo 2 nodes"
-    rules = toggles.toggle_mute(rules, "/talker")
-    assert toggles.soloed(rules) == ("nav.plan[1]*",) and toggles.muted(rules) == ("/talker",)
-    assert toggles.nodes_text(rules) == "solo nav.plan[1]*, muted /talker"
-    rules = toggles.toggle_solo(rules, "nav.plan[1]*")
-    assert toggles.soloed(rules) == () and not rules.verdict(record(20, "/talker"))[0]
+    assert key_rules.nodes_text(rules) == "solo nav.plan[1]*"
+    rules = key_rules.toggle_solo(rules, "/talker")  # a ROS 1 node name
+    assert rules.verdict(record(20, "/talker"))[0] and key_rules.nodes_text(rules) == "solo 2 nodes"
+    rules = key_rules.toggle_mute(rules, "/talker")
+    assert key_rules.soloed(rules) == ("nav.plan[1]*",) and key_rules.muted(rules) == ("/talker",)
+    assert key_rules.nodes_text(rules) == "solo nav.plan[1]*, muted /talker"
+    rules = key_rules.toggle_solo(rules, "nav.plan[1]*")
+    assert key_rules.soloed(rules) == () and not rules.verdict(record(20, "/talker"))[0]
     assert rules.verdict(record(20, "other"))[0]
-    assert toggles.without_node_toggles(rules).entries == ()
+    assert key_rules.without_node_toggles(rules).entries == ()
 
 
 # -- time formats -----------------------------------------------------------------------------
@@ -134,9 +134,9 @@ def test_durations_and_sim_time():
 
 
 def test_view_shows_only_rows_the_rules_let_through():
-    from console_tui.model.seek import view_shows
+    from console_tui.model.view.seek import view_shows
 
     store = LogStore()
     store.extend_records([record(20), record(40), record(20)])
-    view = LogView(store, toggles.with_minimum(RuleSet(), 40))
+    view = LogView(store, key_rules.with_minimum(RuleSet(), 40))
     assert [view_shows(view, seq) for seq in range(4)] == [False, True, False, False]

@@ -6,12 +6,12 @@ import random
 
 import pytest
 
-from console_tui.model.packed_texts import PackedTexts, pack
 from console_tui.model.rules import packed_match
 from console_tui.model.rules.message import messages_test
+from console_tui.model.rules.pattern_match import TextMatch
 from console_tui.model.rules.regex_shape import row_safety
-from console_tui.model.rules.text_match import TextMatch
-from console_tui.model.store import Chunk
+from console_tui.model.store.log_store import Chunk
+from console_tui.model.store.packed_texts import PackedTexts, pack
 
 WORDS = [
     "time",

@@ -4,8 +4,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from console_tui.model import packed_texts
-from console_tui.model.packed_texts import RECENT, PackedTexts, pack
+from console_tui.model.store import packed_texts
+from console_tui.model.store.packed_texts import RECENT, PackedTexts, pack
 
 
 def forget_recent() -> None:

@@ -4,7 +4,6 @@ from datetime import datetime, timezone
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules import (
     CustomRule,
     LocationRule,
@@ -19,6 +18,7 @@ from console_tui.model.rules import (
 )
 from console_tui.model.rules.history import QueryHistory
 from console_tui.model.rules.query import QueryError, caret_line, parse_query
+from console_tui.model.store.record import LogRecord
 
 S = 1_000_000_000
 NOW = int(datetime(2024, 5, 1, 12, 0, tzinfo=timezone.utc).timestamp()) * S

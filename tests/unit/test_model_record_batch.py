@@ -2,10 +2,10 @@
 
 import pytest
 
-from console_tui.model.packed_texts import PackedTexts
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import BatchError, BatchPacker, BatchUnpacker, ColumnsBuilder, RecordColumns
-from console_tui.model.store import CHUNK_SIZE, LogStore
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.packed_texts import PackedTexts
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import BatchError, BatchPacker, BatchUnpacker, ColumnsBuilder, RecordColumns
 
 
 def make(i: int, msg: str | None = None) -> LogRecord:

@@ -9,8 +9,8 @@ import re
 
 import pytest
 
+from console_tui.model.rules.pattern_match import TextMatch
 from console_tui.model.rules.regex_shape import literal_alternatives
-from console_tui.model.rules.text_match import TextMatch
 
 
 @pytest.mark.parametrize(

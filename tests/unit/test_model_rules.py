@@ -4,7 +4,6 @@ from itertools import product
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules import (
     CustomRule,
     Entry,
@@ -19,8 +18,9 @@ from console_tui.model.rules import (
     exclude,
     highlight,
 )
-from console_tui.model.rules.text_match import RequiredLiteral, required_literal
-from console_tui.model.store import LogStore
+from console_tui.model.rules.pattern_match import RequiredLiteral, required_literal
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
 
 S = 1_000_000_000
 

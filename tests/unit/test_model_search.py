@@ -9,16 +9,16 @@ import random
 import pytest
 
 from console_tui.model.levels import Severity
-from console_tui.model.packed_texts import PackedTexts
-from console_tui.model.record import LogRecord
 from console_tui.model.rules.message import MessageRule
 from console_tui.model.rules.rule import RuleError
 from console_tui.model.rules.ruleset import RuleSet, exclude
 from console_tui.model.rules.severity import SeverityRule
-from console_tui.model.search import PENDING, Search, must_hold, parse_search, text_hits
-from console_tui.model.seek import Seeker, level_hits, view_shows
-from console_tui.model.store import CHUNK_SIZE, LogStore
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.packed_texts import PackedTexts
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
+from console_tui.model.view.search_walk import PENDING, Search, must_hold, parse_search, text_hits
+from console_tui.model.view.seek import Seeker, level_hits, view_shows
 
 from support.clock import TickingClock
 
@@ -128,7 +128,7 @@ def test_count_before_a_limit():
 
 
 def test_a_catastrophic_regex_is_abandoned(monkeypatch):
-    monkeypatch.setattr("console_tui.model.search.HITS_LIMIT_S", 0.05)
+    monkeypatch.setattr("console_tui.model.view.search_walk.HITS_LIMIT_S", 0.05)
     store = LogStore()
     store.extend_records(LogRecord(stamp_ns=0, level=20, node="n", msg="a" * 28 + "!") for _ in range(20))
     search = Search(LogView(store), parse_search("/(a+)+$/"), 0)

@@ -2,8 +2,8 @@
 
 import pytest
 
-from console_tui.model.record import LogRecord
-from console_tui.model.store import CHUNK_SIZE, LogStore
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.record import LogRecord
 
 
 def make(i: int, level: int = 20) -> LogRecord:

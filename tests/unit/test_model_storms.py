@@ -4,11 +4,11 @@ expanded and collapsed, with digits masked."""
 
 import random
 
-from console_tui.model.record import LogRecord
+from console_tui.model.overview.storms import StormRows, mask_digits
 from console_tui.model.rules import NodeRule, RuleSet, SeverityRule, exclude
-from console_tui.model.store import CHUNK_SIZE, LogStore
-from console_tui.model.storms import StormRows, mask_digits
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 
 
 def rec(i, node="a", msg="same", level=20, source=""):

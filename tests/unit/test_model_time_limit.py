@@ -9,11 +9,11 @@ import time
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules import MessageRule, RuleSet, SeverityRule, exclude, highlight
-from console_tui.model.rules.text_match import MatchTimeout, TextMatch, time_limit
-from console_tui.model.store import LogStore
-from console_tui.model.view import LogView
+from console_tui.model.rules.pattern_match import MatchTimeout, TextMatch, time_limit
+from console_tui.model.store.log_store import LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 
 CATASTROPHIC = r"(a+)+$"
 HOSTILE = "a" * 30 + "b"  # (a+)+$ backtracks 2**30 ways on it: minutes in one re.search

@@ -4,15 +4,15 @@ eviction, over long and odd histories."""
 
 import random
 
-from console_tui.model.find_level import find_level, find_node, severity_range
-from console_tui.model.node_stats import NodeStats
-from console_tui.model.record import LogRecord
+from console_tui.model.overview.node_stats import NodeStats
+from console_tui.model.overview.shown_follower import sync_together
+from console_tui.model.overview.storms import StormRows
+from console_tui.model.overview.timeline import MAX_BUCKETS, Timeline
 from console_tui.model.rules import NodeRule, RuleSet, SeverityRule, exclude
-from console_tui.model.shown_follower import sync_together
-from console_tui.model.store import CHUNK_SIZE, LogStore
-from console_tui.model.storms import StormRows
-from console_tui.model.timeline import MAX_BUCKETS, Timeline
-from console_tui.model.view import LogView
+from console_tui.model.store.find_level import find_level, find_node, severity_range
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 
 S = 1_000_000_000
 SLOT = {10: 0, 20: 1, 30: 2, 40: 3, 50: 4}

@@ -5,7 +5,6 @@ import random
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules import (
     MessageRule,
     NodeRule,
@@ -14,8 +13,9 @@ from console_tui.model.rules import (
     exclude,
     highlight,
 )
-from console_tui.model.store import CHUNK_SIZE, LogStore
-from console_tui.model.view import LogView
+from console_tui.model.store.log_store import CHUNK_SIZE, LogStore
+from console_tui.model.store.record import LogRecord
+from console_tui.model.view.log_view import LogView
 
 from support.clock import TickingClock
 

@@ -7,8 +7,8 @@ import io
 import os
 import sys
 
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.sources.native_output import NODE, NativeOutput, level_of
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.system.native_output import NODE, NativeOutput, level_of
 
 
 def test_lines_written_to_the_descriptors_become_records_and_are_reported_at_the_end():

@@ -14,8 +14,8 @@ from console_tui.model.formats.otel_log import (
     otel_severity,
     to_otel,
 )
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
 
 
 @pytest.mark.parametrize(

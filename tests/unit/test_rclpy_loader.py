@@ -7,7 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from console_tui.sources.ros2.rclpy_loader import import_failure_text
+from console_tui.ros.ros2.rclpy_loader import import_failure_text
 
 REPO = Path(__file__).resolve().parents[2]
 

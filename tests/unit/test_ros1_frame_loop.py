@@ -12,10 +12,10 @@ import time
 import pytest
 
 from console_tui.model.formats.ros1_log_msg import Ros1LogDecoder, Ros1LogError, encode_log
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record_batch import ColumnsBuilder
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record_batch import ColumnsBuilder
 from console_tui.sources.ros1 import compiled_frames
-from console_tui.sources.ros1.intake import Connection, Ros1Intake
+from console_tui.sources.ros1.socket_reader import Connection, Ros1Intake
 
 from support.compiled import as_in_a_new_process, built_once_then_cached, not_loaded_from_a_shared_cache
 from support.formats import random_ros1_log

@@ -13,16 +13,16 @@ import xmlrpc.client
 import pytest
 
 from console_tui.model.formats.ros1_log_msg import MIN_LENGTH, Ros1LogDecoder, Ros1LogError, encode_log
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import ColumnsBuilder, RecordColumns
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import ColumnsBuilder, RecordColumns
+from console_tui.ros.ros1.environment import DEFAULT_MASTER_URI, Ros1Environment, new_node_name
+from console_tui.ros.ros1.master import Ros1CallError, xmlrpc_call
+from console_tui.ros.ros1.slave_server import SlaveServer
+from console_tui.ros.ros1.tcpros import TcprosError, decode_header, encode_header
+from console_tui.ros.ros_version import ROS1, ROS2, choose_ros
 from console_tui.sources.ros1.dedupe import Deduplicator
-from console_tui.sources.ros1.environment import DEFAULT_MASTER_URI, Ros1Environment, new_node_name
-from console_tui.sources.ros1.intake import Connection, Ros1Intake
-from console_tui.sources.ros1.master import Ros1CallError, xmlrpc_call
-from console_tui.sources.ros1.slave_server import SlaveServer
-from console_tui.sources.ros1.tcpros import TcprosError, decode_header, encode_header
-from console_tui.sources.ros_version import ROS1, ROS2, choose_ros
+from console_tui.sources.ros1.socket_reader import Connection, Ros1Intake
 
 from support.formats import random_ros1_log
 

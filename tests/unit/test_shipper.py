@@ -8,9 +8,9 @@ import gzip
 import pytest
 
 from console_tui.commands import ship
-from console_tui.model.intake_queue import IntakeQueue
-from console_tui.model.record import LogRecord
-from console_tui.model.record_batch import RecordColumns
+from console_tui.model.store.intake_queue import IntakeQueue
+from console_tui.model.store.record import LogRecord
+from console_tui.model.store.record_batch import RecordColumns
 from console_tui.warehouse.otlp_encode import decode
 from console_tui.warehouse.outcome import TAKEN, Outcome, retry_after_seconds
 from console_tui.warehouse.shipper import Shipper

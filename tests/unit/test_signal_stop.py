@@ -9,8 +9,8 @@ import sys
 import textwrap
 import threading
 
-from console_tui.sources import signal_stop
-from console_tui.sources.signal_stop import SignalStop
+from console_tui.system import signal_stop
+from console_tui.system.signal_stop import SignalStop
 
 from support.rosproc import wait_until
 
@@ -62,7 +62,7 @@ def test_a_process_in_a_tight_wait_loop_ends_on_every_sigterm():
     script = textwrap.dedent(
         """
         import signal, sys
-        from console_tui.sources.signal_stop import SignalStop
+        from console_tui.system.signal_stop import SignalStop
         stop = SignalStop()
         signal.signal(signal.SIGTERM, stop.on_signal)
         print("ready", flush=True)

@@ -15,7 +15,7 @@ LOADED_WHEN_USED = (
     "console_tui.ui.screens.summary",
     "console_tui.ui.screens.mark_list",
     "console_tui.ui.screens.columns_dialog",
-    "console_tui.ui.screens.files",
+    "console_tui.ui.screens.file_dialogs",
     "console_tui.ui.screens.load_problems",
     "tomllib",
     "tomli",
@@ -24,7 +24,7 @@ LOADED_WHEN_USED = (
 FIRST_FRAME = """
 import asyncio, sys
 before = set(sys.modules)  # Python's own start-up, and coverage's in CI (it reads TOML)
-from console_tui.model.store import LogStore
+from console_tui.model.store.log_store import LogStore
 from console_tui.ui.app import ConsoleApp
 
 async def main():

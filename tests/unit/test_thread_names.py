@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from console_tui.sources.thread_names import NAME_BYTES, os_name, os_named
+from console_tui.system.thread_names import NAME_BYTES, os_name, os_named
 
 
 def test_the_os_name_drops_the_prefix_and_fits_the_kernel() -> None:

@@ -1,10 +1,9 @@
-"""Addresses of the log warehouse, and which positional arguments name one."""
+"""Addresses of the log warehouse: what each scheme sends to or reads, and bad ones refused."""
 
 from __future__ import annotations
 
 import pytest
 
-from console_tui.sources.locations import FILE, WAREHOUSE, location_kind, split_locations
 from console_tui.warehouse.address import CHDB, CLICKHOUSE, OTLP, AddressError, parse_address
 
 
@@ -55,11 +54,3 @@ def test_chdb_paths(tmp_path):
 def test_bad_addresses_say_why(text):
     with pytest.raises(AddressError):
         parse_address(text)
-
-
-def test_positional_arguments_by_kind():
-    assert location_kind("run.log") == FILE
-    assert location_kind("CHDB:///x") == WAREHOUSE
-    assert location_kind("clickhouses://h/db") == WAREHOUSE
-    assert location_kind("http://collector:4318") == FILE  # only sent to, never read
-    assert split_locations(["a.log", "chdb:///x", "b/"]) == {FILE: ["a.log", "b/"], WAREHOUSE: ["chdb:///x"]}

@@ -11,10 +11,10 @@ from urllib.parse import urlsplit
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import RuleSet
 from console_tui.model.rules.stream import StreamFilter
+from console_tui.model.store.record import LogRecord
 from console_tui.warehouse.address import parse_address
 from console_tui.warehouse.pages import TablePages
 from console_tui.warehouse.pushdown import where

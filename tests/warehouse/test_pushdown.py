@@ -8,10 +8,10 @@ import random
 
 import pytest
 
-from console_tui.model.record import LogRecord
 from console_tui.model.rules.query import parse_query
 from console_tui.model.rules.ruleset import Role, RuleSet
 from console_tui.model.rules.stream import StreamFilter
+from console_tui.model.store.record import LogRecord
 from console_tui.warehouse.pages import TablePages
 from console_tui.warehouse.pushdown import condition, exact, re2_pattern, where
 

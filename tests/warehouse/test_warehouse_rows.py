@@ -7,7 +7,7 @@ from __future__ import annotations
 import itertools
 
 from console_tui.model.formats.otel_log import level_from_otel
-from console_tui.model.record import LogRecord
+from console_tui.model.store.record import LogRecord
 from console_tui.warehouse.pages import LOOKBACK_NS, TablePages
 from console_tui.warehouse.schema import LEVEL, create_table_sql
 

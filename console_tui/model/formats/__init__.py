@@ -24,6 +24,8 @@ from __future__ import annotations
 from .detect import detect_text_format, recording_kind
 from .jsonl import JsonLinesFormat
 from .launch_log import LaunchLogFormat
+from .line_format import TextFormat, read_batches
+from .line_groups import TextLines
 from .problems import FormatError, Problem, Problems, RecordError
 from .python_log import PythonLogFormat
 from .rcutils_log import DEFAULT_TEMPLATE, RcutilsLogFormat
@@ -31,8 +33,6 @@ from .ros1_console import Ros1ConsoleFormat
 from .rosout_log import Ros2RosoutLogFormat, RosoutLogFormat
 from .rqt_csv import RqtCsvFormat
 from .save import SAVE_FORMATS, SaveCancelled, save_format_for, save_records
-from .text_format import TextFormat, read_batches
-from .textlines import TextLines
 
 
 def text_formats(log_format: str | None = None, extra_templates: tuple[str, ...] = ()) -> list[TextFormat]:

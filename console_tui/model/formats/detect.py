@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from .line_format import TextFormat
+from .line_groups import BLOCK_SIZE
 from .problems import FormatError
-from .text_format import TextFormat
-from .textlines import BLOCK_SIZE
 
 #: Recordings, by the magic bytes they start with.
 RECORDING_MAGIC: dict[bytes, str] = {

@@ -15,10 +15,10 @@ from collections.abc import Iterable, Iterator
 from typing import Any, BinaryIO
 
 from ..levels import parse_severity
-from ..record import LogRecord
+from ..store.record import LogRecord
+from .line_format import TextFormat, TextFormatWriter
+from .line_groups import TextLines
 from .problems import Problems, RecordError
-from .text_format import TextFormat, TextFormatWriter
-from .textlines import TextLines
 
 FIELDS = ("stamp_ns", "level", "node", "msg", "file", "function", "line", "source")
 _INT_FIELDS = ("stamp_ns", "line")

@@ -25,8 +25,8 @@ from __future__ import annotations
 
 import re
 
+from ..inert_text import strip_colour
 from ..levels import SEVERITY_WORDS
-from ..text import strip_colour
 from .mixed_output import LineParser, MixedOutputFormat, Plain, Start, decimal_ns, process_of_file
 
 _LEVELS = SEVERITY_WORDS

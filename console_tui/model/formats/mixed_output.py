@@ -13,7 +13,8 @@ line; ``assemble`` makes records of them:
   the time of the record before it; those before the first timed record take that
   record's time, and a file without any time the file's modification time.
 
-Nothing is dropped: every line ends up in a record. Records are cut at
+Read live (``launch_output``), a line given as ``None`` says the output paused: the record
+being built is done. Nothing is dropped: every line ends up in a record. Records are cut at
 ``MAX_RECORD_LINES`` lines or ``MAX_RECORD_CHARS`` characters; the lines after a cut
 become plain rows.
 """
@@ -27,13 +28,13 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
 
+from ..inert_text import plural
 from ..levels import Severity
-from ..record import LogRecord
-from ..text import plural
-from . import textlines
+from ..store.record import LogRecord
+from . import line_groups
+from .line_format import TextFormat
+from .line_groups import TextLines
 from .problems import Problems
-from .text_format import TextFormat
-from .textlines import TextLines
 
 #: Most records without a time held back waiting for the first time in a file; beyond
 #: it they are given the file's modification time.
@@ -145,7 +146,7 @@ class _Building:
 
 
 def assemble(
-    lines: Iterable[tuple[int, str]],
+    lines: Iterable[tuple[int, str | None]],
     parse: LineParser,
     *,
     source: str,
@@ -153,9 +154,11 @@ def assemble(
     file_time_ns: int,
     counts: FillCounts,
     problems: Problems,
+    owner_sources: bool = False,
 ) -> Iterator[LogRecord]:
     """Records from numbered lines, as the module says. ``plain_node`` names the plain rows
-    of a file whose lines name no process; ``file_time_ns`` is the last resort for times."""
+    of a file whose lines name no process; ``file_time_ns`` is the last resort for times.
+    ``owner_sources``: a record's source is the process whose output it is, where known."""
     waiting: list[_Building] = []  # records before the first time
     last_stamp: int | None = None
     current: _Building | None = None
@@ -174,7 +177,7 @@ def assemble(
             if waiting:
                 yield from flush(building.stamp_ns, from_file=False)
             last_stamp = building.stamp_ns
-        yield _record(building, source)
+        yield _record(building, building.owner or source if owner_sources else source)
 
     def flush(stamp_ns: int, *, from_file: bool) -> Iterator[LogRecord]:
         nonlocal last_stamp
@@ -184,12 +187,17 @@ def assemble(
                 counts.from_file += 1
             else:
                 counts.from_after += 1
-            yield _record(building, source)
+            yield _record(building, building.owner or source if owner_sources else source)
         waiting.clear()
         if from_file:
             last_stamp = stamp_ns
 
     for number, text in lines:
+        if text is None:  # the output paused (read live): the record being built is done
+            if current is not None:
+                yield from finish(current)
+                current = None
+            continue
         item = parse(text)
         if isinstance(item, Start):
             if current is not None:
@@ -200,8 +208,8 @@ def assemble(
             current is not None
             and current.is_record
             and current.owner == item.owner
-            and len(current.lines) < textlines.MAX_RECORD_LINES
-            and current.chars + len(item.text) < textlines.MAX_RECORD_CHARS
+            and len(current.lines) < line_groups.MAX_RECORD_LINES
+            and current.chars + len(item.text) < line_groups.MAX_RECORD_CHARS
         ):
             current.lines.append(item.text)
             current.chars += len(item.text) + 1
@@ -209,8 +217,8 @@ def assemble(
         if current is not None:
             if current.is_record and current.owner == item.owner:
                 problems.add(
-                    f"record of more than {textlines.MAX_RECORD_LINES:,} lines or "
-                    f"{textlines.MAX_RECORD_CHARS:,} characters: the lines after the cut are rows of their own",
+                    f"record of more than {line_groups.MAX_RECORD_LINES:,} lines or "
+                    f"{line_groups.MAX_RECORD_CHARS:,} characters: the lines after the cut are rows of their own",
                     line=current.line,
                 )
             yield from finish(current)

@@ -31,8 +31,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 from ..levels import severity_bucket, severity_name
-from ..record import LogRecord
-from ..record_batch import RecordColumns
+from ..store.record import LogRecord
+from ..store.record_batch import RecordColumns
 
 #: OpenTelemetry's first SeverityNumber of each ROS severity's range (DEBUG 5..8, INFO 9..12 ...).
 OTEL_BASE: dict[int, int] = {10: 5, 20: 9, 30: 13, 40: 17, 50: 21}

@@ -14,7 +14,7 @@ as an unknown ``${...}`` always is (``TemplateError``).
 is its stamp too (a log message carries no other time). The default is ROS 2's:
 ``[{severity}] [{time}] [{name}]: {message}``.
 
-Text from the message is made inert (``model.text``): control characters, escape
+Text from the message is made inert (``model.inert_text``): control characters, escape
 sequences and bidi overrides show as visible stand-ins. A message's own line breaks and
 tabs are kept, as ROS prints them.
 
@@ -29,9 +29,9 @@ import re
 from collections.abc import Callable
 from datetime import datetime, timezone
 
+from ..inert_text import inert_json, multi_line, one_line
 from ..levels import severity_level, severity_name
-from ..record import LogRecord
-from ..text import inert_json, multi_line, one_line
+from ..store.record import LogRecord
 from ..timefmt import split_stamp, stamp_text
 from .jsonl import record_to_json
 from .rcutils_log import DEFAULT_TEMPLATE, TOKENS, decode_template

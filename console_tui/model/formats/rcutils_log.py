@@ -18,12 +18,12 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from ..inert_text import strip_colour
 from ..levels import SEVERITY_WORDS, Severity
-from ..record import LogRecord
-from ..text import strip_colour
+from ..store.record import LogRecord
+from .line_format import TextFormat
+from .line_groups import LineGroup, LineKind, TextLines, group_lines, group_records
 from .problems import Problems, RecordError
-from .text_format import TextFormat
-from .textlines import LineGroup, LineKind, TextLines, group_lines, group_records
 
 DEFAULT_TEMPLATE = "[{severity}] [{time}] [{name}]: {message}"
 

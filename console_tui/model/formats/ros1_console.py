@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import re
 
+from ..inert_text import plural, strip_colour
 from ..levels import SEVERITY_WORDS
-from ..text import plural, strip_colour
 from .mixed_output import (
     LineParser,
     MixedOutputFormat,

@@ -32,8 +32,8 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from ..levels import from_ros1
-from ..record import LogRecord
-from ..record_batch import ColumnsBuilder
+from ..store.record import LogRecord
+from ..store.record_batch import ColumnsBuilder
 
 MD5SUM = "acffd30cd6b6de30f120938c17c593fb"
 TYPE = "rosgraph_msgs/Log"

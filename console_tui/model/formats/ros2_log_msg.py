@@ -25,8 +25,8 @@ import struct
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from ..record import LogRecord
-from ..record_batch import ColumnsBuilder, RecordColumns
+from ..store.record import LogRecord
+from ..store.record_batch import ColumnsBuilder, RecordColumns
 
 #: Encapsulation ids this decoder reads: CDR (XCDR1) and PLAIN_CDR2, big and little endian.
 _LITTLE_ENDIAN = {b"\x00\x01", b"\x00\x07"}

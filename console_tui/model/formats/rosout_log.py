@@ -43,10 +43,10 @@ from collections.abc import Iterator
 from urllib.parse import unquote
 
 from ..levels import SEVERITY_TABLE, SEVERITY_WORDS, from_ros1
-from ..record import LogRecord
+from ..store.record import LogRecord
+from .line_format import TextFormat
+from .line_groups import LineKind, TextLines, group_lines, group_records
 from .problems import Problems, RecordError
-from .text_format import TextFormat
-from .textlines import LineKind, TextLines, group_lines, group_records
 
 _LEVELS = SEVERITY_WORDS
 #: Message severities by name; any other level is written as its number.

@@ -31,11 +31,11 @@ from collections.abc import Iterable, Iterator
 from typing import BinaryIO
 
 from ..levels import MESSAGE_SEVERITIES, ROS1_TO_ROS2, from_ros1, to_ros1
-from ..record import LogRecord
+from ..store.record import LogRecord
 from ..timefmt import stamp_text
+from .line_format import TextFormat, TextFormatWriter
+from .line_groups import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
 from .problems import Problems, RecordError
-from .text_format import TextFormat, TextFormatWriter
-from .textlines import LineGroup, LineKind, TextLines, group_lines, stray_text_problem
 
 ROS2_COLUMNS = ("message", "severity", "node", "stamp", "location")
 ROS1_COLUMNS = ("message", "severity", "node", "stamp", "topics", "location")

@@ -8,10 +8,10 @@ from pathlib import Path
 from typing import Protocol
 
 from ..atomic_file import atomic_output
-from ..record import LogRecord
+from ..store.record import LogRecord
 from .jsonl import JsonLinesWriter
+from .line_format import TextFormatWriter
 from .rqt_csv import RqtCsvWriter
-from .text_format import TextFormatWriter
 
 #: Save formats by name: rqt_console ROS 2 (``rqt``), its ROS 1 variant, JSON Lines; each
 #: made with ``robots``: whether the records name their robots (rqt_console's gets a column).

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from itertools import compress
 from typing import Any
 
-from ..store import Chunk, LogStore
+from ..store.log_store import Chunk, LogStore
 from .message import MessageRule, messages_test
 from .rule import Rule, RuleError, SpanTest, all_of, mask_and
 

@@ -6,10 +6,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..store import Chunk, LogStore
+from ..store.log_store import Chunk, LogStore
 from .fields import read_bool, read_int, read_str
+from .pattern_match import TextMatch
 from .rule import IdLookup, Rule, RuleError, SpanTest, all_of
-from .text_match import TextMatch
 
 
 @dataclass(frozen=True)

@@ -6,11 +6,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..packed_texts import PackedTexts
-from ..store import Chunk, LogStore
+from ..store.log_store import Chunk, LogStore
+from ..store.packed_texts import PackedTexts
 from .fields import read_bool, read_str
+from .pattern_match import TextMatch
 from .rule import Rule, SpanTest
-from .text_match import TextMatch
 
 #: Spans tested message by message after the packed way could not answer one.
 SKIP_AFTER_MISS = 8

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 from fnmatch import translate
 from typing import Any, TypeVar
 
-from ..logger_levels import split_robot
-from ..store import Chunk, LogStore
+from ..loggers.logger_levels import split_robot
+from ..store.log_store import Chunk, LogStore
 from .fields import read_str_list
 from .rule import IdLookup, Rule, SpanTest, mask_and, mask_or
 

@@ -27,7 +27,7 @@ from collections.abc import Callable, Iterable
 from itertools import accumulate, compress, repeat
 from operator import add, ge, sub
 
-from ..packed_texts import PackedTexts
+from ..store.packed_texts import PackedTexts
 from .regex_shape import RequiredLiteral, RowSafety
 
 #: ``matcher(texts, lo, hi)``: the mask over ``texts[lo:hi]``, or None to test them one by one.

@@ -33,11 +33,11 @@ from .custom import CustomRule
 from .location import LocationRule
 from .message import MessageRule
 from .node import NodeRule
+from .pattern_match import TextMatch
 from .robot import RobotRule
 from .rule import Rule, RuleError
 from .ruleset import Entry, Role
 from .severity import SeverityRule
-from .text_match import TextMatch
 from .time_range import TimeRangeRule
 
 

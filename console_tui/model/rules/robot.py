@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from ..store import Chunk, LogStore
+from ..store.log_store import Chunk, LogStore
 from .node import NamesRule, names_predicate
 from .rule import IdLookup, SpanTest
 

@@ -16,8 +16,8 @@ from array import array
 from collections.abc import Callable, Iterable, Mapping
 from typing import Any, ClassVar
 
-from ..record import LogRecord
-from ..store import Chunk, LogStore, StringTable
+from ..store.log_store import Chunk, LogStore, StringTable
+from ..store.record import LogRecord
 
 #: ``test(chunk, lo, hi)``: one byte per record of ``chunk[lo:hi]``, 1 where it matches.
 SpanTest = Callable[[Chunk, int, int], bytes]

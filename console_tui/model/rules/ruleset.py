@@ -20,8 +20,8 @@ from dataclasses import dataclass, replace
 from enum import Enum
 from typing import Any, Literal
 
-from ..record import LogRecord
-from ..store import LogStore
+from ..store.log_store import LogStore
+from ..store.record import LogRecord
 from .rule import Rule, RuleError
 
 Decoration = Literal["highlight", "dim"] | None
@@ -42,7 +42,7 @@ class Entry:
     inverted: bool = False
     #: Made by the query line (replaced when the next query is applied).
     from_query: bool = False
-    #: Made by a key that toggles it (``"levels"``, ``"solo"``, ``"mute"``: see ``model/toggles.py``), or "".
+    #: Made by a key that toggles it (``"levels"``, ``"solo"``, ``"mute"``: see ``model/rules/key_rules.py``), or "".
     toggle: str = ""
 
     @property

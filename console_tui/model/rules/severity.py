@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..levels import MESSAGE_SEVERITIES, parse_severity, severity_bucket, severity_name
-from ..store import Chunk, LogStore
+from ..store.log_store import Chunk, LogStore
 from .fields import read_str_list
 from .rule import Rule, RuleError, SpanTest
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..record import LogRecord
-from ..store import Chunk, LogStore
-from ..text import plural
+from ..inert_text import plural
+from ..store.log_store import Chunk, LogStore
+from ..store.record import LogRecord
 from .rule import Rule, SpanTest
 from .ruleset import Decoration, RuleSet
 from .time_limit import MatchTimeout, time_limit

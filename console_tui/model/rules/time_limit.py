@@ -1,24 +1,16 @@
 """Abandoning text matching that runs too long.
 
-A regular expression such as ``(a+)+$`` backtracks catastrophically: one ``re.search`` over
-thirty ``a`` and a ``b`` takes minutes, in one C call that nothing on the same thread can
-interrupt by returning. But Python's regex engine checks for pending signals every 4096
-steps of a match, and a Python signal handler that raises ends the match with its
-exception. ``time_limit(seconds)`` arms a one-shot real-time timer (``SIGALRM``) around the
-code inside it: past ``seconds`` that code is abandoned with ``MatchTimeout``, wherever it
-is, a catastrophic ``re.search`` included. Python's ``re`` keeps its semantics and its
-speed; nothing needs installing.
+``time_limit(seconds)`` arms a one-shot real-time timer (``SIGALRM``) around the code inside it:
+past ``seconds`` that code is abandoned with ``MatchTimeout``, wherever it is, a catastrophic
+``re.search`` included (Python's regex engine checks for pending signals every 4,096 steps). A
+caller that runs many limited pieces in a row holds ``alarms()`` around them: inside it, each
+``time_limit`` only arms and disarms the timer. The timer and handler in place before
+(pytest-timeout's, say) are put back afterwards, with what was left of the earlier timer; an
+earlier timer that falls due meanwhile has its handler called then, as it would have been.
 
-Putting a signal handler in place costs far more than arming the timer, so a caller that runs many limited pieces in a row holds ``alarms()`` around them:
-inside it, each ``time_limit`` only arms and disarms the timer.
-
-The timer and handler in place before (pytest-timeout's, say) are put back afterwards, with
-what was left of the earlier timer; an earlier timer that falls due meanwhile has its
-handler called then, as it would have been.
-
-Only the main thread gets signals: on any other thread ``time_limit`` cannot stop a call,
-and only checks the time after the code inside it has returned. Nested limits: the
-outermost one holds.
+Only the main thread gets signals: on any other thread ``time_limit`` cannot stop a call, and
+only checks the time after the code inside it has returned. Nested limits: the outermost one
+holds. Why this way: docs/decisions/0025-regex-time-limits.md.
 """
 
 from __future__ import annotations

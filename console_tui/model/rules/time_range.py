@@ -6,7 +6,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from ..store import Chunk, LogStore
+from ..store.log_store import Chunk, LogStore
 from ..timefmt import full_text
 from .fields import read_int
 from .rule import Rule, RuleError, SpanTest, mask_and

@@ -5,7 +5,8 @@ A folder opens as every log in it: a ROS 1 run folder (``~/.ros/log/<run_id>/``)
 launch folder (``~/.ros/log/<date>-<host>-<pid>/``) or the whole log directory, searched
 to any depth. Logs are known by their names: ``*.log`` and rotated ``*.log.<N>``, the
 formats console-tui saves (``.csv``, ``.jsonl``), recordings (``.bag``, ``.mcap``,
-``.db3``) and rosbag2 directories, each of which is one recording. A log and its rotated
+``.db3``) and rosbag2 directories, each of which is one recording, and journal directories
+(``*.journal`` files), each one journal. A log and its rotated
 files (``rosout.log.2``, ``rosout.log.1``, ``rosout.log``) are one log, read oldest first,
 so a record cut by a rotation comes back whole. Symbolic links to folders (``latest``) are
 not followed there (the run they point to is in the folder anyway); empty files hold
@@ -21,7 +22,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...model.formats import FormatError
-from ..log_dir import ros_log_dir
+from ...ros.log_dir import ros_log_dir
+from ..journal.journal_location import is_journal_folder
 
 #: File names read in a folder.
 _LOG_NAME = re.compile(r".+\.(?:log(?:\.\d+)?|csv|jsonl|ndjson|bag|bag\.active|mcap|db3)\Z")
@@ -93,7 +95,7 @@ def expand_paths(paths: Sequence[str | os.PathLike[str]]) -> Expansion:
         path = Path(given)
         if path.name == "metadata.yaml" and path.is_file():
             path = path.parent
-        if path.is_dir() and not is_recording_folder(path):
+        if path.is_dir() and not is_recording_folder(path) and not is_journal_folder(path):
             inside = _logs_in(path, expansion)
             if not inside:
                 expansion.empty.append(path)
@@ -140,7 +142,7 @@ def _logs_in(folder: Path, expansion: Expansion) -> list[tuple[tuple[Path, ...],
             sub = here / name
             if sub.is_symlink():
                 continue
-            if is_recording_folder(sub):
+            if is_recording_folder(sub) or is_journal_folder(sub):  # one log
                 found.append(sub)
             else:
                 kept.append(name)

@@ -19,7 +19,7 @@ from collections.abc import Iterator
 from typing import BinaryIO, cast
 
 from ...model.formats import Problems, TextFormat, TextLines, read_batches
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from .log_file import TextLogFile
 from .rotated import PartsStream
 

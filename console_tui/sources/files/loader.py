@@ -10,10 +10,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...model.formats import FormatError, Problem
-from ...model.intake_queue import IntakeQueue
-from ...model.record import LogRecord
-from ...model.record_batch import RecordColumns
-from ...model.text import plural
+from ...model.inert_text import plural
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record import LogRecord
+from ...model.store.record_batch import RecordColumns
 from .folders import Expansion, LogPaths, expand_paths, source_names
 from .log_file import LogFile, describe_error, reading_stopped
 from .merge import merge_by_time

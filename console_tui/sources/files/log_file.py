@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import BinaryIO, cast
 
 from ...model.formats import Problems, TextFormat, TextLines, read_batches
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from .rotated import PartsProblems, PartsStream
 
 #: How much of a text log's start is read to learn when its records begin.

@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from .log_file import Cancel
 from .recording_file import BATCH, LOG_TYPES, ROS2_LOG, RecordingFile, choose_log_topics, decoder, normalize_type
 

@@ -8,7 +8,7 @@ import itertools
 import time
 from collections.abc import Iterable, Iterator, Sequence
 
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 
 #: Records held back per file to put slightly out-of-order stamps right.
 REORDER_WINDOW = 10_000

@@ -9,6 +9,7 @@ from pathlib import Path
 from ...model.formats import FormatError, Ros1ConsoleFormat, detect_text_format, recording_kind, text_formats
 from ...model.formats.detect import HEAD_SIZE
 from ...model.formats.ros1_console import is_capture_name
+from ..journal.journal_location import JOURNAL_MAGIC, is_journal_folder
 from .folders import LogPaths
 from .log_file import LogFile, TextLogFile
 
@@ -22,7 +23,8 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
     Text files: rqt_console CSV, JSON Lines, ROS 1 rosout.log, ROS 2 log files (the
     default rcutils format, ``log_format`` when given, else also the template in
     ``$RCUTILS_CONSOLE_OUTPUT_FORMAT``). Recordings: ROS 1 ``.bag``, rosbag2 ``.mcap``,
-    ``.db3`` or a rosbag2 directory (or its ``metadata.yaml``).
+    ``.db3`` or a rosbag2 directory (or its ``metadata.yaml``). The systemd journal: a
+    journal file or a directory of them (``journal_file.py``).
 
     ``source`` (default: the file's name) is what every record will carry. Raises
     ``FormatError`` with a message for the user when the file cannot be read at all.
@@ -39,6 +41,8 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
         raise FormatError(f"{name}: cannot read: {error.strerror or error}") from None
     if not stat.S_ISDIR(mode) and not stat.S_ISREG(mode):
         raise FormatError(f"{name}: {_not_regular(mode)}, not a file: only files and folders are read")
+    if stat.S_ISDIR(mode) and is_journal_folder(file_path):
+        return _journal(file_path, name, log_format)
     if stat.S_ISDIR(mode):
         from .recordings import open_recording
 
@@ -48,6 +52,8 @@ def open_log_file(path: str | os.PathLike[str], *, log_format: str | None = None
             head = stream.read(HEAD_SIZE)
     except OSError as error:
         raise FormatError(f"{name}: cannot read: {error.strerror or error}") from None
+    if head.startswith(JOURNAL_MAGIC):
+        return _journal(file_path, name, log_format)
     kind = recording_kind(head)
     if kind is not None:
         from .recordings import open_recording
@@ -83,6 +89,12 @@ def open_log_paths(log: LogPaths, *, log_format: str | None = None) -> LogFile:
             error = error or FormatError(f"{part.name}: cannot read: {failure.strerror or failure}")
     assert error is not None
     raise FormatError(f"{log.name}: {error!s}") from None
+
+
+def _journal(path: Path, name: str, log_format: str | None) -> LogFile:
+    from .journal_file import JournalFile
+
+    return JournalFile.of_path(path, name, template=log_format or os.environ.get(FORMAT_VARIABLE, ""))
 
 
 def _not_regular(mode: int) -> str:

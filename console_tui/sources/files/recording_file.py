@@ -13,7 +13,7 @@ from typing import Any
 
 from ...model.formats.ros1_log_msg import Ros1LogDecoder
 from ...model.formats.ros2_log_msg import LogDecoder
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from .log_file import Cancel, LogFile, reading_stopped
 

@@ -14,7 +14,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from ...model.formats import FormatError
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from .log_file import Cancel, LogFile
 from .mcap_file import McapFile
 from .recording_file import MISSING_EXTRA

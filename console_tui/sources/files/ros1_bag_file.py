@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from ...model.formats import FormatError
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from .log_file import Cancel, describe_error
 from .recording_file import ROS1_LOG, RecordingFile, decoder
 from .ros1_bag_scan import BagDamaged, BagScan

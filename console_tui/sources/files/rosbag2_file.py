@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ...model.formats import FormatError
-from ...model.record import LogRecord
+from ...model.store.record import LogRecord
 from .log_file import Cancel, describe_error
 from .recording_file import RecordingFile, choose_log_topics, decoder
 

@@ -3,15 +3,19 @@
     python -m console_tui.sources.intake_process.child ros2 [--topic T] [--typed]
     python -m console_tui.sources.intake_process.child ros1 [--topic T]
     python -m console_tui.sources.intake_process.child synthetic [--rate N] [--count N]
+    python -m console_tui.sources.intake_process.child journal [--unit U]... [--since T]
+        [--journal-file F]... [--journal-directory D] [--log-format TEMPLATE]
+    ... [--min-level N]   (only records of that ROS 2 severity and worse: ``tail --level``)
 
 The source (``FACTORIES``) takes and decodes messages with its own thread into an
 ``IntakeQueue`` of this process, exactly as it would in the app's; every ``FLUSH_S`` the
-main thread packs what is waiting into one ``BATCH`` frame (``model.record_batch``; at most
+main thread packs what is waiting into one ``BATCH`` frame (``model.store.record_batch``; at most
 ``FRAME_RECORDS`` records a frame) and writes it, and the source's status as a ``STATUS``
-frame whenever it changed, to the pipe the app reads (see ``frames``). Nothing the app does
-(drawing, filtering, collecting garbage, holding its GIL) can hold up taking messages: while
-the app is busy, the pipe and then this process's queue hold what arrives (2 million records
-at most, then counted as lost).
+frame whenever it changed, to the pipe the app reads (see ``frames``). With ``--min-level``
+the records below it are dropped before they are sent (ROS 2 asks the middleware to drop
+them first: ``ros2/level_filter.py``). While the app is busy,
+the pipe and then this process's queue hold what arrives (2 million records at most, then
+counted as lost). Why a process: docs/decisions/0005-intake-in-its-own-process.md.
 
 It ends, stopping the source cleanly, when its stdin closes (the app stops it, or the app
 died: the kernel closes the app's end of the pipe, even after a SIGKILL), on SIGTERM, and
@@ -34,9 +38,9 @@ from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
-from ...model.intake_queue import IntakeQueue
-from ...model.record_batch import BatchPacker, RecordColumns
-from ..signal_stop import SignalStop
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record_batch import BatchPacker, RecordColumns
+from ...system.signal_stop import SignalStop
 from ..status import SourceStatus
 from .frames import BATCH, STATUS, status_payload, write_frame
 
@@ -55,9 +59,9 @@ Factory = Callable[[IntakeQueue, argparse.Namespace], tuple[Any, Callable[[], No
 
 
 def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ...ros.ros2.runtime import RosRuntime
     from ..ros2 import compiled_take
     from ..ros2.live_source import LiveLogSource
-    from ..ros2.runtime import RosRuntime
 
     runtime = RosRuntime()
 
@@ -65,11 +69,11 @@ def _ros2(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[
         runtime.shutdown()
         compiled_take.stop_building()  # a compiler still at work would outlive this process
 
-    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed), cleanup
+    return LiveLogSource(runtime, queue, topic=args.topic, raw=not args.typed, min_level=args.min_level), cleanup
 
 
 def _ros1(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
-    from ..c_build import stop_building
+    from ...system.c_build import stop_building
     from ..ros1.live_source import Ros1LiveSource
 
     # a compiler still at work on the frame loop would outlive this process
@@ -82,10 +86,24 @@ def _synthetic(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Calla
     return SyntheticSource(queue, args.rate, count=args.count), lambda: None
 
 
+def _journal(queue: IntakeQueue, args: argparse.Namespace) -> tuple[Any, Callable[[], None]]:
+    from ..journal.journal_source import JournalSource
+    from ..journal.journalctl import JournalQuery
+
+    query = JournalQuery(
+        files=tuple(args.journal_file or ()),
+        directory=args.journal_directory or "",
+        units=tuple(args.unit or ()),
+        since=args.since or "",
+        follow=True,
+    )
+    return JournalSource(queue, query, template=args.log_format or ""), lambda: None
+
+
 #: The sources this process can run: a name, and how to make one (the source and what
 #: to call once it has stopped). A source has ``start()``, ``stop()`` and ``status``
 #: (a ``SourceStatus``) and puts record batches into the queue it is given.
-FACTORIES: dict[str, Factory] = {"ros2": _ros2, "ros1": _ros1, "synthetic": _synthetic}
+FACTORIES: dict[str, Factory] = {"ros2": _ros2, "ros1": _ros1, "synthetic": _synthetic, "journal": _journal}
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -95,6 +113,12 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--typed", action="store_true", help="ROS 2: take typed messages (the slow path)")
     parser.add_argument("--rate", type=float, default=1000.0, help="synthetic: records a second")
     parser.add_argument("--count", type=int, help="synthetic: records in all (default: until stopped)")
+    parser.add_argument("--unit", action="append", help="journal: this unit's entries (repeatable)")
+    parser.add_argument("--since", help="journal: from this time (journalctl's --since)")
+    parser.add_argument("--journal-file", action="append", help="journal: this journal file (repeatable)")
+    parser.add_argument("--journal-directory", help="journal: the journal files in this directory")
+    parser.add_argument("--log-format", help="journal: the RCUTILS_CONSOLE_OUTPUT_FORMAT of ROS 2 lines")
+    parser.add_argument("--min-level", type=int, default=0, help="only records of this ROS 2 severity and worse")
     parser.add_argument("--parent", type=int, help="end when this process (the app) ends")
     return parser
 
@@ -112,12 +136,19 @@ def die_with_parent(parent: int) -> None:
         raise SystemExit(0)
 
 
-class Sender:
-    """Writes what the source queued, and its status when it changed, to ``fd``."""
+#: Why records below ``--min-level`` are dropped here, for a source that asks no middleware.
+NO_CONTENT_FILTER = {"ros1": "ROS 1 has no content filter"}
 
-    def __init__(self, fd: int, queue: IntakeQueue) -> None:
+
+class Sender:
+    """Writes what the source queued (what is below ``min_level`` left out), and its status
+    when it changed, to ``fd``."""
+
+    def __init__(self, fd: int, queue: IntakeQueue, min_level: int = 0, kind: str = "") -> None:
         self.fd = fd
         self.queue = queue
+        self.min_level = min_level
+        self._no_filter = NO_CONTENT_FILTER.get(kind, "this source has no content filter")
         self.packer = BatchPacker()
         self._sent: SourceStatus | None = None
 
@@ -128,6 +159,8 @@ class Sender:
         while True:
             batches = self.queue.drain_batches(FRAME_RECORDS)
             status = source.status
+            if self.min_level and not status.min_level:  # a source that does not filter itself
+                status = replace(status, min_level=self.min_level, level_filter_note=self._no_filter)
             if status != self._sent:
                 write_frame(self.fd, STATUS, status_payload(status))
                 self._sent = status
@@ -135,12 +168,19 @@ class Sender:
                 break
             # One frame for all of them: the source puts a batch a turn of its loop (about a
             # hundred records at 50,000/s), and the app pays for each batch it takes in.
-            write_frame(self.fd, BATCH, self.packer.pack(RecordColumns.joined(batches)))
+            batch = RecordColumns.joined(batches)
+            if self.min_level:
+                minimum = self.min_level
+                batch = batch.kept([level >= minimum for level in batch.levels])
+                if not batch:
+                    continue
+            write_frame(self.fd, BATCH, self.packer.pack(batch))
 
 
-def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event) -> None:
-    """Run ``source`` until ``stop`` is set, sending its records and status to ``fd``."""
-    sender = Sender(fd, queue)
+def serve(source: Any, queue: IntakeQueue, fd: int, stop: threading.Event, min_level: int = 0, kind: str = "") -> None:
+    """Run ``source`` (of ``kind``) until ``stop`` is set, sending its records (of
+    ``min_level`` and worse) and status to ``fd``."""
+    sender = Sender(fd, queue, min_level, kind)
     source.start()
     gc.freeze()
     _, middle, old = gc.get_threshold()
@@ -183,7 +223,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             pass
         return 2
     try:
-        serve(source, queue, fd, stop)
+        serve(source, queue, fd, stop, args.min_level, args.kind)
     except BrokenPipeError:  # the app is gone
         pass
     except Exception as error:

@@ -2,7 +2,7 @@
 
 A frame is a 1-byte kind, a 4-byte length (native order) and that many bytes:
 
-- ``BATCH``: records packed by ``model.record_batch.BatchPacker`` (in order: the string
+- ``BATCH``: records packed by ``model.store.record_batch.BatchPacker`` (in order: the string
   table goes along the stream);
 - ``STATUS``: the source's ``SourceStatus`` as a JSON object, sent whenever it changes.
 

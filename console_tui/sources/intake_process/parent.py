@@ -1,10 +1,6 @@
 """A live source run in a child process (``child``), seen from the app: start, stop, status.
 
-Why a process: in the app's own process the intake shares the GIL and the CPU time of the
-drawing and filtering, and whatever stalls the app stalls the taking of messages. In a
-process of its own the intake takes and decodes messages however busy the app is; the
-app gets them as packed column batches, which cost it far less to store than decoding CDR
-would (docs/architecture.md, "The live intake runs in a process of its own").
+Why a process: docs/decisions/0005-intake-in-its-own-process.md.
 
 A thread of this process reads the pipe: ``BATCH`` frames go into the app's
 ``IntakeQueue`` as ``RecordColumns`` (no ``LogRecord`` objects are made for them), and
@@ -25,11 +21,11 @@ from collections import deque
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
-from ...model.intake_queue import IntakeQueue
-from ...model.record_batch import BatchError, BatchUnpacker
-from ...model.text import one_line
+from ...model.inert_text import one_line
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record_batch import BatchError, BatchUnpacker
+from ...system.thread_names import os_named
 from ..status import SourceStatus
-from ..thread_names import os_named
 from .frames import BATCH, STATUS, FrameError, read_frames, status_from
 
 STOP_TIMEOUT_S = 0.8

@@ -7,9 +7,9 @@ import threading
 import time
 from dataclasses import replace
 
-from ...model.intake_queue import IntakeQueue
-from ...model.record import LogRecord
-from ...model.record_batch import RecordColumns
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.record import LogRecord
+from ...model.store.record_batch import RecordColumns
 from ..status import SourceStatus
 
 PERIOD_S = 0.02

@@ -1,3 +1,2 @@
-"""The ROS 1 source, spoken natively (no rospy): XML-RPC to the master and to nodes, our own
-slave API, TCPROS for topics and services. Needs the standard library only, so it works
-against any ROS 1 master from any Python 3.10+, with nothing from ROS 1 installed."""
+"""The ROS 1 intake, without rospy: the graph thread, the topics' connections, one thread
+reading their sockets (frames decoded in C when built), repeats dropped."""

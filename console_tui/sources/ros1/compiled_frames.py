@@ -21,7 +21,7 @@ import threading
 from pathlib import Path
 
 from ...model.formats.ros1_log_msg import FrameLoop
-from .. import c_build
+from ...system import c_build
 
 SOURCE = Path(__file__).with_name("frame_loop.c")
 MODULE = "console_tui_frame_loop"

@@ -15,7 +15,7 @@ window. Outside a window the cost is keeping each batch's last message per node.
 
 from __future__ import annotations
 
-from ...model.record_batch import RecordColumns
+from ...model.store.record_batch import RecordColumns
 
 #: Keys kept for a window at most (a topic switch opens one for 4 s: 80,000 keys at 20k/s).
 WINDOW_KEYS = 200_000

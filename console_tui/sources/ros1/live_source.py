@@ -31,17 +31,17 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from ...model.formats.ros1_log_msg import MD5SUM, TYPE
-from ...model.intake_queue import IntakeQueue
+from ...model.store.intake_queue import IntakeQueue
+from ...ros.ros1.environment import Ros1Environment, new_node_name
+from ...ros.ros1.master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
+from ...ros.ros1.slave_server import SlaveServer
+from ...ros.ros1.tcpros import TcprosError, open_subscription
+from ...ros.ros1.xmlrpc import shown
+from ...system.thread_names import os_named
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
-from ..thread_names import os_named
-from .environment import Ros1Environment, new_node_name
-from .intake import CLOSED, Connection, Ros1Intake
-from .master import CALL_TIMEOUT_S, Master, Ros1CallError, xmlrpc_call
-from .slave_server import SlaveServer
+from .socket_reader import CLOSED, Connection, Ros1Intake
 from .subscribed_topic import SubscribedTopic, connection_room, not_read_text
-from .tcpros import TcprosError, open_subscription
-from .xmlrpc import shown
 
 GRAPH_PERIOD_S = 1.0
 MASTER_RETRY_S = 1.0

@@ -1,1 +1,1 @@
-"""The ROS 2 source: the live log stream and the graph, through rclpy."""
+"""The ROS 2 intake: the live log stream, through rclpy."""

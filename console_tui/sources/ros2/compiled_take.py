@@ -1,21 +1,14 @@
 """The take loop in C (``take_loop.c``), compiled on this machine the first time it is needed.
 
-Taking a serialized message through rclpy costs a pybind11 call, a message-info dict and a
-Python sequence-number check: about three times what the same takes cost in C
-(``benchmarks/take_loop.py``; docs/architecture.md, "The take loop in C"). At a publisher's
-maximum rate that difference decides whether the console keeps up.
-
-``load()`` builds the loop against the headers of the rcl that rclpy has loaded (found
-next to its ``librcl.so``: ``<prefix>/lib`` and ``<prefix>/include``, as both ROS installs
-and the PyPI wheels lay them out), as ``c_build`` builds and caches the intake's loops in C
-(named by a hash of everything it was built from; a cache that may not be trusted is not
-loaded from); later starts load it from there. Without a compiler, Python's headers or
-rcl's (or with ``CONSOLE_TUI_COMPILED_TAKE=0``) the intake takes through rclpy: ``load()``
-returns ``None`` and says why.
-
-The build is bounded (``BUILD_TIMEOUT_S``, the compiler's whole process group killed at
-the end of it) and runs beside the intake: ``start_loading()`` starts it, ``loaded_now()``
-says whether it is done, and meanwhile the intake takes through rclpy.
+``load()`` builds the loop against the headers of the rcl that rclpy has loaded (found next to
+its ``librcl.so``: ``<prefix>/lib`` and ``<prefix>/include``, as both ROS installs and the PyPI
+wheels lay them out), as ``c_build`` builds and caches the intake's loops in C (named by a hash
+of everything it was built from; a cache that may not be trusted is not loaded from); later
+starts load it from there. Without a compiler, Python's headers or rcl's (or with
+``CONSOLE_TUI_COMPILED_TAKE=0``) ``load()`` returns ``None`` and says why, and the intake takes
+through rclpy. The build is bounded (``BUILD_TIMEOUT_S``, the compiler's whole process group
+killed at the end of it) and runs beside the intake: ``start_loading()`` starts it,
+``loaded_now()`` says whether it is done. Why in C: docs/decisions/0004-take-loop-in-c.md.
 """
 
 from __future__ import annotations
@@ -27,8 +20,8 @@ import threading
 from collections.abc import Callable
 from pathlib import Path
 
-from .. import c_build
-from ..c_build import PRUNE_AFTER_S, stop_building
+from ...system import c_build
+from ...system.c_build import PRUNE_AFTER_S, stop_building
 
 __all__ = ["PRUNE_AFTER_S", "load", "loaded_now", "prune", "start_loading", "stop_building"]
 

@@ -5,10 +5,9 @@ takes every message that is ready, with no executor in between, and hands each b
 an ``IntakeQueue``. Messages are read by the direct CDR decoder, path ``raw+cdr``, or
 typed by rclpy (``typed``); ``SourceStatus.path`` says which is in use.
 
-This loop needs less CPU per message than an executor feeding the same decoder, and loses
-less (docs/architecture.md, "Taking messages: no executor, serialized, decoded directly").
 When only a trickle arrives the loop pauses after each batch (``coalesce.Coalescer``), so
 that a turn of the loop pays for more than one message. ``stop()`` returns within tens of ms.
+Why no executor: docs/decisions/0003-take-without-executor.md.
 
 Loss is counted, never silent (``loss_counts.py``): the middleware's message-lost events
 and sequence gaps, batches the full ``IntakeQueue`` refused, and undecodable messages add
@@ -27,14 +26,14 @@ import threading
 import time
 from typing import Any
 
-from ...model.intake_queue import IntakeQueue
-from ...model.text import plural
+from ...model.inert_text import plural
+from ...model.store.intake_queue import IntakeQueue
+from ...ros.ros2.runtime import RosRuntime
+from ...system.thread_names import os_named
 from ..coalesce import Coalescer
 from ..log_topics import ROSOUT, ROSOUT_AGG
 from ..status import SourceStatus
-from ..thread_names import os_named
 from .loss_counts import LossCounts
-from .runtime import RosRuntime
 from .topic_choice import START_GRAPH_PERIOD_S, TopicChoice
 from .topic_reader import PATH_RAW, PATH_TYPED, TopicReader
 
@@ -48,15 +47,20 @@ class LiveLogSource:
 
     ``topic=None`` reads ``/rosout_agg`` when something publishes it, else ``/rosout``.
     ``raw=False`` takes typed messages (the slower path rclpy always has).
+    ``min_level`` (``tail --level``) asks the middleware to drop what is below it
+    (``level_filter.py``; the intake process drops what it still sends).
     ``status`` is replaced by the thread as things change; read it from any thread.
     """
 
-    def __init__(self, runtime: RosRuntime, queue: IntakeQueue, topic: str | None = None, *, raw: bool = True) -> None:
+    def __init__(
+        self, runtime: RosRuntime, queue: IntakeQueue, topic: str | None = None, *, raw: bool = True, min_level: int = 0
+    ) -> None:
         self.runtime = runtime
         self.queue = queue
         self.requested_topic = topic
         self.raw = raw
-        self.status = SourceStatus(topic=topic or "", path=PATH_RAW if raw else PATH_TYPED)
+        self.min_level = min_level
+        self.status = SourceStatus(topic=topic or "", path=PATH_RAW if raw else PATH_TYPED, min_level=min_level)
         self.counts = LossCounts()
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -97,6 +101,7 @@ class LiveLogSource:
             "lost_undecodable": counts.lost_undecodable,
             "decoded_by_rclpy": counts.decoded_by_rclpy,
             "incompatible": counts.incompatible,
+            "level_filter_note": reader.filter_note,
         }
         if counts.incompatible:
             fields["problem"] = (
@@ -122,7 +127,7 @@ class LiveLogSource:
         self._guard = node.create_guard_condition(lambda: None)
         choice = TopicChoice(time.monotonic()) if self.requested_topic is None else None
         topic = self.requested_topic or ROSOUT
-        reader = TopicReader(node, Log, topic, self.counts, raw=self.raw)
+        reader = TopicReader(node, Log, topic, self.counts, raw=self.raw, min_level=self.min_level)
         self._set_status(topic=topic, running=True, **self._loss_fields(reader))
         next_graph_check = 0.0
         wait_set = None
@@ -138,7 +143,7 @@ class LiveLogSource:
                 and _has_publishers(node, ROSOUT_AGG)
             ):
                 reader.close()
-                reader = TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw)
+                reader = TopicReader(node, Log, ROSOUT_AGG, self.counts, raw=self.raw, min_level=self.min_level)
                 choice.switched(now)
                 next_graph_check = 0.0
             if now >= next_graph_check or reader.graph_changed:

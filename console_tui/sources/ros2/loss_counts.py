@@ -16,10 +16,19 @@ class LossCounts:
     sees: Fast DDS reports nothing for messages its reader history overwrote (KEEP_LAST),
     nor, it seems, when the publisher left before telling it; gaps need a publisher GID in
     the message info (Jazzy's rclpy gives none; the take loop in C reads it from rcl) and
-    the next message from that publisher.
+    the next message from that publisher. Under a content filter (``filtered``) the writers
+    skip what it filters out, gaps that lose nothing: only the events count then.
     """
 
-    __slots__ = ("decoded_by_rclpy", "incompatible", "last_policy", "lost_gaps", "lost_qos", "lost_undecodable")
+    __slots__ = (
+        "decoded_by_rclpy",
+        "filtered",
+        "incompatible",
+        "last_policy",
+        "lost_gaps",
+        "lost_qos",
+        "lost_undecodable",
+    )
 
     def __init__(self) -> None:
         self.lost_qos = 0
@@ -28,10 +37,11 @@ class LossCounts:
         self.decoded_by_rclpy = 0
         self.incompatible = 0
         self.last_policy = ""
+        self.filtered = False
 
     @property
     def lost_in_middleware(self) -> int:
-        return max(self.lost_qos, self.lost_gaps)
+        return self.lost_qos if self.filtered else max(self.lost_qos, self.lost_gaps)
 
 
 class SequenceGaps:

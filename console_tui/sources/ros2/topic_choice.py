@@ -3,12 +3,12 @@
 ``/rosout_agg`` when something publishes it (a rosout node, such as ``console-tui rosout``,
 keeps a deep history there), else ``/rosout``. ``/rosout`` is shown at once; when discovery
 finds an aggregator, the source switches to it, and its history comes without what
-``/rosout`` already gave (docs/architecture.md, "Waiting for discovery").
+``/rosout`` already gave (docs/decisions/0011-waiting-for-discovery.md).
 """
 
 from __future__ import annotations
 
-from ...model.record_batch import RecordColumns
+from ...model.store.record_batch import RecordColumns
 from ..log_topics import ROSOUT
 
 #: How long after the start discovery may still find publishers (an aggregator among them):
@@ -27,7 +27,7 @@ class TopicChoice:
     (``switched``), its history is delivered without what ``/rosout`` already gave: for each
     logger name, the messages outside the span of time ``/rosout`` covered for it. Those
     older than that span (``/rosout`` keeps only its last 10 s) come after newer ones; the
-    app places such a late history by its stamps (``model.late_records``).
+    app places such a late history by its stamps (``model.store.late_records``).
     """
 
     def __init__(self, start: float) -> None:

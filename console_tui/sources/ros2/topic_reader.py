@@ -15,6 +15,10 @@ Messages are taken serialized and read by the direct CDR decoder (``LogDecoder``
 gives the publisher's GID with each message on every distribution; a message the decoder
 refuses goes through rclpy's deserializer instead, and an rclpy that cannot take
 serialized messages gets the typed path (``typed``).
+
+With a lowest severity (``min_level``, ``tail --level``) each subscription asks the
+middleware for a content filter (``level_filter.py``); ``filter_note`` says why one did not
+get it ("" when all did, or none was asked for).
 """
 
 from __future__ import annotations
@@ -24,12 +28,13 @@ import time
 from typing import Any
 
 from ...model.formats.ros2_log_msg import CdrError, LogDecoder
-from ...model.logger_levels import node_logger_name
-from ...model.record import LogRecord
-from ...model.record_batch import RecordColumns
-from ..log_message import log_to_record
+from ...model.loggers.logger_levels import node_logger_name
+from ...model.store.record import LogRecord
+from ...model.store.record_batch import RecordColumns
 from ..status import PATH_NOTE_BUILDING
 from . import compiled_take
+from .level_filter import filter_below
+from .log_message import log_to_record
 from .loss_counts import LossCounts, SequenceGaps
 
 QUEUE_DEPTH = 50_000  # Fast DDS holds this many only with fastdds_reader_profile.xml (else 5,000)
@@ -61,10 +66,15 @@ def _policy_name(info: Any) -> str:
 class TopicReader:
     """The subscriptions on one topic, and which publishers each of them stands for."""
 
-    def __init__(self, node: Any, msg_type: Any, topic: str, counts: LossCounts, *, raw: bool = True) -> None:
+    def __init__(
+        self, node: Any, msg_type: Any, topic: str, counts: LossCounts, *, raw: bool = True, min_level: int = 0
+    ) -> None:
         from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
         self.node = node
+        #: The lowest severity asked for (0: all), and why the middleware does not filter it ("": it does).
+        self.min_level = min_level
+        self.filter_note = ""
         self.msg_type = msg_type
         self.topic = topic
         self.counts = counts
@@ -149,10 +159,17 @@ class TopicReader:
         attempts.append({})
         for number, options in enumerate(attempts):
             try:
-                return self.node.create_subscription(self.msg_type, self.topic, _ignore, qos, **options)
+                subscription = self.node.create_subscription(self.msg_type, self.topic, _ignore, qos, **options)
             except Exception:  # the RMW lacks one of these events
                 if number == len(attempts) - 1:
                     raise
+                continue
+            if self.min_level:
+                note = filter_below(subscription, self.min_level)
+                self.filter_note = self.filter_note or note
+                if not note:  # the writers filter: their sequence numbers have gaps that lose nothing
+                    self.counts.filtered = True
+            return subscription
         raise AssertionError("unreachable")
 
     def _on_message_lost_main(self, info: Any) -> None:

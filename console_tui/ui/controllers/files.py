@@ -10,21 +10,19 @@ import asyncio
 import os
 import time
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
-from ...model.intake_queue import IntakeQueue
-from ...model.store import LogStore
-from ...model.text import one_line, plural
-from ...model.view import LogView
+from ...model.inert_text import one_line, plural
+from ...model.store.intake_queue import IntakeQueue
+from ..command_table import Command
 from ..widgets.load_bar import LoadBar
-from ..widgets.log_table import LogTable
-from .host import Host
+from .context import ConsoleContext
 
 # Reading and writing files (the formats, the readers) and the dialogs load when first used,
 # not with the first frame.
 if TYPE_CHECKING:
     from ...sources.files import FileLoad
-    from ..screens.files import SaveRequest
+    from ..screens.file_dialogs import SaveRequest
 
 #: Records gathered per event-loop turn when saving.
 SAVE_SLICE = 20_000
@@ -34,20 +32,10 @@ class FilesController:
     """Files read in the background into the table, merged by time; the table saved to a file."""
 
     def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        load_bar: LoadBar,
-        file_queue: IntakeQueue,
-        *,
-        log_format: str | None,
+        self, context: ConsoleContext, load_bar: LoadBar, file_queue: IntakeQueue, *, log_format: str | None
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
         self._load_bar = load_bar
         #: File loads: their records come through a queue of their own, ahead of live ones.
         self._file_queue = file_queue
@@ -60,6 +48,7 @@ class FilesController:
         self.problems: list[str] = []
         #: How loaded files were read (local times, filled-in times), by source: the detail view says it.
         self.source_notes: dict[str, list[str]] = {}
+        context.announce.tick.subscribe(self.check_loads)
 
     @property
     def loading(self) -> bool:
@@ -82,6 +71,8 @@ class FilesController:
 
     def check_loads(self) -> None:
         """Progress on the load bar; a finished load says what it read, and what went wrong."""
+        if not self.loads:
+            return
         self._load_bar.show_progress([load.progress for load in self.loads])
         for load in [load for load in self.loads if load.finished]:
             if len(self._file_queue):
@@ -116,7 +107,7 @@ class FilesController:
             if paths:
                 self.open_files(paths)
 
-        from ..screens.files import OpenScreen
+        from ..screens.file_dialogs import OpenScreen
 
         self._host.push_screen(OpenScreen(), opened)
 
@@ -132,7 +123,7 @@ class FilesController:
             if request is not None:
                 self.save(request)
 
-        from ..screens.files import SaveScreen
+        from ..screens.file_dialogs import SaveScreen
 
         self._host.push_screen(SaveScreen(default, filtered=self._view.filtered), chosen)
 
@@ -165,3 +156,33 @@ class FilesController:
         note = f" ({lost:,} dropped at the bound while saving)" if lost else ""
         self._host.notify(f"Saved {plural(written, 'message')} to {request.path}{note}", timeout=8)
         return written
+
+    COMMANDS: ClassVar[tuple[Command[FilesController], ...]] = (
+        Command(
+            "console.open",
+            ask_open,
+            "o",
+            "Open",
+            footer=30,
+            title="Open files",
+            about="Log files and recordings, merged by time",
+        ),
+        Command(
+            "console.save",
+            ask_save,
+            "s",
+            "Save",
+            footer=40,
+            about="Save the rows shown, or everything (rqt_console CSV or JSON Lines)",
+            words="export write",
+        ),
+        Command("console.cancel_load", cancel_loads, "x", "Cancel load", footer=50, applies=lambda f: f.loading),
+        Command(
+            "console.problems",
+            show_problems,
+            "exclamation_mark",
+            "Problems",
+            title="Load problems",
+            about="What went wrong while loading files, and where",
+        ),
+    )

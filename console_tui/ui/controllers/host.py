@@ -1,5 +1,5 @@
 """What a controller asks of the app: to tell the person something, to show a screen, to run
-work in the background or after the next frame (``ConsoleApp`` is one; a test may pass
+work in the background, later in this turn of the event loop or after the next frame (``ConsoleApp`` is one; a test may pass
 anything that does the same)."""
 
 from __future__ import annotations
@@ -39,6 +39,8 @@ class Host(Protocol):
     ) -> Worker[Any]: ...
 
     def call_after_refresh(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> bool: ...
+
+    def call_later(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> bool: ...
 
 
 class TerminalHost(Host, Protocol):

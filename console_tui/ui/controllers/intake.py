@@ -1,9 +1,10 @@
 """The intake: the sources started and stopped, and what they queued taken into the store.
 
 Sources (the live stream, file loads) run in threads or processes of their own and put records
-on an ``IntakeQueue``; each tick (``DRAIN_INTERVAL``) moves what is there into the store, the
-view and everything that follows them (the overview, the search, the rules' counts), at most
-``MAX_RECORDS_PER_TICK`` at a time, of them at most ``MAX_LIVE_RECORDS_PER_TICK`` live ones.
+on an ``IntakeQueue``; each tick (``DRAIN_INTERVAL``) moves what is there into the store and
+the view, at most ``MAX_RECORDS_PER_TICK`` at a time, of them at most
+``MAX_LIVE_RECORDS_PER_TICK`` live ones, and announces them (``announcements``): what follows
+them (the overview, the search, the rules' counts, the load bar) subscribes there.
 """
 
 from __future__ import annotations
@@ -14,22 +15,14 @@ from collections import deque
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any, Protocol
 
-from ...model.intake_queue import IntakeQueue
-from ...model.late_records import WINDOW, HistoryWindow, Placed, add_in_time_order
-from ...model.marks import Marks
-from ...model.record import LogRecord
-from ...model.record_batch import RecordColumns
-from ...model.store import LogStore
-from ...model.view import LogView
-from ...sources.fleet import Robot
+from ...model.store.intake_queue import IntakeQueue
+from ...model.store.late_records import WINDOW, HistoryWindow, Placed, add_in_time_order
+from ...model.store.record import LogRecord
+from ...model.store.record_batch import RecordColumns
+from ...ros.fleet import Robot
 from ...sources.status import SourceStatus
-from ..gc_policy import CollectionPolicy
-from ..widgets.log_table import LogTable
-from .files import FilesController
-from .host import Host
-from .overview import OverviewController
-from .rules import RulesController
-from .search import SearchController
+from .announcements import TakenIn
+from .context import ConsoleContext
 
 DRAIN_INTERVAL = 1 / 15
 #: Records taken into the store per tick at most, so one tick never stalls the screen.
@@ -66,49 +59,28 @@ class IntakeController:
 
     def __init__(
         self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        marks: Marks,
+        context: ConsoleContext,
         *,
         sources: list[Source],
         queue: IntakeQueue,
         file_queue: IntakeQueue,
+        files_loading: Callable[[], bool],
         robots: Sequence[Robot],
-        collection_policy: CollectionPolicy,
-        files: FilesController,
-        filtering: RulesController,
-        overview: OverviewController,
-        searching: SearchController,
-        clock: Callable[[], float],
-        update_status: Callable[[], None],
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
-        self._marks = marks
+        c = context
+        self._host, self._store, self._view, self._table, self._marks = c.host, c.store, c.view, c.table, c.marks
+        self._clock, self._changed, self._announce = c.clock, c.changed, c.announce
         #: The sources running (emptied when they are stopped).
         self.sources = sources
         #: The live sources' records; file loads have a queue of their own, taken in first.
         self._queue = queue
         self._file_queue = file_queue
+        #: Files are being read: live records wait meanwhile, so that the rows stay in time order.
+        self._files_loading = files_loading
         #: A fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self._robots = robots
-        self._collection_policy = collection_policy
-        # What follows the records in: the loads' progress, the rules' counts, the storms and
-        # the timeline, the search.
-        self._files = files
-        self._filtering = filtering
-        self._overview = overview
-        self._searching = searching
-        self._clock = clock
-        self._update_status = update_status
         self._rate = 0.0
         self._rate_at = 0.0
-        #: The Robot column was shown once records of two robots came (the person may hide it again).
-        self._robots_shown = len(robots) > 1
         #: When records arrived, and how many: the receive rate.
         self._arrivals: deque[tuple[float, int]] = deque()
         #: The threads stopping the sources, once quitting began.
@@ -116,7 +88,7 @@ class IntakeController:
         #: The slower intake path was said (``tell_slow_intake``).
         self._slow_intake_told = False
         #: When live histories are due, to be placed by their stamps (on the app's clock).
-        self.histories = HistoryWindow(clock)
+        self.histories = HistoryWindow(c.clock)
 
     # -- the sources ------------------------------------------------------------------------------
 
@@ -165,7 +137,7 @@ class IntakeController:
         for source in self.sources:
             status = source.status
             self.histories.note(id(source), status.publishers, status.topic)
-        if not self._files.loading:
+        if not self._files_loading():
             room = min(MAX_RECORDS_PER_TICK - sum(map(len, batches)), MAX_LIVE_RECORDS_PER_TICK)
             live: list[RecordColumns] = self._queue.drain_batches(room)
             if len(live) > 1 and len(self._robots) > 1:  # a fleet: what its robots sent meanwhile, by time
@@ -174,13 +146,9 @@ class IntakeController:
             live = []
         if batches or live:
             self.add_batches(batches + live, live_from=len(batches))
-        if self._files.loads:
-            self._files.check_loads()
-        self._filtering.follow_counts()
-        self._update_status()
         self.tell_slow_intake()
-        self._overview.show()
-        self._collection_policy.tick()
+        self._announce.tick()
+        self._changed()
 
     def tell_slow_intake(self) -> None:
         """The first time a live source takes the slower path (no take loop in C), say so
@@ -202,7 +170,8 @@ class IntakeController:
         """Put batches into the store and the view; how many.
         Batches from ``live_from`` on are live: one that is late is sorted, and while the table
         follows the tail (nobody reads rows that would move) placed among the newest rows by its
-        stamps."""
+        stamps. What follows the records hears of them (``Announcements``): ``placing`` while the
+        table keeps its place, ``taken_in`` after."""
         table = self._table
         first_live = len(batches) if live_from is None else live_from
         # Rows on the screen stay put; and only histories are placed, not clocks that differ.
@@ -221,36 +190,25 @@ class IntakeController:
                 else:
                     added += len(self._store.extend(batch))
             self._view.update()
-            self._overview.follow()
-        self._followed(added, rewritten)
+            self._announce.placing()
+        self._arrivals.append((self._clock(), added))
+        self._announce.taken_in(TakenIn(added, rewritten))
         return added
 
     def add_placed(self, place: Callable[[], Placed | None]) -> None:
         """Records put into the store by ``place`` where they belong, which may write it
-        again (a log warehouse's older rows, a source's rows taken out): followed as
-        ``add_batches`` follows a late history, the rows on the screen kept in place."""
-        table = self._table
+        again (a log warehouse's older rows, a source's rows taken out): announced as
+        ``add_batches`` announces a late history, the rows on the screen kept in place."""
         before = len(self._store)
-        with table.keeping_position():
+        with self._table.keeping_position():
             placed = place()
             if placed is not None:
                 self._marks.move(placed.moved)
             self._view.update()
-            self._overview.follow()
-        self._followed(max(len(self._store) - before, 0), placed is not None)
-
-    def _followed(self, added: int, rewritten: bool) -> None:
-        """What follows records put into the store: the rules' switch-offs, the Robot column,
-        the rate, the rows drawn again after a rewrite, the search."""
-        if self._view.switched_off:
-            self._filtering.rules_changed()
-        if not self._robots_shown and len(self._store.robots) > 2:  # "" and two robots or more
-            self._robots_shown = True
-            self._table.set_column_shown("robot", True)
+            self._announce.placing()
+        added = max(len(self._store) - before, 0)
         self._arrivals.append((self._clock(), added))
-        if rewritten:
-            self._table.restyle()  # rows drawn before show other records now
-        self._searching.after_records(rewritten=rewritten)
+        self._announce.taken_in(TakenIn(added, placed is not None))
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second

@@ -10,25 +10,25 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import Callable, Sequence
+from typing import ClassVar
 
-from ...model.node_stats import NodeStats
-from ...model.shown_follower import sync_together
-from ...model.store import LogStore
-from ...model.storms import StormRows
-from ...model.timeline import Timeline
-from ...model.view import LogView
+from ...model.overview.node_stats import NodeStats
+from ...model.overview.shown_follower import sync_together
+from ...model.overview.storms import StormRows
+from ...model.overview.timeline import Timeline
+from ...model.rules.ruleset import RuleSet
 from ...sources.status import SourceStatus
+from ..command_table import Command
 from ..focus import focus_now
 from ..slicing import pause_between_slices
-from ..widgets.log_table import LogTable
 from ..widgets.timeline_strip import TimelineStrip
-from .host import Host
+from .context import ConsoleContext
 
 #: Taking in what arrived, each tick: at most this long (the rest in the background).
 FOLLOW_BUDGET_S = 0.010
 #: Catching up after a rule change (or over a history at start): slices of this long, the
 #: event loop free between them. A slice adds to the frame drawn in the same turn of the
-#: loop, as the search's do (docs/architecture.md, "Background work in slices").
+#: loop, as the search's do (docs/decisions/0016-background-work-in-slices.md).
 CATCH_UP_BUDGET_S = 0.010
 CATCH_UP_PAUSE_S = 0.001
 #: While the view is still filtering the oldest records, the catch-up looks again this often.
@@ -42,43 +42,42 @@ class OverviewController:
 
     def __init__(
         self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
+        context: ConsoleContext,
         timeline: Timeline,
         storms: StormRows,
         strip: TimelineStrip,
         node_stats: NodeStats,
         *,
         sources: Callable[[], Sequence[SourceStatus]],
-        utc: bool,
-        clock: Callable[[], float],
-        update_status: Callable[[], None],
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
+        self._clock, self._utc, self._changed = c.clock, c.utc, c.changed
+        #: Storm rows are marked with their counts.
+        self._decorations = c.table.decorations
         self._timeline = timeline
         self._storms = storms
         self._strip = strip
         self._node_stats = node_stats
         #: The live sources' states: the summary says what each reads and lost.
         self._sources = sources
-        self._utc = utc
-        self._clock = clock
-        self._update_status = update_status
         self._catching_up = False
         self._strip_at = 0.0
         #: The table followed the tail when the strip was last updated.
         self._strip_following = False
         #: The store's end when the strip was last updated.
         self._strip_end = -1
+        #: The summary screen is open (its key does nothing meanwhile).
+        self.summary_open = False
+        announce = context.announce
+        announce.placing.subscribe(self.follow)
+        announce.tick.subscribe(self.show)
+        announce.rules_changed.subscribe(self._rules_changed)
+        announce.cleared.subscribe(self._cleared)
 
     def start(self) -> None:
         """Once the table is there: storm rows get their marks, and what is in the store is taken in."""
-        self._table.badge_of = self._storms.badge
+        self._decorations.show_badges(self._storms.badge)
         self.follow()
 
     # -- keeping up ---------------------------------------------------------------------------------
@@ -115,7 +114,7 @@ class OverviewController:
         finally:
             self._catching_up = False
         self.show(now=True)
-        self._update_status()  # the storms counted
+        self._changed()  # the storms counted
 
     def show(self, *, force: bool = False, now: bool = False) -> None:
         """The strip follows the counts and the table's place a few times a second, or now
@@ -155,14 +154,18 @@ class OverviewController:
         benchmark's run without them)."""
         self._timeline.set_enabled(enabled)
         self._storms.set_enabled(enabled)
-        self._table.badge_of = self._storms.badge if enabled else None
+        self._decorations.show_badges(self._storms.badge if enabled else None)
         self._strip.set_class(not enabled, "-hidden")
-        self._table.restyle()
         if enabled:
             self._catch_up()
 
-    def restart(self) -> None:
-        """After the store was cleared."""
+    def _rules_changed(self, _rules: RuleSet) -> None:
+        with self._table.keeping_position(cursor_line=True):
+            self.follow()  # the storms and the timeline count again under these rules
+        self.show(now=True)  # counting again, or (the same rows shown) counted already
+
+    def _cleared(self) -> None:
+        self._node_stats.clear()
         self._storms.restart()
         self._timeline.restart()
         self.show(force=True)
@@ -221,7 +224,7 @@ class OverviewController:
                 self._storms.expand(storm)
         if self._table.cursor_seq != storm.head:
             self.show_seq(storm.head)
-        self._table.restyle()
+        self._decorations.changed()  # the storms' rows and counts
 
     def toggle_storms(self) -> None:
         """Storms collapsed, or every message a row."""
@@ -230,8 +233,7 @@ class OverviewController:
             storms.set_enabled(not storms.enabled)
             if storms.enabled:
                 storms.sync(FOLLOW_BUDGET_S)
-        self._table.badge_of = storms.badge if storms.enabled else None
-        self._table.restyle()
+        self._decorations.show_badges(storms.badge if storms.enabled else None)
         if storms.behind:
             self._catch_up()
         self._host.notify(
@@ -240,14 +242,14 @@ class OverviewController:
             else "Storms not collapsed: every message is a row",
             timeout=3,
         )
-        self._update_status()
+        self._changed()
 
     def toggle_mask_digits(self) -> None:
         storms = self._storms
         with self._table.keeping_position():
             storms.set_mask_digits(not storms.mask_digits)
             storms.sync(FOLLOW_BUDGET_S)
-        self._table.restyle()
+        self._decorations.changed()  # the storms' rows and counts
         if storms.behind:
             self._catch_up()
         self._host.notify(
@@ -280,6 +282,7 @@ class OverviewController:
 
     def _open_summary(self) -> None:
         def chosen(seq: int | None) -> None:
+            self.summary_open = False
             if seq is None:
                 return
             if seq not in self._store:
@@ -292,6 +295,7 @@ class OverviewController:
         from ..screens.summary import SummaryScreen  # loaded when first opened
 
         sources = list(self._sources())
+        self.summary_open = True
         self._host.push_screen(
             SummaryScreen(self._store, self._node_stats, len(self._view), utc=self._utc, sources=sources), chosen
         )
@@ -302,3 +306,51 @@ class OverviewController:
             return True
         row = view.row_of(seq)
         return row < len(view) and view.seq_at(row) == seq
+
+    COMMANDS: ClassVar[tuple[Command[OverviewController], ...]] = (
+        Command(
+            "overview.timeline",
+            pick_time,
+            "T",
+            "Timeline: pick a time to show",
+            title="Timeline: pick a time",
+            about="The rate by severity over the whole history; Enter shows a time",
+        ),
+        Command(
+            "overview.toggle_timeline",
+            toggle_timeline,
+            "ctrl+t",
+            "Show / hide the timeline",
+            about="The strip of the message rate above the table",
+        ),
+        Command(
+            "overview.storm",
+            toggle_storm,
+            "z",
+            "Expand / collapse the row's storm",
+            title="Expand / collapse this storm",
+            about="The repeats of the selected row's message, each a row",
+        ),
+        Command(
+            "overview.storms",
+            toggle_storms,
+            "Z",
+            "Storms collapsed on / off",
+            about="A node's repeats of one message as one row (×N), or every message a row",
+        ),
+        Command(
+            "overview.mask_digits",
+            toggle_mask_digits,
+            title="Storms: digits count as the same",
+            about="'took 12 ms' repeats 'took 9 ms' (on / off)",
+        ),
+        Command(
+            "overview.summary",
+            summary,
+            "S",
+            "Summary of the run",
+            applies=lambda o: not o.summary_open,
+            title="Summary",
+            about="Counts per severity and node, the busiest nodes, the first ERROR and FATAL",
+        ),
+    )

@@ -3,13 +3,14 @@ right side), and the logger pane's temporary levels. (The rules pane is the rule
 
 from __future__ import annotations
 
-from ...model.logger_view import shown_logger
-from ...model.store import LogStore
+from typing import ClassVar
+
+from ...model.loggers.logger_pane_state import shown_logger
+from ..command_table import Command
 from ..screens.temporary_level import TemporaryLevelScreen
-from ..widgets.log_table import LogTable
 from ..widgets.logger_pane import LoggerPane
 from ..widgets.node_pane import NodePane
-from .host import Host
+from .context import ConsoleContext
 
 #: How long ``t`` sets a temporary level for unless told otherwise.
 DEFAULT_TEMPORARY_S = 30.0
@@ -18,12 +19,8 @@ DEFAULT_TEMPORARY_S = 30.0
 class PanesController:
     """Opening the logger levels pane and the node panel, and a temporary level's dialog."""
 
-    def __init__(
-        self, host: Host, store: LogStore, table: LogTable, logger_pane: LoggerPane, node_pane: NodePane
-    ) -> None:
-        self._host = host
-        self._store = store
-        self._table = table
+    def __init__(self, context: ConsoleContext, logger_pane: LoggerPane, node_pane: NodePane) -> None:
+        self._host, self._store, self._table = context.host, context.store, context.table
         self._logger_pane = logger_pane
         self._node_pane = node_pane
 
@@ -56,3 +53,31 @@ class PanesController:
                 pane.set_temporary(fqn, logger, *choice)
 
         self._host.push_screen(TemporaryLevelScreen(fqn, shown_logger(logger), DEFAULT_TEMPORARY_S), chosen)
+
+    COMMANDS: ClassVar[tuple[Command[PanesController], ...]] = (
+        Command(
+            "console.loggers",
+            toggle_loggers,
+            "l",
+            "Loggers",
+            footer=100,
+            title="Logger levels",
+            about="Show or hide the logger levels pane",
+        ),
+        Command(
+            "console.nodes",
+            toggle_nodes,
+            "ctrl+n",
+            "Nodes",
+            footer=110,
+            about="The node panel: every node, its counts and rate; solo, mute",
+        ),
+        Command(
+            "console.loggers_for_row",
+            loggers_for_row,
+            "L",
+            "Logger levels of the row's node",
+            title="Logger levels of this row's node",
+            about="Open the logger levels pane on the selected row's node",
+        ),
+    )

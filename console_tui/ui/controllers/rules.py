@@ -6,24 +6,22 @@ from __future__ import annotations
 
 import asyncio
 import os
-from collections.abc import Callable
+from typing import ClassVar
 
+from ...model.inert_text import plural
 from ...model.rules.history import QueryHistory
 from ...model.rules.query import parse_query
 from ...model.rules.rule import RuleError
 from ...model.rules.ruleset import Entry, Role, RuleSet
 from ...model.rules.rulesfile import last_rules_path, load_rules, query_history_path, save_rules
-from ...model.store import LogStore
-from ...model.text import plural
-from ...model.view import LogView
+from ..command_table import Command
 from ..screens.quick_rule import QuickRuleScreen
 from ..screens.rule_editor import RuleEditor
 from ..slicing import pause_between_slices
-from ..widgets.log_table import LogTable
 from ..widgets.query_bar import QueryBar
 from ..widgets.rules_pane import RulesPane
-from .host import Host
-from .overview import OverviewController
+from .announcements import TakenIn
+from .context import ConsoleContext
 
 #: Background filtering after a rule change: slices of this long, with the event loop free this long between them.
 REFILTER_BUDGET_S = 0.015
@@ -39,37 +37,19 @@ class RulesController:
     """Rules in force, and every way to change them."""
 
     def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        query_bar: QueryBar,
-        rules_pane: RulesPane,
-        query_history: QueryHistory,
-        overview: OverviewController,
-        *,
-        utc: bool,
-        clock: Callable[[], float],
-        update_status: Callable[[], None],
+        self, context: ConsoleContext, query_bar: QueryBar, rules_pane: RulesPane, query_history: QueryHistory
     ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+        c = context
+        self._host, self._store, self._view, self._table = c.host, c.store, c.view, c.table
+        self._clock, self._utc, self._changed, self._announce = c.clock, c.utc, c.changed, c.announce
         self._query_bar = query_bar
         self._rules_pane = rules_pane
         self._query_history = query_history
-        #: The storms and the timeline count again under new rules.
-        self._overview = overview
-        self._utc = utc
-        self._clock = clock
-        self._update_status = update_status
         #: The rules in force; a new set replaces it whole (rule sets are values).
         self.rules = RuleSet()
         self._counts_at = 0.0
-        #: Called with the rules put in force, each time (a log warehouse hands them down to SQL).
-        self.listeners: list[Callable[[RuleSet], None]] = []
+        context.announce.taken_in.subscribe(self._after_records)
+        context.announce.tick.subscribe(self.follow_counts)
 
     def apply_rules(self, rules: RuleSet) -> None:
         """Put ``rules`` in force: the screenful around the selected row (the newest while
@@ -86,11 +66,8 @@ class RulesController:
         to test, and says which)."""
         table = self._table
         rules = self.rules = self._view.rules
-        table.decoration_of = self._view.decoration_of if rules.highlighting else None
-        table.restyle()
-        with table.keeping_position(cursor_line=True):
-            self._overview.follow()  # the storms and the timeline count again under these rules
-        self._overview.show(now=True)  # counting again, or (the same rows shown) counted already
+        table.decorations.show_highlights(self._view.decoration_of if rules.highlighting else None)
+        self._announce.rules_changed(rules)  # the storms and the timeline count again under them
         for rule, why in self._view.take_switched_off():
             self._host.notify(f"Rule switched off, {why}: {rule.describe()}", severity="error", timeout=15)
         if self._view.refiltering:
@@ -98,9 +75,16 @@ class RulesController:
                 self._filter_in_background(), name="_filter_in_background", group="refilter", exclusive=True
             )
         self.show_counts()
-        self._update_status()
-        for listener in self.listeners:
-            listener(rules)
+        self._changed()
+
+    def _after_records(self, _taken: TakenIn) -> None:
+        if self._view.switched_off:  # a rule too slow to test on the records that came
+            self.rules_changed()
+
+    @property
+    def refiltering(self) -> bool:
+        """Rules are being applied to older records (in the background)."""
+        return self._view.refiltering
 
     def stop_filtering(self) -> None:
         """Esc while rules are being applied: switch off the rules not applied yet."""
@@ -126,10 +110,10 @@ class RulesController:
                 break
             if self._clock() - shown_at >= REFILTER_PROGRESS_PERIOD_S:
                 shown_at = self._clock()
-                self._update_status()
+                self._changed()
             await pause_between_slices(REFILTER_PAUSE_S)
         self.show_counts()
-        self._update_status()
+        self._changed()
 
     def note(self) -> str:
         """What the status line says of the rules: ``2 rules, filtering 40%``."""
@@ -188,6 +172,9 @@ class RulesController:
 
     # -- the query line and the rules pane ----------------------------------------------------
 
+    def open_query(self) -> None:
+        self._query_bar.open()
+
     def query_applied(self, message: QueryBar.Applied) -> None:
         self.apply_rules(self.rules.with_query(message.entries))
 
@@ -241,7 +228,7 @@ class RulesController:
                 return
             self._host.notify(f"Saved {plural(len(self.rules.entries), 'rule')} to {path}", timeout=5)
 
-        from ..screens.files import PathScreen  # loaded when first opened
+        from ..screens.file_dialogs import PathScreen  # loaded when first opened
 
         default = os.path.join(os.getcwd(), "console-tui-rules.toml")
         self._host.push_screen(PathScreen("Save the rules to (TOML)", default), chosen)
@@ -263,7 +250,7 @@ class RulesController:
         if path is not None:
             chosen(path)
         else:
-            from ..screens.files import PathScreen  # loaded when first opened
+            from ..screens.file_dialogs import PathScreen  # loaded when first opened
 
             self._host.push_screen(PathScreen("Open rules from (TOML)", "", must_exist=True), chosen)
 
@@ -273,3 +260,79 @@ class RulesController:
             self._host.notify("No rule set was saved at the end of an earlier run.", timeout=5)
             return
         self.open_rules(str(path))
+
+    COMMANDS: ClassVar[tuple[Command[RulesController], ...]] = (
+        Command(
+            "console.stop_filtering",
+            stop_filtering,
+            "escape",
+            "Stop a long filtering",
+            applies=lambda r: r.refiltering,
+        ),
+        Command(
+            "console.query",
+            open_query,
+            "slash",
+            "Query",
+            footer=60,
+            about='Type rules as a query: level>=warn node:nav* -node:rviz* +"failed"',
+            words="filter",
+        ),
+        Command(
+            "console.rules",
+            toggle_pane,
+            "r",
+            "Rules",
+            footer=80,
+            about="Show or hide the rules pane: every rule, its switches and counts",
+            words="filter",
+        ),
+        Command(
+            "console.add_rule",
+            lambda r: r.edit_rule(None),
+            title="Add a rule",
+            about="A new exclude or highlight rule of any kind",
+            words="filter",
+        ),
+        Command(
+            "console.hide_like",
+            lambda r: r.quick_rule("exclude"),
+            "minus",
+            "Hide like the selected rows",
+            title="Hide messages like the selected rows",
+            about="Exclude their nodes, severities, messages or location",
+        ),
+        Command(
+            "console.highlight_like",
+            lambda r: r.quick_rule("highlight"),
+            "plus",
+            "Highlight like the selected rows",
+            title="Highlight messages like the selected rows",
+            about="Highlight their nodes, severities, messages or location",
+        ),
+        Command(
+            "console.highlighted_only",
+            toggle_highlighted_only,
+            "H",
+            "Highlighted only",
+            about="Show only highlighted messages (or all again)",
+        ),
+        Command("console.save_rules", ask_save, title="Save rules", about="Save the rule set to a TOML file"),
+        Command(
+            "console.open_rules", lambda r: r.open_rules(), title="Open rules", about="Load a rule set from a TOML file"
+        ),
+        Command(
+            "console.restore_rules",
+            restore_rules,
+            title="Restore the last rules",
+            about="The rule set in force when console-tui last exited",
+        ),
+        Command(
+            "console.clear_rules",
+            clear_rules,
+            title="Clear rules",
+            about="Remove every rule",
+            words="filter",
+            ends=True,
+        ),
+    )

@@ -9,26 +9,26 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import ClassVar
 
 from textual.worker import Worker
 
-from ...model.marks import Marks
+from ...model.inert_text import plural
+from ...model.overview.search_rows import MatchRows
+from ...model.overview.storms import StormRows
 from ...model.rules.time_limit import MatchTimeout, time_limit
-from ...model.search import PENDING, Search, describe_search, display_pattern, parse_search
-from ...model.search_rows import MatchRows
-from ...model.store import LogStore
-from ...model.storms import StormRows
-from ...model.text import plural
-from ...model.view import LogView
+from ...model.view.search_walk import PENDING, Search, describe_search, display_pattern, parse_search
+from ..command_table import NAVIGATION, Command
 from ..focus import focus_now
 from ..slicing import pause_between_slices
-from ..widgets.log_table import LogTable, Spans
+from ..widgets.log_table import Spans
 from ..widgets.search_bar import SearchBar
-from .host import Host
+from .announcements import TakenIn
+from .context import ConsoleContext
 
 #: Slices of the search on the event loop, and the pause between them. A slice adds to the
 #: frame drawn in the same turn of the loop, so it is short enough to keep the longest stall
-#: near the floor (the slices tried: docs/architecture.md, "Background work in slices").
+#: near the floor (the slices tried: docs/decisions/0016-background-work-in-slices.md).
 SEARCH_BUDGET_S = 0.003
 SEARCH_PAUSE_S = 0.001
 #: After the table moved or its marks changed, the pause that leaves the next frame (every
@@ -55,28 +55,12 @@ class _Jump:
 class SearchController:
     """Search without filtering: every match marked, n / N across the whole history."""
 
-    def __init__(
-        self,
-        host: Host,
-        store: LogStore,
-        view: LogView,
-        table: LogTable,
-        search_bar: SearchBar,
-        marks: Marks,
-        storms: StormRows,
-        *,
-        clock: Callable[[], float],
-        update_status: Callable[[], None],
-    ) -> None:
-        self._host = host
-        self._store = store
-        self._view = view
-        self._table = table
+    def __init__(self, context: ConsoleContext, search_bar: SearchBar, storms: StormRows) -> None:
+        c = context
+        self._host, self._store, self._view, self._table, self._marks = c.host, c.store, c.view, c.table, c.marks
+        self._clock, self._changed = c.clock, c.changed
         self._search_bar = search_bar
-        self._marks = marks
         self._storms = storms
-        self._clock = clock
-        self._update_status = update_status
         #: The search in force, or None.
         self.search: Search | None = None
         self._search_rules: object = None
@@ -85,6 +69,8 @@ class SearchController:
         self._search_text = ""
         self._match_rows: tuple[tuple, MatchRows] | None = None
         self._worker: Worker[None] | None = None
+        context.announce.taken_in.subscribe(self.after_records)
+        context.announce.marks_changed.subscribe(self.show_marks)  # the gutter shows them
 
     # -- the search line ----------------------------------------------------------------------
 
@@ -138,7 +124,7 @@ class SearchController:
         if self._worker is not None:
             self._worker.cancel()
         self.show_marks()
-        self._update_status()
+        self._changed()
 
     def jump_to_match(self, *, forward: bool) -> None:
         search = self._fresh_search()
@@ -190,7 +176,7 @@ class SearchController:
         elif not jump.either_way:
             where = "below" if jump.forward else "above"
             self._host.notify(f"No match {where} for {describe_search(search.match)}", timeout=3)
-        self._update_status()
+        self._changed()
         return True
 
     def _search_on(self) -> None:
@@ -228,7 +214,7 @@ class SearchController:
                         marked = found
                         self.show_marks()
                         redrawn = True
-                    self._update_status()
+                    self._changed()
                 if complete and jumped:
                     return
                 if redrawn:  # the frame that draws it goes first, in a turn of its own
@@ -236,10 +222,10 @@ class SearchController:
                     continue
             await pause_between_slices(SEARCH_PAUSE_S)
 
-    def after_records(self, *, rewritten: bool = False) -> None:
+    def after_records(self, taken: TakenIn) -> None:
         """New records arrived: they are searched too (all again when the newest ones were
         written in another order: a late history placed by its stamp)."""
-        if rewritten and self.search is not None:
+        if taken.rewritten and self.search is not None:
             self._search_rules = None
             self._fresh_search()
         if self.search is not None and not self.search.complete:
@@ -250,6 +236,7 @@ class SearchController:
     def show_marks(self) -> None:
         table = self._table
         search = self.search
+        matches: Callable[[int, str], Spans] | None = None
         if search is not None:
             pattern = display_pattern(search.match)
             regex = search.match.regex
@@ -265,11 +252,9 @@ class SearchController:
                 except MatchTimeout:
                     return []
 
-            table.match_spans = spans
-        else:
-            table.match_spans = None
-        table.set_gutter(self._gutter if search is not None or len(self._marks) else None)
-        table.restyle()
+            matches = spans
+        gutter = self._gutter if search is not None or len(self._marks) else None
+        table.decorations.show_matches(matches, gutter)
 
     def _gutter(self, seq: int) -> str:
         if seq in self._marks:
@@ -322,3 +307,41 @@ class SearchController:
         if self._match_rows is None or self._match_rows[0] != key:
             self._match_rows = (key, MatchRows(search, storms))
         return self._match_rows[1]
+
+    COMMANDS: ClassVar[tuple[Command[SearchController], ...]] = (
+        Command(
+            "nav.find",
+            open_search_line,
+            "f,ctrl+f",
+            "Find",
+            footer=70,
+            group=NAVIGATION,
+            about="Search a text or /regex/ in the messages; the rows stay, matches are marked",
+            words="search grep look",
+        ),
+        Command(
+            "nav.next_match",
+            lambda s: s.jump_to_match(forward=True),
+            "n",
+            "Next match",
+            group=NAVIGATION,
+            about="The next row the search matches, below",
+        ),
+        Command(
+            "nav.previous_match",
+            lambda s: s.jump_to_match(forward=False),
+            "N",
+            "Previous match",
+            group=NAVIGATION,
+            about="The previous row the search matches, above",
+        ),
+        Command(
+            "console.clear_search",
+            clear_search,
+            "escape",
+            "Clear the search",
+            applies=lambda s: s.search is not None and not s._view.refiltering,
+            about="No search: no marks, no counter",
+            ends=True,
+        ),
+    )

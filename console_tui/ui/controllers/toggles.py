@@ -1,6 +1,6 @@
 """One-key toggles: severity levels, nodes (solo / mute), and what the Time column shows.
 
-Level and node toggles are rules (``model/toggles.py``): applied like any rule, shown in the
+Level and node toggles are rules (``model/rules/key_rules.py``): applied like any rule, shown in the
 rules pane, in the status line.
 """
 
@@ -8,14 +8,28 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from typing import ClassVar
 
-from ...model import toggles
-from ...model.logger_levels import robot_qualified
+from ...model.levels import MESSAGE_SEVERITIES
+from ...model.loggers.logger_levels import robot_qualified
+from ...model.rules import key_rules as toggles
 from ...model.rules.ruleset import RuleSet
-from ...model.store import LogStore
-from ...model.time_column import TimeFormat, format_info, next_format, sim_time_note
-from ..widgets.log_table import LogTable
+from ...model.time_column import FORMATS, TimeFormat, format_info, next_format, sim_time_note
+from ..command_table import NAVIGATION, Command
 from ..widgets.node_pane import NodePane
+from .context import ConsoleContext
+
+
+def _toggling_level(level: int) -> Callable[[TogglesController], None]:
+    return lambda toggles: toggles.toggle_level(level)
+
+
+def _minimum(level: int) -> Callable[[TogglesController], None]:
+    return lambda toggles: toggles.minimum_level(level)
+
+
+def _showing_time(fmt: TimeFormat) -> Callable[[TogglesController], None]:
+    return lambda toggles: toggles.time_format(fmt.value)
 
 
 class TogglesController:
@@ -23,24 +37,20 @@ class TogglesController:
 
     def __init__(
         self,
-        store: LogStore,
-        table: LogTable,
+        context: ConsoleContext,
         node_pane: NodePane,
         *,
         rules: Callable[[], RuleSet],
         apply_rules: Callable[[RuleSet], None],
         live: Callable[[], bool],
-        update_status: Callable[[], None],
     ) -> None:
-        self._store = store
-        self._table = table
+        self._store, self._table, self._changed = context.store, context.table, context.changed
         self._node_pane = node_pane
         #: The rules in force, and how to put others in force.
         self._rules = rules
         self._apply_rules = apply_rules
         #: Whether live sources run (a sim time note is about them).
         self._live = live
-        self._update_status = update_status
 
     # -- levels -----------------------------------------------------------------------------------
 
@@ -105,20 +115,21 @@ class TogglesController:
     # -- time -------------------------------------------------------------------------------------
 
     def next_time_format(self) -> None:
-        self.time_format(next_format(self._table.time_format).value)
+        self.time_format(next_format(self._table.painter.time_format).value)
 
     def time_format(self, name: str) -> None:
-        self._table.set_time_format(TimeFormat(name), self._table.utc)
-        self._update_status()
+        self._table.set_time_format(TimeFormat(name), self._table.painter.utc)
+        self._changed()
 
     def toggle_utc(self) -> None:
-        self._table.set_time_format(self._table.time_format, not self._table.utc)
-        self._update_status()
+        painter = self._table.painter
+        self._table.set_time_format(painter.time_format, not painter.utc)
+        self._changed()
 
     def time_status(self) -> str:
         """What the Time column shows when not the local wall clock, and a sim time note."""
         table = self._table
-        fmt = table.time_format
+        fmt = table.painter.time_format
         parts = []
         if fmt is not TimeFormat.CLOCK:
             parts.append(f"time: {format_info(fmt).name}")
@@ -130,3 +141,94 @@ class TogglesController:
             if note:
                 parts.append(note)
         return ", ".join(parts)
+
+    COMMANDS: ClassVar[tuple[Command[TogglesController], ...]] = (
+        *(
+            Command(
+                f"levels.{severity.name.lower()}",
+                _toggling_level(int(severity)),
+                str(number),
+                f"Show / hide {severity.name} messages",
+                group=NAVIGATION,
+                title=f"Show / hide {severity.name}",
+                about=f"Hide {severity.name} messages, or show them again (a rule underneath)",
+            )
+            for number, severity in enumerate(MESSAGE_SEVERITIES, start=1)
+        ),
+        *(
+            Command(
+                f"levels.minimum_{severity.name.lower()}",
+                _minimum(int(severity)),
+                title=f"Minimum level: {severity.name}",
+                about=f"Show {severity.name} and worse",
+            )
+            for severity in MESSAGE_SEVERITIES
+        ),
+        Command(
+            "levels.up",
+            raise_minimum,
+            "greater_than_sign",
+            "Minimum level up (hide the lowest shown)",
+            group=NAVIGATION,
+            title="Minimum level up",
+            about="Hide the lowest level shown",
+        ),
+        Command(
+            "levels.down",
+            lower_minimum,
+            "less_than_sign",
+            "Minimum level down (show one more)",
+            group=NAVIGATION,
+            title="Minimum level down",
+            about="Show one more level",
+        ),
+        Command(
+            "levels.all",
+            all_levels,
+            "0",
+            "Every level shown again",
+            group=NAVIGATION,
+            title="Every level",
+            about="Show every level again",
+            words="severity level",
+        ),
+        Command(
+            "nav.solo_row_node",
+            solo_row_node,
+            title="Solo this row's node",
+            about="Show only the selected row's node (again: undo)",
+        ),
+        Command(
+            "nav.mute_row_node",
+            mute_row_node,
+            title="Mute this row's node",
+            about="Hide the selected row's node (again: undo)",
+        ),
+        Command("nav.every_node", clear_node_toggles, title="Every node heard", about="No node soloed or muted"),
+        *(
+            Command(
+                f"time.{fmt.value}",
+                _showing_time(fmt),
+                title=f"Time: {format_info(fmt).name}",
+                about=f"The Time column shows the {format_info(fmt).name}",
+            )
+            for fmt in FORMATS
+        ),
+        Command(
+            "time.format",
+            next_time_format,
+            "t",
+            "Time format: clock, date, stamp, since first, since row, Δ",
+            group=NAVIGATION,
+            title="Time format: the next one",
+            about="Wall clock, date, stamp, since first, since row, delta",
+        ),
+        Command(
+            "time.utc",
+            toggle_utc,
+            "ctrl+u",
+            "Time in UTC / local time",
+            group=NAVIGATION,
+            about="The wall clock in UTC, or local time",
+        ),
+    )

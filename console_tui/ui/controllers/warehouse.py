@@ -2,12 +2,12 @@
 the rules handed down to it.
 
 Each log warehouse given on the command line is a source (``sources.warehouse_source``) whose
-thread asks the table and leaves what came in ``take()``; here, every tick, its first page of
+thread asks the table and leaves what came in ``take()``; here, every intake tick, its first page of
 a generation replaces what that source showed before, newer pages follow the tail as live
 records do, and older pages are placed before the oldest rows (the cursor stays on its
-record). Scrolling past the oldest row (``top_reached``) asks for the page before it; new
-rules (``rules_changed``) are handed to each warehouse, which reads its window again when
-what SQL can leave out changed. Nothing here waits for the warehouse.
+record). Scrolling past the oldest row (``top_reached``) asks for the page before it; the
+rules put in force (``Announcements.rules_changed``) are handed to each warehouse, which reads
+its window again when what SQL can leave out changed. Nothing here waits for the warehouse.
 """
 
 from __future__ import annotations
@@ -15,13 +15,11 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from typing import Any, Protocol
 
-from ...model.late_records import Placed
-from ...model.marks import Marks
-from ...model.older_records import add_older, drop_source
-from ...model.record_batch import RecordColumns
 from ...model.rules.ruleset import RuleSet
-from ...model.store import LogStore
-from ..widgets.log_table import LogTable
+from ...model.store.late_records import Placed
+from ...model.store.older_records import add_older, drop_source
+from ...model.store.record_batch import RecordColumns
+from .context import ConsoleContext
 from .intake import IntakeController
 
 #: What a delivery of ``sources.warehouse_source`` says it is (kept as text: that module and the
@@ -48,28 +46,28 @@ def warehouses_of(sources: Sequence[object]) -> list[Warehouse]:
 
 
 class WarehouseController:
+    """The log warehouses among the sources, their deliveries taken in each intake tick."""
+
     def __init__(
         self,
-        store: LogStore,
-        table: LogTable,
-        marks: Marks,
+        context: ConsoleContext,
         intake: IntakeController,
         *,
         sources: Sequence[object],
         reapply_rules: Callable[[], None],
-        update_status: Callable[[], None],
     ) -> None:
-        self._store = store
-        self._table = table
-        self._marks = marks
+        c = context
+        self._store, self._table, self._marks, self._changed = c.store, c.table, c.marks, c.changed
         self._intake = intake
         self.warehouses = warehouses_of(sources)
-        self._update_status = update_status
         #: The rules applied again to what the store holds (after a generation's rows went: the
         #: view's filtering of them, in the background, would hold the new rows back).
         self._reapply_rules = reapply_rules
         #: The generation each warehouse's rows in the store belong to.
         self._shown: dict[int, int] = {}
+        if self.warehouses:
+            c.announce.tick.subscribe(self.tick)
+            c.announce.rules_changed.subscribe(self.rules_changed)
 
     def tick(self) -> None:
         """Take in what each warehouse delivered since the last tick."""
@@ -96,7 +94,7 @@ class WarehouseController:
             self._intake.add_batches([columns], live_from=0)
         elif kind == OLDER:
             self._older(columns)
-        self._update_status()
+        self._changed()
 
     def _drop(self, source: str) -> None:
         marks = self._marks
@@ -128,9 +126,10 @@ class WarehouseController:
         if cursor is not None and cursor in moved:
             table.jump_to_seq(moved[cursor])
 
-    def top_reached(self) -> bool:
+    def top_reached(self) -> None:
         """The person went past the oldest row: ask each warehouse for the page before it."""
-        return any([warehouse.ask_older() for warehouse in self.warehouses])
+        if any([warehouse.ask_older() for warehouse in self.warehouses]):
+            self._changed()
 
     def rules_changed(self, rules: RuleSet) -> None:
         for warehouse in self.warehouses:

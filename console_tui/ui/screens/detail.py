@@ -13,9 +13,9 @@ from textual.screen import ModalScreen
 from textual.widgets import Footer, Static, TextArea
 
 from ...model.formats.mixed_output import LOCAL_TIME_NOTE
+from ...model.inert_text import multi_line, one_line, plural
 from ...model.levels import severity_name
-from ...model.record import LogRecord
-from ...model.text import multi_line, one_line, plural
+from ...model.store.record import LogRecord
 from ...model.timefmt import full_text, stamp_text
 from ..focus import focus_now
 

@@ -8,7 +8,7 @@ from textual.containers import Vertical
 from textual.screen import ModalScreen
 from textual.widgets import Label, Log
 
-from ...model.text import one_line, plural
+from ...model.inert_text import one_line, plural
 
 
 class ProblemsScreen(ModalScreen[None]):

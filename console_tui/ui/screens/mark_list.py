@@ -13,11 +13,11 @@ from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList, Static
 from textual.widgets.option_list import Option
 
+from ...model.inert_text import one_line, plural
 from ...model.levels import severity_name
-from ...model.marks import Marks
-from ...model.record import LogRecord
-from ...model.text import one_line, plural
+from ...model.store.record import LogRecord
 from ...model.timefmt import clock_text
+from ...model.view.marks import Marks
 from ..keys import Hint, KeyDisplay, hint_line, key_label, keymap_of
 
 _HINTS: list[Hint] = [("go", "goes to it"), ("unmark", "takes the mark off"), ("close", "closes")]

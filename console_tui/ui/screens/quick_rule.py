@@ -14,15 +14,15 @@ from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
+from ...model.inert_text import one_line
 from ...model.levels import severity_name
-from ...model.record import LogRecord
 from ...model.rules.location import LocationRule
 from ...model.rules.message import MessageRule
 from ...model.rules.node import NodeRule
 from ...model.rules.rule import Rule
 from ...model.rules.ruleset import Entry, Role
 from ...model.rules.severity import SeverityRule
-from ...model.text import one_line
+from ...model.store.record import LogRecord
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..plain import plain

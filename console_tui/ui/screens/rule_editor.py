@@ -25,7 +25,7 @@ from ...model.rules.time_range import TimeRangeRule
 from ...model.timefmt import full_text
 from ..keys import Hint, hint_line
 from ..plain import plain
-from ..widgets.marked_toggles import MarkedCheckbox, MarkedRadioButton
+from ..widgets.marked_buttons import MarkedCheckbox, MarkedRadioButton
 
 KINDS = {
     "message": "Message text",

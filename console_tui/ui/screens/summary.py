@@ -19,10 +19,10 @@ from textual.screen import ModalScreen
 from textual.widgets import Label, OptionList
 from textual.widgets.option_list import Option
 
+from ...model.inert_text import one_line, plural, shorten_name
 from ...model.levels import MESSAGE_SEVERITIES, severity_level
-from ...model.node_stats import NodeStats, robot_counts
-from ...model.store import LogStore
-from ...model.text import one_line, plural, shorten_name
+from ...model.overview.node_stats import NodeStats, robot_counts
+from ...model.store.log_store import LogStore
 from ...model.timefmt import clock_text, duration_text
 from ...sources.status import SourceStatus
 from ..keys import hint_line

@@ -3,7 +3,7 @@
 Textual's ``Footer`` is a container of one widget a key (about 30 here): each time the
 screen's bindings may have changed (twice on every change of focus) it takes them down and
 mounts them again, with a layout of the screen after it: the longest pauses of a search
-(docs/architecture.md, "Our own widgets where Textual's cost a frame"). ``KeyFooter`` draws the same line (each key and what
+(docs/decisions/0018-own-widgets.md). ``KeyFooter`` draws the same line (each key and what
 it does, the palette's key on the right) as one strip, again only when what it shows
 changes, and never asks for a layout. A click on a key presses it, as in Textual's.
 """

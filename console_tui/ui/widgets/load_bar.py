@@ -8,7 +8,7 @@ from textual.app import ComposeResult
 from textual.containers import Horizontal
 from textual.widgets import Label, ProgressBar
 
-from ...model.text import plural
+from ...model.inert_text import plural
 from ..keys import hint_line
 from ..plain import plain
 
@@ -48,7 +48,7 @@ class LoadBar(Horizontal):
             reading = next(iter(started), None) or next((f for f in files if not f.failed and f.fraction < 1.0), None)
             name = reading.source.rsplit("/", 1)[-1] if reading else ""
             what = f"Loading {plural(len(files), 'file')}: {name}"
-        hint = hint_line(self.app, self.app.BINDINGS, [("cancel_load", "cancels")])
+        hint = hint_line(self.app, self.app.BINDINGS, [("console.cancel_load", "cancels")])
         self.query_one(Label).update(plain(f"{what}  {plural(records, 'record')}  {hint}"))
         self.query_one(ProgressBar).update(progress=done)
 

@@ -4,44 +4,40 @@ Rows are addressed by store seq, which never changes, so rendered rows are cache
 and the position survives records arriving and old ones being evicted. Line 0 is a fixed
 header; line ``y`` shows row ``scroll_y + y - 1``.
 
-This file holds the widget, which rows it shows and where (following the tail, the pause,
-keeping its place as records come and go); its parts, mixed in: the cursor and the selection
-(``log_table_cursor.py``), drawing a frame with its caches (``log_table_frame.py``), the
-columns as laid out (``log_table_layout.py``) and one row's cells (``log_table_cells.py``).
+The widget holds which rows it shows and where (following the tail, the pause, keeping its
+place as records come and go), draws a frame from the rows it keeps drawn, and composes plain
+objects for the rest: the cursor and the selection (``table_cursor.py``), the columns and one
+row's cells (``row_painter.py``), and how rows are marked beyond their records, which the
+rules, the overview, the search and the marks contribute to (``row_decorations.py``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from rich.style import Style
 from textual import events
+from textual.actions import SkipAction
 from textual.binding import Binding
-from textual.cache import LRUCache
-from textual.geometry import Region, Size
+from textual.geometry import Region, Spacing
 from textual.message import Message
 from textual.scroll_view import ScrollView
-from textual.scrollbar import ScrollBar
 from textual.strip import Strip
 
-from ...model.store import LogStore
-from ...model.storms import StormBadge
+from ...model.store.log_store import LogStore
 from ...model.time_column import TimeFormat
-from ..severity_styles import severity_classes, severity_css
-from .log_table_cells import Decoration, Spans
-from .log_table_cursor import TableCursor
-from .log_table_frame import TableFrame
-from .table_columns import COLUMNS, PlacedColumn
+from .row_decorations import Decoration, RowDecorations, Spans
+from .row_painter import ROW_CLASSES, ROW_CSS, RowPainter
+from .table_cursor import TableCursor, place_of
+from .table_lines import TableLines
 from .table_rows import TableRows
-from .table_scrollbar import TableScrollBar
+from .table_scrollbar import RowsScrollView
 
-#: How often the scrollbar follows changes that leave the rows on screen as they were (s).
-_QUIET_SCROLLBAR_PERIOD = 0.1
+_NO_SPACING = Spacing(0, 0, 0, 0)
 
 
-class LogTable(TableCursor, TableFrame, can_focus=True):
+class LogTable(RowsScrollView, can_focus=True):
     """Rows of a ``LogView`` (or ``StormRows``); follows the tail until the user moves away or pauses.
 
     | Key(s) | Description |
@@ -69,41 +65,8 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
     | `log-table--gutter` | The gutter's marks: ● a mark, » a search match. |
     """
 
-    DEFAULT_CSS = (
-        """
-    LogTable {
-        background: $surface;
-        color: $foreground;
-        scrollbar-gutter: stable;
-    }
-    LogTable > .log-table--header { text-style: bold; background: $panel; color: $foreground; }
-    LogTable > .log-table--cursor { background: $block-cursor-blurred-background; }
-    LogTable:focus > .log-table--cursor { background: $block-cursor-background; color: $block-cursor-foreground; }
-    LogTable > .log-table--dim-column { color: $foreground-muted; }
-    LogTable > .log-table--selected { background: $primary-muted; }
-    LogTable > .log-table--highlight { background: $accent-muted; }
-    LogTable > .log-table--dimmed { text-style: dim; }
-    LogTable > .log-table--storm { color: $text-accent; text-style: bold; }
-    LogTable > .log-table--match { background: $warning; color: $background; text-style: bold; }
-    LogTable > .log-table--gutter { color: $text-accent; text-style: bold; }
-    """
-        + severity_css("LogTable", "log-table--row", row=True)
-        + severity_css("LogTable", "log-table--severity")
-    )
-
-    COMPONENT_CLASSES = {
-        "log-table--header",
-        "log-table--cursor",
-        "log-table--selected",
-        "log-table--dim-column",
-        *severity_classes("log-table--row"),
-        *severity_classes("log-table--severity"),
-        "log-table--highlight",
-        "log-table--dimmed",
-        "log-table--storm",
-        "log-table--match",
-        "log-table--gutter",
-    }
+    DEFAULT_CSS = ROW_CSS
+    COMPONENT_CLASSES = ROW_CLASSES
 
     BINDINGS = [
         Binding("up,k", "cursor_up", "Up", show=False, id="table.up"),
@@ -136,80 +99,34 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         def can_replace(self, message: Message) -> bool:
             return isinstance(message, LogTable.StateChanged)  # it says nothing but "look again"
 
-    @property
-    def vertical_scrollbar(self) -> ScrollBar:
-        """Textual's own code, with a ``TableScrollBar``: repainted only when its thumb moves."""
-        if self._vertical_scrollbar is None:
-            bar = TableScrollBar(vertical=True, name="vertical", thickness=self.scrollbar_size_vertical)
-            bar.display = False
-            self._vertical_scrollbar = bar
-            self.app._start_widget(self, bar)
-        return self._vertical_scrollbar
-
-    def _scroll_update(self, virtual_size: Size) -> None:
-        """Textual's, less its repaint of the vertical scrollbar on every call: the
-        ``TableScrollBar`` repaints itself when its thumb moves."""
-        self._refresh_scrollbars()
-        width, height = self.container_size
-        if self.show_vertical_scrollbar and self.styles.scrollbar_size_vertical:
-            self.vertical_scrollbar.window_virtual_size = virtual_size.height
-            self.vertical_scrollbar.window_size = height - self.scrollbar_size_horizontal
-        if self.show_horizontal_scrollbar and self.styles.scrollbar_size_horizontal:
-            self.horizontal_scrollbar.window_virtual_size = virtual_size.width
-            self.horizontal_scrollbar.window_size = width - self.scrollbar_size_vertical
-            self.horizontal_scrollbar.refresh()
-        self.scroll_x = self.validate_scroll_x(self.scroll_x)
-        self.scroll_y = self.validate_scroll_y(self.scroll_y)
-
-    def set_scroll(self, x: float | None, y: float | None) -> None:
-        """Textual's, and the scrollbar told (Textual's sets the offset alone)."""
-        super().set_scroll(x, y)
-        if y is not None and self.show_vertical_scrollbar:
-            self.vertical_scrollbar.position = self.scroll_y
-
-    def __init__(self, store: LogStore, view: TableRows, *, utc: bool = False, id: str | None = None) -> None:
+    def __init__(
+        self,
+        store: LogStore,
+        view: TableRows,
+        *,
+        utc: bool = False,
+        decorations: RowDecorations | None = None,
+        id: str | None = None,
+    ) -> None:
         super().__init__(id=id)
         self.store = store
         self.view = view
-        self.utc = utc
         self.following = True
         #: While paused, rows for seqs at or past this are not shown.
         self.paused_end: int | None = None
-        self.cursor_row = 0
-        #: The seq where a selection of rows began (shift+arrows), or None: the cursor's row only.
-        self.selection_anchor: int | None = None
-        self.shown_columns: frozenset[str] = frozenset(c.key for c in COLUMNS if c.shown_by_default)
-        #: Rules hook: seq -> decoration; bump ``style_generation`` when its answers change.
-        self.decoration_of: Callable[[int], Decoration] | None = None
-        #: Storms hook: seq -> how its row is marked as a storm (``×N until ...``), or None.
-        self.badge_of: Callable[[int], StormBadge | None] | None = None
-        #: Marks and search hook: seq -> one character for the gutter left of the row ("" for
-        #: none), or None: no gutter. Bump ``style_generation`` when its answers change.
-        self.gutter_of: Callable[[int], str] | None = None
-        #: Search hook: (seq, message as shown) -> the spans to mark in it.
-        self.match_spans: Callable[[int, str], Spans] | None = None
-        #: What the Time column shows (``t``), in local time or UTC.
-        self.time_format = TimeFormat.CLOCK
-        self.style_generation = 0
+        self.cursor = TableCursor()
+        self.painter = RowPainter(store, utc=utc)
+        #: How rows are marked beyond their records (the rules, storms, the search, the marks):
+        #: every row is drawn again when it says they changed.
+        self.decorations = decorations if decorations is not None else RowDecorations()
+        self.decorations.subscribe(self.restyle)
+        #: The lines drawn, and the rows kept drawn.
+        self.lines = TableLines(store, self.painter, self.decorations)
         #: Said in the empty table (``show_hint``): what the console waits for, or that rules
         #: hide every message.
         self.empty_hint = ""
-        # Rows drawn, for scrolling back over them. Kept to a few screens: each cached row is a
-        # dozen objects for the cycle collector to visit (benchmarks/screen.py: 512 rows cost
-        # about a fifth more per full collection than 192).
-        self._cache: LRUCache[tuple, Strip] = LRUCache(192)
-        self._layout_key: tuple = ()
-        self._nodes_measured = 0
-        self.robot_styles: dict[str, Style] = {}
-        self._widest_node = 8
-        self._placed: tuple[PlacedColumn, ...] = ()
-        self._styles: dict[str, Style] = {}
-        self._base = Style()
         self._styles_key: tuple | None = None
         self._width = 0
-        self._scrollbar_sync_due = False
-        #: The last strips ``render_lines`` returned, and what they were drawn from.
-        self._frame: tuple[tuple, list[Strip]] | None = None
 
     def show_hint(self, hint: str) -> None:
         """Say ``hint`` in the table while it has no row (redrawn only when it changes)."""
@@ -226,18 +143,30 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         return self.view.count_before(self.paused_end)
 
     @property
+    def cursor_row(self) -> int:
+        return self.cursor.row
+
+    @property
     def cursor_seq(self) -> int | None:
-        if 0 <= self.cursor_row < self.row_count:
-            return self.view.seq_at(self.cursor_row)
-        return None
+        return self.cursor.seq(self.view, self.row_count)
 
     @property
     def cursor_last_seq(self) -> int | None:
         """The last message the cursor's row shows: a collapsed storm's last repeat, else
         the row's own (where a search down from the row starts)."""
         seq = self.cursor_seq
-        badge = self.badge_of(seq) if seq is not None and self.badge_of is not None else None
+        badge = self.decorations.badge_of(seq) if seq is not None else None
         return badge.last if badge is not None and badge.head and not badge.expanded else seq
+
+    @property
+    def selection_anchor(self) -> int | None:
+        return self.cursor.anchor
+
+    def selected_rows(self) -> range:
+        return self.cursor.selected_rows(self.view, self.row_count)
+
+    def selected_seqs(self, at_most: int) -> list[int]:
+        return self.cursor.selected_seqs(self.view, self.row_count, at_most)
 
     @property
     def new_while_paused(self) -> int:
@@ -259,7 +188,7 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         top_seq = self.view.seq_at(top) if 0 <= top < self.row_count else None
         cursor_seq = self.cursor_seq
         shown = self._shown_seqs(top)
-        line = self.cursor_row - top if cursor_line and cursor_seq is not None else None
+        line = self.cursor.row - top if cursor_line and cursor_seq is not None else None
         yield
         self._after_update(top_seq, cursor_seq, shown, line)
 
@@ -267,32 +196,34 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         self, top_seq: int | None, cursor_seq: int | None, shown: tuple | None = None, line: int | None = None
     ) -> None:
         rows = self.row_count
+        cursor = self.cursor
         top: int | None
         if self.following and self.paused_end is None:
-            self.cursor_row = max(rows - 1, 0)
+            cursor.row = max(rows - 1, 0)
             top = self._end_top()
         else:
             if cursor_seq is not None:
-                self.cursor_row = min(self._place_of(cursor_seq, line is not None), max(rows - 1, 0))
+                place = place_of(cursor_seq, self.view, rows, self.store, nearest=line is not None)
+                cursor.row = min(place, max(rows - 1, 0))
             else:
-                self.cursor_row = min(self.cursor_row, max(rows - 1, 0))
+                cursor.row = min(cursor.row, max(rows - 1, 0))
             top = self.view.row_of(top_seq) if top_seq is not None else None
             if line is not None:
-                top = max(self.cursor_row - line, 0)
+                top = max(cursor.row - line, 0)
         if shown is not None and top is not None:
             now = self._shown_seqs(top)
-            changed = _badges_changed(shown, now, badges=self.badge_of is not None)
+            changed = _badges_changed(shown, now, badges=self.decorations.badges is not None)
             if changed is not None:
                 # The same rows on screen (older ones were filtered in, or new ones arrived
                 # below while scrolled up): only the scroll offset and, a few times a second,
                 # the scrollbar move; only rows whose storm count changed are redrawn.
-                self._update_virtual_size(quiet=True)
+                self.set_height(rows + 1, quiet=True)
                 self.set_reactive(ScrollView.scroll_y, float(top))
                 self.set_reactive(ScrollView.scroll_target_y, float(top))
                 for line in changed:
                     self.refresh(Region(0, self.gutter.top + 1 + line, self.outer_size.width, 1))
                 return
-        self._update_virtual_size()
+        self.set_height(rows + 1)
         if top is not None:
             self.set_scroll(None, top)
         self.refresh()
@@ -303,36 +234,17 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         seq_at = self.view.seq_at
         end = min(top + self._body_height, self.row_count)
         seqs = [seq_at(row) for row in range(max(top, 0), end)]
-        if self.badge_of is not None:  # a storm's count changes its row
-            return (self.cursor_seq, *seqs, *map(self.badge_of, seqs))
+        badges = self.decorations.badges
+        if badges is not None:  # a storm's count changes its row
+            return (self.cursor_seq, *seqs, *map(badges, seqs))
         return (self.cursor_seq, *seqs)
 
     def reset(self) -> None:
         """After a clear or a new filter: back to the tail."""
-        self._forget_drawn_rows()
-        self.cursor_row = 0
+        self.lines.forget()
+        self.cursor.row = 0
         self.following = True
         self._after_update(None, None)
-
-    def _update_virtual_size(self, *, quiet: bool = False) -> None:
-        size = Size(self.scrollable_content_region.width, self.row_count + 1)
-        if size != self.virtual_size:
-            # Not ``self.virtual_size = size``: that reactive asks for a layout of the whole
-            # screen, many times a second while messages arrive. Only the scrollbars change.
-            self.set_reactive(ScrollView.virtual_size, size)
-            if not quiet:
-                self._scroll_update(size)
-        if quiet and not self._scrollbar_sync_due:
-            self._scrollbar_sync_due = True
-            self.set_timer(_QUIET_SCROLLBAR_PERIOD, self._sync_scrollbars)
-
-    def _sync_scrollbars(self) -> None:
-        """Scrollbars to the virtual size and scroll offset (redrawing the scrollbar region
-        redraws every widget under it, this table included)."""
-        self._scrollbar_sync_due = False
-        self._scroll_update(self.virtual_size)
-        if self.show_vertical_scrollbar:
-            self.vertical_scrollbar.position = self.scroll_y
 
     # -- following and pause -------------------------------------------------------------------
 
@@ -355,19 +267,79 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
             self.following = False
             self.post_message(self.StateChanged())
 
-    # -- scrolling ------------------------------------------------------------------------------
+    # -- the cursor and scrolling -----------------------------------------------------------------
+
+    def move_cursor(self, row: int, *, extend: bool = False) -> None:
+        """Move the cursor to ``row``; ``extend`` selects the rows from where it was."""
+        rows = self.row_count
+        if row < 0 and self.cursor.row == 0:
+            self.post_message(self.TopReached())  # older rows may be asked for
+        if rows == 0:
+            return
+        self.cursor.move(row, self.view, rows, extend=extend)
+        row = self.cursor.row
+        top = int(self.scroll_y)
+        height = self._body_height
+        if row < top:
+            self.set_scroll(None, row)
+        elif row >= top + height:
+            self.set_scroll(None, row - height + 1)
+        if row < rows - 1:
+            self._stop_following()
+        elif self.paused_end is None:
+            self.following = True
+        self.refresh()
+        self.post_message(self.StateChanged())
+
+    def jump_to_seq(self, seq: int) -> bool:
+        """Put the cursor on the row of ``seq`` (a third down the screen when it was off the
+        screen; a collapsed repeat's is its storm's row); False when no row shows it."""
+        row = self.view.row_shown(seq)
+        if row is None or row >= self.row_count:
+            return False
+        height = self._body_height
+        top = int(self.scroll_y)
+        if not top <= row < top + height:
+            self._stop_following()
+            self.set_scroll(None, max(min(row - height // 3, self.row_count - height), 0))
+        self.move_cursor(row)
+        return True
 
     def _end_top(self) -> int:
         """The top row when the last row is at the bottom of the screen."""
         return max(self.row_count + 1 - self.scrollable_content_region.height, 0)
 
-    def _scroll_to_row_end(self) -> None:
-        self.set_scroll(None, self._end_top())
-
     def watch_scroll_y(self, old: float, new: float) -> None:
         super().watch_scroll_y(old, new)
         if new < old and new < self.max_scroll_y:
             self._stop_following()
+
+    def action_cursor_up(self) -> None:
+        self.move_cursor(self.cursor.row - 1)
+
+    def action_cursor_down(self) -> None:
+        self.move_cursor(self.cursor.row + 1)
+
+    def action_select_up(self) -> None:
+        self.move_cursor(self.cursor.row - 1, extend=True)
+
+    def action_select_down(self) -> None:
+        self.move_cursor(self.cursor.row + 1, extend=True)
+
+    def action_clear_selection(self) -> None:
+        if self.cursor.anchor is None:
+            raise SkipAction()  # Esc goes on to the app (it stops a long filtering)
+        self.cursor.anchor = None
+        self.refresh()
+
+    def action_page_up(self) -> None:
+        self.move_cursor(self.cursor.row - self._body_height)
+
+    def action_page_down(self) -> None:
+        self.move_cursor(self.cursor.row + self._body_height)
+
+    def action_first_row(self) -> None:
+        self.move_cursor(-1 if self.cursor.row == 0 else 0)
 
     def action_follow(self) -> None:
         self.follow()
@@ -377,13 +349,89 @@ class LogTable(TableCursor, TableFrame, can_focus=True):
         if seq is not None:
             self.post_message(self.RowActivated(seq))
 
+    async def _on_click(self, event: events.Click) -> None:
+        row = int(self.scroll_y) + event.y - 1
+        if event.y < 1 or row >= self.row_count:
+            return
+        self.move_cursor(row, extend=event.shift)
+        if event.chain >= 2:
+            self.action_activate()
+
     def on_mount(self) -> None:
         self._after_update(None, None)
 
     def on_resize(self, event: events.Resize) -> None:
-        self._update_virtual_size()
+        self.set_height(self.row_count + 1)
         if self.following and self.paused_end is None:
-            self._scroll_to_row_end()
+            self.set_scroll(None, self._end_top())
+
+    # -- the columns ----------------------------------------------------------------------------
+
+    def set_time_format(self, fmt: TimeFormat, utc: bool) -> None:
+        """What the Time column shows, local time or UTC."""
+        self.painter.time_format, self.painter.utc = fmt, utc
+        self.lines.forget()
+        self.refresh()
+
+    def set_column_shown(self, key: str, shown: bool) -> None:
+        self.painter.set_column_shown(key, shown)
+        self.lines.forget()
+        self.refresh()
+
+    # -- drawing ----------------------------------------------------------------------------------
+
+    def restyle(self) -> None:
+        """The rows look different (the decorations changed): every row is drawn again."""
+        self.lines.restyled()
+        self.refresh()
+
+    def notify_style_update(self) -> None:
+        super().notify_style_update()
+        self._styles_key = None
+
+    def render_lines(self, crop: Region) -> list[Strip]:
+        # What every row needs, worked out once a frame: the component styles (looked up again
+        # only when the focus, the theme or the CSS changed: the lookups cost more than
+        # drawing a row) and the columns.
+        styles_key = (self.has_focus, self.app.theme)
+        if styles_key != self._styles_key:
+            self._styles_key = styles_key
+            names = self.COMPONENT_CLASSES
+            self.lines.set_styles(
+                {name: self.get_component_rich_style(name, partial=True) for name in names}, self.rich_style
+            )
+        self._width = self.scrollable_content_region.width
+        if self.painter.layout(self._width, gutter=self.decorations.gutter is not None):
+            self.lines.forget()
+        if self.styles.padding != _NO_SPACING or self.styles.border.spacing != _NO_SPACING:
+            return super().render_lines(crop)
+        # No border or padding to draw: the rows go straight to the screen (with the app's
+        # line filters), which saves Textual's per-line styling work on every frame; at
+        # thousands of messages a second every visible row is new in every frame. Textual
+        # redraws every widget under a changed region (the scrollbar, a notification): the
+        # same rows in the same styles give the same strips as last time.
+        filters = self.get_line_filters()
+        background = self.background_colors[1]
+        full_width = self.size.width  # the scrollbar gutter too, when no scrollbar covers it
+        frame_key = (
+            crop,
+            full_width,
+            self._shown_seqs(int(self.scroll_y)),
+            self.cursor.anchor,
+            self.lines.generation,
+            styles_key,
+            self.painter.layout_key,
+            background,
+            self.empty_hint if not self.row_count else "",
+            *map(id, filters),
+        )
+        return self.lines.frame(frame_key, crop, full_width, filters, background, self.render_line)
+
+    def render_line(self, y: int) -> Strip:
+        top, rows, count = int(self.scroll_y), self.view, self.row_count
+        return self.lines.line(
+            y, top=top, rows=rows, count=count, cursor=self.cursor, width=self._width, hint=self.empty_hint
+        )
 
 
 def _badges_changed(before: tuple[object, ...], after: tuple[object, ...], *, badges: bool) -> list[int] | None:

@@ -11,7 +11,7 @@ from textual.widgets import OptionList
 from textual.widgets.option_list import Option
 
 from ...model.levels import severity_level, severity_name
-from ...model.logger_levels import GraphNode, LoggerRow, LoggerSource, format_remaining
+from ...model.loggers.logger_levels import GraphNode, LoggerRow, LoggerSource, format_remaining
 from ..plain import plain
 from ..severity_styles import severity_classes, severity_css
 

@@ -1,8 +1,8 @@
 """The logger levels pane, beside the table: the graph's nodes, a node's loggers and their levels.
 
-The pane draws a ``LoggerView`` (the model of what it shows) and turns keys into requests
+The pane draws a ``LoggerPaneState`` (the model of what it shows) and turns keys into requests
 (``logger_requests.py``: the calls of the ``LoggerControl`` and their books). With a
-control, the pane keeps the view fed (nodes as the graph changes, levels as they are read,
+control, the pane keeps its state fed (nodes as the graph changes, levels as they are read,
 temporary levels as they run); tests may feed it through ``show_*`` and ``select_node`` for a
 fixed picture. Every service call runs on the control's thread: its end comes back as a
 message, so the screen never waits for a node. For a temporary level the pane posts
@@ -23,9 +23,9 @@ from textual.timer import Timer
 from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 
+from ...control.events import LoggerEvent, NodesChanged
 from ...model.levels import MESSAGE_SEVERITIES
-from ...model.logger_levels import GraphNode, LoggerRow, TemporaryLevel
-from ...sources.loggers.events import LoggerEvent, NodesChanged
+from ...model.loggers.logger_levels import GraphNode, LoggerRow, TemporaryLevel
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .level_bar import TEMPORARY, LevelBar
@@ -34,7 +34,7 @@ from .logger_requests import CallEnded, LoggerRequests
 from .side_pane import RightPane
 
 if TYPE_CHECKING:
-    from ...sources.loggers.control import LoggerControl
+    from ...control.control_thread import LoggerControl
 
 TICK_S = 1.0
 
@@ -131,7 +131,7 @@ class LoggerPane(RightPane):
         super().__init__(id=id)
         self.clock = control.clock if control is not None else clock
         self.requests = LoggerRequests(control, self._from_control_thread, seen_loggers=seen_loggers)
-        self.view = self.requests.view
+        self.state = self.requests.state
         self._ticker: Timer | None = None
         #: A row's logger and robot asked for (``L``) before the graph was known.
         self._pending_logger: tuple[str, str] | None = None
@@ -185,11 +185,11 @@ class LoggerPane(RightPane):
 
     @property
     def selected(self) -> str | None:
-        return self.view.selected
+        return self.state.selected
 
     @property
     def nodes(self) -> tuple[GraphNode, ...]:
-        return self.view.nodes
+        return self.state.nodes
 
     @property
     def highlighted_logger(self) -> str | None:
@@ -197,7 +197,7 @@ class LoggerPane(RightPane):
 
     def rows(self) -> list[LoggerRow]:
         """The selected node's logger rows, as shown."""
-        return self.view.rows()
+        return self.state.rows()
 
     def show_nodes(self, nodes: Sequence[GraphNode], checking: Collection[str] | None = None) -> None:
         """The graph's nodes; ``checking`` names those whose logger services may yet appear."""
@@ -205,9 +205,9 @@ class LoggerPane(RightPane):
         self.requests.set_nodes(nodes, checking)
         self._render_nodes()
         pending, self._pending_logger = self._pending_logger, None
-        if pending is not None and self.is_open and self.view.nodes and self.open_for_logger(*pending):
+        if pending is not None and self.is_open and self.state.nodes and self.open_for_logger(*pending):
             pass  # the row's node, asked for before the graph came
-        elif not had_selection and self.is_open and self.view.nodes:
+        elif not had_selection and self.is_open and self.state.nodes:
             self.node_list.highlighted = 0  # the first nodes since the pane opened: show one
         self._render_loggers()
         self._update_ticker()
@@ -220,24 +220,24 @@ class LoggerPane(RightPane):
         if changed:
             with self.node_list.prevent(OptionList.OptionHighlighted):
                 self.node_list.highlighted = self.node_list.get_option_index(fqn)
-        node = self.view.selected_node
+        node = self.state.selected_node
         own = node.logger_name if node is not None else None
         self._render_loggers(highlight=logger if logger is not None else (None if not changed else own))
         return True
 
     def show_levels(self, fqn: str, levels: Mapping[str, int]) -> None:
         """Levels read from (or just set on) node ``fqn``."""
-        if self.view.set_levels(fqn, levels):
+        if self.state.set_levels(fqn, levels):
             self._render_loggers()
 
     def show_temporaries(self, entries: Sequence[TemporaryLevel]) -> None:
-        self.view.temporaries = tuple(entries)
+        self.state.temporaries = tuple(entries)
         self._render_loggers()
         self._update_ticker()
 
     def show_failure(self, text: str) -> None:
         """A failed call: said in the pane and as a notification."""
-        self.view.say(text, error=True)
+        self.state.say(text, error=True)
         self._render_notice()
         self.app.notify(text, title="Logger levels", severity="error", timeout=8, markup=False)
 
@@ -245,10 +245,10 @@ class LoggerPane(RightPane):
         """Open on the node whose messages carry this logger name (a table row's node, on the
         row's robot in a fleet)."""
         self.open(focus=False)
-        node = self.view.node_logging_as(logger, robot)
+        node = self.state.node_logging_as(logger, robot)
         if node is None:
             # No graph yet (a ROS 1 master is asked only once the pane is open): when it comes.
-            self._pending_logger = (logger, robot) if not self.view.nodes else None
+            self._pending_logger = (logger, robot) if not self.state.nodes else None
             self._render_notice()  # says so
             self.node_list.focus()
             return False
@@ -287,7 +287,7 @@ class LoggerPane(RightPane):
     # -- keys and clicks -------------------------------------------------------------------------
 
     def _target(self) -> tuple[str, str] | None:
-        target = self.view.target(self.highlighted_logger)
+        target = self.state.target(self.highlighted_logger)
         if target is None:
             self._render_loggers()  # says why
         return target
@@ -339,7 +339,7 @@ class LoggerPane(RightPane):
     @on(OptionList.OptionSelected, "#logger-nodes")
     def _node_chosen(self, message: OptionList.OptionSelected) -> None:
         message.stop()
-        if self.selected is not None and self.view.reads_when_asked(self.selected):
+        if self.selected is not None and self.state.reads_when_asked(self.selected):
             self.read_levels(self.selected, asked=True)  # Enter opens the node: its loggers are read
         self.logger_list.focus()
 
@@ -372,15 +372,15 @@ class LoggerPane(RightPane):
         self._render_loggers()
 
     def _render_nodes(self) -> None:
-        self.node_list.show(self.view.nodes, self.view.checking, self.view.selected)
-        if not self.view.nodes:
+        self.node_list.show(self.state.nodes, self.state.checking, self.state.selected)
+        if not self.state.nodes:
             self._render_heading()
 
     def _render_loggers(self, highlight: str | None = None) -> None:
-        node = self.view.selected_node
+        node = self.state.selected_node
         own = node.logger_name if node is not None else ""
         now = self.clock() if self.clock is not None else 0.0
-        self.logger_list.show(self.view.rows(), own, now, highlight)
+        self.logger_list.show(self.state.rows(), own, now, highlight)
         self._render_heading()
         self._render_notice()
 
@@ -390,10 +390,10 @@ class LoggerPane(RightPane):
         self._render_notice()
 
     def _render_heading(self) -> None:
-        self.heading.update(plain(self.view.heading(), no_wrap=True, overflow="ellipsis"))
+        self.heading.update(plain(self.state.heading(), no_wrap=True, overflow="ellipsis"))
 
     def _render_notice(self) -> None:
-        text, error = self.view.notice_text(
+        text, error = self.state.notice_text(
             self.requests.problem,
             hint_line(self.app, [*OptionList.BINDINGS, *self.BINDINGS], _READ_HINTS),
             looking=self.requests.looking,
@@ -418,11 +418,11 @@ class LoggerPane(RightPane):
 
     def _tick(self) -> None:
         requests = self.requests
-        if (requests.problem and requests.problem not in str(self.notice_line.content)) or not self.view.nodes:
+        if (requests.problem and requests.problem not in str(self.notice_line.content)) or not self.state.nodes:
             self._render_notice()  # a new problem, or still looking for the graph's nodes
         if requests.take_temporaries():
             self._render_loggers()
-        if self.view.checking and requests.refresh_checking():
+        if self.state.checking and requests.refresh_checking():
             self._render_checking()
-        if requests.new_child_loggers() or self.view.counting_down():
+        if requests.new_child_loggers() or self.state.counting_down():
             self._render_loggers()  # the new loggers, or the countdown

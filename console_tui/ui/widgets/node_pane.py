@@ -5,7 +5,7 @@ It shares the right side with the logger levels pane (opening one closes the oth
 counts are the model's ``NodeStats`` (of the messages kept, whatever the rules show), brought
 up to date and read again every second while the panel is open: what arrived while it was
 closed is counted then, ``COUNT_BUDGET_S`` at a time (the title says "counting" until it is
-done); solo and mute are rules (``model/toggles.py``), which the app applies when the panel
+done); solo and mute are rules (``model/rules/key_rules.py``), which the app applies when the panel
 asks (``Toggle``).
 """
 
@@ -29,10 +29,10 @@ from textual.widget import Widget
 from textual.widgets import Input, OptionList, Static
 from textual.widgets.option_list import Option
 
+from ...model.inert_text import one_line, shorten_name
 from ...model.levels import SEVERITY_TABLE
-from ...model.logger_levels import robot_qualified
-from ...model.node_stats import NodeCounts, NodeStats
-from ...model.text import one_line, shorten_name
+from ...model.loggers.logger_levels import robot_qualified
+from ...model.overview.node_stats import NodeCounts, NodeStats
 from ..focus import focus_now
 from ..keys import Hint, hint_line
 from ..severity_styles import severity_classes, severity_css

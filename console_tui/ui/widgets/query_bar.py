@@ -10,10 +10,10 @@ from textual.binding import Binding
 from textual.message import Message
 from textual.widgets import Input, Static
 
+from ...model.inert_text import one_line, plural
 from ...model.rules.history import QueryHistory
 from ...model.rules.query import QueryError, caret_line, parse_query
 from ...model.rules.ruleset import Entry
-from ...model.text import one_line, plural
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .input_line import InputLine, LineInput

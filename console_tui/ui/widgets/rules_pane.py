@@ -15,8 +15,8 @@ from textual.widget import Widget
 from textual.widgets import Label, OptionList, Static
 from textual.widgets.option_list import Option
 
+from ...model.inert_text import one_line
 from ...model.rules.ruleset import Entry, Role, RuleSet
-from ...model.text import one_line
 from ..keys import Hint, hint_line
 from .side_pane import SidePane
 
@@ -27,14 +27,14 @@ _HINTS: list[Hint] = [
     ("edit", "edit"),
     ("delete", "delete"),
     ("add", "add"),
-    ("toggle_highlighted_only", "highlighted only"),
+    ("console.highlighted_only", "highlighted only"),
     ("save_rules", "save"),
     ("load_rules", "open"),
     ("leave", "table"),
 ]
 
 
-#: How the pane names the rules the level and node keys make (``model/toggles.py``).
+#: How the pane names the rules the level and node keys make (``model/rules/key_rules.py``).
 _TOGGLE_NAMES = {"levels": "level keys", "solo": "solo", "mute": "mute"}
 
 

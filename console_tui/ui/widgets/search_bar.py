@@ -6,12 +6,12 @@ from dataclasses import dataclass
 
 from textual import on
 from textual.app import ComposeResult
-from textual.binding import Binding, BindingType
+from textual.binding import Binding
 from textual.message import Message
 from textual.widgets import Input, Static
 
 from ...model.rules.rule import RuleError
-from ...model.search import parse_search
+from ...model.view.search_walk import parse_search
 from ..keys import Hint, hint_line
 from ..plain import plain
 from .input_line import InputLine, LineInput
@@ -60,10 +60,11 @@ class SearchBar(InputLine):
 
     def key_hints(self) -> str:
         """``⏎ keeps the search · esc cancels · n/N next/previous afterwards``, from the bindings."""
-        app_bindings: list[BindingType] = getattr(self.app, "nav_bindings", list)()
         hints: list[Hint] = [("submit", "keeps the search"), ("cancel", "cancels")]
         line = hint_line(self.app, [*self.BINDINGS, *Input.BINDINGS], hints)
-        more = hint_line(self.app, app_bindings, [(("next_match", "previous_match"), "next/previous afterwards")])
+        more = hint_line(
+            self.app, self.app.BINDINGS, [(("nav.next_match", "nav.previous_match"), "next/previous afterwards")]
+        )
         return " · ".join(part for part in (line, more) if part)
 
     def show_hint(self, problem: str = "") -> None:

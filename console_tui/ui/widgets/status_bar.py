@@ -12,8 +12,8 @@ from rich.text import Text
 from textual.reactive import reactive
 from textual.widget import Widget
 
+from ...model.inert_text import one_line, plural
 from ...model.levels import SEVERITY_TABLE
-from ...model.text import one_line, plural
 from ...sources.status import SourceStatus
 from ..severity_styles import severity_classes, severity_css
 from .status_fit import COUNTS, DEMO, DETAIL, RATE, SOURCE, STATE, WHERE, Part, fit
@@ -142,8 +142,8 @@ def empty_hint(facts: StatusFacts, filtering: bool = False) -> str:
         topic = one_line(status.topic, 120) or "/rosout or /rosout_agg"
         if status.problem:
             return one_line(status.problem, 300)
-        if status.empty_text:
-            return one_line(status.empty_text, 300)
+        if status.hint:  # a source of no ROS topic says what it waits for
+            return one_line(status.hint, 300)
         if status.path == "starting":
             return f"starting{where}…"
         if not status.publishers:
@@ -220,9 +220,9 @@ def _source_parts(status: SourceStatus, styled: Callable[..., Text]) -> list[Par
     if status.path:
         path = one_line(status.path, 200)
         demo = path.startswith("demo")
-        # How messages are taken, and what a log warehouse has read (a source with words of its
-        # own for the empty table), are details; a demo's and a file's are where it reads.
-        priority = DETAIL if status.take_path or status.empty_text else DEMO if demo else WHERE
+        # How messages are taken, and what a log warehouse has read, are details; a demo's and
+        # a file's are where it reads.
+        priority = DETAIL if status.take_path or status.path_is_progress else DEMO if demo else WHERE
         parts.append(Part(styled((path, "where")), priority, styled(("demo", "where")) if demo else None))
     return parts
 

@@ -1,17 +1,14 @@
-"""The log table's vertical scrollbar: redrawn only when what it shows changes.
+"""The log table's vertical scrollbar: redrawn only when what it shows changes; and the
+``ScrollView`` that has one (``RowsScrollView``, the table's base), whose height changes
+without a layout of the screen.
 
-Textual's ``ScrollBar`` redraws itself whenever the scrolled widget's height, the window or
-the position change. While the table follows a long history's tail, the height changes on
-every drain of the intake, but the thumb stays one cell at the bottom: each redraw (a
-frame's longest part after the rows) draws the same column. This one keeps the values exact
-(a click or a drag reads them) and redraws only when the thumb's cells, to an eighth of a
-cell as Textual draws them, are not the same.
-
-And when it does redraw, it makes its column's lines straight from Textual's own
-``ScrollBarRender.render_bar`` (one segment a row) and keeps them until the next refresh,
-instead of through Rich's rendering and Textual's styles cache, at less than half the cost
-(the compositor asks for a few rows at a time, often). The figures: docs/architecture.md,
-"Our own widgets where Textual's cost a frame".
+It keeps the values exact (a click or a drag reads them) and redraws only when the thumb's cells,
+to an eighth of a cell as Textual draws them, are not the same: while the table follows a long
+history's tail its height changes on every drain of the intake, but the thumb stays one cell at
+the bottom. A redraw makes the column's lines straight from Textual's own
+``ScrollBarRender.render_bar`` (one segment a row) and keeps them until the next refresh, instead
+of going through Rich's rendering and Textual's styles cache. Why, and the figures:
+docs/decisions/0018-own-widgets.md.
 """
 
 from __future__ import annotations
@@ -23,13 +20,16 @@ from rich.color import Color
 from rich.console import RenderableType
 from rich.segment import Segment
 from rich.style import Style
-from textual.geometry import Region
+from textual.geometry import Region, Size
 from textual.reactive import Reactive
+from textual.scroll_view import ScrollView
 from textual.scrollbar import ScrollBar, ScrollBarRender
 from textual.strip import Strip
 
 #: Textual draws a thumb's ends in eighths of a cell.
 _EIGHTHS = len(ScrollBarRender.VERTICAL_BARS)
+#: How often the scrollbar follows changes that leave the rows on screen as they were (s).
+_QUIET_SCROLLBAR_PERIOD = 0.1
 
 
 class TableScrollBar(ScrollBar):
@@ -124,3 +124,63 @@ class TableScrollBar(ScrollBar):
 
     def watch_position(self) -> None:
         self._thumb_may_have_moved()
+
+
+class RowsScrollView(ScrollView):
+    """A ``ScrollView`` with a ``TableScrollBar``, whose height (rows arriving, many times a
+    second) changes without asking for a layout of the screen."""
+
+    _scrollbar_sync_due = False
+
+    @property
+    def vertical_scrollbar(self) -> ScrollBar:
+        """Textual's own code, with a ``TableScrollBar``: repainted only when its thumb moves."""
+        if self._vertical_scrollbar is None:
+            bar = TableScrollBar(vertical=True, name="vertical", thickness=self.scrollbar_size_vertical)
+            bar.display = False
+            self._vertical_scrollbar = bar
+            self.app._start_widget(self, bar)
+        return self._vertical_scrollbar
+
+    def _scroll_update(self, virtual_size: Size) -> None:
+        """Textual's, less its repaint of the vertical scrollbar on every call: the
+        ``TableScrollBar`` repaints itself when its thumb moves."""
+        self._refresh_scrollbars()
+        width, height = self.container_size
+        if self.show_vertical_scrollbar and self.styles.scrollbar_size_vertical:
+            self.vertical_scrollbar.window_virtual_size = virtual_size.height
+            self.vertical_scrollbar.window_size = height - self.scrollbar_size_horizontal
+        if self.show_horizontal_scrollbar and self.styles.scrollbar_size_horizontal:
+            self.horizontal_scrollbar.window_virtual_size = virtual_size.width
+            self.horizontal_scrollbar.window_size = width - self.scrollbar_size_vertical
+            self.horizontal_scrollbar.refresh()
+        self.scroll_x = self.validate_scroll_x(self.scroll_x)
+        self.scroll_y = self.validate_scroll_y(self.scroll_y)
+
+    def set_scroll(self, x: float | None, y: float | None) -> None:
+        """Textual's, and the scrollbar told (Textual's sets the offset alone)."""
+        super().set_scroll(x, y)
+        if y is not None and self.show_vertical_scrollbar:
+            self.vertical_scrollbar.position = self.scroll_y
+
+    def set_height(self, height: int, *, quiet: bool = False) -> None:
+        """The rows' height (the header's line included); ``quiet`` (the rows on screen stay
+        as they were) tells the scrollbar only a few times a second."""
+        size = Size(self.scrollable_content_region.width, height)
+        if size != self.virtual_size:
+            # Not ``self.virtual_size = size``: that reactive asks for a layout of the whole
+            # screen, many times a second while messages arrive. Only the scrollbars change.
+            self.set_reactive(ScrollView.virtual_size, size)
+            if not quiet:
+                self._scroll_update(size)
+        if quiet and not self._scrollbar_sync_due:
+            self._scrollbar_sync_due = True
+            self.set_timer(_QUIET_SCROLLBAR_PERIOD, self._sync_scrollbars)
+
+    def _sync_scrollbars(self) -> None:
+        """Scrollbars to the virtual size and scroll offset (redrawing the scrollbar region
+        redraws every widget under it, the table included)."""
+        self._scrollbar_sync_due = False
+        self._scroll_update(self.virtual_size)
+        if self.show_vertical_scrollbar:
+            self.vertical_scrollbar.position = self.scroll_y

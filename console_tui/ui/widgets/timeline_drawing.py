@@ -16,8 +16,8 @@ from rich.style import Style
 from textual.strip import Strip
 from textual.widget import Widget
 
+from ...model.overview.timeline import Timeline, TimelineColumns
 from ...model.timefmt import clock_text, duration_text
-from ...model.timeline import Timeline, TimelineColumns
 
 #: Eighths of a cell, bottom up.
 _LOWER = " ▁▂▃▄▅▆▇█"

@@ -13,10 +13,8 @@ the drawing is ``timeline_drawing.py``, mixed in):
 A click on a column, or Enter on the column picked with the arrows while the strip has the
 focus, asks the app to show that time in the table (``Jump``).
 
-Textual's ``Sparkline`` draws one series in a colour gradient by value, and plotext (through
-``textual-plotext``) is too slow to redraw while following 10,000 messages a second;
-``benchmarks/timeline.py`` measures both against this strip (docs/architecture.md, "Our own
-widgets where Textual's cost a frame").
+Why not Textual's ``Sparkline`` or plotext: docs/decisions/0018-own-widgets.md
+(``benchmarks/timeline.py`` measures both against this strip).
 """
 
 from __future__ import annotations
@@ -28,7 +26,7 @@ from textual.binding import Binding
 from textual.message import Message
 from textual.strip import Strip
 
-from ...model.timeline import Timeline, TimelineColumns
+from ...model.overview.timeline import Timeline, TimelineColumns
 from .timeline_drawing import SEVERITIES, TimelineDrawing
 
 

@@ -1,0 +1,1 @@
+"""Logger levels of ROS 2 nodes, through their logger services (rclpy)."""

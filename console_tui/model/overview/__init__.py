@@ -1,0 +1,1 @@
+"""Counts over the rows shown: the timeline, storms, node statistics, search matches as rows."""

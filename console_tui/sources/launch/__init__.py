@@ -1,0 +1,1 @@
+"""Running a launch and reading what it prints (``console-tui run -- COMMAND``): see ``launch_source``."""
