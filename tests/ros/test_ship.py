@@ -1,10 +1,11 @@
 """``console-tui ship`` end to end on loopback, with real nodes in real processes: two ROS 2
 robots (domains) and a ROS 1 robot (a roscore, a rospy node), each shipping through a real
 collector (rotel) to a receiver that counts what arrives; the same three robots shipped into
-chDB, read back by ``console-tui tail``."""
+chDB, read back by ``console-tui tail`` and in the table app."""
 
 from __future__ import annotations
 
+import asyncio
 import json
 import os
 import subprocess
@@ -12,12 +13,18 @@ import sys
 
 import pytest
 
+from console_tui.model.store.log_store import LogStore
+from console_tui.sources.warehouse_source import WarehouseSource
+from console_tui.ui.app import ConsoleApp
+from console_tui.warehouse.address import parse_address
+
 from support.fleet import ROS2_VALUES, LoopbackFleet
 from support.otlp_receiver import OtlpReceiver
 from support.ros1 import ros1_missing
 from support.rosproc import PATIENCE_S, ros_available, wait_until
 from support.rotel import ROTEL_MISSING, Rotel
 from support.ship_process import ShipProcess, number_after
+from support.ui import table_rows, until
 from support.warehouse import STORE_MISSING
 
 pytestmark = [pytest.mark.ros2, pytest.mark.ros1]
@@ -171,3 +178,38 @@ def test_three_robots_into_chdb_read_back_by_tail(fleet, tmp_path):
     )
     stamps = [p["stamp_ns"] for p in printed]
     assert stamps == sorted(stamps)
+    by_message = {p["msg"]: p for p in printed}
+    for messages in logged.values():
+        for message in messages:
+            row = by_message[message["msg"]]
+            if "level_name" in message:  # ROS 1: rospy's node, its file, function and line
+                assert (row["node"], row["function"]) == ("/talker", "read_commands")
+                assert row["file"].endswith("rospy_node.py") and row["line"] > 0
+                assert row["level"] == {"info": 20, "warn": 30, "error": 40, "fatal": 50}[message["level_name"]]
+            else:
+                assert row["node"] == "talker" and row["level"] == message["level"]
+                assert (row["file"], row["function"], row["line"]) == (
+                    message["file"],
+                    message["function"],
+                    message["line"],
+                )
+    rows = asyncio.run(rows_in_the_app(f"chdb://{store}", "stored", len(printed)))
+    for name, messages in logged.items():
+        for message in messages:
+            shown = [line for line in rows if message["msg"] in line]
+            # its robot in the Robot column, besides the message's own words
+            assert len(shown) == 1 and shown[0].count(name) == 2, (message["msg"], rows)
+
+
+async def rows_in_the_app(address: str, query: str, count: int) -> list[str]:
+    """The table's rows under ``query`` once ``count`` show: as ``console-tui chdb://...
+    --query QUERY`` makes the app (the Robot column shown, three robots)."""
+    source = WarehouseSource(parse_address(address))
+    app = ConsoleApp(store=LogStore(), sources=[source], utc=True, query=query)
+    async with app.run_test(size=(160, 40)) as pilot:
+        await until(
+            pilot,
+            lambda: len(table_rows(app)) == count,
+            what=lambda: f"{count} rows ({len(table_rows(app))} shown)",
+        )
+        return [line for _, line in table_rows(app).values()]
