@@ -13,7 +13,7 @@ from console_tui.ui.app import ConsoleApp
 from console_tui.warehouse.address import parse_address
 
 from support.otlp_receiver import free_port
-from support.ui import screen_text, table_rows, type_text, until
+from support.ui import run_command, screen_text, table_rows, type_text, until
 from support.warehouse import chdb_address, needs_store, ship_records
 
 pytestmark = needs_store
@@ -73,6 +73,8 @@ async def test_the_newest_rows_then_a_query_asked_of_the_warehouse_then_older_ro
         await pilot.press("home", "home")
         await until(pilot, lambda: len(app.main.store) > 20, what="older rows")
         assert app.main.store.get(app.main.table.cursor_seq).msg == oldest  # the cursor stayed on its row
+        await run_command(pilot, "Older rows from the log warehouse")  # the palette asks as well
+        await until(pilot, lambda: len(app.main.store) > 40, what="older rows from the palette")
         stamps = [r.stamp_ns for r in app.main.store]
         assert stamps == sorted(stamps)
         for _ in range(10):  # home, home again at the top: the page before it, until the oldest

@@ -2,9 +2,10 @@
 
 A log warehouse is read newest first (``sources.warehouse_source``): its older pages come
 after the newer ones, and when its rows are read again (other rules) the old ones go.
-Both are rewrites of the store (``LogStore.rewrite_from``, whose ``rewind_listeners`` the
-view, the overview and the node counts follow); ``marked`` seqs (the marks) are given so
-that only their moves are worked out.
+Both are rewrites of the store (``LogStore.put_before``, ``rewrite_from``, whose
+``rewind_listeners`` the view, the overview and the node counts follow); ``marked`` seqs (the
+marks) are given so that only their moves are worked out. Older records put before the kept
+ones cost what they are, not what the store holds (``put_before`` keeps the kept chunks whole).
 """
 
 from __future__ import annotations
@@ -32,8 +33,7 @@ def add_older(store: LogStore, batch: RecordColumns, marked: Iterable[int] = ())
     first, end = store.first_seq, store.end_seq
     if max(batch.stamps) > store.stamp_of(first):
         return add_in_time_order(store, batch, window=len(store), late_ns=0)
-    store.rewrite_from(first, RecordColumns.joined([older, store.columns(first, end)]))
-    shift = len(batch)
+    shift = store.put_before(older)
     return Placed(first, {seq: seq + shift for seq in marked if first <= seq < end})
 
 

@@ -13,12 +13,13 @@ its window again when what SQL can leave out changed. Nothing here waits for the
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any, Protocol
+from typing import Any, ClassVar, Protocol
 
 from ...model.rules.ruleset import RuleSet
 from ...model.store.late_records import Placed
 from ...model.store.older_records import add_older, drop_source
 from ...model.store.record_batch import RecordColumns
+from ..command_table import NAVIGATION, Command
 from .context import ConsoleContext
 from .intake import IntakeController
 
@@ -134,3 +135,19 @@ class WarehouseController:
     def rules_changed(self, rules: RuleSet) -> None:
         for warehouse in self.warehouses:
             warehouse.ask(rules)
+
+    def older_to_come(self) -> bool:
+        """A warehouse has rows older than those it gave."""
+        return any(not warehouse.at_start for warehouse in self.warehouses)
+
+    COMMANDS: ClassVar[tuple[Command[WarehouseController], ...]] = (
+        Command(
+            "warehouse.older",
+            top_reached,
+            label="Older rows from the log warehouse",
+            applies=older_to_come,
+            group=NAVIGATION,
+            about="The page before the oldest row (as Up, Page Up or Home on the oldest row ask for it)",
+            words="clickhouse chdb history earlier page back",
+        ),
+    )
