@@ -1,6 +1,6 @@
-"""The table ``otel_logs`` in ClickHouse (its HTTP interface) or chDB (its engine, in this
-process), through one client, clickhouse-connect: the DDL, inserts and queries run on
-ClickHouse itself either way.
+"""The table ``otel_logs`` in ClickHouse (its HTTP interface) or chDB (its engine, in a child
+process: ``chdb_process.py``), through one client, clickhouse-connect: the DDL, inserts and
+queries run on ClickHouse itself either way.
 
 Every query is bounded: in time (``max_execution_time`` on the server, the connection's own
 timeouts) and in rows (the caller's ``LIMIT``; ``max_result_rows`` as a second fence). chDB
@@ -17,7 +17,8 @@ from typing import Any
 from urllib.parse import urlsplit
 
 from .address import CHDB, Address
-from .outcome import TAKEN, Outcome
+from .chdb_process import ChdbProcess
+from .outcome import TAKEN, Outcome, WarehouseError
 from .schema import INSERT_COLUMNS, create_table_sql, quoted
 
 #: How long one query or insert may run, in seconds.
@@ -26,10 +27,6 @@ QUERY_TIMEOUT_S = 20.0
 CONNECT_TIMEOUT_S = 5.0
 #: No query returns more rows than this, whatever its LIMIT says.
 MAX_RESULT_ROWS = 2_000_000
-
-
-class WarehouseError(Exception):
-    """The warehouse could not be reached or could not answer; the text says why, in a line."""
 
 
 def _driver() -> Any:
@@ -50,6 +47,8 @@ def _driver() -> Any:
 
 def describe(error: BaseException) -> str:
     """An error of the driver or the engine in one line, without its stack or version trailer."""
+    if isinstance(error, WarehouseError):  # said already (the chDB process's)
+        return str(error)
     text = " ".join(str(error).split())
     if "UNKNOWN_TABLE" in text or "UNKNOWN_DATABASE" in text:
         return "no such table (nothing was shipped there yet?)"
@@ -57,7 +56,12 @@ def describe(error: BaseException) -> str:
     if system:
         return system.group(1).strip()
     text = text.split(" In scope ", 1)[0].split(" Stack trace", 1)[0]
-    if "another server instance" in text.lower() or "cannot lock file" in text.lower():
+    lowered = text.lower()
+    if (
+        "another server instance" in lowered
+        or "cannot lock file" in lowered
+        or "initializing embeddedserver" in lowered
+    ):
         return "the directory is in use by another process (chDB opens a directory in one process at a time)"
     return f"{type(error).__name__}: {text}"[:300]
 
@@ -72,17 +76,16 @@ class TableClient:
         self.table = f"{quoted(address.database)}.{quoted(address.table)}"
         settings: dict[str, Any] = {"max_execution_time": int(max(timeout, 1)), "max_result_rows": MAX_RESULT_ROWS}
         settings["result_overflow_mode"] = "break"
-        driver = _driver()
         try:
             if address.kind == CHDB:
                 if create:
                     os.makedirs(address.target, exist_ok=True)
                 elif not os.path.isdir(address.target):
                     raise WarehouseError(f"no such directory: {address.target}")
-                self._client = driver.get_client(dsn=f"chdb://{address.target}", settings=settings)
+                self._client = ChdbProcess(address.target, settings=settings, timeout=timeout)
             else:
                 parts = urlsplit(address.target)
-                self._client = driver.get_client(
+                self._client = _driver().get_client(
                     host=parts.hostname,
                     port=parts.port,
                     secure=parts.scheme == "https",

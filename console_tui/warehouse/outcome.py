@@ -1,4 +1,5 @@
-"""What the warehouse said to a batch sent: taken, try again (when), or refused for good."""
+"""What the warehouse said to a batch sent: taken, try again (when), or refused for good; and
+``WarehouseError``: it could not be reached or could not answer."""
 
 from __future__ import annotations
 
@@ -30,6 +31,10 @@ class Outcome:
 
 
 TAKEN = Outcome(True)
+
+
+class WarehouseError(Exception):
+    """The warehouse could not be reached or could not answer; the text says why, in a line."""
 
 
 def retry_after_seconds(value: str | None, now: float | None = None) -> float | None:

@@ -15,7 +15,8 @@ from console_tui.model.formats.otel_log import to_otel
 from console_tui.model.store.record import LogRecord
 from console_tui.warehouse.address import Address, parse_address
 from console_tui.warehouse.clickhouse import TableClient
-from console_tui.warehouse.otlp_encode import encode
+from console_tui.warehouse.otlp_encode import decode, encode
+from console_tui.warehouse.schema import rows_of as rows_of_request
 from console_tui.warehouse.spool import batch_token
 from console_tui.warehouse.targets import TableTarget
 
@@ -36,14 +37,26 @@ def table_client(address: Address) -> Iterator[TableClient]:
         client.close()
 
 
-def ship_records(address: Address, records: Sequence[LogRecord], *, host: str = "robot", batch: int = 5_000) -> None:
-    """Records into the table as ``console-tui ship`` sends them (the table made if missing)."""
+def ship_records(
+    address: Address,
+    records: Sequence[LogRecord],
+    *,
+    host: str = "robot",
+    batch: int = 5_000,
+    client: TableClient | None = None,
+) -> None:
+    """Records into the table as ``console-tui ship`` sends them (the table made if missing);
+    through ``client`` when given (chDB: the directory is open in one process at a time, and
+    a client is that process)."""
     target = TableTarget(address)
     try:
         for start in range(0, len(records), batch):
             part = records[start : start + batch]
             data = gzip.compress(encode([to_otel(record, host=host) for record in part]))
-            outcome = target.send(data, len(part), batch_token(data))
+            if client is not None:
+                outcome = client.insert(rows_of_request(decode(gzip.decompress(data))), batch_token(data))
+            else:
+                outcome = target.send(data, len(part), batch_token(data))
             assert outcome.taken, outcome.problem
     finally:
         target.close()

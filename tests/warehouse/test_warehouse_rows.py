@@ -128,10 +128,10 @@ def test_following_finds_newer_rows_and_those_that_came_late(tmp_path):
         assert not len(pages.newer(1_000))
         late = records(5, start=95, robot="cart")  # another robot's batch, behind the newest
         newer = records(10, start=100)
-        ship_records(address, late + newer)
+        ship_records(address, late + newer, client=client)
         found = pages.newer(1_000)
         assert rows_of(found.records()) == sorted(rows_of(late + newer))
         assert not len(pages.newer(1_000))
         too_late = records(1, start=100 - (LOOKBACK_NS // 1_000_000) - 5, robot="arm")
-        ship_records(address, too_late)
+        ship_records(address, too_late, client=client)
         assert not len(pages.newer(1_000))  # beyond the lookback: found when the window is read again
