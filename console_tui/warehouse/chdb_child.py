@@ -58,11 +58,11 @@ def main(argv: list[str]) -> int:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent's Ctrl+C: it closes this
     requests, answers = sys.stdin.buffer, sys.stdout.buffer
     sys.stdout = sys.stderr  # nothing but frames on the pipe
-    from .clickhouse import _driver, describe
+    from .driver import clickhouse_driver, describe
 
     directory, settings = argv[0], pickle.loads(bytes.fromhex(argv[1])) if len(argv) > 1 else {}
     try:
-        client = _driver().get_client(dsn=f"chdb://{directory}", settings=settings)
+        client = clickhouse_driver().get_client(dsn=f"chdb://{directory}", settings=settings)
     except Exception as error:  # the engine's, of every kind
         write_frame(answers, ("error", describe(error)))
         return 1

@@ -9,15 +9,14 @@ lets one process at a time open a directory: a second one is told so in words.
 
 from __future__ import annotations
 
-import logging
 import os
-import re
 from collections.abc import Sequence
 from typing import Any
 from urllib.parse import urlsplit
 
 from .address import CHDB, Address
 from .chdb_process import ChdbProcess
+from .driver import clickhouse_driver, describe
 from .outcome import TAKEN, Outcome, WarehouseError
 from .schema import INSERT_COLUMNS, create_table_sql, quoted
 
@@ -27,43 +26,6 @@ QUERY_TIMEOUT_S = 20.0
 CONNECT_TIMEOUT_S = 5.0
 #: No query returns more rows than this, whatever its LIMIT says.
 MAX_RESULT_ROWS = 2_000_000
-
-
-def _driver() -> Any:
-    # The driver (and urllib3 under it) logs what it also raises, on standard error: under
-    # the console's screen.
-    for name in ("clickhouse_connect", "urllib3.connectionpool"):
-        quiet = logging.getLogger(name)
-        quiet.propagate = False
-        quiet.addHandler(logging.NullHandler())
-    try:
-        import clickhouse_connect
-    except ImportError as error:
-        raise WarehouseError(
-            f"ClickHouse and chDB need the [store] extra: pip install 'console-tui[store]' ({error})"
-        ) from None
-    return clickhouse_connect
-
-
-def describe(error: BaseException) -> str:
-    """An error of the driver or the engine in one line, without its stack or version trailer."""
-    if isinstance(error, WarehouseError):  # said already (the chDB process's)
-        return str(error)
-    text = " ".join(str(error).split())
-    if "UNKNOWN_TABLE" in text or "UNKNOWN_DATABASE" in text:
-        return "no such table (nothing was shipped there yet?)"
-    system = re.search(r"\[Errno -?\d+\] ([^\"')]+)", text)
-    if system:
-        return system.group(1).strip()
-    text = text.split(" In scope ", 1)[0].split(" Stack trace", 1)[0]
-    lowered = text.lower()
-    if (
-        "another server instance" in lowered
-        or "cannot lock file" in lowered
-        or "initializing embeddedserver" in lowered
-    ):
-        return "the directory is in use by another process (chDB opens a directory in one process at a time)"
-    return f"{type(error).__name__}: {text}"[:300]
 
 
 class TableClient:
@@ -85,7 +47,7 @@ class TableClient:
                 self._client = ChdbProcess(address.target, settings=settings, timeout=timeout)
             else:
                 parts = urlsplit(address.target)
-                self._client = _driver().get_client(
+                self._client = clickhouse_driver().get_client(
                     host=parts.hostname,
                     port=parts.port,
                     secure=parts.scheme == "https",
