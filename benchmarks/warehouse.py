@@ -104,12 +104,13 @@ async def until(pilot, condition, timeout: float = 300.0) -> float:
 def chdb_children_rss_mb() -> float:
     """The resident memory of this process's chDB children (``warehouse/chdb_child.py``)."""
     total = 0.0
-    for child in Path(f"/proc/{os.getpid()}/task/{os.getpid()}/children").read_text().split():
-        try:
-            if b"chdb_child" in Path(f"/proc/{child}/cmdline").read_bytes():
-                total += process_rss_mb(int(child))
-        except OSError:
-            pass
+    for task in Path(f"/proc/{os.getpid()}/task").iterdir():  # the warehouse's thread started it
+        for child in (task / "children").read_text().split():
+            try:
+                if b"chdb_child" in Path(f"/proc/{child}/cmdline").read_bytes():
+                    total += process_rss_mb(int(child))
+            except OSError:
+                pass
     return total
 
 
@@ -167,19 +168,27 @@ async def in_the_app(directory: Path, queries: list[tuple[str, str]]) -> dict:
 
 
 def rss_of_a_million_in_memory() -> float:
-    """The app's RSS over 1,000,000 records made in memory (another process: a clean start)."""
+    """The app's RSS over 1,000,000 records made in memory (another process: a clean start),
+    records like the table's rows (``make_table``'s expressions, in Python)."""
     code = f"""
 import asyncio, sys
 sys.path[:0] = [{str(HERE)!r}, {str(HERE.parent / "tests")!r}]
 import os
 from _probe import process_rss_mb
 from console_tui.model.store.log_store import LogStore
-from console_tui.sources.intake_process.synthetic import synthetic_record
+from console_tui.model.store.record import LogRecord
 from console_tui.ui.app import ConsoleApp
+LEVELS = {{"FATAL": 50, "ERROR": 40, "WARN": 30, "DEBUG": 10, "INFO": 20}}
+def row(n):
+    level = "ERROR" if n % 500 == 7 else "WARN" if n % 50 == 3 else "DEBUG" if n % 5 == 0 else "INFO"
+    message = (f"planned path {{n}}: {{n % 311}} poses, costmap {{n % 977}} cells, goal ({{n % 13}}.5, -2.25)")
+    return LogRecord(1_765_000_000_000_000_000 + n * 4_320_000, LEVELS[level], f"nav.node{{n % 20}}", message,
+                     f"/opt/robot/src/nav/module_{{n % 6}}.cpp", ["plan", "update", "on_timer"][n % 3], n % 2000,
+                     source="chdb:///table", robot=f"robot{{n // 7 % 50}}")
 async def main():
     store = LogStore()
-    for start in range(0, 1_000_000, 50_000):
-        store.extend_records([synthetic_record(i) for i in range(start, start + 50_000)])
+    for start in range(4_000_000, 5_000_000, 50_000):
+        store.extend_records([row(i) for i in range(start, start + 50_000)])
     app = ConsoleApp(store=store, utc=True)
     async with app.run_test(size=(160, 48)) as pilot:
         await pilot.pause(1)

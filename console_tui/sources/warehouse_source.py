@@ -26,9 +26,10 @@ from ..warehouse.pages import TablePages
 from ..warehouse.pushdown import where, window_sql
 from .status import SourceStatus
 
-#: Rows of the first page: the first screen, and what a rule change shows at once (few, so
-#: that they are found in the table's newest part).
-FIRST_ROWS = 1_000
+#: Rows of the first page: the first screen, and what a rule change shows at once (a tall
+#: terminal's screenful: few, so that they are found in the table's newest part; the rest
+#: comes at once after, ``PREFETCH_ROWS``).
+FIRST_ROWS = 250
 #: Rows read after the first page without being asked (older pages, placed before it), and
 #: at most this many a query.
 PREFETCH_ROWS = 50_000
