@@ -2,9 +2,10 @@
 
 ``WarehouseSource`` asks the table for the newest rows of its window (``--since``/``--until``
 and the rules' SQL, ``warehouse.pushdown``) and hands them over as ``Delivery``s, which the
-app takes on its own clock (``take``), a small first page and then older ones up to
-``prefetch_rows``; then, while it follows, the newer rows every ``poll_s``, and older ones when asked (``ask_older``: the person scrolled past the oldest
-row). New rules (``ask``) that change what SQL can leave out start a new generation: the app
+app takes on its own clock (``take``), a small first page and then, a moment later
+(``prefetch_after_s``), older ones up to ``prefetch_rows``; then, while it follows, the newer
+rows every ``poll_s``, and older ones when asked (``ask_older``: the person scrolled past the
+oldest row). New rules (``ask``) that change what SQL can leave out start a new generation: the app
 drops the rows of the old one and takes the new one's. Nothing here waits for the app, and
 the app never waits for the warehouse: a slow or absent warehouse shows in ``status`` (what it
 is doing, for how long, what went wrong), and is asked again after a pause that grows to
@@ -34,6 +35,9 @@ FIRST_ROWS = 250
 #: at most this many a query.
 PREFETCH_ROWS = 50_000
 PREFETCH_PIECE = 10_000
+#: Prefetching starts this long after a first page: rules changed again meanwhile (a person
+#: typing one query after another) are not held up behind a prefetch's query.
+PREFETCH_AFTER_S = 1.0
 #: Rows of each older page, and of each poll while following.
 PAGE_ROWS = 50_000
 POLL_S = 2.0
@@ -78,6 +82,7 @@ class WarehouseSource:
         prefetch_rows: int = PREFETCH_ROWS,
         follow: bool = True,
         poll_s: float = POLL_S,
+        prefetch_after_s: float = PREFETCH_AFTER_S,
         client: Callable[[Address], TableClient] = TableClient,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
@@ -90,6 +95,9 @@ class WarehouseSource:
         #: Following: the newer rows are asked for (not with ``--until``).
         self.follow = follow and until_ns is None
         self.poll_s = poll_s
+        self.prefetch_after_s = prefetch_after_s
+        #: When the first page of the generation shown was read (``_clock``).
+        self._newest_at = 0.0
         self._connect = client
         self._clock = clock
         self.name = address.text
@@ -197,6 +205,12 @@ class WarehouseSource:
             if generation == self._asked_generation:
                 self._deliveries.append(Delivery(generation, kind, columns))
 
+    def _prefetch_due(self, pages: TablePages) -> float | None:
+        """Seconds until the next prefetch (0: now), or None: nothing is left to prefetch."""
+        if self.loaded >= self.prefetch_rows or pages.at_start:
+            return None
+        return max(self._newest_at + self.prefetch_after_s - self._clock(), 0.0)
+
     def _run(self) -> None:
         client: TableClient | None = None
         pages: TablePages | None = None
@@ -213,8 +227,9 @@ class WarehouseSource:
                     pages = TablePages(client, condition, source=self.name)
                     page = pages.newest(self.first_rows)
                     self.generation, self.loaded, self._older_asked = generation, len(page), False
+                    self._newest_at = self._clock()
                     self._deliver(generation, NEWEST, page)
-                elif self._older_asked or (self.loaded < self.prefetch_rows and not pages.at_start):
+                elif self._older_asked or self._prefetch_due(pages) == 0:
                     asked, self._older_asked = self._older_asked, False
                     room = self.max_rows - self.loaded
                     if room > 0 and not pages.at_start:
@@ -245,9 +260,11 @@ class WarehouseSource:
                 continue
             if self._asked_generation != self.generation or self._older_asked:
                 continue
-            if self.loaded < self.prefetch_rows and not self.at_start:
+            due = self._prefetch_due(pages)
+            if due == 0:
                 continue
-            self._wake.wait(self.poll_s if self.follow else None)
+            waits = [wait for wait in (due, self.poll_s if self.follow else None) if wait is not None]
+            self._wake.wait(min(waits) if waits else None)
             self._wake.clear()
         self._running = False
         if client is not None:
