@@ -115,3 +115,23 @@ async def test_a_warehouse_that_does_not_answer_is_said_and_the_keys_work():
         await pilot.press("enter")
         await until(pilot, lambda: app.main.filtering.rules.active_rules(), what="the query applied")
         assert "did not answer" in screen_text(app)
+
+
+async def test_older_rows_wait_while_a_records_details_are_open(tmp_path):
+    """The details hold a record's seq (n and p step from it): rows put before it would move
+    it, so they are placed once the table is shown again."""
+    address = chdb_address(tmp_path)
+    ship_records(address, fleet_records(120))
+    app, source = warehouse_app(address)
+    async with app.run_test(size=(100, 30)) as pilot:
+        await until(pilot, lambda: "forklift message 119" in screen_text(app), what="the newest row")
+        await pilot.press("enter")
+        await until(pilot, lambda: "Severity" in screen_text(app), what="the details")
+        assert source.ask_older()  # as the prefetch would, while the details are open
+        await until(pilot, lambda: source.loaded == 120 and not source._older_asked, what="the older page read")
+        await pilot.press("p")
+        await until(pilot, lambda: "cart message 118" in screen_text(app), what="the record before")
+        assert len(app.main.store) == 60  # not placed yet
+        await pilot.press("escape")
+        await until(pilot, lambda: len(app.main.store) == 120, what="the older page placed")
+        assert app.main.store.get(app.main.table.cursor_seq).msg == "cart message 118"

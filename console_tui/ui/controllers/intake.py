@@ -206,9 +206,8 @@ class IntakeController:
                 self._marks.move(placed.moved)
             self._view.update()
             self._announce.placing()
-        added = max(len(self._store) - before, 0)
-        self._arrivals.append((self._clock(), added))
-        self._announce.taken_in(TakenIn(added, placed is not None))
+        # (History put in place, not arrivals: the receive rate leaves them out.)
+        self._announce.taken_in(TakenIn(max(len(self._store) - before, 0), placed is not None))
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second

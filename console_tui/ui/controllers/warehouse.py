@@ -71,7 +71,11 @@ class WarehouseController:
             c.announce.rules_changed.subscribe(self.rules_changed)
 
     def tick(self) -> None:
-        """Take in what each warehouse delivered since the last tick."""
+        """Take in what each warehouse delivered since the last tick; not while another screen
+        is over the table's (a record's details, a dialog): it holds seqs that rows placed
+        before would move."""
+        if not self._table_shown():
+            return
         for warehouse in self.warehouses:
             for delivery in warehouse.take():
                 self._take(warehouse, delivery.kind, delivery.generation, delivery.columns)
@@ -96,6 +100,12 @@ class WarehouseController:
         elif kind == OLDER:
             self._older(columns)
         self._changed()
+
+    def _table_shown(self) -> bool:
+        try:
+            return self._table.screen.is_active
+        except Exception:  # not mounted yet, or being taken down
+            return False
 
     def _drop(self, source: str) -> None:
         marks = self._marks
