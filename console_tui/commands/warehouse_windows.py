@@ -43,7 +43,7 @@ class Windows:
                 self._fail(address.text, error)
 
     def _fail(self, where: str, error: WarehouseError) -> None:
-        self._complain(f"{where}: the log warehouse did not answer: {error}")
+        self._complain(f"the log warehouse at {where}: {error}")
         self.failed = True
 
     def streams(self) -> list[Iterator[list[LogRecord]]]:
@@ -69,7 +69,7 @@ class Windows:
             try:
                 found.extend(reader.newer().records())
             except WarehouseError as error:  # said, and asked again at the next poll
-                self._complain(f"{reader.address.text}: the log warehouse did not answer: {error}")
+                self._complain(f"the log warehouse at {reader.address.text}: {error}")
         found.sort(key=_stamp)
         return found
 

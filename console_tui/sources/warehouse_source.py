@@ -251,7 +251,7 @@ class WarehouseSource:
                 retry = RETRY_S
             except WarehouseError as error:
                 where = self.address.short_text(32)
-                self._set("", f"{where} did not answer: {error} (asking again in {retry:.0f} s)")
+                self._set("", f"the log warehouse at {where}: {error}; asking again in {retry:.0f} s")
                 if client is not None:
                     client.close()
                 client, pages = None, None
