@@ -42,7 +42,7 @@ from .controllers.rules import RulesController
 from .controllers.search import SearchController
 from .controllers.table import TableController
 from .controllers.toggles import TogglesController
-from .controllers.warehouse import WarehouseController
+from .controllers.warehouse import WarehouseController, warehouses_of
 from .focus import focus_now
 from .gc_policy import CollectionPolicy
 from .widgets.key_footer import KeyFooter
@@ -100,7 +100,10 @@ class ConsoleScreen(Screen[None]):
         #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self.robots = list(robots)
         self.table.painter.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
-        if len(self.robots) > 1:
+        #: The Robot column from the start: a fleet's robots, or a log warehouse's (a fleet's
+        #: logs, even when the rows asked for are one robot's).
+        self._robot_column = len(self.robots) > 1 or bool(warehouses_of(self.sources))
+        if self._robot_column:
             self.table.painter.set_column_shown("robot", True)
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
@@ -158,7 +161,7 @@ class ConsoleScreen(Screen[None]):
         )
         self.filtering = RulesController(context, self.query_bar, self.rules_pane, self.query_history)
         self.table_control = TableController(
-            context, source_notes=self.files.source_notes, robot_column=len(self.robots) > 1
+            context, source_notes=self.files.source_notes, robot_column=self._robot_column
         )
         self.toggles = TogglesController(
             context,
