@@ -34,8 +34,8 @@ def add_location_arguments(parser: argparse.ArgumentParser) -> None:
         help="this unit's entries of this machine's journal (repeatable; the same as FILE journal:NAME)",
     )
     window = parser.add_argument_group(
-        "the window read from the journal and from a log warehouse (FILE clickhouse://host:8123/db, "
-        "clickhouses://..., chdb:///directory, ?table=NAME)"
+        "the window of the journal and of a log warehouse (FILE clickhouse://host:8123/db, clickhouses://, "
+        "chdb:///DIR; ?table=NAME)"
     )
     window.add_argument(
         "--since",
