@@ -16,11 +16,10 @@ from collections.abc import Iterable, Sequence
 from ..model.formats import SAVE_FORMATS, FormatError, Problem, save_records
 from ..model.formats.save import save_format_for
 from ..model.inert_text import one_line, plural
-from ..model.store.log_store import DEFAULT_MAX_MESSAGES
 from ..model.store.record import LogRecord
 from ..sources.files import LogFile, latest_run, load_records, open_logs
 from ..sources.files.journal_file import journal_file
-from .arguments import add_last_argument, add_log_format_argument, positive_int
+from .arguments import add_last_argument, add_log_format_argument
 from .location_options import add_location_arguments, apply_location_arguments
 from .warehouse_windows import Windows, merged
 
@@ -57,14 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(default: jsonl for .jsonl/.ndjson/.json, else rqt)",
     )
     add_log_format_argument(parser)
-    add_location_arguments(parser)
-    parser.add_argument(
-        "--max-messages",
-        metavar="N",
-        type=positive_int,
-        default=DEFAULT_MAX_MESSAGES,
-        help=f"of a log warehouse: the newest N records of the window at most (default {DEFAULT_MAX_MESSAGES:,})",
-    )
+    add_location_arguments(parser, window_rows=True)
     return parser
 
 

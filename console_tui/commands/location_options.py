@@ -12,17 +12,20 @@ import argparse
 import re
 
 from ..model.rules.query import QueryError, parse_time
+from ..model.store.log_store import DEFAULT_MAX_MESSAGES
 from ..sources.journal.journal_location import journal_location, local_units
 from ..sources.locations import FILE, JOURNAL, WAREHOUSE, split_locations
 from ..warehouse.address import AddressError, parse_address
+from .arguments import positive_int
 
 #: An age as the query line writes one (``2h``), and as journalctl does (``-2h``): the same.
 _AGE = re.compile(r"-?\d+(?:\.\d+)?[smhd]")
 
 
-def add_location_arguments(parser: argparse.ArgumentParser) -> None:
+def add_location_arguments(parser: argparse.ArgumentParser, *, window_rows: bool = False) -> None:
     """``--unit`` (the journal) and ``--since``/``--until`` (the journal's start, a log
-    warehouse's window)."""
+    warehouse's window); with ``window_rows``, ``--max-messages``: the newest rows of a
+    warehouse's window read (the app's own bounds its store, and the window with it)."""
     journal = parser.add_argument_group(
         "the systemd journal (FILE 'journal:' is this machine's journal, 'journal:UNIT' a unit's entries, "
         "'journal:PATH' a journal file or directory; a *.journal file or a journal directory is read as a file)"
@@ -49,6 +52,14 @@ def add_location_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="TIME",
         help="a log warehouse's window ends at this time, written as --since (default: now, and on)",
     )
+    if window_rows:
+        window.add_argument(
+            "--max-messages",
+            metavar="N",
+            type=positive_int,
+            default=DEFAULT_MAX_MESSAGES,
+            help=f"of a log warehouse: the newest N records of the window at most (default {DEFAULT_MAX_MESSAGES:,})",
+        )
 
 
 def apply_location_arguments(

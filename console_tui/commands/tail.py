@@ -27,7 +27,6 @@ from ..model.levels import parse_severity
 from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
 from ..model.store.intake_queue import IntakeQueue
-from ..model.store.log_store import DEFAULT_MAX_MESSAGES
 from ..model.store.record import LogRecord
 from ..sources.files import LogFile, TextLogFile, latest_run, load_records, open_logs
 from ..sources.files.follow import FollowedFile
@@ -44,7 +43,6 @@ from .arguments import (
     check_fleet_arguments,
     check_rule_arguments,
     command_parser,
-    positive_int,
 )
 from .closed_pipe import quiet_stdout, reader_gone
 from .live_reports import LiveReports
@@ -127,14 +125,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
     add_log_format_argument(parser)
     add_watch_arguments(parser)
-    add_location_arguments(parser)
-    parser.add_argument(
-        "--max-messages",
-        metavar="N",
-        type=positive_int,
-        default=DEFAULT_MAX_MESSAGES,
-        help=f"of a log warehouse: the newest N records of the window at most (default {DEFAULT_MAX_MESSAGES:,})",
-    )
+    add_location_arguments(parser, window_rows=True)
     return parser
 
 

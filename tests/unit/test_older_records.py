@@ -18,6 +18,8 @@ from console_tui.model.store.record import LogRecord
 from console_tui.model.store.record_batch import RecordColumns
 from console_tui.model.view.log_view import LogView
 
+from support.followers import assert_follow_as_made_again
+
 S = 1_000_000_000
 BASE = 1_765_000_000 * S
 
@@ -118,22 +120,6 @@ def test_the_view_overview_and_node_counts_follow_older_pages_and_a_source_taken
         for follower in (storms, timeline):
             follower.sync()
         stats.update()
-        expected = fresh(store)
-        expected_view = LogView(expected, view.rules)
-        while not expected_view.refilter_step(1.0):
-            pass
-        expected_storms, expected_timeline = StormRows(expected, expected_view), Timeline(expected, expected_view)
-        for follower in (expected_storms, expected_timeline):
-            follower.sync()
-        expected_stats = NodeStats(expected)
-        expected_stats.update()
-
-        def shown(v) -> list[tuple[int, str, str]]:
-            return [(r.stamp_ns, r.node, r.msg) for r in (v.store.get(v.seq_at(row)) for row in range(len(v)))]
-
-        assert shown(view) == shown(expected_view)
-        assert shown(storms) == shown(expected_storms) and storms.storm_count == expected_storms.storm_count
-        assert timeline.total == expected_timeline.total
-        assert [(n.node, n.counts) for n in stats.nodes()] == [(n.node, n.counts) for n in expected_stats.nodes()]
+        assert_follow_as_made_again(view, storms, timeline, stats, fresh(store))
         dropped = drop_source(store, "other")
         assert dropped.dropped in (300, 0)
