@@ -17,7 +17,7 @@ import signal
 import socket
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 from ..model.atomic_file import atomic_output
 from ..model.inert_text import one_line, plural
@@ -184,12 +184,7 @@ def main(argv: Sequence[str]) -> int:
             robot = check_robot_name(args.robot)
         except FleetError as error:
             parser.error(f"--robot: {error}")
-    headers = environment_headers()
-    for item in args.header:
-        key, equals, value = item.partition("=")
-        if not equals or not key.strip():
-            parser.error(f"--header: expected K=V, got {item!r}")
-        headers[key.strip()] = value
+    headers = request_headers(parser, args.header)
     try:
         spool = Spool(args.spool or default_spool(address.text), args.spool_size)
     except SpoolError as error:
@@ -223,6 +218,21 @@ def main(argv: Sequence[str]) -> int:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
     return EXIT_OK
+
+
+def request_headers(
+    parser: argparse.ArgumentParser, given: Sequence[str], environ: Mapping[str, str] | None = None
+) -> dict[str, str]:
+    """The HTTP headers sent to an OTLP collector: ``OTEL_EXPORTER_OTLP_HEADERS`` (and
+    ``..._LOGS_HEADERS``), then each ``--header K=V`` (the command line wins); a ``--header``
+    without ``=`` or a name exits 2 saying so."""
+    headers = environment_headers(environ)
+    for item in given:
+        key, equals, value = item.partition("=")
+        if not equals or not key.strip():
+            parser.error(f"--header: expected K=V, got {item!r}")
+        headers[key.strip()] = value
+    return headers
 
 
 def _run(shipper: Shipper, lives: Sequence[LiveIntake], stop: SignalStop, args: argparse.Namespace) -> None:

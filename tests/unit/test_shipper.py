@@ -94,9 +94,7 @@ def test_retry_after_as_a_date():
 
 
 def test_the_command_line(tmp_path, capsys):
-    for argv in (
-        ["ftp://x"],
-        ["clickhouse:///nohost"],
+    for argv in (  # bad addresses and headers: test_warehouse_command_lines.py
         ["http://c:4318", "--header", "novalue"],
         ["http://c", "--robot", "-x"],
     ):
