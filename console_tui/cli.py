@@ -27,7 +27,7 @@ from .commands.arguments import (
     robot_files,
     robots_from_names,
 )
-from .commands.journal_options import add_journal_arguments, apply_journal_arguments
+from .commands.location_options import add_location_arguments, apply_location_arguments
 from .model.store.history_dir import KEPT_BYTES
 from .model.store.log_store import DEFAULT_MAX_MESSAGES, MEMORY_BOUND
 
@@ -38,6 +38,7 @@ SUBCOMMANDS: dict[str, str] = {
     "tail": "prints the live log stream or log files, filtered, on standard output",
     "rosout": "runs the rosout node for ROS 2: /rosout_agg and rosout.log",
     "clean": "checks and purges the ROS log directory (rosclean)",
+    "ship": "sends the log stream to the log warehouse (OTLP, ClickHouse, chDB), spooled on disk",
     "serve": "serves the console to web browsers, one console per tab (the [web] extra)",
 }
 #: Other names of subcommands: ``ros2 log``'s words for them.
@@ -104,7 +105,8 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
                 "ROS 2 log files and launch logs, ROS 1 rosout.log and run logs, .bag, .mcap, .db3, a rosbag2 "
                 "directory, the systemd journal (*.journal, a journal directory); a folder (a ROS 1 run, a ROS 2 "
                 "launch, the whole log directory) opens every log in it; journal:, journal:UNIT, journal:PATH "
-                "follow the journal live"
+                "follow the journal live; clickhouse://host:8123/db, clickhouses://..., chdb:///directory "
+                "(?table=NAME) read a log warehouse"
             ),
         )
     add_log_format_argument(parser)
@@ -134,7 +136,7 @@ def build_parser(*, files: bool = True) -> argparse.ArgumentParser:
     add_ros_version_arguments(parser)
     add_fleet_arguments(parser)
     add_robot_argument(parser)
-    add_journal_arguments(parser)
+    add_location_arguments(parser)
     parser.add_argument(
         "--topic",
         metavar="NAME",
@@ -307,7 +309,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(args_list)
     if launching:
         check_launch(parser, args)
-    apply_journal_arguments(parser, args, follow=True)
+    apply_location_arguments(parser, args, follow=True)
     args.file_robots = robots_from_names(args.files, file_robots) if args.robots_from_names else file_robots
     check_rule_arguments(parser, args)
     if args.demo_domain is not None and not args.demo:

@@ -28,9 +28,16 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
     logger_control = None
     files = list(getattr(args, "files", None) or [])
     robots = getattr(args, "robots", None) or []
+    warehouses = getattr(args, "warehouses", None) or []
     journals = getattr(args, "journals", None) or []
     launch = getattr(args, "launch", None) or []
-    live = args.demo or getattr(args, "live", False) or (not files and not journals) or bool(robots) or bool(launch)
+    live = (
+        args.demo
+        or getattr(args, "live", False)
+        or not (files or journals or warehouses)
+        or bool(robots)
+        or bool(launch)
+    )
     # Native code (rcl, Fast DDS) prints to the terminal below Textual: caught as records.
     native = NativeOutput(queue) if live and end_process and NativeOutput.possible() else None
     if native is not None:
@@ -46,6 +53,8 @@ def run_app(args: argparse.Namespace, *, end_process: bool = False) -> int:
             journal = open_journal(queue, query, log_format=getattr(args, "log_format", None) or "")
             cleanups.append(journal.close)
             sources.append(journal.source)
+        if warehouses:
+            sources.extend(_warehouses(args, warehouses))
         from .ui.app import ConsoleApp
 
         app = ConsoleApp(
@@ -136,6 +145,25 @@ def end_now(code: int) -> None:
         except (OSError, ValueError):
             pass
     os._exit(code)
+
+
+def _warehouses(args: argparse.Namespace, addresses: list) -> list:
+    """A source for each log warehouse given (started with the others after the first frame),
+    the command line's rules going down into its SQL from the first query on."""
+    from .model.rules.ruleset import RuleSet
+    from .sources.warehouse_source import WarehouseSource
+
+    rules = (getattr(args, "rule_set", None) or RuleSet()).with_query(getattr(args, "query_entries", ()))
+    return [
+        WarehouseSource(
+            address,
+            since_ns=getattr(args, "since_ns", None),
+            until_ns=getattr(args, "until_ns", None),
+            rules=rules,
+            max_rows=args.max_messages,
+        )
+        for address in addresses
+    ]
 
 
 def _start_fleet(args: argparse.Namespace, queue: IntakeQueue, sources: list, cleanups: list) -> Any:

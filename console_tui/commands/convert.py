@@ -20,7 +20,8 @@ from ..model.store.record import LogRecord
 from ..sources.files import LogFile, latest_run, load_records, open_logs
 from ..sources.files.journal_file import journal_file
 from .arguments import add_last_argument, add_log_format_argument
-from .journal_options import add_journal_arguments, apply_journal_arguments
+from .location_options import add_location_arguments, apply_location_arguments
+from .warehouse_windows import Windows, merged
 
 CLEAN, PROBLEMS, NOTHING_WRITTEN = 0, 1, 2
 #: Longest problem text printed (a file's own text may be quoted in it).
@@ -43,7 +44,8 @@ def build_parser() -> argparse.ArgumentParser:
         "inputs",
         nargs="*",
         metavar="IN",
-        help="log files, recordings, or folders of them (a ROS run folder, the whole log directory)",
+        help="log files, recordings, or folders of them (a ROS run folder, the whole log directory), or a "
+        "log warehouse: clickhouse://host:8123/db, clickhouses://..., chdb:///directory (?table=NAME)",
     )
     add_last_argument(parser)
     parser.add_argument("-o", "--output", required=True, metavar="OUT", help="file to write ('-': standard output)")
@@ -54,7 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
         "(default: jsonl for .jsonl/.ndjson/.json, else rqt)",
     )
     add_log_format_argument(parser)
-    add_journal_arguments(parser)
+    add_location_arguments(parser, window_rows=True)
     return parser
 
 
@@ -67,24 +69,26 @@ def main(argv: Sequence[str]) -> int:
     """Convert as the arguments say; returns the exit status (see the module's text)."""
     parser = build_parser()
     args = parser.parse_args(list(argv))
-    args.files = args.inputs
-    apply_journal_arguments(parser, args, follow=False)  # journal: read to its end, as a file
+    apply_location_arguments(parser, args, follow=False, name="inputs")  # journal: read to its end, as a file
     inputs = list(args.files)
-    named = inputs + [location for location in args.inputs if location.startswith("journal:")]
+    named = list(args.inputs)  # as given: files, journal:, warehouses
     if args.last:
         try:
-            inputs += [str(path) for path in latest_run()]
+            latest = [str(path) for path in latest_run()]
         except FormatError as error:
             say(str(error))
             return NOTHING_WRITTEN
-    if not inputs and not args.journals:
+        inputs += latest
+        named += latest
+    if not inputs and not args.journals and not args.warehouses:
         parser.error("give the files to convert, or --last")
     opened = open_logs(inputs, log_format=args.log_format)
     opened.files += [journal_file(query, log_format=args.log_format or "") for query in args.journals]
+    windows = Windows(args, None, say, max_rows=args.max_messages)
     files, failures = opened.files, opened.failures
     save_format = args.format or ("rqt" if args.output == "-" else save_format_for(args.output))
     try:
-        records = (record for batch in load_records(files) for record in batch)
+        records = (record for batch in merged([load_records(files), *windows.streams()]) for record in batch)
         first = next(records, None)  # nothing is written before there is something to write
         if first is None:
             _report(failures, files)
@@ -100,9 +104,10 @@ def main(argv: Sequence[str]) -> int:
         say(f"cannot write {args.output}: {error.strerror or error}")
         return NOTHING_WRITTEN
     finally:
+        windows.close()
         for file in files:
             file.close()
-    found = _report(failures, files)
+    found = _report(failures, files) + windows.failed
     for file in files:
         for note in file.notes():
             say(f"{file.source}: note: {note}")
@@ -112,7 +117,10 @@ def main(argv: Sequence[str]) -> int:
             f"note: {plural(len(opened.skipped), 'file')} in the folders were not read (empty, or not logs by name): {shown}"
         )
     if args.output != "-":
-        say(f"{plural(count, 'record')} from {plural(len(files), 'file')} written to {args.output} ({save_format})")
+        read_from = plural(len(files), "file") + (
+            f" and {plural(len(args.warehouses), 'log warehouse')}" if args.warehouses else ""
+        )
+        say(f"{plural(count, 'record')} from {read_from} written to {args.output} ({save_format})")
     return PROBLEMS if found else CLEAN
 
 

@@ -37,9 +37,12 @@ _CHECK = (
     "import sys\n"
     "from console_tui.cli import build_parser\n"
     "from console_tui.commands.arguments import check_rule_arguments\n"
+    "from console_tui.commands.location_options import apply_location_arguments\n"
     "parser = build_parser()\n"
     "parser.prog = 'console-tui'\n"
-    "check_rule_arguments(parser, parser.parse_args(sys.argv[1:]))\n"
+    "args = parser.parse_args(sys.argv[1:])\n"
+    "apply_location_arguments(parser, args, follow=True)\n"
+    "check_rule_arguments(parser, args)\n"
 )
 
 

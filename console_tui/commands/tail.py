@@ -16,9 +16,7 @@ import argparse
 import os
 import signal
 import sys
-import time
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
 from typing import BinaryIO, cast
 
 from ..model.formats import FormatError
@@ -30,11 +28,11 @@ from ..model.rules.ruleset import Decoration, RuleSet
 from ..model.rules.stream import StreamFilter
 from ..model.store.intake_queue import IntakeQueue
 from ..model.store.record import LogRecord
-from ..sources.files import LogFile, TextLogFile, latest_run, load_records, merge_by_time, open_logs
+from ..sources.files import LogFile, TextLogFile, latest_run, load_records, open_logs
 from ..sources.files.follow import FollowedFile
 from ..sources.journal.journal_location import journal_location
 from ..sources.journal.journalctl import JournalUnavailable, find_journalctl, local_journal_problem
-from ..sources.live import LiveIntake, RosUnavailable, open_fleet, open_journal, open_live
+from ..sources.live import LiveIntake, RosUnavailable, open_journal, open_stream
 from ..system.signal_stop import SignalStop
 from .arguments import (
     EXIT_NO_ROS,
@@ -47,7 +45,9 @@ from .arguments import (
     command_parser,
 )
 from .closed_pipe import quiet_stdout, reader_gone
-from .journal_options import add_journal_arguments, apply_journal_arguments
+from .live_reports import LiveReports
+from .location_options import add_location_arguments, apply_location_arguments
+from .warehouse_windows import Windows, merged
 from .watch_options import add_watch_arguments, apply_watch_arguments
 
 EXIT_OK = 0
@@ -57,8 +57,6 @@ EXIT_USAGE = 2
 #: How often followed files and the live queue are looked at.
 POLL_S = 0.1
 FORMAT_VARIABLE = "RCUTILS_CONSOLE_OUTPUT_FORMAT"
-#: Losses are told on stderr at most this often.
-LOSS_REPORT_S = 5.0
 
 
 EPILOG = f"""--format tokens, mixed as you like (\\n and \\t are decoded):
@@ -87,7 +85,8 @@ def build_parser() -> argparse.ArgumentParser:
         "files",
         nargs="*",
         metavar="FILE",
-        help="log files, recordings, or folders of them (any format the app opens; a folder: every log in it)",
+        help="log files, recordings, or folders of them (any format the app opens; a folder: every log in it), "
+        "or a log warehouse: clickhouse://host:8123/db, clickhouses://..., chdb:///directory (?table=NAME)",
     )
     add_last_argument(parser)
     parser.add_argument("--live", action="store_true", help="with FILEs: the live stream too, after them")
@@ -126,7 +125,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--utc", action="store_true", help="dates and query times in UTC rather than local time")
     add_log_format_argument(parser)
     add_watch_arguments(parser)
-    add_journal_arguments(parser)
+    add_location_arguments(parser, window_rows=True)
     return parser
 
 
@@ -190,12 +189,12 @@ def main(argv: Sequence[str]) -> int:
             args.files = [*args.files, *(str(path) for path in latest_run())]
         except FormatError as error:
             parser.error(f"--last: {one_line(str(error))}")
-    apply_journal_arguments(parser, args, follow=True)
+    apply_location_arguments(parser, args, follow=True)
     if args.follow:  # a journal file or directory is followed by journalctl itself
         journals = [(path, journal_location(path)) for path in args.files]
         args.journals += [found.query(follow=True) for _, found in journals if found is not None]
         args.files = [path for path, found in journals if found is None]
-    if args.follow and not args.files and not args.journals:
+    if args.follow and not (args.files or args.journals or args.warehouses):
         parser.error("--follow needs FILEs to follow (the live stream is followed anyway)")
     problem = _journal_problem(args.journals)
     if problem:
@@ -205,7 +204,7 @@ def main(argv: Sequence[str]) -> int:
     line: PrintFormat | None = None
     if not args.json:
         template = args.format if args.format is not None else (os.environ.get(FORMAT_VARIABLE) or None)
-        if args.robots and "{robot}" not in (template or ""):  # a fleet's lines say their robot
+        if (args.robots or args.warehouses) and "{robot}" not in (template or ""):  # a fleet's lines say their robot
             template = ROBOT_PREFIX + (template or DEFAULT_TEMPLATE)
         try:
             color = use_color(args.color, sys.stdout, os.environ)
@@ -213,7 +212,7 @@ def main(argv: Sequence[str]) -> int:
         except TemplateError as error:
             parser.error(f"--format: {error}" if args.format is not None else f"${FORMAT_VARIABLE}: {error}")
     stream = cast(BinaryIO, getattr(sys.stdout, "buffer", sys.stdout))
-    run = _Run(Printer(stream, line), StreamFilter(rules))
+    run = _Run(Printer(stream, line), StreamFilter(rules), rules)
     previous = {sig: signal.signal(sig, run.stop.on_signal) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         return run.main(args)
@@ -226,8 +225,9 @@ def main(argv: Sequence[str]) -> int:
 
 
 class _Run:
-    def __init__(self, printer: Printer, stream_filter: StreamFilter) -> None:
+    def __init__(self, printer: Printer, stream_filter: StreamFilter, rules: RuleSet) -> None:
         self.printer = printer
+        self.rules = rules
         self.filter = stream_filter
         self.stop = SignalStop()
         self.status = EXIT_OK
@@ -245,30 +245,33 @@ class _Run:
         lives: list[LiveIntake] = []
         # --level is asked of the middleware too (a DDS content filter, as ros2 log watch asks).
         min_level = int(parse_severity(args.level)) if args.level is not None else 0
-        if args.robots:  # a fleet: an intake process per robot
-            lives = open_fleet(self.queue, args.robots, topic=args.topic, min_level=min_level)
-        elif args.live or not (args.files or args.journals):
+        if args.robots or args.live or not (args.files or args.journals or args.warehouses):
             try:
-                lives = [open_live(self.queue, topic=args.topic, ros=args.ros, min_level=min_level)]
+                lives = open_stream(self.queue, args.robots, topic=args.topic, ros=args.ros, min_level=min_level)
             except RosUnavailable as error:
                 print(f"console-tui tail: {error}", file=sys.stderr)
                 return EXIT_NO_ROS
         lives += [open_journal(self.queue, query, log_format=args.log_format or "") for query in args.journals]
+        windows = Windows(args, self.rules, _complain, max_rows=args.max_messages)
         try:
             followed: list[FollowedFile] = []
-            if args.files:
-                followed = self.files(args)
+            if args.files or args.warehouses:
+                followed = self.files(args, windows)
             for live in lives:
                 live.source.start()
-            if lives or followed:
-                self.keep_reading(followed, lives)
+            if lives or followed or (args.follow and windows.readers):
+                self.keep_reading(followed, lives, windows if args.follow else None)
         finally:
+            windows.close()
             for live in lives:
                 live.close()
+        if windows.failed:
+            self.status = EXIT_FILES
         return self.status
 
-    def files(self, args: argparse.Namespace) -> list[FollowedFile]:
-        """Print the files merged by time; the text files to go on following, if asked."""
+    def files(self, args: argparse.Namespace, windows: Windows) -> list[FollowedFile]:
+        """Print the files and the warehouse's windows merged by time; the text files to go on
+        following, if asked."""
         opened = open_logs(args.files, log_format=args.log_format)
         files = opened.files
         for problem in opened.failures:
@@ -280,9 +283,9 @@ class _Run:
                 followed = [FollowedFile(f) for f in files if isinstance(f, TextLogFile)]
                 once: list[LogFile] = [f for f in files if not isinstance(f, TextLogFile)]
                 streams = [f.records_so_far() for f in followed] + [f.batches(self.stop) for f in once]
-                batches = merge_by_time(streams) if streams else iter(())
+                batches = merged([*streams, *windows.streams()])
             else:
-                batches = load_records(files, self.stop)
+                batches = merged([load_records(files, self.stop), *windows.streams()])
             for batch in batches:
                 self.print(batch)
                 if self.stop.is_set():
@@ -293,9 +296,10 @@ class _Run:
         self._problems(files)
         return followed
 
-    def keep_reading(self, followed: list[FollowedFile], lives: Sequence[LiveIntake]) -> None:
-        told = [_Told() for _ in lives]
-        slow_told = filter_told = False
+    def keep_reading(
+        self, followed: list[FollowedFile], lives: Sequence[LiveIntake], windows: Windows | None = None
+    ) -> None:
+        reports = LiveReports(lives, _complain)
         try:
             while not self.stop.wait(POLL_S):
                 self.printer.check_reader()
@@ -306,24 +310,10 @@ class _Run:
                     self._problems(followed)
                 if lives:
                     self.print(self.queue.drain())
-                for live, said in zip(lives, told, strict=True):
-                    status = live.source.status
-                    robot = f"{status.robot}: " if status.robot else ""  # a fleet's robot
-                    if status.problem and status.problem != said.problem:
-                        _complain(robot + status.problem)
-                    said.problem = status.problem
-                    slow = status.slow_path_text() if status.path_note and not slow_told else ""
-                    if slow:  # (nothing while the loop in C is being built)
-                        _complain(slow)
-                        slow_told = True
-                    if status.level_filter_note and not filter_told:  # the middleware does not filter
-                        _complain(f"--level: {status.level_filter_text()}")
-                        filter_told = True
-                    now = time.monotonic()
-                    if status.lost > said.lost and now - said.lost_at >= LOSS_REPORT_S:
-                        _complain(robot + status.loss_text())
-                        said.lost, said.lost_at = status.lost, now
-                if lives and not followed and all(_ended(live) for live in lives):
+                if windows is not None:
+                    self.print(windows.newer())
+                reports.tell()
+                if lives and not followed and windows is None and all(_ended(live) for live in lives):
                     self.status = EXIT_FILES  # the journal could not be read (said above)
                     break
         finally:
@@ -336,15 +326,6 @@ class _Run:
             for problem in items[self._told.get(id(file), 0) :]:
                 _complain(str(problem))
             self._told[id(file)] = len(items)
-
-
-@dataclass
-class _Told:
-    """What was said of a live source on stderr: its problem, its losses and when."""
-
-    problem: str = ""
-    lost: int = 0
-    lost_at: float = 0.0
 
 
 def _journal_problem(queries: Sequence) -> str:

@@ -35,7 +35,7 @@ HOW_TO_USE_ROS1 = (
     "      console-tui --ros1"
 )
 
-__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_journal", "open_live"]
+__all__ = ["LiveIntake", "RosUnavailable", "open_fleet", "open_journal", "open_live", "open_stream"]
 
 
 @dataclass
@@ -123,6 +123,23 @@ def open_fleet(
         )
         for robot in robots
     ]
+
+
+def open_stream(
+    queue: IntakeQueue,
+    robots: Sequence[Robot] | None,
+    *,
+    topic: str | None = None,
+    ros: int | None = None,
+    min_level: int = 0,
+) -> list[LiveIntake]:
+    """The log stream the headless commands read (``tail``, ``ship``): each robot of a fleet
+    when ``robots`` are given (``--domain``, ``--master``, ``--fleet``), else the one source of
+    the environment (``--ros1``/``--ros2``); none started yet; ``min_level`` as ``open_live``.
+    ``RosUnavailable`` as ``open_live``."""
+    if robots:
+        return open_fleet(queue, robots, topic=topic, min_level=min_level)
+    return [open_live(queue, topic=topic, ros=ros, min_level=min_level)]
 
 
 def open_journal(queue: IntakeQueue, query: JournalQuery, *, log_format: str = "") -> LiveIntake:

@@ -48,6 +48,9 @@ class SourceStatus:
     #: What the table says while this source has given nothing, for a source that reads no ROS
     #: topic (the journal, a launch's output): ``following this machine's journal: no entries yet…``.
     hint: str = ""
+    #: Whether ``path`` is progress (a log warehouse's ``1,000 rows read, following``): a detail
+    #: the status line gives up first, as it does a take path.
+    path_is_progress: bool = False
     #: The lowest severity taken (``tail --level``; 0: every message).
     min_level: int = 0
     #: Why the middleware does not drop what is below ``min_level`` (the intake then drops it

@@ -47,6 +47,7 @@ from .controllers.rules import RulesController
 from .controllers.search import SearchController
 from .controllers.table import TableController
 from .controllers.toggles import TogglesController
+from .controllers.warehouse import WarehouseController
 from .exit_signals import ExitSignals, terminal_gone
 from .focus import KeyGate, run_bindings_now
 from .gc_policy import CollectionPolicy
@@ -101,6 +102,7 @@ class ConsoleApp(App[None], inherit_bindings=False):
         OverviewController,
         JumpsController,
         TogglesController,
+        WarehouseController,
     )
 
     def __init__(

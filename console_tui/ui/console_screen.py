@@ -3,7 +3,7 @@
 ``ConsoleScreen`` composes the widgets (the timeline strip, the rules pane, the table, the
 logger levels pane and the node panel, the query and search lines, the load bar, the status
 line, the footer), owns one controller a concern (``controllers``: intake, table, rules, files,
-panes, search, jumps, toggles, overview), each made with the few things it works on, and hands
+panes, search, jumps, toggles, overview, warehouse), each made with the few things it works on, and hands
 the widgets' messages to them. Their commands (``command_table``) are gathered here in
 ``commands``; the app binds their keys.
 """
@@ -43,6 +43,7 @@ from .controllers.rules import RulesController
 from .controllers.search import SearchController
 from .controllers.table import TableController
 from .controllers.toggles import TogglesController
+from .controllers.warehouse import WarehouseController, warehouses_of
 from .focus import focus_now
 from .gc_policy import CollectionPolicy
 from .widgets.key_footer import KeyFooter
@@ -100,7 +101,10 @@ class ConsoleScreen(Screen[None]):
         #: The fleet's robots (``--domain``, ``--master``, ``--fleet``), or none.
         self.robots = list(robots)
         self.table.painter.robot_styles = {robot.name: Style.parse(robot.colour) for robot in robots if robot.colour}
-        if len(self.robots) > 1:
+        #: The Robot column from the start: a fleet's robots, or a log warehouse's (a fleet's
+        #: logs, even when the rows asked for are one robot's).
+        self._robot_column = len(self.robots) > 1 or bool(warehouses_of(self.sources))
+        if self._robot_column:
             self.table.painter.set_column_shown("robot", True)
         self.status_bar = StatusBar(id="status")
         self._initial_rules = rules
@@ -158,7 +162,7 @@ class ConsoleScreen(Screen[None]):
         )
         self.filtering = RulesController(context, self.query_bar, self.rules_pane, self.query_history)
         self.table_control = TableController(
-            context, source_notes=self.files.source_notes, robot_column=len(self.robots) > 1
+            context, source_notes=self.files.source_notes, robot_column=self._robot_column
         )
         self.toggles = TogglesController(
             context,
@@ -178,6 +182,12 @@ class ConsoleScreen(Screen[None]):
             robots=self.robots,
         )
         self.jumps = JumpsController(context, opened_paths=self.files.opened_paths)
+        self.warehouse = WarehouseController(
+            context,
+            self.intake,
+            sources=self.sources,
+            reapply_rules=lambda: self.filtering.apply_rules(self.filtering.rules),
+        )
         return [
             self.files,
             self.overview,
@@ -188,6 +198,7 @@ class ConsoleScreen(Screen[None]):
             self.searching,
             self.intake,
             self.jumps,
+            self.warehouse,
         ]
 
     #: Whether the panes and lines hidden at start are mounted (``_mount_hidden``): until
@@ -301,6 +312,9 @@ class ConsoleScreen(Screen[None]):
     def on_log_table_state_changed(self, _message: LogTable.StateChanged) -> None:
         self.state_changed()  # the footer's Pause or Resume too
         self.overview.show(force=True)
+
+    def on_log_table_top_reached(self, _message: LogTable.TopReached) -> None:
+        self.warehouse.top_reached()
 
     def on_log_table_row_activated(self, message: LogTable.RowActivated) -> None:
         self.table_control.open_detail(message.seq)

@@ -16,7 +16,6 @@ from console_tui.sources.journal.journal_location import (
     JournalLocation,
     is_journal_file,
     is_journal_folder,
-    journal_arguments,
     journal_location,
     local_units,
 )
@@ -27,6 +26,7 @@ from console_tui.sources.journal.journalctl import (
     JournalUnavailable,
     find_journalctl,
 )
+from console_tui.sources.locations import FILE, JOURNAL, split_locations
 
 
 def test_journal_arguments_are_told_from_files(tmp_path):
@@ -39,8 +39,9 @@ def test_journal_arguments_are_told_from_files(tmp_path):
     )
     assert journal_location(str(tmp_path)) is None
     assert journal_location("run.bag") is None
-    found, rest = journal_arguments(["a.log", "journal:nav", "b", "journal:"])
-    assert rest == ["a.log", "b"] and [f.units for f in found] == [("nav",), ()]
+    kinds = split_locations(["a.log", "journal:nav", "b", "journal:"])
+    assert kinds[FILE] == ["a.log", "b"] and kinds[JOURNAL] == ["journal:nav", "journal:"]
+    assert [journal_location(text).units for text in kinds[JOURNAL]] == [("nav",), ()]
 
 
 def test_journal_files_and_folders_by_name_magic_and_machine_folders(tmp_path):

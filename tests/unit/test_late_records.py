@@ -16,6 +16,8 @@ from console_tui.model.store.record_batch import RecordColumns
 from console_tui.model.view.log_view import LogView
 from console_tui.model.view.marks import Marks
 
+from support.followers import assert_follow_as_made_again
+
 INFO, WARN, ERROR = 20, 30, 40
 S = 1_000_000_000
 BASE = 1_700_000_000 * S
@@ -107,22 +109,7 @@ def test_views_storms_timeline_and_counts_follow_a_late_history():
     (mark,) = list(marks)
     assert store.get(mark).msg == marked_record.msg and store.get(mark).stamp_ns == marked_record.stamp_ns
 
-    expected = fresh(list(store))
-    expected_view = LogView(expected, view.rules)
-    expected_storms, expected_timeline = StormRows(expected, expected_view), Timeline(expected, expected_view)
-    for follower in (expected_storms, expected_timeline):
-        follower.sync()
-    expected_stats = NodeStats(expected)
-    expected_stats.update()
-
-    def shown(v) -> list[tuple[int, str, str]]:
-        return [(r.stamp_ns, r.node, r.msg) for r in (v.store.get(v.seq_at(row)) for row in range(len(v)))]
-
-    assert shown(view) == shown(expected_view)
-    assert shown(storms) == shown(expected_storms)
-    assert storms.storm_count == expected_storms.storm_count
-    assert timeline.total == expected_timeline.total
-    assert [(n.node, n.counts) for n in stats.nodes()] == [(n.node, n.counts) for n in expected_stats.nodes()]
+    assert_follow_as_made_again(view, storms, timeline, stats, fresh(list(store)))
 
 
 def test_histories_are_due_for_a_while_after_a_source_starts_gains_a_publisher_or_changes_topic():

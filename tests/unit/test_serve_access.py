@@ -124,6 +124,21 @@ def test_bad_console_arguments_exit_2_before_serving(capsys):
     with pytest.raises(SystemExit):
         serve.check_app_arguments(serve.build_parser(), ["--help"])
     serve.check_app_arguments(serve.build_parser(), ["a.csv", "--utc"])  # good ones pass
+    serve.check_app_arguments(serve.build_parser(), ["chdb:///tmp/warehouse", "journal:", "--since", "2h"])
+
+
+@pytest.mark.parametrize(
+    ("argv", "said"),
+    [
+        (["clickhouse://"], "clickhouse://"),
+        (["--since", "1h", "a.csv"], "--since goes with the journal or a log warehouse"),
+    ],
+)
+def test_a_bad_source_argument_exits_2_before_serving(argv, said, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        serve.check_app_arguments(serve.build_parser(), argv)
+    assert exit_info.value.code == 2
+    assert said in capsys.readouterr().err
 
 
 def test_the_banner_says_where_to_go_and_what_runs():

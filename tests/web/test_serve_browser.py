@@ -11,7 +11,10 @@ from pathlib import Path
 import pytest
 from conftest import next_domain_id
 
+from console_tui.model.store.record import LogRecord
+
 from support.browser import Browser, ServeProcess, alive, browser_missing, children, descendants, wait_for
+from support.warehouse import STORE_MISSING, chdb_address, ship_records
 
 pytestmark = pytest.mark.skipif(browser_missing() is not None, reason=f"no browser test: {browser_missing()}")
 
@@ -261,6 +264,28 @@ def test_a_tab_beyond_max_consoles_is_refused_and_says_so(server_env, browser):
         )
         assert len(children(server.process.pid)) == 1, "no second console"
         assert "a new tab refused: 1 consoles run already" in server.text()
+    finally:
+        while len(browser.driver.window_handles) > 1:
+            browser.driver.close()
+            browser.driver.switch_to.window(browser.driver.window_handles[0])
+        server.stop()
+
+
+@pytest.mark.skipif(bool(STORE_MISSING), reason=STORE_MISSING or "-")
+def test_a_log_warehouse_in_the_page(server_env, browser, tmp_path):
+    """``console-tui serve -- chdb://DIR``: a tab's console reads the warehouse (chDB: one
+    process at a time, so one tab)."""
+    address = chdb_address(tmp_path / "warehouse")
+    records = [
+        LogRecord(1_765_000_000_000_000_000 + i * 1_000_000, 30 if i == 7 else 20, "nav", f"stored row {i}", robot="r2")
+        for i in range(10)
+    ]
+    ship_records(address, records)
+    server = ServeProcess("--", address.text, "--utc", env=server_env)
+    try:
+        browser.open(server.url, new_tab=True)
+        screen = browser.wait_for_text("stored row 9", "10/10 shown")
+        assert "stored row 0" in screen and "chdb://" in screen
     finally:
         while len(browser.driver.window_handles) > 1:
             browser.driver.close()

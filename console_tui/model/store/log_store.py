@@ -22,7 +22,8 @@ Every record gets a sequence number (``seq``) in arrival order; a seq never chan
 is never reused, so views and caches key on it. ``first_seq`` is the oldest record
 still kept and ``end_seq`` the number the next record will get. The one exception is
 ``rewrite_from``: the newest records put in another order (a late history placed by its
-stamp, ``late_records.py``); whoever keys on their seqs is told first (``rewind_listeners``).
+stamp, ``late_records.py``), or older ones put before them (``put_before``: a log warehouse's
+older page); whoever keys on their seqs is told first (``rewind_listeners``).
 """
 
 from __future__ import annotations
@@ -244,6 +245,37 @@ class LogStore:
         self._truncate_to(start)
         self.extend(columns)
         return range(start, self.end_seq)
+
+    def put_before(self, columns: RecordColumns) -> int:
+        """Put ``columns``, records older than every kept one, before them: what
+        ``rewrite_from(first_seq, joined([columns, kept]))`` does (the listeners told, the kept
+        records' seqs moved up by the number returned), at the cost of ``columns`` and one
+        chunk: the kept chunks but the first are kept whole (the first chunk before them
+        starts with unused places, as after an eviction)."""
+        first, chunks = self.first_seq, self._chunks
+        if not len(columns):
+            return 0
+        if len(chunks) < 2 or len(columns) + 2 * CHUNK_SIZE > self.max_messages:  # nothing to keep whole
+            self.rewrite_from(first, RecordColumns.joined([columns, self.columns(first, self.end_seq)]))
+            return len(columns)
+        base, end = self._base_seq, self.end_seq
+        front = RecordColumns.joined([columns, self.columns(first, base + CHUNK_SIZE)])
+        pad = -len(front) % CHUNK_SIZE  # unused places, so that the kept chunks stay whole
+        for listener in self.rewind_listeners:
+            listener(first)
+        kept, counts = list(chunks)[1:], dict(self.counts)
+        self._chunks = deque()
+        self.first_seq = self.end_seq = base
+        self.extend(front.reordered([0] * pad + list(range(len(front)))))
+        self._chunks.extend(kept)
+        shift = pad + len(columns) - (first - base)
+        self.first_seq, self.end_seq = base + pad, end + shift
+        self.counts.update(counts)  # the kept records' counts, and the new ones'
+        for level, number in Counter(columns.levels).items():
+            self.counts[_BUCKET[level]] += number
+        if len(self) > self.max_messages:
+            self._evict_to(self.end_seq - self.max_messages)
+        return shift
 
     def columns(self, start: int, stop: int) -> RecordColumns:
         """The kept records of ``start:stop`` as one batch of columns."""

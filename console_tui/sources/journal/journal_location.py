@@ -8,8 +8,9 @@
 - a ``*.journal`` file or a journal directory given as a path is a file among the others: read
   once, merged by time (``sources/files/journal_file.py``; ``tail -f`` follows it).
 
-``journal_location(text)`` says which an argument is (None: neither, a file as ever); this is
-the journal's part of the one dispatch of positional arguments.
+``follows_journal(text)`` is the journal's row in the one dispatch of positional arguments
+(``sources/locations.py``); ``journal_location(text)`` says what a ``journal:`` argument, a
+journal file or a journal directory asks for (None: none of those, a file as ever).
 """
 
 from __future__ import annotations
@@ -68,18 +69,10 @@ def journal_location(text: str) -> JournalLocation | None:
     return None
 
 
-def journal_arguments(arguments: Sequence[str]) -> tuple[list[JournalLocation], list[str]]:
-    """The ``journal:`` locations among the positional arguments, and the rest (files and
-    folders, journal files among them, in their order)."""
-    live: list[JournalLocation] = []
-    rest: list[str] = []
-    for argument in arguments:
-        location = journal_location(argument) if argument.startswith(PREFIX) else None
-        if location is None:
-            rest.append(argument)
-        else:
-            live.append(location)
-    return live, rest
+def follows_journal(text: str) -> bool:
+    """Whether an argument is a journal to follow (``journal:...``): its kind in the one
+    dispatch of positional arguments (``sources/locations.py``)."""
+    return text.startswith(PREFIX)
 
 
 def local_units(locations: Sequence[JournalLocation], units: Sequence[str]) -> list[JournalLocation]:

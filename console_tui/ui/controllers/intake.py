@@ -17,7 +17,7 @@ from typing import Any, Protocol
 
 from ...model.store.indexed_chunk import IndexedChunk
 from ...model.store.intake_queue import Batch, IntakeQueue
-from ...model.store.late_records import WINDOW, HistoryWindow, add_in_time_order
+from ...model.store.late_records import WINDOW, HistoryWindow, Placed, add_in_time_order
 from ...model.store.record import LogRecord
 from ...model.store.record_batch import RecordColumns
 from ...ros.fleet import Robot
@@ -197,6 +197,20 @@ class IntakeController:
         self._arrivals.append((self._clock(), added))
         self._announce.taken_in(TakenIn(added, rewritten))
         return added
+
+    def add_placed(self, place: Callable[[], Placed | None]) -> None:
+        """Records put into the store by ``place`` where they belong, which may write it
+        again (a log warehouse's older rows, a source's rows taken out): announced as
+        ``add_batches`` announces a late history, the rows on the screen kept in place."""
+        before = len(self._store)
+        with self._table.keeping_position():
+            placed = place()
+            if placed is not None:
+                self._marks.move(placed.moved)
+            self._view.update()
+            self._announce.placing()
+        # (History put in place, not arrivals: the receive rate leaves them out.)
+        self._announce.taken_in(TakenIn(max(len(self._store) - before, 0), placed is not None))
 
     def receive_rate(self) -> float:
         """Records a second over the last ``RATE_WINDOW_S``, recomputed once a second

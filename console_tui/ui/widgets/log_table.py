@@ -87,6 +87,12 @@ class LogTable(RowsScrollView, can_focus=True):
 
         seq: int
 
+    class TopReached(Message):
+        """The cursor was asked to go above the oldest row (up, page up or home on it)."""
+
+        def can_replace(self, message: Message) -> bool:
+            return isinstance(message, LogTable.TopReached)
+
     class StateChanged(Message):
         """Following, pause or cursor changed (for the status bar)."""
 
@@ -266,6 +272,8 @@ class LogTable(RowsScrollView, can_focus=True):
     def move_cursor(self, row: int, *, extend: bool = False) -> None:
         """Move the cursor to ``row``; ``extend`` selects the rows from where it was."""
         rows = self.row_count
+        if row < 0 and self.cursor.row == 0:
+            self.post_message(self.TopReached())  # older rows may be asked for
         if rows == 0:
             return
         self.cursor.move(row, self.view, rows, extend=extend)
@@ -331,7 +339,7 @@ class LogTable(RowsScrollView, can_focus=True):
         self.move_cursor(self.cursor.row + self._body_height)
 
     def action_first_row(self) -> None:
-        self.move_cursor(0)
+        self.move_cursor(-1 if self.cursor.row == 0 else 0)
 
     def action_follow(self) -> None:
         self.follow()

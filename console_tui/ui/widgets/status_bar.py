@@ -228,7 +228,9 @@ def _source_parts(status: SourceStatus, styled: Callable[..., Text]) -> list[Par
     if status.path:
         path = one_line(status.path, 200)
         demo = path.startswith("demo")
-        priority = DETAIL if status.take_path else DEMO if demo else WHERE
+        # How messages are taken, and what a log warehouse has read, are details; a demo's and
+        # a file's are where it reads.
+        priority = DETAIL if status.take_path or status.path_is_progress else DEMO if demo else WHERE
         parts.append(Part(styled((path, "where")), priority, styled(("demo", "where")) if demo else None))
     return parts
 
@@ -250,8 +252,11 @@ def _short_origin(origin: str) -> str:
     anything else (a command ``run`` runs) in 32 cells."""
     if origin.startswith("ROS 2 domain "):
         return origin.removeprefix("ROS 2 ")
-    origin = origin.replace("http://", "").rstrip("/")
-    return origin if len(origin) <= 32 else origin[:31] + "…"
+    short = origin.replace("http://", "").rstrip("/")
+    if len(short) <= 32:
+        return short
+    # a log warehouse's long address: its end (the table); a command run: its start
+    return "…" + short[-31:] if "://" in short else short[:31] + "…"
 
 
 #: A fleet's robot's state in one mark (``SourceStatus.state``): the status line's legend.
