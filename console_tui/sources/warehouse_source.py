@@ -31,10 +31,16 @@ from .status import SourceStatus
 #: terminal's screenful: few, so that they are found in the table's newest part; the rest
 #: comes at once after, ``PREFETCH_ROWS``).
 FIRST_ROWS = 250
-#: Rows read after the first page without being asked (older pages, placed before it), and
-#: at most this many a query.
+#: Rows read after the first page without being asked (older pages, placed before it).
 PREFETCH_ROWS = 50_000
-PREFETCH_PIECE = 10_000
+#: Prefetched a piece at a time, so that new rules wait for one piece's query at most: the
+#: first of ``PREFETCH_PIECE`` rows, then twice as many after a piece read within
+#: ``PIECE_BUDGET_S`` and half as many after one that took longer (the rules keep few rows:
+#: each is found far back), from ``MIN_PREFETCH_PIECE`` to ``MAX_PREFETCH_PIECE``.
+PREFETCH_PIECE = 1_000
+MIN_PREFETCH_PIECE = 250
+MAX_PREFETCH_PIECE = 10_000
+PIECE_BUDGET_S = 0.25
 #: Prefetching starts this long after a first page: rules changed again meanwhile (a person
 #: typing one query after another) are not held up behind a prefetch's query.
 PREFETCH_AFTER_S = 1.0
@@ -57,6 +63,13 @@ class Delivery:
     generation: int
     kind: str
     columns: RecordColumns
+
+
+def next_piece(piece: int, seconds: float) -> int:
+    """The rows of the prefetch's next piece, after one of ``piece`` rows read in ``seconds``."""
+    if seconds <= PIECE_BUDGET_S:
+        return min(piece * 2, MAX_PREFETCH_PIECE)
+    return max(piece // 2, MIN_PREFETCH_PIECE)
 
 
 def window_condition(since_ns: int | None, until_ns: int | None, rules: RuleSet | None) -> str:
@@ -111,6 +124,7 @@ class WarehouseSource:
         self.generation = 0
         self._asked_generation = 1
         self._older_asked = False
+        self._piece = PREFETCH_PIECE
         #: What the thread is doing, since when (``_clock``), and what went wrong last.
         self._doing = "starting"
         self._since = clock()
@@ -227,6 +241,7 @@ class WarehouseSource:
                     pages = TablePages(client, condition, source=self.name)
                     page = pages.newest(self.first_rows)
                     self.generation, self.loaded, self._older_asked = generation, len(page), False
+                    self._piece = PREFETCH_PIECE
                     self._newest_at = self._clock()
                     self._deliver(generation, NEWEST, page)
                 elif self._older_asked or self._prefetch_due(pages) == 0:
@@ -234,9 +249,11 @@ class WarehouseSource:
                     room = self.max_rows - self.loaded
                     if room > 0 and not pages.at_start:
                         self._set("asking for older rows")
-                        # Prefetched a piece at a time: new rules wait for one piece at most.
-                        size = self.page_rows if asked else min(self.prefetch_rows - self.loaded, PREFETCH_PIECE)
+                        size = self.page_rows if asked else min(self.prefetch_rows - self.loaded, self._piece)
+                        began = self._clock()
                         page = pages.older(min(size, room))
+                        if not asked:
+                            self._piece = next_piece(self._piece, self._clock() - began)
                         self.loaded += len(page)
                         self._deliver(generation, OLDER, page)
                 elif self.follow:

@@ -27,8 +27,10 @@ from .schema import RECORD_COLUMNS
 MAX_PAGE_ROWS = 200_000
 #: How far behind the newest row a row may reach the table and still be found by ``newer``.
 LOOKBACK_NS = 15_000_000_000
-#: The spans of time, back from the newest row, in which a page's bound is looked for in turn.
-SPANS_S = (600, 3_600, 6 * 3_600, 86_400, 7 * 86_400)
+#: The spans of time, back from the newest row, in which a page's bound is looked for in turn:
+#: ten minutes, three times as long each time (a span too short costs a third of the next),
+#: to fifteen days; then the whole table.
+SPANS_S = tuple(600 * 3**step for step in range(8))
 #: Rows at one ``Timestamp`` beyond a page's count read to keep a group whole.
 TIE_ROOM = 1_000
 _SELECT = ", ".join(expression for _, expression in RECORD_COLUMNS)
@@ -63,6 +65,8 @@ class TablePages:
         self.duplicates = 0
         #: Nothing older is left in the window.
         self.at_start = False
+        #: The second of the table's oldest row, when asked (a span reaching it is the whole table).
+        self._table_oldest_s: int | None = None
 
     # -- queries ---------------------------------------------------------------------------------
 
@@ -105,14 +109,22 @@ class TablePages:
         """``_bound`` going back from ``top_ns`` (the newest row: None) in growing spans of time
         (``SPANS_S``), so that a page of recent rows reads only the recent part of the table
         (the partitions, and the primary key's ``TimestampTime``, leave the rest unread)."""
-        if top_ns is None:  # the table's newest row (the table's, not the window's: one cheap column)
-            newest = self.client.value(f"SELECT toUnixTimestamp64Nano(max(Timestamp)) FROM {self.client.table}")
-            if newest is None or not int(newest):
+        if top_ns is None or self._table_oldest_s is None:
+            # The table's oldest and newest rows (the table's, not the window's: one cheap column).
+            columns = self.client.columns(
+                f"SELECT toUnixTimestamp64Nano(min(Timestamp)), toUnixTimestamp64Nano(max(Timestamp)) "
+                f"FROM {self.client.table}"
+            )
+            oldest, newest = (int(column[0]) if len(column) else 0 for column in columns)
+            if not newest:
                 return None
-            top_ns = int(newest)
+            self._table_oldest_s = oldest // 1_000_000_000
+            top_ns = newest if top_ns is None else top_ns
         for span in SPANS_S:
             floor_s = top_ns // 1_000_000_000 - span
-            bound = self._bound(f"({where}) AND TimestampTime >= toDateTime({max(floor_s, 0)})", "DESC", offset)
+            if floor_s <= self._table_oldest_s:  # the span holds the whole table: no span at all
+                break
+            bound = self._bound(f"({where}) AND TimestampTime >= toDateTime({floor_s})", "DESC", offset)
             if bound is not None:
                 return bound
         return self._bound(where, "DESC", offset)

@@ -135,3 +135,20 @@ def test_following_finds_newer_rows_and_those_that_came_late(tmp_path):
         too_late = records(1, start=100 - (LOOKBACK_NS // 1_000_000) - 5, robot="arm")
         ship_records(address, too_late, client=client)
         assert not len(pages.newer(1_000))  # beyond the lookback: found when the window is read again
+
+
+def test_rows_the_rules_keep_far_back_are_found_without_asking_past_the_tables_oldest_row(tmp_path):
+    address = chdb_address(tmp_path)
+    hour = 3_600_000_000_000
+    shipped = records(60, step=hour // 60)  # an hour, a row a minute: one in six FATAL
+    ship_records(address, shipped)
+    with table_client(address) as client:
+        asked: list[str] = []
+        columns = client.columns
+        client.columns = lambda query: asked.append(query) or columns(query)  # type: ignore[method-assign]
+        pages = TablePages(client, "SeverityNumber >= 21")
+        fatal = pages.newest(20)
+        assert pages.at_start
+    assert rows_of(fatal.records()) == rows_of(r for r in shipped if r.level == 50)
+    spans = [query for query in asked if "TimestampTime >=" in query and "LIMIT 1 OFFSET" in query]
+    assert len(spans) == 2  # ten minutes, half an hour; then the table is shorter than the next
