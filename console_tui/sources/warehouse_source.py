@@ -23,7 +23,7 @@ from ..model.rules.ruleset import RuleSet
 from ..model.store.record_batch import RecordColumns
 from ..warehouse.address import Address
 from ..warehouse.clickhouse import TableClient, WarehouseError
-from ..warehouse.pages import TablePages
+from ..warehouse.pages import Abandoned, TablePages
 from ..warehouse.pushdown import where, window_sql
 from .status import SourceStatus
 
@@ -33,14 +33,15 @@ from .status import SourceStatus
 FIRST_ROWS = 250
 #: Rows read after the first page without being asked (older pages, placed before it).
 PREFETCH_ROWS = 50_000
-#: Prefetched a piece at a time, so that new rules wait for one piece's query at most: the
-#: first of ``PREFETCH_PIECE`` rows, then twice as many after a piece read within
-#: ``PIECE_BUDGET_S`` and half as many after one that took longer (the rules keep few rows:
-#: each is found far back), from ``MIN_PREFETCH_PIECE`` to ``MAX_PREFETCH_PIECE``.
+#: Prefetched a piece at a time, each a few short queries (new rules wait for the one
+#: running: the rest of a piece is given up, ``pages.Abandoned``): the first of
+#: ``PREFETCH_PIECE`` rows, then twice as many after a piece read within ``PIECE_BUDGET_S``
+#: and half as many after one that took longer (the rules keep few rows: each is found far
+#: back), from ``MIN_PREFETCH_PIECE`` to ``MAX_PREFETCH_PIECE``.
 PREFETCH_PIECE = 1_000
-MIN_PREFETCH_PIECE = 250
+MIN_PREFETCH_PIECE = 500
 MAX_PREFETCH_PIECE = 10_000
-PIECE_BUDGET_S = 0.25
+PIECE_BUDGET_S = 0.5
 #: Prefetching starts this long after a first page: rules changed again meanwhile (a person
 #: typing one query after another) are not held up behind a prefetch's query.
 PREFETCH_AFTER_S = 1.0
@@ -225,6 +226,42 @@ class WarehouseSource:
             return None
         return max(self._newest_at + self.prefetch_after_s - self._clock(), 0.0)
 
+    def _read(self, client: TableClient, pages: TablePages | None) -> TablePages:
+        """One query's worth: the first page of the generation asked for, or an older page
+        (asked for, or prefetched), or the newer rows; the pages of the generation read. (A
+        method of its own: the page read is not held while the thread waits.)"""
+        with self._lock:
+            generation, condition = self._asked_generation, self._condition
+        if pages is None or generation != self.generation:
+            self._set("asking the log warehouse")
+            pages = TablePages(
+                client, condition, source=self.name, abandoned=lambda: self._asked_generation != generation
+            )
+            page = pages.newest(self.first_rows)
+            self.generation, self.loaded, self._older_asked = generation, len(page), False
+            self._piece = PREFETCH_PIECE
+            self._newest_at = self._clock()
+            self._deliver(generation, NEWEST, page)
+        elif self._older_asked or self._prefetch_due(pages) == 0:
+            asked, self._older_asked = self._older_asked, False
+            room = self.max_rows - self.loaded
+            if room > 0 and not pages.at_start:
+                self._set("asking for older rows")
+                size = self.page_rows if asked else min(self.prefetch_rows - self.loaded, self._piece)
+                began = self._clock()
+                page = pages.older(min(size, room))
+                if not asked:
+                    self._piece = next_piece(self._piece, self._clock() - began)
+                self.loaded += len(page)
+                self._deliver(generation, OLDER, page)
+        elif self.follow:
+            self._set("asking for newer rows")
+            page = pages.newer(self.page_rows)
+            self.loaded += len(page)
+            if len(page):
+                self._deliver(generation, NEWER, page)
+        return pages
+
     def _run(self) -> None:
         client: TableClient | None = None
         pages: TablePages | None = None
@@ -234,34 +271,10 @@ class WarehouseSource:
                 if client is None:
                     self._set("asking the log warehouse")
                     client = self._connect(self.address)
-                with self._lock:
-                    generation, condition = self._asked_generation, self._condition
-                if pages is None or generation != self.generation:
-                    self._set("asking the log warehouse")
-                    pages = TablePages(client, condition, source=self.name)
-                    page = pages.newest(self.first_rows)
-                    self.generation, self.loaded, self._older_asked = generation, len(page), False
-                    self._piece = PREFETCH_PIECE
-                    self._newest_at = self._clock()
-                    self._deliver(generation, NEWEST, page)
-                elif self._older_asked or self._prefetch_due(pages) == 0:
-                    asked, self._older_asked = self._older_asked, False
-                    room = self.max_rows - self.loaded
-                    if room > 0 and not pages.at_start:
-                        self._set("asking for older rows")
-                        size = self.page_rows if asked else min(self.prefetch_rows - self.loaded, self._piece)
-                        began = self._clock()
-                        page = pages.older(min(size, room))
-                        if not asked:
-                            self._piece = next_piece(self._piece, self._clock() - began)
-                        self.loaded += len(page)
-                        self._deliver(generation, OLDER, page)
-                elif self.follow:
-                    self._set("asking for newer rows")
-                    page = pages.newer(self.page_rows)
-                    self.loaded += len(page)
-                    if len(page):
-                        self._deliver(generation, NEWER, page)
+                try:
+                    pages = self._read(client, pages)
+                except Abandoned:  # new rules: their first page next
+                    continue
                 self.at_start = pages.at_start
                 self.repaired, self.duplicates = pages.repaired, pages.duplicates
                 self._set("", "")

@@ -17,11 +17,13 @@ limit.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from itertools import chain, compress
 from typing import Any
 
 from ..model.store.record_batch import RecordColumns
 from .clickhouse import TableClient
+from .pushdown import window_sql
 from .schema import RECORD_COLUMNS
 
 MAX_PAGE_ROWS = 200_000
@@ -46,11 +48,25 @@ def _ns(stamp: int) -> str:
     return f"fromUnixTimestamp64Nano(toInt64({int(stamp)}))"
 
 
-class TablePages:
-    """Reads one window of the table through ``client``; ``condition`` is SQL over a row."""
+class Abandoned(Exception):
+    """A page given up between two of its queries: ``abandoned()`` said so."""
 
-    def __init__(self, client: TableClient, condition: str = "1", *, source: str = "") -> None:
+
+class TablePages:
+    """Reads one window of the table through ``client``; ``condition`` is SQL over a row.
+    ``abandoned`` is asked before each query: when it holds, the page is given up
+    (``Abandoned``), so that new rules wait for one query at most, not a page's several."""
+
+    def __init__(
+        self,
+        client: TableClient,
+        condition: str = "1",
+        *,
+        source: str = "",
+        abandoned: Callable[[], bool] = lambda: False,
+    ) -> None:
         self.client = client
+        self.abandoned = abandoned
         self.condition = condition or "1"
         self.source = source
         #: The oldest and newest ``Timestamp`` read.
@@ -70,6 +86,11 @@ class TablePages:
 
     # -- queries ---------------------------------------------------------------------------------
 
+    def _columns(self, sql: str) -> list[Sequence[Any]]:
+        if self.abandoned():
+            raise Abandoned
+        return self.client.columns(sql)
+
     def _where(self, where: str) -> str:
         return f"({self.condition}) AND ({where})"
 
@@ -82,7 +103,7 @@ class TablePages:
             f"SELECT {_SELECT} FROM {self.client.table} {prewhere}WHERE {self._where(where)} "
             f"ORDER BY Timestamp {order} LIMIT {int(limit)}{self.client.lazy_rows(limit)}"
         )
-        return [list(column) for column in self.client.columns(sql)]
+        return [list(column) for column in self._columns(sql)]
 
     def _bound(self, where: str, order: str, offset: int) -> int | None:
         """The ``Timestamp`` of the row ``offset`` rows into the order, or None past the end."""
@@ -90,8 +111,8 @@ class TablePages:
             f"SELECT toUnixTimestamp64Nano(Timestamp) FROM {self.client.table} WHERE {self._where(where)} "
             f"ORDER BY Timestamp {order} LIMIT 1 OFFSET {int(offset)}"
         )
-        value = self.client.value(sql)
-        return None if value is None else int(value)
+        columns = self._columns(sql)
+        return int(columns[0][0]) if columns and len(columns[0]) and columns[0][0] is not None else None
 
     # -- backward: the newest rows, then older ones ------------------------------------------------
 
@@ -103,7 +124,7 @@ class TablePages:
         """The ``count`` rows before the oldest read."""
         if self.oldest_ns is None:
             return self.newest(count)
-        return self._backward(f"Timestamp <= {_ns(self.oldest_ns)}", count)
+        return self._backward(window_sql(None, self.oldest_ns), count)
 
     def _newest_bound(self, where: str, offset: int, top_ns: int | None) -> int | None:
         """``_bound`` going back from ``top_ns`` (the newest row: None) in growing spans of time
@@ -111,7 +132,7 @@ class TablePages:
         (the partitions, and the primary key's ``TimestampTime``, leave the rest unread)."""
         if top_ns is None or self._table_oldest_s is None:
             # The table's oldest and newest rows (the table's, not the window's: one cheap column).
-            columns = self.client.columns(
+            columns = self._columns(
                 f"SELECT toUnixTimestamp64Nano(min(Timestamp)), toUnixTimestamp64Nano(max(Timestamp)) "
                 f"FROM {self.client.table}"
             )
@@ -133,9 +154,7 @@ class TablePages:
         count = min(max(count, 1), MAX_PAGE_ROWS)
         # Past the rows read at the oldest time (they are asked again: ``<=``), ``count`` more.
         bound = self._newest_bound(where, count - 1 + len(self._oldest_ids), self.oldest_ns)
-        span = ""
-        if bound is not None:
-            span = f"Timestamp >= {_ns(bound)} AND TimestampTime >= toDateTime({bound // 1_000_000_000})"
+        span = "" if bound is None else window_sql(bound, None)
         limit = count + TIE_ROOM + len(self._oldest_ids)
         columns = [column[::-1] for column in self._rows(where, "DESC", limit, span=span)]
         page = self._page(columns, self._oldest_ids)
@@ -161,14 +180,14 @@ class TablePages:
         newest, since = self.newest_ns, self.newest_ns - LOOKBACK_NS
         if self.oldest_ns is not None:  # rows before the oldest read are older, not late
             since = max(since, self.oldest_ns)
-        span = f"Timestamp >= {_ns(since)} AND Timestamp <= {_ns(newest)}"
-        identities = self.client.columns(f"SELECT {IDENTITY} FROM {self.client.table} WHERE {self._where(span)}")
+        span = window_sql(since, newest)
+        identities = self._columns(f"SELECT {IDENTITY} FROM {self.client.table} WHERE {self._where(span)}")
         late = sorted({int(i) for i in (identities[0] if identities else [])} - self._recent.keys())
         parts = []
         for start in range(0, len(late), LATE_IDS_A_QUERY):
             ids = ", ".join(str(i) for i in late[start : start + LATE_IDS_A_QUERY])
             parts.append(self._rows(f"{span} AND {IDENTITY} IN ({ids})", "ASC", LATE_IDS_A_QUERY * 2))
-        newer = f"Timestamp > {_ns(newest)} AND TimestampTime >= toDateTime({newest // 1_000_000_000})"
+        newer = f"Timestamp > {_ns(newest)} AND {window_sql(newest, None)}"
         parts.append(self._rows("1", "ASC", min(count, MAX_PAGE_ROWS), span=newer))
         columns = [list(chain.from_iterable(part[i] for part in parts if part)) for i in range(len(RECORD_COLUMNS))]
         if columns[0]:
@@ -191,11 +210,8 @@ class TablePages:
     def forward(self, count: int) -> RecordColumns:
         """The next ``count`` rows after the newest read, in order (a ``Timestamp``'s rows kept whole)."""
         count = min(max(count, 1), MAX_PAGE_ROWS)
-        where = "1" if self.newest_ns is None else f"Timestamp >= {_ns(self.newest_ns)}"
-        bound = self._bound(where, "ASC", count - 1)
-        span = where if where != "1" else ""
-        if bound is not None:
-            span = f"{span} AND Timestamp <= {_ns(bound)}" if span else f"Timestamp <= {_ns(bound)}"
+        bound = self._bound(window_sql(self.newest_ns, None), "ASC", count - 1)
+        span = "" if self.newest_ns is None and bound is None else window_sql(self.newest_ns, bound)
         edge = {i for i, s in self._recent.items() if s == self.newest_ns}
         columns = self._rows("1", "ASC", count + TIE_ROOM + len(edge), span=span)
         page = self._page(columns, edge)

@@ -6,9 +6,11 @@ from __future__ import annotations
 
 import itertools
 
+import pytest
+
 from console_tui.model.formats.otel_log import level_from_otel
 from console_tui.model.store.record import LogRecord
-from console_tui.warehouse.pages import LOOKBACK_NS, TablePages
+from console_tui.warehouse.pages import LOOKBACK_NS, Abandoned, TablePages
 from console_tui.warehouse.schema import LEVEL, create_table_sql
 
 from support.warehouse import chdb_address, needs_store, rows_of, ship_records, sql, table_client
@@ -152,3 +154,16 @@ def test_rows_the_rules_keep_far_back_are_found_without_asking_past_the_tables_o
     assert rows_of(fatal.records()) == rows_of(r for r in shipped if r.level == 50)
     spans = [query for query in asked if "TimestampTime >=" in query and "LIMIT 1 OFFSET" in query]
     assert len(spans) == 2  # ten minutes, half an hour; then the table is shorter than the next
+
+
+def test_a_page_is_given_up_between_its_queries_once_abandoned_says_so(tmp_path):
+    address = chdb_address(tmp_path)
+    ship_records(address, records(100))
+    with table_client(address) as client:
+        asked: list[str] = []
+        columns = client.columns
+        client.columns = lambda query: asked.append(query) or columns(query)  # type: ignore[method-assign]
+        pages = TablePages(client, abandoned=lambda: len(asked) >= 2)  # new rules after the first query
+        with pytest.raises(Abandoned):
+            pages.newest(50)
+    assert len(asked) == 2  # the table's extent, then the page's bound: its rows never asked

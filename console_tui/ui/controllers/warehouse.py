@@ -19,6 +19,7 @@ from ...model.rules.ruleset import RuleSet
 from ...model.store.late_records import Placed
 from ...model.store.older_records import add_older, drop_source
 from ...model.store.record_batch import RecordColumns
+from ...system.freed_memory import give_back
 from ..command_table import NAVIGATION, Command
 from .context import ConsoleContext
 from .intake import IntakeController
@@ -115,6 +116,7 @@ class WarehouseController:
             for seq in dropped.gone:
                 marks.discard(seq)
             marks.move(dropped.moved)
+            give_back()  # the rows of the generation before
             return Placed(self._store.first_seq, {}) if dropped.dropped else None
 
         self._intake.add_placed(drop)
@@ -131,6 +133,7 @@ class WarehouseController:
             placed = add_older(self._store, columns, marked)
             if placed is not None:
                 moved.update(placed.moved)
+            give_back()  # what reading and placing the page took
             return placed
 
         self._intake.add_placed(place)
