@@ -86,9 +86,13 @@ class TablePages:
 
     # -- queries ---------------------------------------------------------------------------------
 
-    def _columns(self, sql: str) -> list[Sequence[Any]]:
+    def _go_on(self) -> None:
+        """Before each query: ``Abandoned`` once ``abandoned()`` holds."""
         if self.abandoned():
             raise Abandoned
+
+    def _columns(self, sql: str) -> list[Sequence[Any]]:
+        self._go_on()
         return self.client.columns(sql)
 
     def _where(self, where: str) -> str:
@@ -98,7 +102,7 @@ class TablePages:
         """Rows, ``span`` (a condition on the time) read first (``PREWHERE``): the rest of a row,
         its maps and message, only where it holds; on an engine that can, only for the rows
         the ``LIMIT`` keeps (lazy materialization)."""
-        prewhere = f"PREWHERE {span} " if span else ""
+        prewhere = f"PREWHERE {span} " if span not in ("", "1") else ""
         sql = (
             f"SELECT {_SELECT} FROM {self.client.table} {prewhere}WHERE {self._where(where)} "
             f"ORDER BY Timestamp {order} LIMIT {int(limit)}{self.client.lazy_rows(limit)}"
@@ -111,8 +115,9 @@ class TablePages:
             f"SELECT toUnixTimestamp64Nano(Timestamp) FROM {self.client.table} WHERE {self._where(where)} "
             f"ORDER BY Timestamp {order} LIMIT 1 OFFSET {int(offset)}"
         )
-        columns = self._columns(sql)
-        return int(columns[0][0]) if columns and len(columns[0]) and columns[0][0] is not None else None
+        self._go_on()
+        value = self.client.value(sql)
+        return None if value is None else int(value)
 
     # -- backward: the newest rows, then older ones ------------------------------------------------
 
@@ -154,7 +159,7 @@ class TablePages:
         count = min(max(count, 1), MAX_PAGE_ROWS)
         # Past the rows read at the oldest time (they are asked again: ``<=``), ``count`` more.
         bound = self._newest_bound(where, count - 1 + len(self._oldest_ids), self.oldest_ns)
-        span = "" if bound is None else window_sql(bound, None)
+        span = window_sql(bound, None)
         limit = count + TIE_ROOM + len(self._oldest_ids)
         columns = [column[::-1] for column in self._rows(where, "DESC", limit, span=span)]
         page = self._page(columns, self._oldest_ids)
@@ -211,7 +216,7 @@ class TablePages:
         """The next ``count`` rows after the newest read, in order (a ``Timestamp``'s rows kept whole)."""
         count = min(max(count, 1), MAX_PAGE_ROWS)
         bound = self._bound(window_sql(self.newest_ns, None), "ASC", count - 1)
-        span = "" if self.newest_ns is None and bound is None else window_sql(self.newest_ns, bound)
+        span = window_sql(self.newest_ns, bound)
         edge = {i for i, s in self._recent.items() if s == self.newest_ns}
         columns = self._rows("1", "ASC", count + TIE_ROOM + len(edge), span=span)
         page = self._page(columns, edge)
